@@ -1,0 +1,10 @@
+// Sub-commands of the lrigid program; each adds itself to the CLI and sets its callback.
+#pragma once
+#include <CLI/CLI.hpp>
+
+namespace lrigid::app {
+
+void add_run_command(CLI::App& app);         // cmd_run.cpp
+void add_added_mass_command(CLI::App& app);  // cmd_added_mass.cpp
+
+}  // namespace lrigid::app

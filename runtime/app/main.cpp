@@ -1,0 +1,32 @@
+// lrigid: rigid bodies in turbulent flow. See README.md and docs/cli.md.
+#include <iostream>
+
+#include "commands.h"
+#include "util/error.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"lrigid: rigid bodies immersed in turbulent flow (Langevin Rigid). Units are SI."};
+  app.set_version_flag("--version", std::string("lrigid ") + LRIGID_VERSION);
+  app.require_subcommand(1);
+  lrigid::app::add_run_command(app);
+  lrigid::app::add_added_mass_command(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    app.exit(e);
+    return static_cast<int>(lrigid::ExitCode::Usage);
+  } catch (const lrigid::Error& e) {
+    std::cerr << "lrigid: error: " << e.what() << "\n";
+    return static_cast<int>(e.code());
+  } catch (const std::exception& e) {
+    std::cerr << "lrigid: error: " << e.what() << "\n";
+    return static_cast<int>(lrigid::ExitCode::Runtime);
+  }
+  return 0;
+}

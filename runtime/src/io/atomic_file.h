@@ -1,0 +1,19 @@
+// Write a file so that it either appears complete or not at all: the content goes to a
+// temporary name in the same directory and is renamed into place only when fully written.
+#pragma once
+#include <functional>
+#include <ostream>
+#include <string>
+
+namespace lrigid {
+
+// Calls `write` with a stream to a temporary file, then renames it to `path`. On any failure
+// (the writer throws, the stream fails, the rename fails) the temporary file is removed and an
+// lrigid::Error with ExitCode::Output is thrown naming the path.
+void write_file_atomically(const std::string& path,
+                           const std::function<void(std::ostream&)>& write);
+
+// Creates `dir` (and parents) and checks it is writable; throws ExitCode::Output otherwise.
+void ensure_writable_directory(const std::string& dir);
+
+}  // namespace lrigid
