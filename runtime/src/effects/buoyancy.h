@@ -1,0 +1,16 @@
+// Buoyancy: the displaced fluid's weight, -rho_f V g, acts at the centre of buoyancy (the volume
+// centroid). About the centre of mass it gives the torque r_cob x F, which rights a bottom-heavy
+// body (centre of mass below the centre of buoyancy). Together with gravity this is the
+// "buoyancy-corrected gravity" R^T (m - rho_f V) g of the seed method (physics-notes §3).
+#pragma once
+#include "effects/wrench.h"
+#include "model/model.h"
+
+namespace lrigid {
+
+inline Wrench buoyancy_wrench(const BodyType& type, double fluid_density, const Vec3& g_body) {
+  const Vec3 f = -fluid_density * type.volume * g_body;
+  return make_wrench(f, type.r_cob.cross(f));
+}
+
+}  // namespace lrigid

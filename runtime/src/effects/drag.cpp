@@ -1,0 +1,58 @@
+#include "effects/drag.h"
+
+#include <cmath>
+
+namespace lrigid {
+
+double schiller_naumann(double re) {
+  if (re >= 1000.0) return 0.44;
+  return 24.0 / re * (1.0 + 0.15 * std::pow(re, 0.687));
+}
+
+Wrench drag_wrench(const BodyType& type, const Vec3& u_rel, const Vec3& w, double rho, double nu,
+                   DragStiffness* stiffness) {
+  // relative velocity of the volume centroid (where the drag acts)
+  const Vec3 u = u_rel + w.cross(type.r_cob);
+  const double speed = u.norm();
+  Vec3 force = Vec3::Zero();
+  double c_lin = 0, p = 0;
+  Vec3 u_hat = Vec3::Zero();
+  if (speed > 0) {
+    u_hat = u / speed;
+    const Vec3& l = type.ell;
+    const double a_perp = M_PI * std::sqrt(std::pow(l.y() * l.z() * u_hat.x(), 2) +
+                                           std::pow(l.x() * l.z() * u_hat.y(), 2) +
+                                           std::pow(l.x() * l.y() * u_hat.z(), 2));
+    const double d_perp = 2.0 * std::sqrt(a_perp / M_PI);
+    const double re = speed * d_perp / nu;
+    double cd;
+    if (re >= 1000.0) {
+      cd = 0.44;
+      p = 1.0;
+    } else {
+      // C_D Re = 24 (1 + 0.15 Re^0.687): force ~ speed^(1+p)
+      const double s = 0.15 * std::pow(re, 0.687);
+      cd = 24.0 / re * (1.0 + s);
+      p = 0.687 * s / (1.0 + s);
+    }
+    c_lin = 0.5 * rho * speed * (cd * a_perp + kDragEdgewise * (type.area_max - a_perp));
+    force = -c_lin * u;
+  }
+  const double r_m = type.ell.mean();
+  const double w_norm = w.norm();
+  Vec3 torque = type.r_cob.cross(force);
+  double c_ang = 8.0 * M_PI * rho * nu * r_m * r_m * r_m;
+  for (int a = 0; a < 3; ++a) {
+    const double c = c_ang + 0.5 * rho * kDragRotation * type.rot_drag_len5[a] * w_norm;
+    torque[a] -= c * w[a];
+  }
+  if (stiffness) {
+    stiffness->c_lin = c_lin;
+    stiffness->p = p;
+    stiffness->u_hat = u_hat;
+    stiffness->c_ang = c_ang + rho * kDragRotation * type.rot_drag_len5.maxCoeff() * w_norm;
+  }
+  return make_wrench(force, torque);
+}
+
+}  // namespace lrigid

@@ -1,0 +1,34 @@
+// Quasi-steady drag on the motion relative to the fluid (docs/physics/drag.md).
+// Linear: F = -1/2 rho |u| u [C_D(Re) A_perp + C_s (A_max - A_perp)], applied at the volume
+// centroid, with u the centroid's velocity relative to the fluid, A_perp the projected area of
+// the body's equivalent ellipsoid normal to u, C_D the Schiller-Naumann law at
+// Re = |u| d_perp / nu, d_perp = 2 sqrt(A_perp/pi) (exactly Schiller-Naumann for a sphere), and
+// C_s a small edgewise (skin-friction) coefficient for flat bodies.
+// Angular: T_a = -(8 pi mu r_m^3 + 1/2 rho C_rot L5_a |w|) w_a: Stokes rotational resistance of
+// the sphere of mean radius plus quadratic pressure drag from the body's out-of-roundness
+// (L5_a = l_a |l_b^4 - l_c^4|, zero for a sphere; 1/2 rho C_D w^2 a b^4 for a flat plate).
+#pragma once
+#include "effects/wrench.h"
+#include "model/model.h"
+
+namespace lrigid {
+
+constexpr double kDragEdgewise = 0.1;   // C_s
+constexpr double kDragRotation = 1.2;   // C_rot (flat-plate normal drag ~1.2)
+
+// Schiller & Naumann (1935): C_D = 24/Re (1 + 0.15 Re^0.687), Re < 1000; 0.44 above.
+double schiller_naumann(double re);
+
+// Stiffness of the drag for the linearly implicit step: d(-wrench)/d(xi) approximated as
+// diag(c_lin (I + p u^ u^T), c_ang I).
+struct DragStiffness {
+  double c_lin = 0, p = 0, c_ang = 0;
+  Vec3 u_hat = Vec3::Zero();
+};
+
+// u_rel: velocity of the centre of mass relative to the fluid (body frame), w: angular velocity
+// relative to the fluid (body frame).
+Wrench drag_wrench(const BodyType& type, const Vec3& u_rel, const Vec3& w, double rho, double nu,
+                   DragStiffness* stiffness = nullptr);
+
+}  // namespace lrigid

@@ -1,0 +1,147 @@
+#include "fluid/field.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace lrigid {
+
+Vec3 GridGeometry::upper() const {
+  return origin + Vec3(spacing.x() * (n[0] - 1), spacing.y() * (n[1] - 1), spacing.z() * (n[2] - 1));
+}
+
+FluidField FluidField::uniform(const Vec3& U, double k, double epsilon, double nu, Drift drift,
+                               const TurbulenceLimits& limits) {
+  FluidField f;
+  const LangevinCoefficients c = langevin_coefficients(k, epsilon, nu, drift, limits);
+  f.uniform_.U = U;
+  f.uniform_.alpha = c.alpha;
+  f.uniform_.beta = c.beta;
+  f.uniform_.sigma2 = c.sigma2;
+  return f;
+}
+
+FluidField FluidField::grid(const GridGeometry& geometry, const std::vector<RawGridFrame>& frames,
+                            double nu, Drift drift, TimeMode mode,
+                            const TurbulenceLimits& limits) {
+  FluidField f;
+  f.geometry_ = geometry;
+  f.mode_ = mode;
+  const size_t np = geometry.points();
+  for (const RawGridFrame& raw : frames) {
+    std::vector<GridRecord> recs(np);
+    for (size_t p = 0; p < np; ++p) {
+      GridRecord& r = recs[p];
+      const bool valid = raw.valid.empty() || raw.valid[p] != 0;
+      r.valid = valid ? 1.f : 0.f;
+      r.pad = 0.f;
+      for (int a = 0; a < 3; ++a) r.u[a] = valid && !raw.U.empty() ? raw.U[3 * p + a] : 0.f;
+      if (valid && !raw.k.empty()) {
+        const LangevinCoefficients c = langevin_coefficients(raw.k[p], raw.epsilon[p], nu, drift,
+                                                             limits);
+        r.alpha = float(c.alpha);
+        r.beta = float(c.beta);
+        r.sigma2 = float(c.sigma2);
+      } else {
+        r.alpha = r.beta = r.sigma2 = 0.f;
+      }
+    }
+    f.frames_.push_back(std::move(recs));
+    f.times_.push_back(raw.time);
+  }
+  return f;
+}
+
+size_t FluidField::bytes() const {
+  size_t b = 0;
+  for (const auto& fr : frames_) b += fr.size() * sizeof(GridRecord);
+  return b;
+}
+
+bool FluidField::sample_frame(const std::vector<GridRecord>& frame, const Vec3& x, bool gradients,
+                              FluidSample* out) const {
+  const GridGeometry& g = geometry_;
+  int i0[3];
+  double f[3];
+  for (int a = 0; a < 3; ++a) {
+    const double s = (x[a] - g.origin[a]) / g.spacing[a];
+    if (!(s >= 0.0 && s <= double(g.n[a] - 1))) return false;  // also false for NaN
+    int i = static_cast<int>(s);
+    if (i > g.n[a] - 2) i = g.n[a] - 2;
+    i0[a] = i;
+    f[a] = s - i;
+  }
+  const size_t sx = 1, sy = size_t(g.n[0]), sz = size_t(g.n[0]) * g.n[1];
+  const size_t base = i0[0] * sx + i0[1] * sy + i0[2] * sz;
+  // accumulate value sums v[0..5] = (u0,u1,u2,alpha,beta,sigma2) and their weight
+  double W = 0, v[6] = {0, 0, 0, 0, 0, 0};
+  double dv[4][3] = {{0}};  // gradients (per unit index) of u0,u1,u2,sigma2; all corners valid
+  int nvalid = 0;
+  for (int c = 0; c < 8; ++c) {
+    const int cx = c & 1, cy = (c >> 1) & 1, cz = c >> 2;
+    const GridRecord& r = frame[base + cx * sx + cy * sy + cz * sz];
+    if (r.valid == 0.f) continue;
+    ++nvalid;
+    const double wx = cx ? f[0] : 1 - f[0], wy = cy ? f[1] : 1 - f[1], wz = cz ? f[2] : 1 - f[2];
+    const double w = wx * wy * wz;
+    W += w;
+    const double vals[6] = {r.u[0], r.u[1], r.u[2], r.alpha, r.beta, r.sigma2};
+    for (int q = 0; q < 6; ++q) v[q] += w * vals[q];
+    if (gradients) {
+      const double dw[3] = {(cx ? 1 : -1) * wy * wz, wx * (cy ? 1 : -1) * wz,
+                            wx * wy * (cz ? 1 : -1)};
+      const double gv[4] = {r.u[0], r.u[1], r.u[2], r.sigma2};
+      for (int q = 0; q < 4; ++q)
+        for (int a = 0; a < 3; ++a) dv[q][a] += dw[a] * gv[q];
+    }
+  }
+  if (nvalid == 0 || W < 1e-12) return false;
+  const double inv = 1.0 / W;
+  out->U = Vec3(v[0], v[1], v[2]) * inv;
+  out->alpha = v[3] * inv;
+  out->beta = v[4] * inv;
+  out->sigma2 = v[5] * inv;
+  if (gradients) {
+    // next to invalid points the renormalized blend has no reliable gradient: use none there
+    if (nvalid == 8) {
+      for (int i = 0; i < 3; ++i)
+        for (int a = 0; a < 3; ++a) out->grad_U(i, a) = dv[i][a] / g.spacing[a];
+      for (int a = 0; a < 3; ++a) out->grad_sigma2[a] = dv[3][a] / g.spacing[a];
+    } else {
+      out->grad_U.setZero();
+      out->grad_sigma2.setZero();
+    }
+  }
+  return true;
+}
+
+bool FluidField::sample(const Vec3& x, double t, bool gradients, FluidSample* out) const {
+  if (frames_.empty()) {
+    *out = uniform_;
+    return std::isfinite(x.x()) && std::isfinite(x.y()) && std::isfinite(x.z());
+  }
+  out->dU_dt.setZero();
+  if (frames_.size() == 1 || !(t > times_.front())) return sample_frame(frames_[0], x, gradients, out);
+  const double t0 = times_.front(), t1 = times_.back();
+  double tt = t;
+  if (mode_ == TimeMode::Loop && t1 > t0) tt = t0 + std::fmod(t - t0, t1 - t0);
+  if (tt >= t1) return sample_frame(frames_.back(), x, gradients, out);
+  const size_t j = size_t(std::upper_bound(times_.begin(), times_.end(), tt) - times_.begin());
+  const size_t i = j - 1;
+  FluidSample a, b;
+  if (!sample_frame(frames_[i], x, gradients, &a) || !sample_frame(frames_[j], x, gradients, &b))
+    return false;
+  const double dt = times_[j] - times_[i];
+  const double lam = (tt - times_[i]) / dt;
+  out->U = (1 - lam) * a.U + lam * b.U;
+  out->alpha = (1 - lam) * a.alpha + lam * b.alpha;
+  out->beta = (1 - lam) * a.beta + lam * b.beta;
+  out->sigma2 = (1 - lam) * a.sigma2 + lam * b.sigma2;
+  out->dU_dt = (b.U - a.U) / dt;
+  if (gradients) {
+    out->grad_U = (1 - lam) * a.grad_U + lam * b.grad_U;
+    out->grad_sigma2 = (1 - lam) * a.grad_sigma2 + lam * b.grad_sigma2;
+  }
+  return true;
+}
+
+}  // namespace lrigid

@@ -1,0 +1,87 @@
+// The fluid as the runtime sees it: mean velocity U and the Langevin coefficients derived from
+// k and epsilon, either uniform or on a regular grid (one frame, or a time series interpolated
+// linearly in time). Constant during a run; sampling is thread-safe.
+//
+// Grid storage: one 32-byte record per grid point holding everything the step needs (U, alpha,
+// beta, sigma2, valid), so the 8 corners of a trilinear sample touch 8 cache lines at most.
+// Invalid points (inside solids or outside the CFD mesh) get weight 0: the value at x is the
+// trilinear blend over the valid corners, renormalized; x is "outside" when no corner is valid
+// or x lies outside the grid box.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "fluid/turbulence_coefficients.h"
+#include "util/types.h"
+
+namespace lrigid {
+
+struct GridGeometry {
+  int n[3] = {0, 0, 0};          // points per axis
+  Vec3 origin = Vec3::Zero();    // position of point (0,0,0), m
+  Vec3 spacing = Vec3::Ones();   // m
+  size_t points() const { return size_t(n[0]) * n[1] * n[2]; }
+  Vec3 upper() const;
+};
+
+// One time of a grid as read from a file (SI units). Arrays are x-fastest, size points().
+struct RawGridFrame {
+  double time = 0;                 // s
+  std::vector<float> U;            // 3 per point, m/s
+  std::vector<float> k;            // m^2/s^2
+  std::vector<float> epsilon;      // m^2/s^3
+  std::vector<uint8_t> valid;      // 1 in the fluid
+};
+
+struct GridRecord {
+  float u[3];    // m/s
+  float alpha;   // 1/s
+  float beta;    // m/s^1.5
+  float sigma2;  // m^2/s^2
+  float valid;   // 1 or 0
+  float pad;
+};
+static_assert(sizeof(GridRecord) == 32, "one grid point is half a cache line");
+
+struct FluidSample {
+  Vec3 U = Vec3::Zero();              // mean velocity, world frame, m/s
+  double alpha = 0;                   // 1/s
+  double beta = 0;                    // m/s^1.5
+  double sigma2 = 0;                  // m^2/s^2
+  Mat3 grad_U = Mat3::Zero();         // dU_i/dx_j, 1/s (only when gradients are asked for)
+  Vec3 grad_sigma2 = Vec3::Zero();    // m/s^2
+  Vec3 dU_dt = Vec3::Zero();          // partial time derivative of U, m/s^2
+};
+
+enum class TimeMode { Clamp, Loop };
+
+class FluidField {
+ public:
+  static FluidField uniform(const Vec3& U, double k, double epsilon, double nu, Drift drift,
+                            const TurbulenceLimits& limits = {});
+  static FluidField grid(const GridGeometry& geometry, const std::vector<RawGridFrame>& frames,
+                         double nu, Drift drift, TimeMode mode,
+                         const TurbulenceLimits& limits = {});
+
+  // false when x is outside the fluid (outside the grid box or no valid corner)
+  bool sample(const Vec3& x, double t, bool gradients, FluidSample* out) const;
+
+  bool is_uniform() const { return frames_.empty(); }
+  const GridGeometry& geometry() const { return geometry_; }
+  size_t frame_count() const { return frames_.size(); }
+  const std::vector<double>& times() const { return times_; }
+  size_t bytes() const;
+
+ private:
+  bool sample_frame(const std::vector<GridRecord>& frame, const Vec3& x, bool gradients,
+                    FluidSample* out) const;
+
+  FluidSample uniform_;
+  GridGeometry geometry_;
+  std::vector<std::vector<GridRecord>> frames_;
+  std::vector<double> times_;
+  TimeMode mode_ = TimeMode::Clamp;
+};
+
+}  // namespace lrigid

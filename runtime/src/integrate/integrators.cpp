@@ -1,0 +1,216 @@
+#include "integrate/integrators.h"
+
+#include <cmath>
+
+#include "effects/turbulence.h"
+#include "integrate/dynamics.h"
+#include "util/rng.h"
+
+namespace lrigid {
+
+Quat rotate_body(const Quat& q, const Vec3& theta) {
+  const double angle = theta.norm();
+  Quat dq;
+  if (angle < 1e-8) {
+    dq = Quat(1.0, 0.5 * theta.x(), 0.5 * theta.y(), 0.5 * theta.z());
+  } else {
+    const double s = std::sin(0.5 * angle) / angle;
+    dq = Quat(std::cos(0.5 * angle), s * theta.x(), s * theta.y(), s * theta.z());
+  }
+  return (q * dq).normalized();
+}
+
+namespace {
+
+Kinematics kinematics(const BodyState& s) {
+  return Kinematics{s.x, s.q.toRotationMatrix(), s.v, s.w, s.u_seen};
+}
+
+bool uses_turbulence(const Model& m, const BodyType& t, TurbulenceModel which) {
+  return t.effects.has(Effect::Turbulence) && m.turbulence_model == which;
+}
+
+// one turbulence update over h, exact OU (splitting) or Euler-Maruyama (euler, rk4)
+// z: 6 standard normals reserved for this update
+StepOutcome turbulence_update(const Model& model, const BodyType& type, double t, double h,
+                              bool exact, const double* z, BodyState* s) {
+  FluidSample fs;
+  const bool seen = model.turbulence_model == TurbulenceModel::Seen;
+  if (!model.field.sample(s->x, t, seen && !model.field.is_uniform(), &fs))
+    return StepOutcome::Exited;
+  const Vec3 xi1(z[0], z[1], z[2]);
+  double decay, noise;
+  if (exact) {
+    const OUStep ou = ou_exact(fs.alpha, fs.beta, h);
+    decay = ou.decay;
+    noise = ou.noise_std;
+  } else {
+    decay = 1.0 - fs.alpha * h;
+    noise = fs.beta * std::sqrt(h);
+  }
+  if (seen) {
+    const Vec3 U = type.effects.has(Effect::MeanFlow) ? fs.U : Vec3::Zero();
+    FluidSample drift_sample = fs;
+    drift_sample.U = U;
+    const Vec3 drift =
+        model.well_mixed_correction ? well_mixed_drift(s->u_seen, drift_sample) : Vec3::Zero();
+    s->u_seen = decay * s->u_seen + h * drift + noise * xi1;
+  } else {
+    // the body's velocity relative to the mean flow, world frame
+    const Mat3 R = s->q.toRotationMatrix();
+    const Vec3 U = type.effects.has(Effect::MeanFlow) ? fs.U : Vec3::Zero();
+    const Vec3 rel = decay * (R * s->v - U) + noise * xi1;
+    s->v = R.transpose() * (rel + U);
+    const Vec3 xi2(z[3], z[4], z[5]);
+    s->w = decay * s->w + (noise / type.r_eq) * xi2;
+  }
+  return StepOutcome::Ok;
+}
+
+// rotate the two 3-blocks of a 6-vector
+Vec6 rotate6(const Mat3& R, const Vec6& a) {
+  Vec6 r;
+  r << R * a.head<3>(), R * a.tail<3>();
+  return r;
+}
+
+// One step in world-frame impulse form (see dynamics.h). implicit: drag stiffness on the
+// left-hand side, orientation advanced with the updated angular velocity and position by the
+// trapezoidal rule; explicit: plain Euler from the start of the step.
+StepOutcome impulse_step(const Model& model, const BodyType& type, double t, bool implicit,
+                         BodyState* s) {
+  const double h = model.dt;
+  const Kinematics k = kinematics(*s);
+  ImpulseRates r;
+  DragStiffness ds;
+  if (impulse_rates(model, type, k, t, &r, implicit ? &ds : nullptr) == EvalResult::Outside)
+    return StepOutcome::Exited;
+  Vec6 dPi = h * r.rate;
+  if (implicit && type.effects.has(Effect::Drag) && (ds.c_lin > 0 || ds.c_ang > 0)) {
+    // (I + h J M^-1) dPi = h G  <=>  dPi = M (M + h J)^-1 h G
+    Mat6 A = type.M;
+    A.block<3, 3>(0, 0) +=
+        h * ds.c_lin * (Mat3::Identity() + ds.p * ds.u_hat * ds.u_hat.transpose());
+    A.block<3, 3>(3, 3) += h * ds.c_ang * Mat3::Identity();
+    dPi = type.M * A.ldlt().solve(dPi);
+  }
+  const Vec6 Pi_world = rotate6(k.R, r.impulse + dPi);
+  const Vec3 u_fluid_new = r.u_fluid + h * r.a_fluid;  // world frame
+  const Vec3 V0 = k.R * s->v;
+  Vec3 w_rot = s->w;
+  if (implicit)
+    w_rot = velocity_from_impulse(type, r.impulse + dPi, k.R.transpose() * u_fluid_new,
+                                  r.fluid_inertia)
+                .tail<3>();
+  s->q = rotate_body(s->q, h * w_rot);
+  const Mat3 R1 = s->q.toRotationMatrix();
+  const Vec6 xi = velocity_from_impulse(type, rotate6(R1.transpose(), Pi_world),
+                                        R1.transpose() * u_fluid_new, r.fluid_inertia);
+  s->v = xi.head<3>();
+  s->w = xi.tail<3>();
+  s->x += implicit ? Vec3(0.5 * h * (V0 + R1 * s->v)) : Vec3(h * V0);
+  return StepOutcome::Ok;
+}
+
+// dexp^-1 for the right-trivialized (body frame) chart q exp(theta), to O(|theta|^3):
+// theta' = w + 1/2 theta x w + 1/12 theta x (theta x w)
+Vec3 dexpinv(const Vec3& theta, const Vec3& w) {
+  return w + 0.5 * theta.cross(w) + theta.cross(theta.cross(w)) / 12.0;
+}
+
+StepOutcome rk4(const Model& model, const BodyType& type, double t, BodyState* s) {
+  const double h = model.dt;
+  const Quat q0 = s->q;
+  Vec3 kx[4], kth[4];
+  Vec6 kxi[4];
+  const double c[4] = {0.0, 0.5, 0.5, 1.0};
+  for (int i = 0; i < 4; ++i) {
+    BodyState st = *s;
+    Vec3 theta = Vec3::Zero();
+    if (i > 0) {
+      st.x = s->x + c[i] * h * kx[i - 1];
+      theta = c[i] * h * kth[i - 1];
+      st.q = rotate_body(q0, theta);
+      st.v = s->v + c[i] * h * kxi[i - 1].head<3>();
+      st.w = s->w + c[i] * h * kxi[i - 1].tail<3>();
+    }
+    const Kinematics k = kinematics(st);
+    FluidSample fs;
+    if (velocity_derivative(model, type, k, t + c[i] * h, &kxi[i], &fs) == EvalResult::Outside)
+      return StepOutcome::Exited;
+    kx[i] = k.R * st.v;
+    kth[i] = dexpinv(theta, st.w);
+  }
+  s->x += h / 6.0 * (kx[0] + 2 * kx[1] + 2 * kx[2] + kx[3]);
+  s->q = rotate_body(q0, h / 6.0 * (kth[0] + 2 * kth[1] + 2 * kth[2] + kth[3]));
+  const Vec6 dxi = h / 6.0 * (kxi[0] + 2 * kxi[1] + 2 * kxi[2] + kxi[3]);
+  s->v += dxi.head<3>();
+  s->w += dxi.tail<3>();
+  return StepOutcome::Ok;
+}
+
+const char* first_nonfinite(const BodyState& s) {
+  if (!s.x.allFinite()) return "position";
+  if (!s.q.coeffs().allFinite()) return "orientation";
+  if (!s.v.allFinite()) return "velocity";
+  if (!s.w.allFinite()) return "angular velocity";
+  if (!s.u_seen.allFinite()) return "seen turbulent velocity";
+  return nullptr;
+}
+
+}  // namespace
+
+StepOutcome step_body(const Model& model, const BodyType& type, uint32_t body, uint64_t step,
+                      double t, BodyState* s, std::string* reason) {
+  const BodyState before = *s;
+  const double h = model.dt;
+  const bool turb = uses_turbulence(model, type, TurbulenceModel::Seen) ||
+                    uses_turbulence(model, type, TurbulenceModel::Body);
+  double z[12];
+  if (turb) {
+    NormalStream ns(model.seed, body, static_cast<uint32_t>(step));
+    ns.normals(z);
+  }
+  StepOutcome out = StepOutcome::Ok;
+  switch (model.integrator) {
+    case Integrator::Euler:
+    case Integrator::RK4: {
+      // the noise uses the state at the start of the step (Ito), one draw per step
+      BodyState start = *s;
+      out = model.integrator == Integrator::Euler ? impulse_step(model, type, t, false, s)
+                                                  : rk4(model, type, t, s);
+      if (out == StepOutcome::Ok && turb) {
+        BodyState inc = start;
+        out = turbulence_update(model, type, t, h, false, z, &inc);
+        if (model.turbulence_model == TurbulenceModel::Seen) {
+          s->u_seen = inc.u_seen;
+        } else {
+          // add the Langevin increment (computed at the start state) to the deterministic result
+          const Mat3 R0 = start.q.toRotationMatrix(), R1 = s->q.toRotationMatrix();
+          s->v += R1.transpose() * (R0 * (inc.v - start.v));
+          s->w += inc.w - start.w;
+        }
+      }
+      break;
+    }
+    case Integrator::Splitting:
+      if (turb) out = turbulence_update(model, type, t, 0.5 * h, true, z, s);
+      if (out == StepOutcome::Ok) out = impulse_step(model, type, t, true, s);
+      if (out == StepOutcome::Ok && turb)
+        out = turbulence_update(model, type, t + 0.5 * h, 0.5 * h, true, z + 6, s);
+      break;
+  }
+  if (out == StepOutcome::Exited) {
+    *s = before;
+    *reason = "left the fluid (outside the grid or inside a solid)";
+    return out;
+  }
+  if (const char* what = first_nonfinite(*s)) {
+    *s = before;
+    *reason = std::string("non-finite ") + what;
+    return StepOutcome::Failed;
+  }
+  return StepOutcome::Ok;
+}
+
+}  // namespace lrigid

@@ -1,0 +1,41 @@
+// Time integrators for one body over one step h = model.dt (docs/physics/integrators.md).
+//   euler      explicit Euler for the deterministic part, Euler-Maruyama for the noise.
+//              Order 1 (strong and weak). Stable only for h < 2/lambda_drag and alpha h < 2
+//              (noise variance biased by 2/(2 - alpha h)).
+//   rk4        classic Runge-Kutta (RKMK4 on SO(3): the rotation is q exp(theta) with theta
+//              integrated through dexp^-1) for the deterministic part, order 4; the noise is
+//              added once per step with sqrt(h) scaling as in the seed method, so the stochastic
+//              order is 1. Stable for h < 2.79/lambda_drag, alpha h < 2.
+//   splitting  Strang splitting: exact Ornstein-Uhlenbeck half step, a linearly implicit Euler
+//              step for the deterministic part (drag stiffness on the left-hand side) with the
+//              exponential map for the rotation, exact OU half step. Order 1 deterministic,
+//              stable for any alpha h and any drag stiffness.
+// Orientation is always updated by multiplying by a unit quaternion and renormalized, so
+// |q| - 1 stays at round-off.
+#pragma once
+#include <cstdint>
+#include <string>
+
+#include "model/model.h"
+
+namespace lrigid {
+
+struct BodyState {
+  Vec3 x;        // world, m
+  Quat q;        // body -> world
+  Vec3 v;        // body frame, m/s
+  Vec3 w;        // body frame, rad/s
+  Vec3 u_seen;   // world, m/s
+};
+
+enum class StepOutcome { Ok, Exited, Failed };
+
+// Advances `s` from time t by model.dt. Random numbers are keyed by (seed, body, step).
+// On Exited/Failed `s` is left at its value before the step and `reason` says why.
+StepOutcome step_body(const Model& model, const BodyType& type, uint32_t body, uint64_t step,
+                      double t, BodyState* s, std::string* reason);
+
+// q exp(theta): rotation by the body-frame rotation vector theta (rad)
+Quat rotate_body(const Quat& q, const Vec3& theta);
+
+}  // namespace lrigid

@@ -1,0 +1,93 @@
+#include "integrate/simulation.h"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "integrate/integrators.h"
+
+namespace lrigid {
+
+uint64_t output_stride(const Model& model, double every) {
+  const double r = std::round(every / model.dt);
+  return r < 1 ? 1 : static_cast<uint64_t>(r);
+}
+
+namespace {
+
+// the body's lowest point is on or below the ground
+bool touches_ground(const Model& m, const BodyType& type, const BodyState& s) {
+  const Mat3 R = s.q.toRotationMatrix();
+  double reach = 0;
+  for (int a = 0; a < 3; ++a) reach += std::abs(R(2, a)) * type.half_extents[a];
+  return s.x.z() - reach <= m.ground_z;
+}
+
+}  // namespace
+
+RunStats simulate(const Model& model, State* state, const RunOptions& options) {
+  RunStats stats;
+  State& st = *state;
+  const uint64_t total_steps =
+      static_cast<uint64_t>(std::llround(model.duration / model.dt));
+  const uint64_t stride = output_stride(model, options.every);
+  if (options.on_output) options.on_output(st);
+  const int threads = options.threads > 0 ? options.threads : omp_get_max_threads();
+  const auto n = static_cast<int64_t>(st.size());
+  double wall = 0;
+
+  while (st.step < total_steps) {
+    const uint64_t first = st.step;
+    const uint64_t last = std::min(total_steps, first + stride);
+    uint64_t body_steps = 0;
+    const auto t0 = std::chrono::steady_clock::now();
+#pragma omp parallel for schedule(static) num_threads(threads) reduction(+ : body_steps)
+    for (int64_t i = 0; i < n; ++i) {
+      if (st.status[i] != BodyStatus::Moving) continue;
+      const BodyType& type = model.types[st.type[i]];
+      BodyState b{st.x[i], st.q[i], st.v[i], st.w[i], st.u_seen[i]};
+      for (uint64_t k = first; k < last; ++k) {
+        const double t = static_cast<double>(k) * model.dt;
+        std::string reason;
+        const StepOutcome out = step_body(model, type, static_cast<uint32_t>(i), k, t, &b, &reason);
+        if (out != StepOutcome::Ok) {
+          st.status[i] = out == StepOutcome::Exited ? BodyStatus::Exited : BodyStatus::Failed;
+          st.t_stop[i] = t;
+          st.reason[i] = reason;
+          break;
+        }
+        ++body_steps;
+        if (model.has_ground && touches_ground(model, type, b)) {
+          st.status[i] = BodyStatus::Landed;
+          st.t_stop[i] = t + model.dt;
+          b.v.setZero();
+          b.w.setZero();
+          break;
+        }
+      }
+      st.x[i] = b.x;
+      st.q[i] = b.q;
+      st.v[i] = b.v;
+      st.w[i] = b.w;
+      st.u_seen[i] = b.u_seen;
+    }
+    wall += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    stats.body_steps += body_steps;
+    st.step = last;
+    st.t = static_cast<double>(last) * model.dt;
+    if (options.on_output && (last % stride == 0 || last == total_steps)) options.on_output(st);
+    if (options.on_progress) options.on_progress(st, double(last) / double(total_steps));
+  }
+  stats.steps = st.step;
+  stats.wall_seconds = wall;
+  for (const BodyStatus s : st.status) {
+    if (s == BodyStatus::Landed) ++stats.landed;
+    if (s == BodyStatus::Exited) ++stats.exited;
+    if (s == BodyStatus::Failed) ++stats.failed;
+  }
+  return stats;
+}
+
+}  // namespace lrigid

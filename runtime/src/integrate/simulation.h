@@ -1,0 +1,31 @@
+// Runs a model from its initial state to model.duration, calling `on_output` at t = 0 and every
+// `every` seconds. Bodies are independent: each thread advances its share of bodies through a
+// whole output interval, and the result is bitwise identical for any thread count.
+#pragma once
+#include <cstdint>
+#include <functional>
+
+#include "model/state.h"
+
+namespace lrigid {
+
+struct RunStats {
+  uint64_t body_steps = 0;     // steps taken by moving bodies
+  uint64_t steps = 0;          // time steps
+  double wall_seconds = 0;     // integration only (no output)
+  size_t landed = 0, exited = 0, failed = 0;
+};
+
+struct RunOptions {
+  double every = 0.1;          // s between outputs (rounded to a whole number of steps)
+  int threads = 0;             // 0 = OpenMP default
+  std::function<void(const State&)> on_output;        // may be empty
+  std::function<void(const State&, double fraction)> on_progress;  // may be empty
+};
+
+RunStats simulate(const Model& model, State* state, const RunOptions& options);
+
+// Steps between outputs for a given output interval.
+uint64_t output_stride(const Model& model, double every);
+
+}  // namespace lrigid

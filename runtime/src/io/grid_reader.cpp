@@ -1,0 +1,170 @@
+#include "io/grid_reader.h"
+
+#include <vtkDataArray.h>
+#include <vtkFieldData.h>
+#include <vtkImageData.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkXMLImageDataReader.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+#include "util/error.h"
+
+namespace lrigid {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string fmt(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+void read_vti(const std::string& path, GridGeometry* geom, RawGridFrame* frame, double* nu) {
+  if (!fs::is_regular_file(path)) fail_input(path, "", "grid file not found");
+  vtkNew<vtkXMLImageDataReader> reader;
+  if (!reader->CanReadFile(path.c_str())) fail_input(path, "", "not a VTK XML ImageData (.vti) file");
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  vtkImageData* img = reader->GetOutput();
+  if (!img || reader->GetErrorCode() != 0) fail_input(path, "", "cannot be read as .vti");
+  int dims[3];
+  img->GetDimensions(dims);
+  for (int a = 0; a < 3; ++a)
+    if (dims[a] < 2)
+      fail_input(path, "dimensions", "need at least 2 points per axis, got " +
+                                         std::to_string(dims[0]) + " x " + std::to_string(dims[1]) +
+                                         " x " + std::to_string(dims[2]));
+  double origin[3], spacing[3];
+  img->GetOrigin(origin);
+  img->GetSpacing(spacing);
+  for (int a = 0; a < 3; ++a) {
+    geom->n[a] = dims[a];
+    geom->origin[a] = origin[a];
+    geom->spacing[a] = spacing[a];
+    if (!(spacing[a] > 0) || !std::isfinite(origin[a]))
+      fail_input(path, "spacing", "must be positive and finite");
+  }
+  const size_t np = geom->points();
+  vtkPointData* pd = img->GetPointData();
+  auto array = [&](const char* name, int comps, bool required) -> vtkDataArray* {
+    vtkDataArray* a = pd->GetArray(name);
+    if (!a) {
+      if (required) fail_input(path, name, "point array missing");
+      return nullptr;
+    }
+    if (a->GetNumberOfComponents() != comps || size_t(a->GetNumberOfTuples()) != np)
+      fail_input(path, name, "expected " + std::to_string(np) + " tuples of " +
+                                 std::to_string(comps) + " components, got " +
+                                 std::to_string(a->GetNumberOfTuples()) + " of " +
+                                 std::to_string(a->GetNumberOfComponents()));
+    return a;
+  };
+  vtkDataArray* U = array("U", 3, true);
+  vtkDataArray* k = array("k", 1, true);
+  vtkDataArray* eps = array("epsilon", 1, true);
+  vtkDataArray* valid = array("valid", 1, false);
+  frame->U.resize(3 * np);
+  frame->k.resize(np);
+  frame->epsilon.resize(np);
+  frame->valid.assign(np, 1);
+  size_t nvalid = 0;
+  for (size_t p = 0; p < np; ++p) {
+    const bool ok = !valid || valid->GetComponent(p, 0) != 0;
+    frame->valid[p] = ok ? 1 : 0;
+    nvalid += ok;
+    double u[3];
+    U->GetTuple(p, u);
+    const double kk = k->GetComponent(p, 0), ee = eps->GetComponent(p, 0);
+    if (!std::isfinite(u[0]) || !std::isfinite(u[1]) || !std::isfinite(u[2]))
+      fail_input(path, "U", "non-finite value at point " + std::to_string(p));
+    if (!std::isfinite(kk)) fail_input(path, "k", "non-finite value at point " + std::to_string(p));
+    if (!std::isfinite(ee))
+      fail_input(path, "epsilon", "non-finite value at point " + std::to_string(p));
+    if (ok && kk < 0) fail_input(path, "k", "negative value " + fmt(kk) + " at point " + std::to_string(p));
+    if (ok && ee < 0)
+      fail_input(path, "epsilon", "negative value " + fmt(ee) + " at point " + std::to_string(p));
+    for (int a = 0; a < 3; ++a) frame->U[3 * p + a] = float(u[a]);
+    frame->k[p] = float(kk);
+    frame->epsilon[p] = float(ee);
+  }
+  if (nvalid == 0) fail_input(path, "valid", "no valid point: the grid is empty");
+  *nu = 0;
+  if (vtkFieldData* fd = img->GetFieldData())
+    if (vtkDataArray* a = fd->GetArray("kinematic_viscosity"); a && a->GetNumberOfTuples() > 0)
+      *nu = a->GetComponent(0, 0);
+  frame->time = 0;
+  if (vtkFieldData* fd = img->GetFieldData())
+    if (vtkDataArray* a = fd->GetArray("time"); a && a->GetNumberOfTuples() > 0)
+      frame->time = a->GetComponent(0, 0);
+}
+
+}  // namespace
+
+GridFile read_grid(const std::string& path) {
+  GridFile g;
+  const std::string ext = fs::path(path).extension().string();
+  if (ext == ".vti") {
+    RawGridFrame f;
+    read_vti(path, &g.geometry, &f, &g.kinematic_viscosity);
+    g.frames.push_back(std::move(f));
+    return g;
+  }
+  if (ext != ".pvd") fail_input(path, "", "grid must be a .vti or .pvd file");
+  std::ifstream in(path);
+  if (!in) fail_input(path, "", "cannot be read");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  const std::string text = ss.str();
+  // <DataSet timestep="0.5" ... file="x_0001.vti"/>, attributes in any order
+  const std::regex dataset("<DataSet\\b([^>]*)>");
+  const std::regex ts("timestep\\s*=\\s*\"([^\"]*)\"");
+  const std::regex file("file\\s*=\\s*\"([^\"]*)\"");
+  std::vector<std::pair<double, std::string>> entries;
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), dataset); it != std::sregex_iterator(); ++it) {
+    const std::string attrs = (*it)[1];
+    std::smatch mt, mf;
+    if (!std::regex_search(attrs, mf, file)) fail_input(path, "DataSet", "entry without file=");
+    double t = 0;
+    if (std::regex_search(attrs, mt, ts)) {
+      try {
+        t = std::stod(mt[1]);
+      } catch (...) {
+        fail_input(path, "DataSet.timestep", "not a number: \"" + std::string(mt[1]) + "\"");
+      }
+    }
+    entries.emplace_back(t, (fs::path(path).parent_path() / std::string(mf[1])).string());
+  }
+  if (entries.empty()) fail_input(path, "", "no <DataSet> entries: the series is empty");
+  std::stable_sort(entries.begin(), entries.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  for (size_t i = 0; i < entries.size(); ++i) {
+    if (i > 0 && !(entries[i].first > entries[i - 1].first))
+      fail_input(path, "DataSet.timestep", "times must be distinct, " + fmt(entries[i].first) + " repeats");
+    GridGeometry geom;
+    RawGridFrame f;
+    double nu = 0;
+    read_vti(entries[i].second, &geom, &f, &nu);
+    f.time = entries[i].first;
+    if (i == 0) {
+      g.geometry = geom;
+      g.kinematic_viscosity = nu;
+    } else if (geom.n[0] != g.geometry.n[0] || geom.n[1] != g.geometry.n[1] ||
+               geom.n[2] != g.geometry.n[2] || (geom.origin - g.geometry.origin).norm() > 1e-9 ||
+               (geom.spacing - g.geometry.spacing).norm() > 1e-9) {
+      fail_input(entries[i].second, "", "grid differs from the series' first grid " + entries[0].second);
+    }
+    g.frames.push_back(std::move(f));
+  }
+  return g;
+}
+
+}  // namespace lrigid

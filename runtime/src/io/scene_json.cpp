@@ -1,0 +1,335 @@
+#include "io/scene_json.h"
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+
+#include "io/mesh_io.h"
+#include "util/error.h"
+
+namespace lrigid {
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+namespace {
+
+// A JSON object being read: remembers which keys were used so the rest can be reported.
+class Obj {
+ public:
+  Obj(const json& j, std::string path, const std::string& file) : j_(j), path_(std::move(path)), file_(file) {
+    if (!j_.is_object()) fail("", "must be an object, got " + dump(j_));
+  }
+
+  bool has(const std::string& key) const { return j_.contains(key); }
+
+  const json& get(const std::string& key) {
+    if (!j_.contains(key)) fail(key, "is required");
+    used_.insert(key);
+    return j_.at(key);
+  }
+  const json* find(const std::string& key) {
+    if (!j_.contains(key)) return nullptr;
+    used_.insert(key);
+    return &j_.at(key);
+  }
+
+  double number(const std::string& key) { return as_number(get(key), key); }
+  double positive(const std::string& key) {
+    const double v = number(key);
+    if (!(v > 0)) fail(key, "must be > 0, got " + dump(get(key)));
+    return v;
+  }
+  double positive_or(const std::string& key, double def) { return has(key) ? positive(key) : def; }
+  std::string string(const std::string& key) {
+    const json& v = get(key);
+    if (!v.is_string()) fail(key, "must be a string, got " + dump(v));
+    return v.get<std::string>();
+  }
+  Vec3 vec3(const std::string& key) { return as_vec3(get(key), key); }
+  Vec3 vec3_or(const std::string& key, const Vec3& def) { return has(key) ? vec3(key) : def; }
+  Obj object(const std::string& key) { return Obj(get(key), sub(key), file_); }
+
+  double as_number(const json& v, const std::string& key) const {
+    if (!v.is_number()) fail(key, "must be a number, got " + dump(v));
+    const double d = v.get<double>();
+    if (!std::isfinite(d)) fail(key, "must be finite, got " + dump(v));
+    return d;
+  }
+  Vec3 as_vec3(const json& v, const std::string& key) const {
+    if (!v.is_array() || v.size() != 3) fail(key, "must be an array of 3 numbers, got " + dump(v));
+    Vec3 r;
+    for (int i = 0; i < 3; ++i) r[i] = as_number(v[i], key + "[" + std::to_string(i) + "]");
+    return r;
+  }
+
+  // unknown keys are errors (a typo must not silently fall back to a default)
+  void finish() const {
+    for (auto it = j_.begin(); it != j_.end(); ++it)
+      if (!used_.count(it.key())) fail(it.key(), "unknown key");
+  }
+
+  std::string sub(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
+  [[noreturn]] void fail(const std::string& key, const std::string& msg) const {
+    fail_input(file_, key.empty() ? path_ : (key[0] == '[' ? path_ + key : sub(key)), msg);
+  }
+  static std::string dump(const json& v) {
+    std::string s = v.dump();
+    return s.size() > 60 ? s.substr(0, 57) + "..." : s;
+  }
+  const std::string& file() const { return file_; }
+
+ private:
+  const json& j_;
+  std::string path_;
+  const std::string& file_;
+  std::set<std::string> used_;
+};
+
+std::string resolve(const std::string& rel, const std::string& scene_file) {
+  fs::path p(rel);
+  if (p.is_absolute()) return p.lexically_normal().string();
+  return (fs::path(scene_file).parent_path() / p).lexically_normal().string();
+}
+
+Shape read_shape(Obj o, BodySpec* b) {
+  const std::string type = o.string("type");
+  Shape s;
+  if (type == "sphere") {
+    s = Shape::sphere(o.positive("radius"));
+  } else if (type == "ellipsoid") {
+    const Vec3 a = o.vec3("semi_axes");
+    if (!(a.minCoeff() > 0)) o.fail("semi_axes", "must all be > 0");
+    s = Shape::ellipsoid(a.x(), a.y(), a.z());
+  } else if (type == "box") {
+    const Vec3 l = o.vec3("size");
+    if (!(l.minCoeff() > 0)) o.fail("size", "must all be > 0");
+    s = Shape::box(l.x(), l.y(), l.z());
+  } else if (type == "mesh") {
+    const std::string file = resolve(o.string("file"), o.file());
+    auto mesh = std::make_shared<TriangleMesh>(read_mesh(file));
+    if (o.has("scale")) {
+      const double k = o.positive("scale");
+      for (Vec3& v : mesh->vertices) v *= k;
+    }
+    s = Shape::from_mesh(std::move(mesh), file);
+  } else {
+    o.fail("type", "must be sphere, ellipsoid, box or mesh, got \"" + type + "\"");
+  }
+  if (const json* p = o.find("panels")) {
+    if (!p->is_number_integer() || p->get<int>() < 0) o.fail("panels", "must be an integer >= 0");
+    b->panels = p->get<int>();
+  }
+  o.finish();
+  return s;
+}
+
+BodySpec read_body(Obj o) {
+  BodySpec b;
+  b.name = o.string("name");
+  b.shape = read_shape(o.object("shape"), &b);
+  b.density = o.positive("density");
+  b.mass_offset = o.vec3_or("mass_offset", Vec3::Zero());
+  {
+    const json& c = o.get("count");
+    if (!c.is_number_integer() || c.get<long long>() < 1)
+      o.fail("count", "must be an integer >= 1, got " + Obj::dump(c));
+    if (c.get<long long>() > 100000000LL) o.fail("count", "more than 1e8 bodies is not supported");
+    b.count = c.get<int>();
+  }
+  const bool pos = o.has("position"), box = o.has("spawn_box");
+  if (pos == box) o.fail("", "needs exactly one of \"position\" or \"spawn_box\"");
+  if (pos) {
+    b.position = o.vec3("position");
+  } else {
+    const json& sb = o.get("spawn_box");
+    if (!sb.is_array() || sb.size() != 2)
+      o.fail("spawn_box", "must be [[x0,y0,z0],[x1,y1,z1]], got " + Obj::dump(sb));
+    b.spawn_in_box = true;
+    b.box_lo = o.as_vec3(sb[0], "spawn_box[0]");
+    b.box_hi = o.as_vec3(sb[1], "spawn_box[1]");
+    for (int a = 0; a < 3; ++a)
+      if (!(b.box_hi[a] >= b.box_lo[a])) o.fail("spawn_box", "upper corner below lower corner");
+  }
+  if (const json* q = o.find("orientation")) {
+    if (q->is_string() && q->get<std::string>() == "random") {
+      b.random_orientation = true;
+    } else if (q->is_array() && q->size() == 4) {
+      double c[4];
+      for (int i = 0; i < 4; ++i) c[i] = o.as_number((*q)[i], "orientation[" + std::to_string(i) + "]");
+      const Quat qq(c[0], c[1], c[2], c[3]);
+      if (!(qq.norm() > 1e-12)) o.fail("orientation", "quaternion must not be zero");
+      b.orientation = qq.normalized();
+    } else {
+      o.fail("orientation", "must be [w,x,y,z] or \"random\", got " + Obj::dump(*q));
+    }
+  }
+  b.velocity = o.vec3_or("velocity", Vec3::Zero());
+  b.angular_velocity = o.vec3_or("angular_velocity", Vec3::Zero());
+  o.finish();
+  return b;
+}
+
+}  // namespace
+
+Scene parse_scene(const std::string& text, const std::string& path) {
+  json j;
+  try {
+    j = json::parse(text);
+  } catch (const json::parse_error& e) {
+    // nlohmann reports a byte offset: turn it into line and column
+    size_t line = 1, col = 1;
+    for (size_t i = 0; i + 1 < e.byte && i < text.size(); ++i) {
+      if (text[i] == '\n') {
+        ++line;
+        col = 1;
+      } else {
+        ++col;
+      }
+    }
+    std::string what = e.what();
+    const auto pos = what.find("parse error");
+    if (pos != std::string::npos) what = what.substr(pos);
+    fail_input(path, "", "malformed JSON at line " + std::to_string(line) + ", column " +
+                             std::to_string(col) + ": " + what);
+  }
+  Scene s;
+  s.file = path;
+  Obj top(j, "", path);
+  if (const json* v = top.find("version")) {
+    if (!v->is_number_integer() || v->get<int>() != 1)
+      top.fail("version", "only schema version 1 is supported, got " + Obj::dump(*v));
+  }
+  {
+    Obj f = top.object("fluid");
+    s.fluid_density = f.positive("density");
+    s.kinematic_viscosity = f.positive("kinematic_viscosity");
+    const bool field = f.has("field"), uniform = f.has("uniform");
+    if (field == uniform) f.fail("", "needs exactly one of \"field\" or \"uniform\"");
+    if (field) {
+      s.uniform_field = false;
+      s.field_path = resolve(f.string("field"), path);
+      if (!fs::exists(s.field_path))
+        f.fail("field", "file not found: " + s.field_path);
+      if (f.has("time")) {
+        const std::string m = f.string("time");
+        if (m == "loop") s.time_mode = TimeMode::Loop;
+        else if (m == "clamp") s.time_mode = TimeMode::Clamp;
+        else f.fail("time", "must be \"loop\" or \"clamp\", got \"" + m + "\"");
+      }
+    } else {
+      Obj u = f.object("uniform");
+      s.uniform_U = u.vec3("U");
+      s.uniform_k = u.number("k");
+      s.uniform_epsilon = u.number("epsilon");
+      if (s.uniform_k < 0) u.fail("k", "must be >= 0");
+      if (s.uniform_epsilon < 0) u.fail("epsilon", "must be >= 0");
+      if ((s.uniform_k > 0) != (s.uniform_epsilon > 0))
+        u.fail("", "k and epsilon must both be > 0 or both be 0");
+      u.finish();
+    }
+    f.finish();
+  }
+  s.gravity = top.vec3("gravity");
+  {
+    const json& e = top.get("effects");
+    if (e.is_string() && e.get<std::string>() == "auto") {
+      s.effects_auto = true;
+    } else if (e.is_array()) {
+      for (size_t i = 0; i < e.size(); ++i) {
+        Effect eff;
+        if (!e[i].is_string() || !effect_from_name(e[i].get<std::string>(), &eff)) {
+          std::string names;
+          for (const auto& info : all_effects()) names += std::string(names.empty() ? "" : ", ") + info.name;
+          top.fail("effects[" + std::to_string(i) + "]",
+                   "unknown effect " + Obj::dump(e[i]) + " (known: " + names + ")");
+        }
+        s.effects.add(eff);
+      }
+    } else {
+      top.fail("effects", "must be a list of effect names or \"auto\", got " + Obj::dump(e));
+    }
+  }
+  {
+    Obj in = top.object("integrator");
+    const std::string scheme = in.string("scheme");
+    if (scheme == "euler") s.integrator = Integrator::Euler;
+    else if (scheme == "rk4") s.integrator = Integrator::RK4;
+    else if (scheme == "splitting") s.integrator = Integrator::Splitting;
+    else in.fail("scheme", "must be euler, rk4 or splitting, got \"" + scheme + "\"");
+    s.dt = in.positive("dt");
+    in.finish();
+  }
+  s.duration = top.positive("duration");
+  if (s.duration / s.dt > 4e9) top.fail("duration", "more than 4e9 steps of integrator.dt");
+  {
+    const json& seed = top.get("seed");
+    if (!seed.is_number_integer() || seed.get<long long>() < 0)
+      top.fail("seed", "must be an integer >= 0, got " + Obj::dump(seed));
+    s.seed = seed.get<uint64_t>();
+  }
+  {
+    const json& bodies = top.get("bodies");
+    if (!bodies.is_array() || bodies.empty())
+      top.fail("bodies", "must be a non-empty list of body types");
+    size_t total = 0;
+    for (size_t i = 0; i < bodies.size(); ++i) {
+      s.bodies.push_back(read_body(Obj(bodies[i], "bodies[" + std::to_string(i) + "]", path)));
+      total += size_t(s.bodies.back().count);
+    }
+    if (total > 100000000) top.fail("bodies", "more than 1e8 bodies in total");
+    if (s.bodies.size() > 65535) top.fail("bodies", "more than 65535 body types");
+  }
+  if (top.has("ground")) {
+    Obj g = top.object("ground");
+    s.has_ground = true;
+    s.ground_z = g.number("z");
+    g.finish();
+  }
+  if (top.has("turbulence")) {
+    Obj t = top.object("turbulence");
+    if (t.has("model")) {
+      const std::string m = t.string("model");
+      if (m == "body") s.turbulence_model = TurbulenceModel::Body;
+      else if (m == "seen") s.turbulence_model = TurbulenceModel::Seen;
+      else t.fail("model", "must be \"body\" or \"seen\", got \"" + m + "\"");
+    }
+    if (t.has("drift")) {
+      const std::string d = t.string("drift");
+      if (d == "original") s.drift = Drift::Original;
+      else if (d == "stationary") s.drift = Drift::Stationary;
+      else t.fail("drift", "must be \"original\" or \"stationary\", got \"" + d + "\"");
+    }
+    t.finish();
+  }
+  if (top.has("output")) {
+    Obj o = top.object("output");
+    if (o.has("dir")) s.output.dir = o.string("dir");  // relative to the working directory
+    s.output.every = o.positive_or("every", s.output.every);
+    if (const json* f = o.find("formats")) {
+      if (!f->is_array()) o.fail("formats", "must be a list of \"csv\" and/or \"pvd\"");
+      s.output.csv = s.output.pvd = false;
+      for (size_t i = 0; i < f->size(); ++i) {
+        const std::string k = (*f)[i].is_string() ? (*f)[i].get<std::string>() : "";
+        if (k == "csv") s.output.csv = true;
+        else if (k == "pvd") s.output.pvd = true;
+        else o.fail("formats[" + std::to_string(i) + "]", "must be \"csv\" or \"pvd\", got " + Obj::dump((*f)[i]));
+      }
+    }
+    o.finish();
+  }
+  top.finish();
+  return s;
+}
+
+Scene read_scene(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) fail_input(path, "", fs::exists(path) ? "cannot be read" : "file not found");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return parse_scene(ss.str(), path);
+}
+
+}  // namespace lrigid

@@ -1,0 +1,16 @@
+// Reads a scene file (JSON, schema v1, docs/scene-format.md) into a validated Scene.
+// Every error names the file, the key path (e.g. bodies[2].shape.radius) and the bad value;
+// unknown keys are errors; malformed JSON reports line and column. Throws lrigid::Error
+// (ExitCode::BadInput).
+#pragma once
+#include <string>
+
+#include "model/scene.h"
+
+namespace lrigid {
+
+Scene read_scene(const std::string& path);
+// Parses text as if it were the file `path` (relative paths resolve against its directory).
+Scene parse_scene(const std::string& text, const std::string& path);
+
+}  // namespace lrigid

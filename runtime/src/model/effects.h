@@ -1,0 +1,39 @@
+// The physical effects a scene can select. Each has its own file in src/effects/.
+// An effect that is not selected is never evaluated.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace lrigid {
+
+enum class Effect : uint32_t {
+  Gravity = 1u << 0,     // weight m g at the centre of mass
+  Buoyancy = 1u << 1,    // -rho_f V g at the centre of buoyancy
+  AddedMass = 1u << 2,   // fluid Kirchhoff tensor in the generalized mass + its gyroscopic terms
+  Drag = 1u << 3,        // quasi-steady linear and angular drag on the relative velocity
+  MeanFlow = 1u << 4,    // the body sees the field's mean velocity U (else the fluid is at rest)
+  Turbulence = 1u << 5,  // Langevin model from k and epsilon
+};
+
+struct EffectSet {
+  uint32_t bits = 0;
+  bool has(Effect e) const { return bits & static_cast<uint32_t>(e); }
+  void add(Effect e) { bits |= static_cast<uint32_t>(e); }
+  void remove(Effect e) { bits &= ~static_cast<uint32_t>(e); }
+  bool operator==(const EffectSet& o) const { return bits == o.bits; }
+};
+
+struct EffectInfo {
+  Effect effect;
+  const char* name;
+  const char* summary;
+};
+
+// All effects, in evaluation order.
+const std::vector<EffectInfo>& all_effects();
+// Name to effect; returns false for an unknown name.
+bool effect_from_name(const std::string& name, Effect* out);
+std::vector<std::string> effect_names(EffectSet set);
+
+}  // namespace lrigid

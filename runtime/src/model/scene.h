@@ -1,0 +1,68 @@
+// A scene as the user described it (parsed and validated by io/scene_json). Plain data, SI units.
+// compile_model() turns it into the constant Model the step runs on.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "body/shape.h"
+#include "fluid/field.h"
+#include "model/effects.h"
+
+namespace lrigid {
+
+enum class Integrator { Euler, RK4, Splitting };
+enum class TurbulenceModel { Body, Seen };
+
+const char* integrator_name(Integrator i);
+const char* turbulence_model_name(TurbulenceModel m);
+const char* drift_name(Drift d);
+
+struct BodySpec {
+  std::string name;
+  Shape shape;
+  int panels = 0;                         // BEM panels for box/mesh (0 = default)
+  double density = 0;                     // kg/m^3
+  Vec3 mass_offset = Vec3::Zero();        // centre of mass minus volume centroid, shape axes, m
+  int count = 1;
+  bool spawn_in_box = false;
+  Vec3 position = Vec3::Zero();           // centre of mass, world, m (when !spawn_in_box)
+  Vec3 box_lo = Vec3::Zero(), box_hi = Vec3::Zero();  // spawn box corners, world, m
+  bool random_orientation = false;
+  Quat orientation = Quat::Identity();    // body -> world
+  Vec3 velocity = Vec3::Zero();           // world, m/s
+  Vec3 angular_velocity = Vec3::Zero();   // world, rad/s
+};
+
+struct OutputSpec {
+  std::string dir = "results";            // resolved against the working directory
+  double every = 0.1;                     // s between written states
+  bool csv = true;
+  bool pvd = true;
+};
+
+struct Scene {
+  std::string file;                       // the scene file, for messages
+  double fluid_density = 1000;            // kg/m^3
+  double kinematic_viscosity = 1e-6;      // m^2/s
+  bool uniform_field = true;
+  std::string field_path;                 // absolute path of .vti/.pvd (when !uniform_field)
+  TimeMode time_mode = TimeMode::Loop;
+  Vec3 uniform_U = Vec3::Zero();          // m/s
+  double uniform_k = 0, uniform_epsilon = 0;
+  Vec3 gravity = Vec3(0, 0, -9.81);       // m/s^2
+  bool effects_auto = false;
+  EffectSet effects;
+  Integrator integrator = Integrator::Splitting;
+  double dt = 1e-3;                       // s
+  double duration = 1;                    // s
+  uint64_t seed = 1;
+  std::vector<BodySpec> bodies;
+  bool has_ground = false;
+  double ground_z = 0;                    // m
+  TurbulenceModel turbulence_model = TurbulenceModel::Seen;
+  Drift drift = Drift::Stationary;
+  OutputSpec output;
+};
+
+}  // namespace lrigid

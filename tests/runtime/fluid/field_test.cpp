@@ -1,0 +1,104 @@
+#include "fluid/field.h"
+
+#include <gtest/gtest.h>
+
+namespace lrigid {
+namespace {
+
+// a 5 x 4 x 3 grid with U linear in x, y, z and constant k, eps
+RawGridFrame linear_frame(const GridGeometry& g, double t, double scale) {
+  RawGridFrame f;
+  f.time = t;
+  const size_t np = g.points();
+  f.U.resize(3 * np);
+  f.k.assign(np, 0.1f);
+  f.epsilon.assign(np, 0.01f);
+  f.valid.assign(np, 1);
+  for (int k = 0; k < g.n[2]; ++k)
+    for (int j = 0; j < g.n[1]; ++j)
+      for (int i = 0; i < g.n[0]; ++i) {
+        const size_t p = i + size_t(g.n[0]) * (j + size_t(g.n[1]) * k);
+        const Vec3 x = g.origin + Vec3(i * g.spacing.x(), j * g.spacing.y(), k * g.spacing.z());
+        f.U[3 * p + 0] = float(scale * (1 + 2 * x.x()));
+        f.U[3 * p + 1] = float(scale * (-x.y() + 0.5 * x.z()));
+        f.U[3 * p + 2] = float(scale * 3 * x.z());
+      }
+  return f;
+}
+
+GridGeometry geometry() {
+  GridGeometry g;
+  g.n[0] = 5;
+  g.n[1] = 4;
+  g.n[2] = 3;
+  g.origin = Vec3(-1, 0, 2);
+  g.spacing = Vec3(0.5, 0.25, 1.0);
+  return g;
+}
+
+TEST(FluidField, TrilinearIsExactForLinearFieldsWithGradients) {
+  const GridGeometry g = geometry();
+  const FluidField f =
+      FluidField::grid(g, {linear_frame(g, 0, 1)}, 1e-6, Drift::Stationary, TimeMode::Clamp);
+  FluidSample s;
+  const Vec3 x(-0.13, 0.61, 3.3);
+  ASSERT_TRUE(f.sample(x, 0, true, &s));
+  EXPECT_NEAR(s.U.x(), 1 + 2 * x.x(), 1e-6);
+  EXPECT_NEAR(s.U.y(), -x.y() + 0.5 * x.z(), 1e-6);
+  EXPECT_NEAR(s.U.z(), 3 * x.z(), 1e-5);
+  Mat3 G;
+  G << 2, 0, 0, 0, -1, 0.5, 0, 0, 3;
+  EXPECT_LT((s.grad_U - G).cwiseAbs().maxCoeff(), 1e-5);
+  EXPECT_NEAR(s.sigma2, 2.0 / 3.0 * 0.1, 1e-6);
+}
+
+TEST(FluidField, OutsideTheGridIsNotSampled) {
+  const GridGeometry g = geometry();
+  const FluidField f =
+      FluidField::grid(g, {linear_frame(g, 0, 1)}, 1e-6, Drift::Stationary, TimeMode::Clamp);
+  FluidSample s;
+  EXPECT_FALSE(f.sample(Vec3(-1.01, 0.5, 2.5), 0, false, &s));
+  EXPECT_FALSE(f.sample(Vec3(0, 0.76, 2.5), 0, false, &s));
+  EXPECT_FALSE(f.sample(Vec3(0, 0.5, std::nan("")), 0, false, &s));
+  EXPECT_TRUE(f.sample(g.upper(), 0, false, &s));  // the last point is inside
+  EXPECT_TRUE(f.sample(g.origin, 0, false, &s));
+}
+
+TEST(FluidField, InvalidPointsGetNoWeight) {
+  const GridGeometry g = geometry();
+  RawGridFrame fr = linear_frame(g, 0, 1);
+  // invalidate point (1,1,1) and give it a wild value that must never leak out
+  const size_t p = 1 + 5 * (1 + 4 * 1);
+  fr.valid[p] = 0;
+  fr.U[3 * p] = 1e6f;
+  fr.k[p] = 0;
+  const FluidField f = FluidField::grid(g, {fr}, 1e-6, Drift::Stationary, TimeMode::Clamp);
+  FluidSample s;
+  // a point in a cell touching the invalid corner: a convex blend of the valid corners
+  ASSERT_TRUE(f.sample(Vec3(-0.6, 0.2, 2.8), 0, true, &s));
+  EXPECT_LT(s.U.x(), 1.0);  // valid corners have U_x in [-1, 1]
+  EXPECT_GT(s.U.x(), -1.0);
+  EXPECT_TRUE(s.grad_U.isZero());  // no gradient next to invalid points
+  // exactly at the invalid point: the blend of its neighbours has no weight there -> outside
+  EXPECT_FALSE(f.sample(Vec3(-0.5, 0.25, 3.0), 0, false, &s));
+}
+
+TEST(FluidField, TimeSeriesInterpolatesLinearlyAndLoopsOrClamps) {
+  const GridGeometry g = geometry();
+  const std::vector<RawGridFrame> frames = {linear_frame(g, 0, 1), linear_frame(g, 2, 3)};
+  const Vec3 x(0.2, 0.3, 2.4);
+  const double u0 = 1 + 2 * x.x();
+  FluidSample s;
+  const FluidField clamp = FluidField::grid(g, frames, 1e-6, Drift::Stationary, TimeMode::Clamp);
+  ASSERT_TRUE(clamp.sample(x, 0.5, false, &s));
+  EXPECT_NEAR(s.U.x(), u0 * (1 + 2 * 0.25), 1e-5);  // scale 1 -> 3 over 2 s
+  EXPECT_NEAR(s.dU_dt.x(), u0 * 1.0, 1e-5);
+  ASSERT_TRUE(clamp.sample(x, 7.0, false, &s));
+  EXPECT_NEAR(s.U.x(), 3 * u0, 1e-5);
+  const FluidField loop = FluidField::grid(g, frames, 1e-6, Drift::Stationary, TimeMode::Loop);
+  ASSERT_TRUE(loop.sample(x, 4.5, false, &s));  // 4.5 s wraps to 0.5 s
+  EXPECT_NEAR(s.U.x(), u0 * 1.5, 1e-5);
+}
+
+}  // namespace
+}  // namespace lrigid

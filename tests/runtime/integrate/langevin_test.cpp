@@ -1,0 +1,197 @@
+// Langevin statistics in a uniform field against Ornstein-Uhlenbeck theory (physics-notes §2):
+// stationary variance beta^2/(2 alpha), autocorrelation exp(-alpha tau), the Euler-Maruyama
+// variance bias 2/(2 - alpha h), and the well-mixed condition in a k gradient.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include "integrate/simulation.h"
+#include "support/fixture.h"
+
+namespace lrigid {
+namespace {
+
+constexpr double kNu = 1e-6;
+
+// nbody bodies of the given model at the origin in uniform turbulence (k, eps), turbulence only
+Scene ou_scene(TurbulenceModel model, Drift drift, Integrator scheme, double dt, int nbody) {
+  Scene s = test::sphere_scene(0.001, 1000, 1000, kNu, nbody);
+  s.uniform_k = 0.06;
+  s.uniform_epsilon = 0.02;
+  s.effects = test::effects({Effect::Turbulence});
+  if (model == TurbulenceModel::Seen) s.effects.add(Effect::Drag);
+  s.turbulence_model = model;
+  s.drift = drift;
+  s.integrator = scheme;
+  s.dt = dt;
+  return s;
+}
+
+struct Stats {
+  double var = 0;   // per-component variance
+  double corr = 0;  // correlation between two times
+};
+
+// variance of the turbulent velocity at the last output and its correlation with the output
+// `lag` seconds earlier, over all bodies and components
+Stats measure(const Scene& s, double burn_in, double lag, bool seen) {
+  const Model m = test::compile(s);
+  State st = initial_state(m, s);
+  RunOptions opt;
+  opt.every = lag;
+  std::vector<std::vector<Vec3>> frames;
+  opt.on_output = [&](const State& x) {
+    std::vector<Vec3> u(x.size());
+    for (size_t i = 0; i < x.size(); ++i) u[i] = seen ? x.u_seen[i] : Vec3(x.q[i] * x.v[i]);
+    frames.push_back(u);
+  };
+  Model mm = m;
+  // a whole number of output intervals, so the last two outputs are exactly `lag` apart
+  const double stride = double(output_stride(m, lag)) * m.dt;
+  mm.duration = (std::ceil(burn_in / stride) + 1) * stride;
+  simulate(mm, &st, opt);
+  const auto& a = frames[frames.size() - 2];
+  const auto& b = frames.back();
+  double saa = 0, sbb = 0, sab = 0;
+  for (size_t i = 0; i < a.size(); ++i)
+    for (int c = 0; c < 3; ++c) {
+      saa += a[i][c] * a[i][c];
+      sbb += b[i][c] * b[i][c];
+      sab += a[i][c] * b[i][c];
+    }
+  return Stats{sbb / (3.0 * b.size()), sab / std::sqrt(saa * sbb)};
+}
+
+struct OUCase {
+  TurbulenceModel model;
+  Drift drift;
+  double alpha_dt;
+};
+
+class OUStatistics : public ::testing::TestWithParam<OUCase> {};
+
+TEST_P(OUStatistics, ExactSchemeHasTheoreticalVarianceAndCorrelation) {
+  const OUCase c = GetParam();
+  const LangevinCoefficients lc = langevin_coefficients(0.06, 0.02, kNu, c.drift);
+  const double dt = c.alpha_dt / lc.alpha;
+  const int n = 20000;
+  Scene s = ou_scene(c.model, c.drift, Integrator::Splitting, dt, n);
+  const double lag = std::max(0.5 / lc.alpha, dt);
+  const double lag_steps = std::round(lag / dt);
+  const Stats st = measure(s, 8.0 / lc.alpha + dt, lag_steps * dt, c.model == TurbulenceModel::Seen);
+  // Monte Carlo standard errors: var ~ sigma2 sqrt(2/(3n)); corr ~ (1 - rho^2)/sqrt(3n)
+  const double se_var = lc.sigma2 * std::sqrt(2.0 / (3.0 * n));
+  EXPECT_NEAR(st.var, lc.sigma2, 4 * se_var) << "alpha dt = " << c.alpha_dt;
+  const double rho = std::exp(-lc.alpha * lag_steps * dt);
+  EXPECT_NEAR(st.corr, rho, 4 * (1 - rho * rho) / std::sqrt(3.0 * n) + 1e-3);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Models, OUStatistics,
+    ::testing::Values(OUCase{TurbulenceModel::Body, Drift::Stationary, 0.1},
+                      OUCase{TurbulenceModel::Body, Drift::Stationary, 1.0},
+                      OUCase{TurbulenceModel::Body, Drift::Stationary, 5.0},
+                      OUCase{TurbulenceModel::Body, Drift::Original, 0.5},
+                      OUCase{TurbulenceModel::Seen, Drift::Stationary, 0.1},
+                      OUCase{TurbulenceModel::Seen, Drift::Stationary, 5.0},
+                      OUCase{TurbulenceModel::Seen, Drift::Original, 1.0}));
+
+TEST(OUStatistics, StationaryDriftReproducesTheFieldsK) {
+  // <u_i^2> = 2k/3 with the stationary drift (what a frozen RANS field should give)
+  const int n = 20000;
+  const Scene s = ou_scene(TurbulenceModel::Body, Drift::Stationary, Integrator::Splitting, 0.01, n);
+  const Stats st = measure(s, 3.0, 0.1, false);
+  EXPECT_NEAR(st.var, 2.0 / 3.0 * 0.06, 4 * 0.04 * std::sqrt(2.0 / (3.0 * n)));
+}
+
+TEST(OUStatistics, EulerMaruyamaVarianceIsBiasedAsTheoryPredicts) {
+  // explicit update: stationary variance sigma2 * 2 / (2 - alpha h)
+  const LangevinCoefficients lc = langevin_coefficients(0.06, 0.02, kNu, Drift::Stationary);
+  const double ah = 0.5;
+  const int n = 20000;
+  const Scene s = ou_scene(TurbulenceModel::Body, Drift::Stationary, Integrator::Euler,
+                           ah / lc.alpha, n);
+  const Stats st = measure(s, 10.0 / lc.alpha, ah / lc.alpha, false);
+  const double expect = lc.sigma2 * 2.0 / (2.0 - ah);
+  EXPECT_NEAR(st.var, expect, 4 * expect * std::sqrt(2.0 / (3.0 * n)));
+  EXPECT_GT(st.var, 1.15 * lc.sigma2);  // clearly not the exact value
+}
+
+// Tracers in a field whose k grows along x stay uniformly spread (Thomson's well-mixed
+// condition); without the drift correction they drain towards low k.
+// Returns the counts in 8 bins across [-2, 2] m after 8 s.
+std::vector<int> tracer_bins(bool correction, int n) {
+  GridGeometry g;
+  g.n[0] = 81;
+  g.n[1] = 2;
+  g.n[2] = 2;
+  g.origin = Vec3(-20, -50, -50);
+  g.spacing = Vec3(0.5, 100, 100);
+  RawGridFrame f;
+  const size_t np = g.points();
+  f.U.assign(3 * np, 0.f);
+  f.k.resize(np);
+  f.epsilon.resize(np);
+  f.valid.assign(np, 1);
+  for (size_t p = 0; p < np; ++p) {
+    const double x = g.origin.x() + double(p % g.n[0]) * g.spacing.x();
+    // k from 0.02 to 0.32 m^2/s^2 across |x| < 1.5 m; eps/k = 0.5 1/s, T_L ~ 0.44 s
+    const double k = 0.17 + 0.15 * std::tanh(x / 1.0);
+    f.k[p] = float(k);
+    f.epsilon[p] = float(0.5 * k);
+  }
+  Scene s = test::sphere_scene(1e-4, 1000, 1000, kNu, n);
+  s.effects = test::effects({Effect::Drag, Effect::Turbulence});
+  s.turbulence_model = TurbulenceModel::Seen;
+  s.drift = Drift::Stationary;
+  s.integrator = Integrator::Splitting;
+  s.dt = 0.02;
+  s.duration = 8;  // ~ 18 Lagrangian times
+  s.bodies[0].spawn_in_box = true;
+  s.bodies[0].box_lo = Vec3(-8, -1, -1);
+  s.bodies[0].box_hi = Vec3(8, 1, 1);
+  const FluidField field =
+      FluidField::grid(g, {f}, kNu, s.drift, TimeMode::Clamp);
+  Model m = test::compile(s, field);
+  m.well_mixed_correction = correction;
+  State st = initial_state(m, s);
+  simulate(m, &st, RunOptions{});
+  std::vector<int> bins(8, 0);
+  for (size_t i = 0; i < st.size(); ++i) {
+    EXPECT_EQ(st.status[i], BodyStatus::Moving);
+    const double x = st.x[i].x();
+    if (x >= -2 && x < 2) ++bins[int((x + 2) / 0.5)];
+  }
+  return bins;
+}
+
+TEST(WellMixed, TracersStayUniformInAKGradient) {
+  const int n = 30000;
+  const std::vector<int> bins = tracer_bins(true, n);
+  // uniform: n * 0.5/16 per bin
+  const double expect = n * 0.5 / 16.0;
+  const double se = std::sqrt(expect);
+  // low-k side vs high-k side: the classic failure is a pile-up on the low-k side
+  const double low = bins[0] + bins[1] + bins[2] + bins[3];
+  const double high = bins[4] + bins[5] + bins[6] + bins[7];
+  std::printf("well-mixed, corrected: low/high = %.4f (MC std err %.4f)\n", low / high,
+              std::sqrt(2.0 / (4 * expect)));
+  EXPECT_NEAR(low / high, 1.0, 4 * std::sqrt(2.0 / (4 * expect)));
+  for (int b = 0; b < 8; ++b) EXPECT_NEAR(bins[b], expect, 4.5 * se) << "bin " << b;
+}
+
+TEST(WellMixed, WithoutTheDriftCorrectionTracersGatherAtLowK) {
+  // the test above can fail: the uncorrected model visibly violates the condition
+  const int n = 30000;
+  const std::vector<int> bins = tracer_bins(false, n);
+  const double low = bins[0] + bins[1] + bins[2] + bins[3];
+  const double high = bins[4] + bins[5] + bins[6] + bins[7];
+  const double expect = n * 0.5 / 16.0;
+  std::printf("well-mixed, uncorrected: low/high = %.4f\n", low / high);
+  EXPECT_GT(low / high - 1.0, 5 * std::sqrt(2.0 / (4 * expect)));
+}
+
+}  // namespace
+}  // namespace lrigid
