@@ -109,12 +109,15 @@ Shape read_shape(Obj o, BodySpec* b) {
     s = Shape::box(l.x(), l.y(), l.z());
   } else if (type == "mesh") {
     const std::string file = resolve(o.string("file"), o.file());
-    auto mesh = std::make_shared<TriangleMesh>(read_mesh(file));
-    if (o.has("scale")) {
-      const double k = o.positive("scale");
-      for (Vec3& v : mesh->vertices) v *= k;
+    const double scale = o.positive_or("scale", 1.0);
+    try {
+      auto mesh = std::make_shared<TriangleMesh>(read_mesh(file));
+      for (Vec3& v : mesh->vertices) v *= scale;
+      s = Shape::from_mesh(std::move(mesh), file);
+    } catch (const Error& e) {
+      // the mesh's own message names the mesh file; add where the scene asked for it
+      o.fail("file", e.what());
     }
-    s = Shape::from_mesh(std::move(mesh), file);
   } else {
     o.fail("type", "must be sphere, ellipsoid, box or mesh, got \"" + type + "\"");
   }

@@ -1,0 +1,167 @@
+// The scene parser accepts the documented schema and rejects everything else with a message
+// naming the file, the key path and the value.
+#include "io/scene_json.h"
+
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "util/error.h"
+
+namespace lrigid {
+namespace {
+
+using json = nlohmann::json;
+
+json valid_scene() {
+  return json::parse(R"({
+    "version": 1,
+    "fluid": {"density": 1000, "kinematic_viscosity": 1e-6,
+              "uniform": {"U": [0.1, 0, 0], "k": 0.01, "epsilon": 0.001}},
+    "gravity": [0, 0, -9.81],
+    "effects": ["gravity", "buoyancy", "drag"],
+    "integrator": {"scheme": "rk4", "dt": 0.001},
+    "duration": 2.5,
+    "seed": 12,
+    "bodies": [{"name": "ball", "shape": {"type": "sphere", "radius": 0.01}, "density": 2500,
+                "count": 3, "position": [0, 0, 1], "velocity": [1, 0, 0]}],
+    "ground": {"z": -1},
+    "turbulence": {"model": "body", "drift": "original"},
+    "output": {"dir": "out", "every": 0.1, "formats": ["csv"]}
+  })");
+}
+
+// the message of the error parse_scene throws, or "" if it does not throw
+std::string error_of(const json& j, ExitCode* code = nullptr) {
+  try {
+    parse_scene(j.dump(), "/tmp/scene.json");
+  } catch (const Error& e) {
+    if (code) *code = e.code();
+    return e.what();
+  }
+  return "";
+}
+
+TEST(SceneJson, ReadsEveryKey) {
+  const Scene s = parse_scene(valid_scene().dump(), "/tmp/scene.json");
+  EXPECT_EQ(s.fluid_density, 1000);
+  EXPECT_TRUE(s.uniform_field);
+  EXPECT_EQ(s.uniform_U, Vec3(0.1, 0, 0));
+  EXPECT_EQ(s.integrator, Integrator::RK4);
+  EXPECT_EQ(s.dt, 0.001);
+  EXPECT_EQ(s.duration, 2.5);
+  EXPECT_EQ(s.seed, 12u);
+  ASSERT_EQ(s.bodies.size(), 1u);
+  EXPECT_EQ(s.bodies[0].count, 3);
+  EXPECT_EQ(s.bodies[0].shape.type, ShapeType::Sphere);
+  EXPECT_EQ(s.bodies[0].velocity, Vec3(1, 0, 0));
+  EXPECT_TRUE(s.has_ground);
+  EXPECT_EQ(s.ground_z, -1);
+  EXPECT_EQ(s.turbulence_model, TurbulenceModel::Body);
+  EXPECT_EQ(s.drift, Drift::Original);
+  EXPECT_TRUE(s.effects.has(Effect::Drag));
+  EXPECT_FALSE(s.effects.has(Effect::AddedMass));
+  EXPECT_TRUE(s.output.csv);
+  EXPECT_FALSE(s.output.pvd);
+  EXPECT_EQ(s.output.dir, "out");
+}
+
+TEST(SceneJson, MalformedJsonReportsLineAndColumn) {
+  const std::string text = "{\n  \"fluid\": {\n    \"density\": 1000,,\n  }\n}";
+  try {
+    parse_scene(text, "/tmp/bad.json");
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    const std::string m = e.what();
+    EXPECT_EQ(e.code(), ExitCode::BadInput);
+    EXPECT_NE(m.find("/tmp/bad.json"), std::string::npos) << m;
+    EXPECT_NE(m.find("line 3"), std::string::npos) << m;
+    EXPECT_NE(m.find("column 21"), std::string::npos) << m;
+  }
+}
+
+struct BadCase {
+  const char* what;
+  std::function<void(json&)> edit;
+  const char* expect;  // must appear in the message
+};
+
+class SceneJsonErrors : public ::testing::TestWithParam<BadCase> {};
+
+TEST_P(SceneJsonErrors, NameKeyAndValue) {
+  json j = valid_scene();
+  GetParam().edit(j);
+  ExitCode code = ExitCode::Ok;
+  const std::string m = error_of(j, &code);
+  ASSERT_FALSE(m.empty()) << GetParam().what << ": accepted";
+  EXPECT_EQ(code, ExitCode::BadInput);
+  EXPECT_NE(m.find("/tmp/scene.json"), std::string::npos) << m;
+  EXPECT_NE(m.find(GetParam().expect), std::string::npos) << GetParam().what << ": " << m;
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Cases, SceneJsonErrors,
+    ::testing::Values(
+        BadCase{"unknown top key", [](json& j) { j["colour"] = "red"; }, "colour: unknown key"},
+        BadCase{"unknown nested key", [](json& j) { j["bodies"][0]["shape"]["radious"] = 1; },
+                "bodies[0].shape.radious: unknown key"},
+        BadCase{"wrong type", [](json& j) { j["duration"] = "long"; },
+                "duration: must be a number, got \"long\""},
+        BadCase{"negative size", [](json& j) { j["bodies"][0]["shape"]["radius"] = -0.1; },
+                "bodies[0].shape.radius: must be > 0, got -0.1"},
+        BadCase{"zero density", [](json& j) { j["bodies"][0]["density"] = 0; },
+                "bodies[0].density: must be > 0, got 0"},
+        BadCase{"fluid density", [](json& j) { j["fluid"]["density"] = -1; },
+                "fluid.density: must be > 0, got -1"},
+        BadCase{"zero dt", [](json& j) { j["integrator"]["dt"] = 0; },
+                "integrator.dt: must be > 0, got 0"},
+        BadCase{"negative duration", [](json& j) { j["duration"] = -2; },
+                "duration: must be > 0, got -2"},
+        BadCase{"missing key", [](json& j) { j.erase("gravity"); }, "gravity: is required"},
+        BadCase{"unknown effect", [](json& j) { j["effects"].push_back("magic"); },
+                "effects[3]: unknown effect \"magic\""},
+        BadCase{"unknown scheme", [](json& j) { j["integrator"]["scheme"] = "leapfrog"; },
+                "integrator.scheme: must be euler, rk4 or splitting, got \"leapfrog\""},
+        BadCase{"bad count", [](json& j) { j["bodies"][0]["count"] = 0; },
+                "bodies[0].count: must be an integer >= 1, got 0"},
+        BadCase{"both placements", [](json& j) { j["bodies"][0]["spawn_box"] = {{0, 0, 0}, {1, 1, 1}}; },
+                "bodies[0]: needs exactly one of \"position\" or \"spawn_box\""},
+        BadCase{"short vector", [](json& j) { j["gravity"] = {0, -9.81}; },
+                "gravity: must be an array of 3 numbers"},
+        BadCase{"zero quaternion", [](json& j) { j["bodies"][0]["orientation"] = {0, 0, 0, 0}; },
+                "bodies[0].orientation: quaternion must not be zero"},
+        BadCase{"missing field file", [](json& j) {
+                  j["fluid"].erase("uniform");
+                  j["fluid"]["field"] = "nowhere.vti";
+                }, "fluid.field: file not found: /tmp/nowhere.vti"},
+        BadCase{"negative k", [](json& j) { j["fluid"]["uniform"]["k"] = -1; },
+                "fluid.uniform.k: must be >= 0"},
+        BadCase{"missing mesh", [](json& j) {
+                  j["bodies"][0]["shape"] = {{"type", "mesh"}, {"file", "no.obj"}};
+                }, "no.obj"},
+        BadCase{"bad format", [](json& j) { j["output"]["formats"] = {"csv", "xls"}; },
+                "output.formats[1]: must be \"csv\" or \"pvd\", got \"xls\""},
+        BadCase{"turbulence model", [](json& j) { j["turbulence"]["model"] = "les"; },
+                "turbulence.model: must be \"body\" or \"seen\", got \"les\""},
+        BadCase{"schema version", [](json& j) { j["version"] = 2; },
+                "version: only schema version 1 is supported, got 2"}),
+    [](const auto& info) {
+      std::string n = info.param.what;
+      for (char& c : n)
+        if (!isalnum(static_cast<unsigned char>(c))) c = '_';
+      return n;
+    });
+
+TEST(SceneJson, MissingFileSaysSo) {
+  try {
+    read_scene("/nonexistent/scene.json");
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("/nonexistent/scene.json: file not found"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace lrigid
