@@ -21,17 +21,23 @@ bool is_file(const std::string& path) {
   return stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode);
 }
 
+inline bool is_space(char c) {
+  return c == ' ' || c == '\n' || c == '\t' || c == '\r' || c == '\f' || c == '\v';
+}
+
 bool is_delimiter(char c) {
-  return std::isspace(static_cast<unsigned char>(c)) || c == '(' || c == ')' || c == '{' ||
+  return is_space(c) || c == '(' || c == ')' || c == '{' ||
          c == '}' || c == ';' || c == '"' || c == '[' || c == ']';
 }
 
 std::string read_plain(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
   if (!in) fail_input(path + ": cannot open the file");
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
+  const std::streamoff size = in.tellg();
+  std::string out(static_cast<std::size_t>(std::max<std::streamoff>(size, 0)), '\0');
+  in.seekg(0);
+  if (!in.read(out.data(), size)) fail_input(path + ": read error");
+  return out;
 }
 
 std::string read_gzip(const std::string& path) {
@@ -103,7 +109,7 @@ void Cursor::skip_space() {
   const std::size_t n = s_.size();
   while (pos_ < n) {
     const char c = s_[pos_];
-    if (std::isspace(static_cast<unsigned char>(c))) {
+    if (is_space(c)) {
       ++pos_;
     } else if (c == '/' && pos_ + 1 < n && s_[pos_ + 1] == '/') {
       while (pos_ < n && s_[pos_] != '\n') ++pos_;
@@ -336,9 +342,13 @@ void Cursor::field_value(int ncomp, std::size_t n, std::vector<double>* out) {
     out->reserve(n * nc);
     for (std::size_t i = 0; i < n; ++i) out->insert(out->end(), v.begin(), v.end());
   } else if (kind == "nonuniform") {
-    const std::string type = token();
-    const std::string want = nc == 1 ? "List<scalar>" : "List<vector>";
-    if (type != want) fail("expected " + want + ", found '" + type + "'");
+    // "nonuniform List<T> N (...)", or an empty list written as "nonuniform 0()"
+    const char c = peek();
+    if (!std::isdigit(static_cast<unsigned char>(c)) && c != '(') {
+      const std::string type = token();
+      const std::string want = nc == 1 ? "List<scalar>" : "List<vector>";
+      if (type != want) fail("expected " + want + ", found '" + type + "'");
+    }
     scalar_list(ncomp, out);
     if (out->size() != n * nc) {
       fail("expected " + std::to_string(n) + " values, found " + std::to_string(out->size() / nc));

@@ -13,6 +13,7 @@
 #include <vtkXMLImageDataReader.h>
 #include <vtkXMLImageDataWriter.h>
 
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -79,6 +80,8 @@ void write_vti(const std::string& path, const GridSpec& grid, const std::vector<
   w->SetDataModeToAppended();
   w->EncodeAppendedDataOff();
   w->SetCompressorTypeToZLib();
+  // level 1: about as small as the default 5 on float fields, several times faster
+  w->SetCompressionLevel(1);
   w->SetHeaderTypeToUInt64();
   const int ok = w->Write();
   if (!ok || w->GetErrorCode() != 0) {
@@ -103,9 +106,11 @@ void write_pvd(const std::string& path, const std::vector<double>& times,
     out << "<?xml version=\"1.0\"?>\n"
         << "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
         << "  <Collection>\n";
-    out << std::setprecision(17);
     for (std::size_t i = 0; i < times.size(); ++i) {
-      out << "    <DataSet timestep=\"" << times[i] << "\" group=\"\" part=\"0\" file=\""
+      // shortest text that reads back as the same double
+      char buf[64];
+      const auto r = std::to_chars(buf, buf + sizeof(buf), times[i]);
+      out << "    <DataSet timestep=\"" << std::string(buf, r.ptr) << "\" group=\"\" part=\"0\" file=\""
           << files[i] << "\"/>\n";
     }
     out << "  </Collection>\n</VTKFile>\n";

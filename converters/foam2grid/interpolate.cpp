@@ -91,10 +91,19 @@ std::vector<double> point_values(const std::vector<MeshPart>& parts,
                                  const std::vector<FieldSpec>& specs) {
   const Label ng = count_global_points(parts);
   const int nc = fields.empty() ? 0 : fields[0].ncomp;
+  // patch points take only patch face contributions, the others only cell contributions:
+  // one accumulator serves both
   std::vector<double> sum_w(ng, 0.0), acc(static_cast<std::size_t>(ng * nc), 0.0);
-  std::vector<double> sum_wb(ng, 0.0), accb(static_cast<std::size_t>(ng * nc), 0.0);
   std::vector<char> on_patch(ng, 0);
-  // symmetry normals per point: (point, patch id, summed unit normal)
+  for (const MeshPart& m : parts) {
+    for (const Patch& patch : m.patches) {
+      if (!patch.gives_point_values()) continue;
+      for (Label j = m.face_offsets[patch.start]; j < m.face_offsets[patch.start + patch.size]; ++j) {
+        on_patch[m.global(m.face_points[j])] = 1;
+      }
+    }
+  }
+  // symmetry normals per point: (point, patch id, unit face normal)
   struct SymNormal {
     Label point;
     int patch;
@@ -106,20 +115,21 @@ std::vector<double> point_values(const std::vector<MeshPart>& parts,
   for (std::size_t part = 0; part < parts.size(); ++part) {
     const MeshPart& m = parts[part];
     const PartFields& pf = fields[part];
-    // internal: inverse distance from the cell centres
+    // internal points: inverse distance from the cell centres
     for (Label c = 0; c < m.n_cells; ++c) {
       cell_points(m, c, &pts);
       const double* cc = &m.cell_centres[3 * c];
       const double* cv = &pf.cells[static_cast<std::size_t>(c * nc)];
       for (Label p : pts) {
-        const double w = 1.0 / dist(&m.points[3 * p], cc);
         const Label g = m.global(p);
+        if (on_patch[g]) continue;
+        const double w = 1.0 / dist(&m.points[3 * p], cc);
         sum_w[g] += w;
         double* a = &acc[static_cast<std::size_t>(g * nc)];
         for (int k = 0; k < nc; ++k) a[k] += w * cv[k];
       }
     }
-    // boundary: inverse distance from the patch face centres
+    // patch points: inverse distance from the patch face centres, patch face values
     for (const Patch& patch : m.patches) {
       if (!patch.gives_point_values()) continue;
       for (Label f = patch.start; f < patch.start + patch.size; ++f) {
@@ -129,9 +139,8 @@ std::vector<double> point_values(const std::vector<MeshPart>& parts,
           const Label p = m.face_points[j];
           const double w = 1.0 / dist(&m.points[3 * p], fc);
           const Label g = m.global(p);
-          on_patch[g] = 1;
-          sum_wb[g] += w;
-          double* a = &accb[static_cast<std::size_t>(g * nc)];
+          sum_w[g] += w;
+          double* a = &acc[static_cast<std::size_t>(g * nc)];
           for (int k = 0; k < nc; ++k) a[k] += w * fv[k];
         }
       }
@@ -139,7 +148,6 @@ std::vector<double> point_values(const std::vector<MeshPart>& parts,
     // symmetry patches: point normals (sum of the unit normals of the faces at the point)
     for (const Patch& patch : m.patches) {
       if (!patch.is_symmetry()) continue;
-      const std::size_t first = sym.size();
       for (Label f = patch.start; f < patch.start + patch.size; ++f) {
         const double* a = &m.face_areas[3 * f];
         const double mag = std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
@@ -148,19 +156,14 @@ std::vector<double> point_values(const std::vector<MeshPart>& parts,
           sym.push_back({m.global(m.face_points[j]), patch_id, {a[0] / mag, a[1] / mag, a[2] / mag}});
         }
       }
-      (void)first;
       ++patch_id;
     }
   }
-
-  std::vector<double> out(static_cast<std::size_t>(ng * nc), 0.0);
+  std::vector<double>& out = acc;
   for (Label g = 0; g < ng; ++g) {
-    double* o = &out[static_cast<std::size_t>(g * nc)];
-    if (on_patch[g] && sum_wb[g] > 0) {
-      for (int k = 0; k < nc; ++k) o[k] = accb[static_cast<std::size_t>(g * nc + k)] / sum_wb[g];
-    } else if (sum_w[g] > 0) {
-      for (int k = 0; k < nc; ++k) o[k] = acc[static_cast<std::size_t>(g * nc + k)] / sum_w[g];
-    }
+    if (sum_w[g] <= 0) continue;
+    const double inv = 1.0 / sum_w[g];
+    for (int k = 0; k < nc; ++k) out[static_cast<std::size_t>(g * nc + k)] *= inv;
   }
 
   // constraints: per point, one normal per symmetry patch, applied in patch order
@@ -190,7 +193,7 @@ std::vector<double> point_values(const std::vector<MeshPart>& parts,
       }
     }
   }
-  return out;
+  return acc;
 }
 
 void resample(const std::vector<MeshPart>& parts, const std::vector<PartFields>& fields,

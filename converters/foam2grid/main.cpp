@@ -31,6 +31,7 @@ struct Options {
   std::string case_dir;
   std::string output;
   double spacing = 0;
+  bool spacing_given = false;
   std::vector<long> resolution;
   std::vector<double> bounds;
   std::string time = "latest";
@@ -132,7 +133,7 @@ bool ends_with(const std::string& s, const std::string& suffix) {
   return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
-GridSpec make_grid(const Options& opt, const std::array<double, 6>& mb) {
+GridSpec make_grid(const Options& opt, const std::array<double, 6>& mb, double default_spacing) {
   std::array<double, 6> b = mb;
   if (!opt.bounds.empty()) {
     b = {opt.bounds[0], opt.bounds[1], opt.bounds[2], opt.bounds[3], opt.bounds[4], opt.bounds[5]};
@@ -155,15 +156,16 @@ GridSpec make_grid(const Options& opt, const std::array<double, 6>& mb) {
   for (int k = 0; k < 3; ++k) {
     const double len = b[2 * k + 1] - b[2 * k];
     g.origin[k] = b[2 * k];
-    if (opt.spacing > 0) {
+    if (opt.resolution.empty()) {
       // cubic spacing; the upper bound is rounded inward to a whole number of steps
-      const double n = std::floor(len / opt.spacing + 1e-9) + 1;
+      const double h = opt.spacing > 0 ? opt.spacing : default_spacing;
+      const double n = std::floor(len / h + 1e-9) + 1;
       if (n > 1e9) {
         throw Error(Exit::kTooLarge, "--spacing " + fmt(opt.spacing) + " m gives " + fmt(n) +
                                          " points along one axis: far too many");
       }
       g.dims[k] = static_cast<long>(n);
-      g.spacing[k] = opt.spacing;
+      g.spacing[k] = h;
     } else {
       g.dims[k] = opt.resolution[static_cast<std::size_t>(k)];
       g.spacing[k] = len > 0 ? len / static_cast<double>(g.dims[k] - 1) : 1.0;
@@ -179,12 +181,12 @@ int run(const Options& opt) {
                               << clock.seconds() << " s] " << msg << std::endl;
   };
   // flags first: nothing is read before they are known to be sane
-  if (opt.spacing != 0 && !(opt.spacing > 0)) {
+  if (opt.spacing_given && !(opt.spacing > 0)) {
     fail_usage("--spacing " + fmt(opt.spacing) + ": must be a positive length in m");
   }
   if (!std::isfinite(opt.spacing)) fail_usage("--spacing: must be a finite length in m");
-  if ((opt.spacing > 0) == !opt.resolution.empty()) {
-    fail_usage("give exactly one of --spacing H (m) and --resolution NX NY NZ");
+  if (opt.spacing > 0 && !opt.resolution.empty()) {
+    fail_usage("give only one of --spacing H (m) and --resolution NX NY NZ");
   }
   for (long n : opt.resolution) {
     if (n < 2) fail_usage("--resolution: " + std::to_string(n) + " points: need at least 2 per axis");
@@ -240,14 +242,22 @@ int run(const Options& opt) {
   std::vector<MeshPart> parts;
   read_points(fc, &parts);
   const std::array<double, 6> mb = mesh_bounds(parts);
-  const GridSpec grid = make_grid(opt, mb);
+  // default spacing: (bounding-box volume / number of mesh points)^(1/3), about the mean cell
+  // size of a hexahedral mesh
+  double mesh_points = 0;
+  for (const MeshPart& m : parts) mesh_points += static_cast<double>(m.n_points());
+  const double box_volume = std::max(mb[1] - mb[0], 0.0) * std::max(mb[3] - mb[2], 0.0) *
+                            std::max(mb[5] - mb[4], 0.0);
+  const double default_spacing = std::cbrt(box_volume / std::max(mesh_points, 1.0));
+  if (!(default_spacing > 0) && opt.spacing <= 0 && opt.resolution.empty()) {
+    fail_input("the mesh of '" + fc.dir + "' is flat or empty: give --spacing or --resolution");
+  }
+  const GridSpec grid = make_grid(opt, mb, default_spacing);
   {
     double per_point = 2;  // valid + claim flag
     for (const FieldSpec& s : specs) per_point += 4.0 * s.ncomp;
     const double npts = static_cast<double>(grid.dims[0]) * static_cast<double>(grid.dims[1]) *
                         static_cast<double>(grid.dims[2]);
-    double mesh_points = 0;
-    for (const MeshPart& m : parts) mesh_points += static_cast<double>(m.n_points());
     const double need = npts * per_point + mesh_points * 600.0;
     const double avail = available_memory();
     std::ostringstream dims;
@@ -356,9 +366,10 @@ int main(int argc, char** argv) {
   app.add_option("-o,--output", opt.output,
                  "output file: OUT.vti, or OUT.pvd with --time all (the .vti files then go to "
                  "OUT_vti/ beside it)");
-  app.add_option("--spacing", opt.spacing,
+  CLI::Option* spacing = app.add_option("--spacing", opt.spacing,
                  "grid spacing H in m, the same along x, y and z; the number of points per axis "
-                 "is floor(L/H)+1, so the upper bounds are rounded inward");
+                 "is floor(L/H)+1, so the upper bounds are rounded inward (default: "
+                 "(bounding-box volume / mesh points)^(1/3), about the mean cell size)");
   app.add_option("--resolution", opt.resolution,
                  "grid points NX NY NZ along x, y, z (each >= 2); spacing = extent/(N-1)")
       ->expected(3);
@@ -394,6 +405,7 @@ int main(int argc, char** argv) {
     const int rc = app.exit(e);
     return rc == 0 ? 0 : static_cast<int>(Exit::kUsage);
   }
+  opt.spacing_given = spacing->count() > 0;
   try {
     if (!opt.info.empty()) {
       if (!opt.case_dir.empty() || !opt.output.empty()) {
