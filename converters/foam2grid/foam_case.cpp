@@ -4,6 +4,7 @@
 #include <charconv>
 #include <cmath>
 #include <filesystem>
+#include <future>
 #include <regex>
 
 #include "error.h"
@@ -143,21 +144,18 @@ void read_topology(const FoamCase& fc, std::vector<MeshPart>* parts) {
   for (MeshPart& m : *parts) {
     const std::string md = mesh_dir(m.dir);
     std::vector<Label> tmp;
-    {
+    // the faces (the largest file) in a second thread while owner and neighbour are read
+    std::future<void> faces = std::async(std::launch::async, [&m, &md]() {
       FoamFile f(md + "/faces");
       Cursor c(f, f.body());
       c.face_list(&m.face_offsets, &m.face_points);
       check_range(m.face_points, m.n_points(), f.path());
-    }
+    });
     {
       FoamFile f(md + "/owner");
       Cursor c(f, f.body());
       c.label_list(&tmp);
       m.owner.swap(tmp);
-      if (m.owner.size() + 1 != m.face_offsets.size()) {
-        fail_input(f.path() + ": " + std::to_string(m.owner.size()) + " owners for " +
-                   std::to_string(m.face_offsets.size() - 1) + " faces");
-      }
     }
     {
       FoamFile f(md + "/neighbour");
@@ -165,6 +163,14 @@ void read_topology(const FoamCase& fc, std::vector<MeshPart>* parts) {
       c.label_list(&tmp);
       m.neighbour.swap(tmp);
       if (m.neighbour.size() > m.owner.size()) fail_input(f.path() + ": more neighbours than faces");
+    }
+    faces.get();
+    {
+      const std::string f = md + "/owner";
+      if (m.owner.size() + 1 != m.face_offsets.size()) {
+        fail_input(f + ": " + std::to_string(m.owner.size()) + " owners for " +
+                   std::to_string(m.face_offsets.size() - 1) + " faces");
+      }
     }
     Label nc = 0;
     for (Label o : m.owner) nc = std::max(nc, o + 1);
@@ -219,6 +225,7 @@ void compute_geometry(MeshPart* mp) {
   m.face_centres.assign(3 * nf, 0.0);
   m.face_areas.assign(3 * nf, 0.0);
   // face centres and area vectors: triangles fanned from the face's point average
+#pragma omp parallel for schedule(static)
   for (Label f = 0; f < nf; ++f) {
     const Label b = m.face_offsets[f];
     const Label n = m.face_offsets[f + 1] - b;
@@ -289,6 +296,7 @@ void compute_geometry(MeshPart* mp) {
 
   // cell centres and volumes: face pyramids on the average of the face centres
   std::vector<double> est(3 * nc, 0.0);
+#pragma omp parallel for schedule(static)
   for (Label c = 0; c < nc; ++c) {
     const Label b = m.cell_face_offsets[c], e = m.cell_face_offsets[c + 1];
     for (Label i = b; i < e; ++i) {
@@ -309,9 +317,17 @@ void compute_geometry(MeshPart* mp) {
     }
     m.cell_volumes[c] += vol3;
   };
-  for (Label f = 0; f < nf; ++f) add_pyramid(f, m.owner[f], 1.0);
-  for (Label f = 0; f < m.n_internal_faces(); ++f) add_pyramid(f, m.neighbour[f], -1.0);
+  // per cell, owner faces first then neighbour faces, as OpenFOAM sums them
+#pragma omp parallel for schedule(static)
   for (Label c = 0; c < nc; ++c) {
+    for (Label i = m.cell_face_offsets[c]; i < m.cell_face_offsets[c + 1]; ++i) {
+      const Label f = m.cell_faces[i];
+      if (m.owner[f] == c) add_pyramid(f, c, 1.0);
+    }
+    for (Label i = m.cell_face_offsets[c]; i < m.cell_face_offsets[c + 1]; ++i) {
+      const Label f = m.cell_faces[i];
+      if (m.owner[f] != c) add_pyramid(f, c, -1.0);
+    }
     if (std::fabs(m.cell_volumes[c]) > 1e-300) {
       for (int k = 0; k < 3; ++k) m.cell_centres[3 * c + k] /= m.cell_volumes[c];
     } else {
@@ -333,6 +349,7 @@ void compute_geometry(MeshPart* mp) {
     return (u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) +
             u[2] * (v[0] * w[1] - v[1] * w[0])) / 6.0;
   };
+#pragma omp parallel for schedule(static)
   for (Label f = 0; f < nf; ++f) {
     const Label b = m.face_offsets[f];
     const Label n = m.face_offsets[f + 1] - b;
@@ -413,8 +430,9 @@ void read_fields(const MeshPart& m, const std::string& time_name,
   out->ncomp = ncomp;
   out->cells.assign(static_cast<std::size_t>(nc * ncomp), 0.0);
   out->boundary.assign(static_cast<std::size_t>(nb * ncomp), 0.0);
-  std::vector<double> vals;
-  for (const FieldSpec& s : fields) {
+  // one thread per field (each fills its own components)
+  auto read_one = [&](const FieldSpec& s) {
+    std::vector<double> vals;
     const std::string path = m.dir + "/" + time_name + "/" + s.name;
     if (!FoamFile::exists(path)) {
       fail_input("field '" + s.name + "' not found at time " + time_name + ": " + path +
@@ -493,7 +511,25 @@ void read_fields(const MeshPart& m, const std::string& time_name,
         }
       }
     }
+  };
+  std::vector<std::future<void>> pending;
+  for (std::size_t i = 1; i < fields.size(); ++i) {
+    pending.push_back(std::async(std::launch::async, read_one, std::cref(fields[i])));
   }
+  std::exception_ptr first_error;
+  try {
+    read_one(fields[0]);
+  } catch (...) {
+    first_error = std::current_exception();
+  }
+  for (std::future<void>& f : pending) {
+    try {
+      f.get();
+    } catch (...) {
+      if (!first_error) first_error = std::current_exception();
+    }
+  }
+  if (first_error) std::rethrow_exception(first_error);
 }
 
 double read_viscosity(const std::string& case_dir) {

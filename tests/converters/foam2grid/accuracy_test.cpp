@@ -19,6 +19,14 @@
 namespace fs = std::filesystem;
 using namespace foam2grid_test;
 
+// Tolerance: 1e-6 of each field's range over the grid. The grid stores float32 (rounding of
+// 6e-8 of the value, and |value| <= range here), OpenFOAM writes its samples with
+// writePrecision 8 (5e-9 relative), and both read the same 8-digit field files; the rest is
+// floating-point summation order in the point interpolation (~1e-15). Measured: 6e-8 at
+// most (docs/converter.md). 1e-6 is still 10^5 below the gap between the cellPoint and cell
+// schemes (checked below), so a wrong tet, weight or boundary rule fails the test.
+constexpr double kTolerance = 1e-6;
+
 namespace {
 
 struct Sample {
@@ -152,15 +160,31 @@ void discrepancy(const std::vector<Sample>& s, const double r[4], double worst[4
   }
 }
 
-}  // namespace
 
-// Tolerance: 1e-6 of each field's range over the grid. The grid stores float32 (rounding of
-// 6e-8 of the value, and |value| <= range here), OpenFOAM writes its samples with
-// writePrecision 8 (5e-9 relative), and both read the same 8-digit field files; the rest is
-// floating-point summation order in the point interpolation (~1e-15). Measured: 6e-8 at
-// most (docs/converter.md). 1e-6 is still 10^5 below the gap between the cellPoint and cell
-// schemes (checked below), so a wrong tet, weight or boundary rule fails the test.
-constexpr double kTolerance = 1e-6;
+// runs foam2grid on case_dir, samples n random valid grid points with OpenFOAM, returns the
+// worst discrepancy per field relative to its range (U, k, epsilon, nut), checks >= 200 points
+void compare(const std::string& case_dir, const std::string& w, const std::string& flags,
+             double worst[4], double ranges_out[4]) {
+  const std::string vti = w + "/grid.vti";
+  std::string out;
+  ASSERT_EQ(run(quote(foam2grid_bin()) + " " + quote(case_dir) + " -o " + quote(vti) + " " +
+                flags + " -q", &out), 0) << out;
+  vtkSmartPointer<vtkImageData> im = read_vti(vti);
+  std::vector<Sample> s = pick_points(im, 400, 20261122u);
+  sample_with_openfoam(case_dir, &s);
+  int n = 0;
+  ranges(im, ranges_out);
+  discrepancy(s, ranges_out, worst, &n);
+  std::cout << "points compared: " << n << " of " << s.size() << "\n"
+            << "max |foam2grid - OpenFOAM| / range: U " << worst[0] << ", k " << worst[1]
+            << ", epsilon " << worst[2] << ", nut " << worst[3] << "\n"
+            << "ranges: |U| " << ranges_out[0] << " m/s, k " << ranges_out[1]
+            << " m^2/s^2, epsilon " << ranges_out[2] << " m^2/s^3, nut " << ranges_out[3]
+            << " m^2/s\n";
+  EXPECT_GE(n, 200);
+}
+
+}  // namespace
 
 TEST(Foam2gridAccuracy, CellPointMatchesOpenFoamSampleAtRandomGridPoints) {
   const std::string prepared = prepared_case("tiny");
@@ -207,4 +231,38 @@ TEST(Foam2gridAccuracy, CellPointMatchesOpenFoamSampleAtRandomGridPoints) {
             << worst_cell[1] << ", epsilon " << worst_cell[2] << ", nut " << worst_cell[3] << "\n";
   EXPECT_GT(worst_cell[0], 1e3 * kTolerance);
   EXPECT_GT(worst_cell[1], 1e3 * kTolerance);
+}
+
+// A skewed, graded mesh: the tiny case's box with two top corners moved (warped inlet, top and
+// side faces) and grading 2 : 0.5 : 3, so cell centres, face centres, inverse-distance weights
+// and the tet decomposition are all non-trivial; 30 simpleFoam iterations give the fields.
+TEST(Foam2gridAccuracy, CellPointMatchesOpenFoamOnASkewedGradedMesh) {
+  const std::string w = work_dir("accuracy_skewed");
+  const std::string c = w + "/case";
+  const std::string src = std::string(LRIGID_SOURCE_DIR) + "/foam_cases/tiny";
+  std::string log;
+  ASSERT_EQ(run("cp -r " + quote(src) + " " + quote(c) + " && cd " + quote(c) +
+                " && sed -i -e 's/(\\$xMax \\$yMax \\$zMax)/(1.32 0.46 0.34)/'"
+                " -e 's/(0     \\$yMax \\$zMax)/(-0.06 0.43 0.27)/'"
+                " -e 's/simpleGrading (1 1 1)/simpleGrading (2 0.5 3)/' system/blockMeshDict"
+                " && grep -q '(1.32 0.46 0.34)' system/blockMeshDict"
+                " && grep -q '(-0.06 0.43 0.27)' system/blockMeshDict"
+                " && grep -q 'simpleGrading (2 0.5 3)' system/blockMeshDict"
+                " && export WM_PROJECT_DIR=/usr/share/openfoam"
+                " && /usr/bin/blockMesh > log.blockMesh 2>&1"
+                " && /usr/bin/topoSet > log.topoSet 2>&1"
+                " && /usr/bin/subsetMesh fluid -patch obstacle -overwrite > log.subsetMesh 2>&1"
+                " && rm -rf 0 && cp -r 0.orig 0"
+                " && foamDictionary -entry endTime -set 30 system/controlDict > /dev/null"
+                " && foamDictionary -entry writeInterval -set 30 system/controlDict > /dev/null"
+                " && /usr/bin/simpleFoam > log.simpleFoam 2>&1 && test -d 30",
+                &log),
+            0)
+      << "preparing the skewed case failed in " << c << ": " << log;
+  double worst[4], r[4];
+  compare(c, w, "--resolution 71 29 23", worst, r);
+  EXPECT_LE(worst[0], kTolerance) << "U";
+  EXPECT_LE(worst[1], kTolerance) << "k";
+  EXPECT_LE(worst[2], kTolerance) << "epsilon";
+  EXPECT_LE(worst[3], kTolerance) << "nut";
 }
