@@ -149,6 +149,46 @@ StepOutcome rk4(const Model& model, const BodyType& type, double t, BodyState* s
   return StepOutcome::Ok;
 }
 
+// The step's standardized Brownian increments (6: linear then angular), as sums over the
+// model's noise_substeps finer increments, and for Strang splitting the two half-step
+// increments: sums over each half when the substeps split evenly, else a Brownian bridge
+// (W_mid - W_0)/sqrt(h/2) = (z + eta)/sqrt(2), (W_1 - W_mid)/sqrt(h/2) = (z - eta)/sqrt(2).
+void brownian_increments(const Model& model, uint32_t body, uint64_t step, double whole[6],
+                         double half1[6], double half2[6]) {
+  const uint32_t r = model.noise_substeps;
+  if (r <= 1) {
+    double n[12];
+    NormalStream(model.seed, body, step).normals(n);
+    for (int c = 0; c < 6; ++c) {
+      whole[c] = n[c];
+      half1[c] = (n[c] + n[6 + c]) * M_SQRT1_2;
+      half2[c] = (n[c] - n[6 + c]) * M_SQRT1_2;
+    }
+    return;
+  }
+  double a[6] = {0}, b[6] = {0};
+  for (uint32_t j = 0; j < r; ++j) {
+    double n[8];
+    NormalStream(model.seed, body, uint64_t(step) * r + j).normals(n);
+    double* acc = (r % 2 == 0 && j >= r / 2) ? b : a;
+    for (int c = 0; c < 6; ++c) acc[c] += n[c];
+  }
+  for (int c = 0; c < 6; ++c) whole[c] = (a[c] + b[c]) / std::sqrt(double(r));
+  if (r % 2 == 0) {
+    for (int c = 0; c < 6; ++c) {
+      half1[c] = a[c] / std::sqrt(0.5 * r);
+      half2[c] = b[c] / std::sqrt(0.5 * r);
+    }
+  } else {
+    double eta[8];
+    NormalStream(model.seed, body, ~uint64_t(0) - 16 - step).normals(eta);
+    for (int c = 0; c < 6; ++c) {
+      half1[c] = (whole[c] + eta[c]) * M_SQRT1_2;
+      half2[c] = (whole[c] - eta[c]) * M_SQRT1_2;
+    }
+  }
+}
+
 const char* first_nonfinite(const BodyState& s) {
   if (!s.x.allFinite()) return "position";
   if (!s.q.coeffs().allFinite()) return "orientation";
@@ -166,11 +206,8 @@ StepOutcome step_body(const Model& model, const BodyType& type, uint32_t body, u
   const double h = model.dt;
   const bool turb = uses_turbulence(model, type, TurbulenceModel::Seen) ||
                     uses_turbulence(model, type, TurbulenceModel::Body);
-  double z[12];
-  if (turb) {
-    NormalStream ns(model.seed, body, static_cast<uint32_t>(step));
-    ns.normals(z);
-  }
+  double z[6], z1[6], z2[6];
+  if (turb) brownian_increments(model, body, step, z, z1, z2);
   StepOutcome out = StepOutcome::Ok;
   switch (model.integrator) {
     case Integrator::Euler:
@@ -194,10 +231,10 @@ StepOutcome step_body(const Model& model, const BodyType& type, uint32_t body, u
       break;
     }
     case Integrator::Splitting:
-      if (turb) out = turbulence_update(model, type, t, 0.5 * h, true, z, s);
+      if (turb) out = turbulence_update(model, type, t, 0.5 * h, true, z1, s);
       if (out == StepOutcome::Ok) out = impulse_step(model, type, t, true, s);
       if (out == StepOutcome::Ok && turb)
-        out = turbulence_update(model, type, t + 0.5 * h, 0.5 * h, true, z + 6, s);
+        out = turbulence_update(model, type, t + 0.5 * h, 0.5 * h, true, z2, s);
       break;
   }
   if (out == StepOutcome::Exited) {

@@ -54,6 +54,9 @@ struct Model {
   double ground_z = 0;           // m
   // Thomson's well-mixed drift for the seen model; off only to show what it prevents
   bool well_mixed_correction = true;
+  // Brownian path resolution: each step's noise is the sum of this many finer increments, so a
+  // run with dt = r h sees the same path as a run with dt = h and 1 (accuracy study, issue 8)
+  uint32_t noise_substeps = 1;
   std::vector<BodyType> types;
   size_t body_count = 0;
   EffectSet union_effects() const;

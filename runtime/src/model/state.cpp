@@ -45,7 +45,7 @@ State initial_state(const Model& model, const Scene& scene) {
       }
       if (spec.random_orientation) {
         // uniform on SO(3): a normalized 4D Gaussian (Shoemake's method is equivalent)
-        NormalStream ns(model.seed, id, 0xfffffff0u);
+        NormalStream ns(model.seed, id, ~uint64_t(0));
         double z[4];
         ns.normals(z);
         s.q[i] = Quat(z[0], z[1], z[2], z[3]).normalized();
@@ -59,7 +59,7 @@ State initial_state(const Model& model, const Scene& scene) {
           model.turbulence_model == TurbulenceModel::Seen) {
         FluidSample fs;
         if (model.field.sample(s.x[i], 0.0, false, &fs)) {
-          NormalStream ns(model.seed, id, 0xfffffff1u);
+          NormalStream ns(model.seed, id, ~uint64_t(1));
           double z[4];
           ns.normals(z);
           s.u_seen[i] = std::sqrt(fs.sigma2) * Vec3(z[0], z[1], z[2]);

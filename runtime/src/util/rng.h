@@ -13,17 +13,18 @@ namespace lrigid {
 
 class NormalStream {
  public:
-  NormalStream(uint64_t seed, uint32_t body, uint32_t step) {
+  NormalStream(uint64_t seed, uint32_t body, uint64_t step) {
     key_ = {{static_cast<uint32_t>(seed), static_cast<uint32_t>(seed >> 32)}};
     body_ = body;
-    step_ = step;
+    step_lo_ = static_cast<uint32_t>(step);
+    step_hi_ = static_cast<uint32_t>(step >> 32);
   }
 
   // Fills out[0..n) with independent N(0,1) draws; slots never repeat within one stream.
   template <int N>
   void normals(double (&out)[N]) {
     for (int i = 0; i < N; i += 4) {
-      r123::Philox4x32::ctr_type ctr = {{body_, step_, block_++, 0x6c726967u}};
+      r123::Philox4x32::ctr_type ctr = {{body_, step_lo_, step_hi_, 0x6c720000u | block_++}};
       const auto r = gen_(ctr, key_);
       double z[4];
       box_muller(r[0], r[1], z[0], z[1]);
@@ -45,7 +46,7 @@ class NormalStream {
 
   r123::Philox4x32 gen_;
   r123::Philox4x32::key_type key_;
-  uint32_t body_, step_, block_ = 0;
+  uint32_t body_, step_lo_, step_hi_, block_ = 0;
 };
 
 }  // namespace lrigid
