@@ -1,10 +1,136 @@
-// lrigid added-mass: placeholder until the body-types work lands (issue 5).
+// lrigid added-mass: volume, mass properties per unit density and the fluid Kirchhoff tensor
+// of one body shape (issue 5). BEM results come from / go to the disk cache.
+#include <cstdio>
+#include <iomanip>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "body/added_mass.h"
+#include "body/mass_properties.h"
 #include "commands.h"
+#include "io/added_mass_cache.h"
+#include "io/mesh_io.h"
 #include "util/error.h"
 
 namespace lrigid::app {
-void add_added_mass_command(CLI::App& app) {
-  auto* cmd = app.add_subcommand("added-mass", "Mass properties and Kirchhoff tensor of a body");
-  cmd->callback([] { throw Error(ExitCode::Runtime, "added-mass: not implemented yet"); });
+
+namespace {
+
+struct Options {
+  double sphere = 0;
+  std::vector<double> ellipsoid, box;
+  std::string mesh;
+  double fluid_density = 1000.0;
+  int panels = 0;
+  bool json = false;
+};
+
+Shape make_shape(const Options& o, CLI::App* cmd) {
+  int given = 0;
+  for (const char* name : {"--sphere", "--ellipsoid", "--box", "--mesh"})
+    given += cmd->count(name) > 0 ? 1 : 0;
+  if (given != 1)
+    throw Error(ExitCode::Usage,
+                "added-mass: give exactly one of --sphere R, --ellipsoid A B C, --box LX LY LZ, "
+                "--mesh FILE");
+  if (cmd->count("--sphere")) return Shape::sphere(o.sphere);
+  if (cmd->count("--ellipsoid"))
+    return Shape::ellipsoid(o.ellipsoid[0], o.ellipsoid[1], o.ellipsoid[2]);
+  if (cmd->count("--box")) return Shape::box(o.box[0], o.box[1], o.box[2]);
+  auto mesh = std::make_shared<const TriangleMesh>(read_mesh(o.mesh));
+  return Shape::from_mesh(mesh, o.mesh);
 }
+
+nlohmann::json to_json(const Eigen::MatrixXd& m) {
+  nlohmann::json a = nlohmann::json::array();
+  for (int r = 0; r < m.rows(); ++r) {
+    nlohmann::json row = nlohmann::json::array();
+    for (int c = 0; c < m.cols(); ++c) row.push_back(m(r, c));
+    a.push_back(row);
+  }
+  return a;
+}
+
+void print_json(const Shape& s, const MassProperties& mp, const AddedMass& am, double rho) {
+  nlohmann::json j;
+  j["shape"] = {{"type", shape_type_name(s.type)},
+                {"half_extents", {s.half_extents.x(), s.half_extents.y(), s.half_extents.z()}}};
+  if (s.type == ShapeType::Mesh) {
+    j["shape"]["source"] = s.source;
+    j["shape"]["vertices"] = s.mesh->vertices.size();
+    j["shape"]["faces"] = s.mesh->faces.size();
+  }
+  j["fluid_density"] = rho;
+  j["volume"] = mp.volume;
+  j["centroid"] = {mp.centroid.x(), mp.centroid.y(), mp.centroid.z()};
+  j["inertia_per_unit_density"] = to_json(mp.inertia);
+  j["added_mass"] = to_json(am.tensor);
+  j["method"] = am.method;
+  j["panels"] = am.panels;
+  std::cout << j.dump(2) << "\n";
+}
+
+void print_report(const Shape& s, const MassProperties& mp, const AddedMass& am, double rho) {
+  std::ostringstream o;
+  o << std::setprecision(6);
+  o << "shape: " << shape_type_name(s.type);
+  if (s.type == ShapeType::Mesh)
+    o << " " << s.source << " (" << s.mesh->vertices.size() << " vertices, " << s.mesh->faces.size()
+      << " faces)";
+  o << ", half extents " << s.half_extents.transpose() << " m\n";
+  o << "volume: " << mp.volume << " m^3\n";
+  o << "centroid (centre of buoyancy): " << mp.centroid.transpose() << " m\n";
+  o << "inertia about the centroid per unit density [m^5]:\n" << mp.inertia << "\n";
+  o << "fluid density: " << rho << " kg/m^3\n";
+  o << "added mass (Kirchhoff tensor, fluid part) by " << am.method;
+  if (am.method == "bem") o << " with " << am.panels << " panels";
+  o << ", about the centroid, order (vx vy vz wx wy wz),\nunits kg | kg m | kg m^2:\n";
+  Eigen::IOFormat fmt(6, 0, "  ", "\n", "  ", "");
+  o << am.tensor.format(fmt) << "\n";
+  if (rho > 0) {
+    o << "translational coefficients K_ii / (rho V): "
+      << (am.tensor.diagonal().head<3>() / (rho * mp.volume)).transpose() << "\n";
+  }
+  std::cout << o.str();
+}
+
+}  // namespace
+
+void add_added_mass_command(CLI::App& app) {
+  auto opt = std::make_shared<Options>();
+  auto* cmd = app.add_subcommand(
+      "added-mass",
+      "Mass properties and fluid Kirchhoff (added-mass) tensor of a body shape (SI units)");
+  cmd->add_option("--sphere", opt->sphere, "sphere of radius R [m]");
+  cmd->add_option("--ellipsoid", opt->ellipsoid, "ellipsoid with semi-axes A B C [m]")->expected(3);
+  cmd->add_option("--box", opt->box, "box with edge lengths LX LY LZ [m]")->expected(3);
+  cmd->add_option("--mesh", opt->mesh, "closed triangle mesh (.obj or .stl; coordinates in m)");
+  cmd->add_option("--fluid-density", opt->fluid_density, "fluid density RHO [kg/m^3]")
+      ->capture_default_str();
+  cmd->add_option("--panels", opt->panels,
+                  "boundary element panels for boxes and meshes (0 = default " +
+                      std::to_string(kDefaultPanels) + ")")
+      ->capture_default_str();
+  cmd->add_flag("--json", opt->json, "print JSON (keys volume, added_mass, method, panels, ...)");
+  cmd->callback([opt, cmd] {
+    const Shape shape = make_shape(*opt, cmd);
+    if (!(opt->fluid_density >= 0) || !std::isfinite(opt->fluid_density))
+      throw Error(ExitCode::Usage, "added-mass: --fluid-density must be >= 0 kg/m^3, got " +
+                                       std::to_string(opt->fluid_density));
+    if (opt->panels < 0)
+      throw Error(ExitCode::Usage,
+                  "added-mass: --panels must be >= 0, got " + std::to_string(opt->panels));
+    const MassProperties mp = mass_properties(shape);
+    const AddedMass am = cached_added_mass(shape, opt->fluid_density, opt->panels);
+    if (opt->json)
+      print_json(shape, mp, am, opt->fluid_density);
+    else
+      print_report(shape, mp, am, opt->fluid_density);
+  });
+}
+
 }  // namespace lrigid::app

@@ -17,8 +17,8 @@ const char* shape_type_name(ShapeType t);
 
 // Closed, outward-oriented triangle surface (counter-clockwise seen from outside).
 struct TriangleMesh {
-  std::vector<Vec3> vertices;               // (nvert) m
-  std::vector<std::array<int, 3>> faces;    // (nface) vertex indices
+  std::vector<Vec3> vertices;             // (nvert) m
+  std::vector<std::array<int, 3>> faces;  // (nface) vertex indices
 };
 
 struct Shape {

@@ -1,0 +1,262 @@
+#include "io/mesh_io.h"
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <map>
+#include <sstream>
+#include <vector>
+
+#include "io/atomic_file.h"
+#include "util/error.h"
+
+namespace lrigid {
+
+namespace {
+
+[[noreturn]] void bad(const std::string& path, const std::string& message, int line = 0) {
+  throw Error(ExitCode::BadInput,
+              where(path, line > 0 ? "line " + std::to_string(line) : "", message));
+}
+
+std::string lower(std::string s) {
+  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+// strict number parse: the whole token must be a finite number
+bool parse_double(const std::string& token, double& out) {
+  if (token.empty()) return false;
+  char* end = nullptr;
+  out = std::strtod(token.c_str(), &end);
+  return end == token.c_str() + token.size() && std::isfinite(out);
+}
+
+// merges bit-identical vertices (STL stores each triangle's corners separately)
+class VertexWelder {
+ public:
+  explicit VertexWelder(TriangleMesh& mesh) : mesh_(mesh) {}
+  int add(const Vec3& p) {
+    const std::array<double, 3> key = {p.x(), p.y(), p.z()};
+    auto it = index_.find(key);
+    if (it != index_.end()) return it->second;
+    const int id = static_cast<int>(mesh_.vertices.size());
+    mesh_.vertices.push_back(p);
+    index_.emplace(key, id);
+    return id;
+  }
+
+ private:
+  TriangleMesh& mesh_;
+  std::map<std::array<double, 3>, int> index_;
+};
+
+TriangleMesh read_obj(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) bad(path, "cannot open for reading");
+  TriangleMesh m;
+  std::string line;
+  int lineno = 0;
+  while (std::getline(in, line)) {
+    ++lineno;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    std::istringstream s(line);
+    std::string tag;
+    if (!(s >> tag) || tag[0] == '#') continue;
+    if (tag == "v") {
+      Vec3 p;
+      std::string tok;
+      for (int k = 0; k < 3; ++k) {
+        if (!(s >> tok)) bad(path, "vertex needs 3 coordinates", lineno);
+        if (!parse_double(tok, p[k]))
+          bad(path, "vertex coordinate '" + tok + "' is not a finite number", lineno);
+      }
+      m.vertices.push_back(p);
+    } else if (tag == "f") {
+      std::vector<int> poly;
+      std::string tok;
+      while (s >> tok) {
+        const std::string idx = tok.substr(0, tok.find('/'));
+        char* end = nullptr;
+        const long v = std::strtol(idx.c_str(), &end, 10);
+        if (idx.empty() || end != idx.c_str() + idx.size() || v == 0)
+          bad(path, "face index '" + tok + "' is not a vertex number (1-based or negative)",
+              lineno);
+        const long n = static_cast<long>(m.vertices.size());
+        const long zero_based = v > 0 ? v - 1 : n + v;
+        if (zero_based < 0 || zero_based >= n)
+          bad(path,
+              "face index " + std::to_string(v) + " refers to a vertex not yet defined (" +
+                  std::to_string(n) + " so far)",
+              lineno);
+        poly.push_back(static_cast<int>(zero_based));
+      }
+      if (poly.size() < 3) bad(path, "face needs at least 3 vertices", lineno);
+      for (size_t k = 1; k + 1 < poly.size(); ++k)
+        m.faces.push_back({poly[0], poly[k], poly[k + 1]});
+    }
+    // vt, vn, o, g, s, usemtl, mtllib, l, ...: not needed for the geometry
+  }
+  if (m.faces.empty()) bad(path, "no faces ('f' lines) found");
+  return m;
+}
+
+TriangleMesh read_stl_binary(const std::string& path, const std::vector<char>& data) {
+  uint32_t count = 0;
+  std::memcpy(&count, data.data() + 80, 4);  // little-endian on all supported hosts
+  TriangleMesh m;
+  VertexWelder weld(m);
+  for (uint32_t t = 0; t < count; ++t) {
+    const char* rec = data.data() + 84 + 50 * static_cast<size_t>(t);
+    std::array<int, 3> f;
+    for (int k = 0; k < 3; ++k) {
+      float xyz[3];
+      std::memcpy(xyz, rec + 12 + 12 * k, 12);
+      const Vec3 p(xyz[0], xyz[1], xyz[2]);
+      if (!p.allFinite()) bad(path, "triangle " + std::to_string(t) + " has a non-finite vertex");
+      f[k] = weld.add(p);
+    }
+    m.faces.push_back(f);
+  }
+  if (m.faces.empty()) bad(path, "binary STL with no triangles");
+  return m;
+}
+
+TriangleMesh read_stl_ascii(const std::string& path, const std::vector<char>& data) {
+  std::istringstream in(std::string(data.begin(), data.end()));
+  TriangleMesh m;
+  VertexWelder weld(m);
+  std::string line;
+  int lineno = 0;
+  std::vector<int> corners;
+  bool in_loop = false, seen_solid = false, seen_end = false;
+  while (std::getline(in, line)) {
+    ++lineno;
+    std::istringstream s(line);
+    std::string tag;
+    if (!(s >> tag)) continue;
+    tag = lower(tag);
+    if (tag == "solid") {
+      seen_solid = true;
+    } else if (tag == "facet") {
+      if (!seen_solid) bad(path, "'facet' before 'solid'", lineno);
+    } else if (tag == "outer") {
+      in_loop = true;
+      corners.clear();
+    } else if (tag == "vertex") {
+      if (!in_loop) bad(path, "'vertex' outside 'outer loop'", lineno);
+      Vec3 p;
+      std::string tok;
+      for (int k = 0; k < 3; ++k) {
+        if (!(s >> tok)) bad(path, "vertex needs 3 coordinates", lineno);
+        if (!parse_double(tok, p[k]))
+          bad(path, "vertex coordinate '" + tok + "' is not a finite number", lineno);
+      }
+      corners.push_back(weld.add(p));
+    } else if (tag == "endloop") {
+      if (corners.size() != 3)
+        bad(path, "facet has " + std::to_string(corners.size()) + " vertices, expected 3", lineno);
+      m.faces.push_back({corners[0], corners[1], corners[2]});
+      in_loop = false;
+    } else if (tag == "endfacet") {
+    } else if (tag == "endsolid") {
+      seen_end = true;
+      break;
+    } else {
+      bad(path, "unexpected '" + tag + "' in ASCII STL", lineno);
+    }
+  }
+  if (in_loop) bad(path, "file ends inside a facet", lineno);
+  if (!seen_end) bad(path, "no 'endsolid' (file truncated?)", lineno);
+  if (m.faces.empty()) bad(path, "ASCII STL with no facets");
+  return m;
+}
+
+TriangleMesh read_stl(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) bad(path, "cannot open for reading");
+  std::vector<char> data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (data.size() >= 84) {
+    uint32_t count = 0;
+    std::memcpy(&count, data.data() + 80, 4);
+    if (data.size() == 84 + 50 * static_cast<uint64_t>(count)) return read_stl_binary(path, data);
+  }
+  // ASCII STL starts with "solid" (binary headers may too, so the size test comes first)
+  size_t i = 0;
+  while (i < data.size() && std::isspace(static_cast<unsigned char>(data[i]))) ++i;
+  if (data.size() - i >= 5 && lower(std::string(data.data() + i, 5)) == "solid")
+    return read_stl_ascii(path, data);
+  bad(path, "not an STL file: size " + std::to_string(data.size()) +
+                " bytes does not match a binary STL and it does not start with 'solid'");
+}
+
+}  // namespace
+
+TriangleMesh read_mesh(const std::string& path) {
+  const std::string ext = lower(std::filesystem::path(path).extension().string());
+  if (!std::filesystem::exists(path)) bad(path, "file does not exist");
+  if (ext == ".obj") return read_obj(path);
+  if (ext == ".stl") return read_stl(path);
+  bad(path, "unknown mesh format '" + ext + "' (expected .obj or .stl)");
+}
+
+void write_stl_ascii(const std::string& path, const TriangleMesh& mesh, const std::string& name) {
+  write_file_atomically(path, [&](std::ostream& out) {
+    out << std::setprecision(17) << "solid " << name << "\n";
+    for (const auto& f : mesh.faces) {
+      const Vec3& a = mesh.vertices[f[0]];
+      const Vec3& b = mesh.vertices[f[1]];
+      const Vec3& c = mesh.vertices[f[2]];
+      const Vec3 n = (b - a).cross(c - a).normalized();
+      out << "  facet normal " << n.x() << " " << n.y() << " " << n.z() << "\n    outer loop\n";
+      for (const Vec3* p : {&a, &b, &c})
+        out << "      vertex " << p->x() << " " << p->y() << " " << p->z() << "\n";
+      out << "    endloop\n  endfacet\n";
+    }
+    out << "endsolid " << name << "\n";
+  });
+}
+
+void write_stl_binary(const std::string& path, const TriangleMesh& mesh) {
+  write_file_atomically(path, [&](std::ostream& out) {
+    char header[80] = {};
+    std::snprintf(header, sizeof header, "lrigid binary STL");
+    out.write(header, 80);
+    const uint32_t count = static_cast<uint32_t>(mesh.faces.size());
+    out.write(reinterpret_cast<const char*>(&count), 4);
+    for (const auto& f : mesh.faces) {
+      const Vec3& a = mesh.vertices[f[0]];
+      const Vec3& b = mesh.vertices[f[1]];
+      const Vec3& c = mesh.vertices[f[2]];
+      const Vec3 n = (b - a).cross(c - a).normalized();
+      float rec[12];
+      for (int k = 0; k < 3; ++k) {
+        rec[k] = static_cast<float>(n[k]);
+        rec[3 + k] = static_cast<float>(a[k]);
+        rec[6 + k] = static_cast<float>(b[k]);
+        rec[9 + k] = static_cast<float>(c[k]);
+      }
+      out.write(reinterpret_cast<const char*>(rec), sizeof rec);
+      const uint16_t attr = 0;
+      out.write(reinterpret_cast<const char*>(&attr), 2);
+    }
+  });
+}
+
+void write_obj(const std::string& path, const TriangleMesh& mesh) {
+  write_file_atomically(path, [&](std::ostream& out) {
+    out << std::setprecision(17);
+    for (const Vec3& v : mesh.vertices)
+      out << "v " << v.x() << " " << v.y() << " " << v.z() << "\n";
+    for (const auto& f : mesh.faces)
+      out << "f " << f[0] + 1 << " " << f[1] + 1 << " " << f[2] + 1 << "\n";
+  });
+}
+
+}  // namespace lrigid

@@ -1,0 +1,113 @@
+#!/usr/bin/python3
+"""Writes the small test meshes in this folder (run from anywhere; files land next to it).
+
+Valid: box_ascii.stl, box_binary.stl (box 0.2 x 0.1 x 0.05 m centred at (1, 2, 3)),
+cube_quads.obj (unit cube from quads, with i/t/n indices), tetra.obj.
+Invalid (each has exactly one defect): open.obj, nonmanifold_edge.obj, nonmanifold_vertex.obj,
+inverted.obj, inconsistent.obj, degenerate.obj; syntax errors: bad_number.obj,
+bad_index.obj, truncated.stl.
+"""
+import os
+import struct
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+
+
+def box(lx, ly, lz, c):
+    """8 corners and 12 outward triangles (counter-clockwise seen from outside)."""
+    v = [(c[0] + sx * lx / 2, c[1] + sy * ly / 2, c[2] + sz * lz / 2)
+         for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)]
+    # corner index = 4*ix + 2*iy + iz
+    quads = [(0, 1, 3, 2), (4, 6, 7, 5), (0, 4, 5, 1), (2, 3, 7, 6), (0, 2, 6, 4), (1, 5, 7, 3)]
+    f = []
+    for a, b, cc, d in quads:
+        f += [(a, b, cc), (a, cc, d)]
+    return v, f, quads
+
+
+def write_obj(name, v, f, comment):
+    with open(os.path.join(HERE, name), "w") as out:
+        out.write("# %s\n" % comment)
+        for p in v:
+            out.write("v %.17g %.17g %.17g\n" % p)
+        for t in f:
+            out.write("f " + " ".join(str(i + 1) for i in t) + "\n")
+
+
+def normal(v, t):
+    a, b, c = (v[i] for i in t)
+    u = [b[k] - a[k] for k in range(3)]
+    w = [c[k] - a[k] for k in range(3)]
+    n = [u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]]
+    s = sum(x * x for x in n) ** 0.5
+    return [x / s for x in n]
+
+
+def main():
+    v, f, quads = box(0.2, 0.1, 0.05, (1.0, 2.0, 3.0))
+    with open(os.path.join(HERE, "box_ascii.stl"), "w") as out:
+        out.write("solid box\n")
+        for t in f:
+            out.write("  facet normal %.9g %.9g %.9g\n    outer loop\n" % tuple(normal(v, t)))
+            for i in t:
+                out.write("      vertex %.17g %.17g %.17g\n" % v[i])
+            out.write("    endloop\n  endfacet\n")
+        out.write("endsolid box\n")
+    with open(os.path.join(HERE, "box_binary.stl"), "wb") as out:
+        header = b"solid-looking header of a binary STL (must still be read as binary)"
+        out.write(header.ljust(80, b" "))
+        out.write(struct.pack("<I", len(f)))
+        for t in f:
+            out.write(struct.pack("<3f", *normal(v, t)))
+            for i in t:
+                out.write(struct.pack("<3f", *v[i]))
+            out.write(struct.pack("<H", 0))
+
+    # unit cube [0,1]^3 written with quads and v/vt/vn style indices
+    cv, _, cq = box(1.0, 1.0, 1.0, (0.5, 0.5, 0.5))
+    with open(os.path.join(HERE, "cube_quads.obj"), "w") as out:
+        out.write("# unit cube [0,1]^3, quads, with texture/normal indices\no cube\n")
+        for p in cv:
+            out.write("v %g %g %g\n" % p)
+        out.write("vt 0 0\nvn 0 0 1\ns off\n")
+        for q in cq:
+            out.write("f " + " ".join("%d/1/1" % (i + 1) for i in q) + "\n")
+
+    tv = [(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1)]
+    tf = [(0, 2, 1), (0, 1, 3), (0, 3, 2), (1, 2, 3)]
+    write_obj("tetra.obj", tv, tf, "tetrahedron with corner at the origin, volume 1/6 m^3")
+
+    write_obj("open.obj", v, f[:-1], "box with one triangle missing")
+    write_obj("inverted.obj", v, [(a, c, b) for a, b, c in f], "box with every face reversed")
+    write_obj("inconsistent.obj", v, f[:-1] + [tuple(reversed(f[-1]))], "box, one face flipped")
+
+    # two tetrahedra sharing the edge 0-1: that edge has four faces
+    nv = tv + [(0.5, -1, -1), (0.5, -1.2, 0.2)]
+    nf = tf + [(0, 1, 4), (1, 0, 5), (0, 4, 5), (1, 5, 4)]
+    write_obj("nonmanifold_edge.obj", nv, nf, "two tetrahedra sharing an edge")
+
+    # two tetrahedra sharing only vertex 0 (a bow-tie vertex)
+    bv = tv + [(-1, 0, 0), (0, -1, 0), (0, 0, -1)]
+    bf = tf + [(0, 4, 5), (0, 6, 4), (0, 5, 6), (4, 6, 5)]
+    write_obj("nonmanifold_vertex.obj", bv, bf, "two tetrahedra sharing a vertex")
+
+    # tetrahedron with a midpoint M on edge A-B: faces AMC, MBC, BAD, ACD... plus a
+    # zero-area face (A, B, M) that closes the surface
+    A, B, C, D = (0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1)
+    M = (0.5, 0, 0)
+    dv = [A, B, C, D, M]
+    # original outward faces: (A, C, B), (A, B, D), (A, D, C), (B, C, D); split ACB at M
+    df = [(0, 2, 4), (4, 2, 1), (0, 1, 3), (0, 3, 2), (1, 2, 3), (0, 4, 1)]
+    write_obj("degenerate.obj", dv, df, "closed tetrahedron with one zero-area face")
+
+    with open(os.path.join(HERE, "bad_number.obj"), "w") as out:
+        out.write("# line 3 has a bad coordinate\nv 0 0 0\nv 1 0 x\nv 0 1 0\nf 1 2 3\n")
+    with open(os.path.join(HERE, "bad_index.obj"), "w") as out:
+        out.write("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n")
+    with open(os.path.join(HERE, "truncated.stl"), "w") as out:
+        out.write("solid t\n  facet normal 0 0 1\n    outer loop\n      vertex 0 0 0\n"
+                  "      vertex 1 0 0\n")
+
+
+if __name__ == "__main__":
+    main()

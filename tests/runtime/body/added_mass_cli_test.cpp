@@ -1,0 +1,115 @@
+// lrigid added-mass, run as a program (runtime/app/cmd_added_mass.cpp).
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CmdResult {
+  int status = -1;
+  std::string out;  // stdout and stderr together
+};
+
+CmdResult run(const std::string& args, const std::string& env = "") {
+  const std::string cmd =
+      env + " " + std::string(LRIGID_BINARY_DIR) + "/bin/lrigid added-mass " + args + " 2>&1";
+  CmdResult r;
+  FILE* p = popen(cmd.c_str(), "r");
+  if (!p) return r;
+  char buf[4096];
+  size_t n;
+  while ((n = fread(buf, 1, sizeof buf, p)) > 0) r.out.append(buf, n);
+  const int st = pclose(p);
+  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+  return r;
+}
+
+TEST(AddedMassCli, SphereJson) {
+  const CmdResult r = run("--sphere 0.1 --json");
+  ASSERT_EQ(r.status, 0) << r.out;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  const double v = 4.0 / 3.0 * M_PI * 1e-3;
+  EXPECT_NEAR(j.at("volume").get<double>(), v, 1e-15);
+  EXPECT_EQ(j.at("method"), "analytic");
+  EXPECT_EQ(j.at("panels"), 0);
+  EXPECT_EQ(j.at("fluid_density").get<double>(), 1000.0);
+  const auto& k = j.at("added_mass");
+  ASSERT_EQ(k.size(), 6u);
+  for (int i = 0; i < 6; ++i) {
+    ASSERT_EQ(k[i].size(), 6u);
+    for (int c = 0; c < 6; ++c) {
+      const double expect = (i == c && i < 3) ? 0.5 * 1000.0 * v : 0.0;  // 2.0944 kg
+      EXPECT_NEAR(k[i][c].get<double>(), expect, 1e-12) << i << "," << c;
+    }
+  }
+  EXPECT_NEAR(j.at("inertia_per_unit_density")[0][0].get<double>(), 0.4 * v * 0.01, 1e-18);
+}
+
+TEST(AddedMassCli, BoxBemUsesCacheAndDensity) {
+  const fs::path dir =
+      fs::temp_directory_path() / ("lrigid_cli_cache_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  const std::string env = "LRIGID_CACHE_DIR=" + dir.string();
+  const CmdResult a = run("--box 0.2 0.1 0.05 --panels 200 --fluid-density 1.2 --json", env);
+  ASSERT_EQ(a.status, 0) << a.out;
+  ASSERT_TRUE(fs::exists(dir));
+  int files = 0;
+  for (const auto& e : fs::directory_iterator(dir)) files += e.path().extension() == ".json";
+  EXPECT_EQ(files, 1);
+  const CmdResult b = run("--box 0.2 0.1 0.05 --panels 200 --fluid-density 1.2 --json", env);
+  ASSERT_EQ(b.status, 0) << b.out;
+  EXPECT_EQ(a.out, b.out);  // second run from the cache, identical output
+  const nlohmann::json j = nlohmann::json::parse(a.out);
+  EXPECT_EQ(j.at("method"), "bem");
+  EXPECT_GT(j.at("panels").get<int>(), 100);
+  EXPECT_NEAR(j.at("volume").get<double>(), 1e-3, 1e-15);
+  // flattest face normal to z: the largest translational entry, in kg for rho = 1.2
+  const double kz = j.at("added_mass")[2][2].get<double>();
+  EXPECT_GT(kz, j.at("added_mass")[1][1].get<double>());
+  EXPECT_GT(kz, 1.2 * 1e-3);
+  EXPECT_LT(kz, 1.2 * 1e-3 * 5);
+  fs::remove_all(dir);
+}
+
+TEST(AddedMassCli, ReportAndErrors) {
+  const CmdResult ok = run("--ellipsoid 0.2 0.1 0.1");
+  EXPECT_EQ(ok.status, 0) << ok.out;
+  EXPECT_NE(ok.out.find("analytic"), std::string::npos) << ok.out;
+  EXPECT_NE(ok.out.find("volume"), std::string::npos);
+
+  EXPECT_EQ(run("--box 1 0 1").status, 3);
+  EXPECT_EQ(run("").status, 2);
+  EXPECT_EQ(run("--sphere 1 --box 1 1 1").status, 2);
+  EXPECT_EQ(run("--sphere 1 --fluid-density -3").status, 2);
+  const CmdResult missing = run("--mesh /nonexistent/leaf.obj");
+  EXPECT_EQ(missing.status, 3);
+  EXPECT_NE(missing.out.find("leaf.obj"), std::string::npos) << missing.out;
+  const CmdResult open =
+      run(std::string("--mesh ") + LRIGID_SOURCE_DIR + "/tests/data/meshes/open.obj");
+  EXPECT_EQ(open.status, 3);
+  EXPECT_NE(open.out.find("open"), std::string::npos) << open.out;
+}
+
+TEST(AddedMassCli, MeshFromFile) {
+  const fs::path dir =
+      fs::temp_directory_path() / ("lrigid_cli_mesh_" + std::to_string(::getpid()));
+  const CmdResult r = run(std::string("--mesh ") + LRIGID_SOURCE_DIR +
+                              "/tests/data/meshes/box_binary.stl --panels 300 --json",
+                          "LRIGID_CACHE_DIR=" + dir.string());
+  ASSERT_EQ(r.status, 0) << r.out;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  EXPECT_NEAR(j.at("volume").get<double>(), 0.2 * 0.1 * 0.05, 1e-8);  // float32 coordinates
+  EXPECT_NEAR(j.at("centroid")[1].get<double>(), 2.0, 1e-6);
+  EXPECT_EQ(j.at("method"), "bem");
+  fs::remove_all(dir);
+}
+
+}  // namespace
