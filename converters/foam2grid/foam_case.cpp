@@ -217,123 +217,138 @@ void read_topology(const FoamCase& fc, std::vector<MeshPart>* parts) {
   }
 }
 
+namespace {
+
+// face centre and area vector as OpenFOAM computes them: triangles fanned from the point
+// average (a triangle directly)
+void face_geometry(const double* p, const Label* fp, Label n, double* fc, double* fa) {
+  if (n == 3) {
+    const double* a = p + 3 * fp[0];
+    const double* b = p + 3 * fp[1];
+    const double* c = p + 3 * fp[2];
+    double e1[3], e2[3];
+    for (int k = 0; k < 3; ++k) {
+      fc[k] = (1.0 / 3.0) * (a[k] + b[k] + c[k]);
+      e1[k] = b[k] - a[k];
+      e2[k] = c[k] - a[k];
+    }
+    fa[0] = 0.5 * (e1[1] * e2[2] - e1[2] * e2[1]);
+    fa[1] = 0.5 * (e1[2] * e2[0] - e1[0] * e2[2]);
+    fa[2] = 0.5 * (e1[0] * e2[1] - e1[1] * e2[0]);
+    return;
+  }
+  double centre[3] = {p[3 * fp[0]], p[3 * fp[0] + 1], p[3 * fp[0] + 2]};
+  for (Label i = 1; i < n; ++i) {
+    for (int k = 0; k < 3; ++k) centre[k] += p[3 * fp[i] + k];
+  }
+  for (int k = 0; k < 3; ++k) centre[k] /= static_cast<double>(n);
+  double sum_n[3] = {0, 0, 0}, sum_ac[3] = {0, 0, 0}, sum_a = 0;
+  for (Label i = 0; i < n; ++i) {
+    const double* x = p + 3 * fp[i];
+    const double* y = p + 3 * fp[(i + 1) % n];
+    double c[3], e1[3], e2[3], nn[3];
+    for (int k = 0; k < 3; ++k) {
+      c[k] = x[k] + y[k] + centre[k];
+      e1[k] = y[k] - x[k];
+      e2[k] = centre[k] - x[k];
+    }
+    nn[0] = e1[1] * e2[2] - e1[2] * e2[1];
+    nn[1] = e1[2] * e2[0] - e1[0] * e2[2];
+    nn[2] = e1[0] * e2[1] - e1[1] * e2[0];
+    const double a = std::sqrt(nn[0] * nn[0] + nn[1] * nn[1] + nn[2] * nn[2]);
+    for (int k = 0; k < 3; ++k) {
+      sum_n[k] += nn[k];
+      sum_ac[k] += a * c[k];
+    }
+    sum_a += a;
+  }
+  if (sum_a < 1e-150) {
+    for (int k = 0; k < 3; ++k) {
+      fc[k] = centre[k];
+      fa[k] = 0;
+    }
+  } else {
+    for (int k = 0; k < 3; ++k) {
+      fc[k] = (1.0 / 3.0) * sum_ac[k] / sum_a;
+      fa[k] = 0.5 * sum_n[k];
+    }
+  }
+}
+
+}  // namespace
+
 void compute_geometry(MeshPart* mp) {
   MeshPart& m = *mp;
   const Label nf = m.n_faces();
+  const Label ni = m.n_internal_faces();
   const Label nc = m.n_cells;
   const double* p = m.points.data();
-  m.face_centres.assign(3 * nf, 0.0);
-  m.face_areas.assign(3 * nf, 0.0);
-  // face centres and area vectors: triangles fanned from the face's point average
+
+  // boundary faces: centres and area vectors kept (patch values, symmetry normals)
+  m.boundary_face_centres.assign(3 * (nf - ni), 0.0);
+  m.boundary_face_areas.assign(3 * (nf - ni), 0.0);
 #pragma omp parallel for schedule(static)
-  for (Label f = 0; f < nf; ++f) {
-    const Label b = m.face_offsets[f];
-    const Label n = m.face_offsets[f + 1] - b;
-    const Label* fp = m.face_points.data() + b;
-    double* fc = &m.face_centres[3 * f];
-    double* fa = &m.face_areas[3 * f];
-    if (n == 3) {
-      const double* a = p + 3 * fp[0];
-      const double* bb = p + 3 * fp[1];
-      const double* cc = p + 3 * fp[2];
-      double e1[3], e2[3];
-      for (int k = 0; k < 3; ++k) {
-        fc[k] = (1.0 / 3.0) * (a[k] + bb[k] + cc[k]);
-        e1[k] = bb[k] - a[k];
-        e2[k] = cc[k] - a[k];
-      }
-      fa[0] = 0.5 * (e1[1] * e2[2] - e1[2] * e2[1]);
-      fa[1] = 0.5 * (e1[2] * e2[0] - e1[0] * e2[2]);
-      fa[2] = 0.5 * (e1[0] * e2[1] - e1[1] * e2[0]);
-      continue;
-    }
-    double centre[3] = {p[3 * fp[0]], p[3 * fp[0] + 1], p[3 * fp[0] + 2]};
-    for (Label i = 1; i < n; ++i) {
-      for (int k = 0; k < 3; ++k) centre[k] += p[3 * fp[i] + k];
-    }
-    for (int k = 0; k < 3; ++k) centre[k] /= static_cast<double>(n);
-    double sum_n[3] = {0, 0, 0}, sum_ac[3] = {0, 0, 0}, sum_a = 0;
-    for (Label i = 0; i < n; ++i) {
-      const double* x = p + 3 * fp[i];
-      const double* y = p + 3 * fp[(i + 1) % n];
-      double c[3], e1[3], e2[3], nn[3];
-      for (int k = 0; k < 3; ++k) {
-        c[k] = x[k] + y[k] + centre[k];
-        e1[k] = y[k] - x[k];
-        e2[k] = centre[k] - x[k];
-      }
-      nn[0] = e1[1] * e2[2] - e1[2] * e2[1];
-      nn[1] = e1[2] * e2[0] - e1[0] * e2[2];
-      nn[2] = e1[0] * e2[1] - e1[1] * e2[0];
-      const double a = std::sqrt(nn[0] * nn[0] + nn[1] * nn[1] + nn[2] * nn[2]);
-      for (int k = 0; k < 3; ++k) {
-        sum_n[k] += nn[k];
-        sum_ac[k] += a * c[k];
-      }
-      sum_a += a;
-    }
-    if (sum_a < 1e-150) {
-      for (int k = 0; k < 3; ++k) fc[k] = centre[k];
-    } else {
-      for (int k = 0; k < 3; ++k) {
-        fc[k] = (1.0 / 3.0) * sum_ac[k] / sum_a;
-        fa[k] = 0.5 * sum_n[k];
-      }
-    }
+  for (Label f = ni; f < nf; ++f) {
+    face_geometry(p, m.face_points.data() + m.face_offsets[f],
+                  m.face_offsets[f + 1] - m.face_offsets[f], &m.boundary_face_centres[3 * (f - ni)],
+                  &m.boundary_face_areas[3 * (f - ni)]);
   }
 
   // cell-face lists
   m.cell_face_offsets.assign(nc + 1, 0);
   for (Label f = 0; f < nf; ++f) ++m.cell_face_offsets[m.owner[f] + 1];
-  for (Label f = 0; f < m.n_internal_faces(); ++f) ++m.cell_face_offsets[m.neighbour[f] + 1];
+  for (Label f = 0; f < ni; ++f) ++m.cell_face_offsets[m.neighbour[f] + 1];
   for (Label c = 0; c < nc; ++c) m.cell_face_offsets[c + 1] += m.cell_face_offsets[c];
   m.cell_faces.assign(m.cell_face_offsets[nc], 0);
   {
     std::vector<Label> fill(m.cell_face_offsets.begin(), m.cell_face_offsets.end() - 1);
     for (Label f = 0; f < nf; ++f) m.cell_faces[fill[m.owner[f]]++] = f;
-    for (Label f = 0; f < m.n_internal_faces(); ++f) m.cell_faces[fill[m.neighbour[f]]++] = f;
+    for (Label f = 0; f < ni; ++f) m.cell_faces[fill[m.neighbour[f]]++] = f;
   }
 
-  // cell centres and volumes: face pyramids on the average of the face centres
-  std::vector<double> est(3 * nc, 0.0);
-#pragma omp parallel for schedule(static)
-  for (Label c = 0; c < nc; ++c) {
-    const Label b = m.cell_face_offsets[c], e = m.cell_face_offsets[c + 1];
-    for (Label i = b; i < e; ++i) {
-      for (int k = 0; k < 3; ++k) est[3 * c + k] += m.face_centres[3 * m.cell_faces[i] + k];
-    }
-    for (int k = 0; k < 3; ++k) est[3 * c + k] /= static_cast<double>(std::max<Label>(e - b, 1));
-  }
+  // cell centres and volumes: face pyramids on the average of the face centres, owner faces
+  // first then neighbour faces, as OpenFOAM sums them (face geometry recomputed per cell)
   m.cell_centres.assign(3 * nc, 0.0);
   m.cell_volumes.assign(nc, 0.0);
-  auto add_pyramid = [&](Label f, Label c, double sign) {
-    const double* fc = &m.face_centres[3 * f];
-    const double* fa = &m.face_areas[3 * f];
-    const double* ce = &est[3 * c];
-    const double vol3 =
-        sign * (fa[0] * (fc[0] - ce[0]) + fa[1] * (fc[1] - ce[1]) + fa[2] * (fc[2] - ce[2]));
-    for (int k = 0; k < 3; ++k) {
-      m.cell_centres[3 * c + k] += vol3 * ((3.0 / 4.0) * fc[k] + (1.0 / 4.0) * ce[k]);
+#pragma omp parallel
+  {
+    std::vector<double> geo;
+#pragma omp for schedule(static)
+    for (Label c = 0; c < nc; ++c) {
+      const Label b = m.cell_face_offsets[c], e = m.cell_face_offsets[c + 1];
+      geo.resize(static_cast<std::size_t>(6 * (e - b)));
+      double est[3] = {0, 0, 0};
+      for (Label i = b; i < e; ++i) {
+        const Label f = m.cell_faces[i];
+        double* g = &geo[static_cast<std::size_t>(6 * (i - b))];
+        face_geometry(p, m.face_points.data() + m.face_offsets[f],
+                      m.face_offsets[f + 1] - m.face_offsets[f], g, g + 3);
+        for (int k = 0; k < 3; ++k) est[k] += g[k];
+      }
+      for (int k = 0; k < 3; ++k) est[k] /= static_cast<double>(std::max<Label>(e - b, 1));
+      double* cc = &m.cell_centres[3 * c];
+      double vol = 0;
+      for (int pass = 0; pass < 2; ++pass) {
+        for (Label i = b; i < e; ++i) {
+          const Label f = m.cell_faces[i];
+          const bool own = m.owner[f] == c;
+          if (own != (pass == 0)) continue;
+          const double* fc = &geo[static_cast<std::size_t>(6 * (i - b))];
+          const double* fa = fc + 3;
+          const double vol3 = (own ? 1.0 : -1.0) * (fa[0] * (fc[0] - est[0]) +
+                                                    fa[1] * (fc[1] - est[1]) +
+                                                    fa[2] * (fc[2] - est[2]));
+          for (int k = 0; k < 3; ++k) cc[k] += vol3 * ((3.0 / 4.0) * fc[k] + (1.0 / 4.0) * est[k]);
+          vol += vol3;
+        }
+      }
+      if (std::fabs(vol) > 1e-300) {
+        for (int k = 0; k < 3; ++k) cc[k] /= vol;
+      } else {
+        for (int k = 0; k < 3; ++k) cc[k] = est[k];
+      }
+      m.cell_volumes[c] = vol / 3.0;
     }
-    m.cell_volumes[c] += vol3;
-  };
-  // per cell, owner faces first then neighbour faces, as OpenFOAM sums them
-#pragma omp parallel for schedule(static)
-  for (Label c = 0; c < nc; ++c) {
-    for (Label i = m.cell_face_offsets[c]; i < m.cell_face_offsets[c + 1]; ++i) {
-      const Label f = m.cell_faces[i];
-      if (m.owner[f] == c) add_pyramid(f, c, 1.0);
-    }
-    for (Label i = m.cell_face_offsets[c]; i < m.cell_face_offsets[c + 1]; ++i) {
-      const Label f = m.cell_faces[i];
-      if (m.owner[f] != c) add_pyramid(f, c, -1.0);
-    }
-    if (std::fabs(m.cell_volumes[c]) > 1e-300) {
-      for (int k = 0; k < 3; ++k) m.cell_centres[3 * c + k] /= m.cell_volumes[c];
-    } else {
-      for (int k = 0; k < 3; ++k) m.cell_centres[3 * c + k] = est[3 * c + k];
-    }
-    m.cell_volumes[c] /= 3.0;
   }
 
   // base point of each face's triangle fan: the first whose tets have positive volume seen
@@ -489,7 +504,7 @@ void read_fields(const MeshPart& m, const std::string& time_name,
           }
           if (symmetric && s.ncomp == 3) {
             // (v + reflected v)/2 = v - (n.v) n
-            const double* a = &m.face_areas[3 * face];
+            const double* a = &m.boundary_face_areas[3 * (face - m.n_internal_faces())];
             const double mag = std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
             if (mag > 0) {
               const double nn[3] = {a[0] / mag, a[1] / mag, a[2] / mag};

@@ -34,8 +34,8 @@ struct MeshPart {
   std::vector<Label> point_global;  ///< (nPoints) global point label; empty: identity
 
   // derived geometry (compute_geometry), as OpenFOAM's primitiveMesh computes it
-  std::vector<double> face_centres;  ///< (nFaces x 3) m
-  std::vector<double> face_areas;    ///< (nFaces x 3) area vectors, m^2
+  std::vector<double> boundary_face_centres;  ///< (nBoundaryFaces x 3) m
+  std::vector<double> boundary_face_areas;    ///< (nBoundaryFaces x 3) area vectors, m^2
   std::vector<double> cell_centres;  ///< (nCells x 3) m
   std::vector<double> cell_volumes;  ///< (nCells) m^3
   std::vector<Label> cell_face_offsets;  ///< (nCells + 1)
@@ -69,7 +69,8 @@ void read_points(const FoamCase& fc, std::vector<MeshPart>* parts);
 /// Reads faces, owner, neighbour, boundary (and pointProcAddressing) and derives the geometry.
 void read_topology(const FoamCase& fc, std::vector<MeshPart>* parts);
 
-/// Face centres and areas, cell centres and volumes (OpenFOAM's formulas), cell-face lists and
+/// Boundary face centres and areas, cell centres and volumes (OpenFOAM's formulas), cell-face
+/// lists and
 /// the base point of each face's triangle fan (the first point that gives positive tets).
 void compute_geometry(MeshPart* m);
 

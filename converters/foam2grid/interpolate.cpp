@@ -133,7 +133,7 @@ std::vector<double> point_values(const std::vector<MeshPart>& parts,
     for (const Patch& patch : m.patches) {
       if (!patch.gives_point_values()) continue;
       for (Label f = patch.start; f < patch.start + patch.size; ++f) {
-        const double* fc = &m.face_centres[3 * f];
+        const double* fc = &m.boundary_face_centres[3 * (f - m.n_internal_faces())];
         const double* fv = &pf.boundary[static_cast<std::size_t>((f - m.n_internal_faces()) * nc)];
         for (Label j = m.face_offsets[f]; j < m.face_offsets[f + 1]; ++j) {
           const Label p = m.face_points[j];
@@ -149,7 +149,7 @@ std::vector<double> point_values(const std::vector<MeshPart>& parts,
     for (const Patch& patch : m.patches) {
       if (!patch.is_symmetry()) continue;
       for (Label f = patch.start; f < patch.start + patch.size; ++f) {
-        const double* a = &m.face_areas[3 * f];
+        const double* a = &m.boundary_face_areas[3 * (f - m.n_internal_faces())];
         const double mag = std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
         if (mag <= 0) continue;
         for (Label j = m.face_offsets[f]; j < m.face_offsets[f + 1]; ++j) {
