@@ -53,6 +53,7 @@ fi
 cd "$work"
 ncells=$(sed -n 's/.*nCells:\([0-9]*\).*/\1/p' "$case_dir/constant/polyMesh/owner" | head -1)
 
+load_before=$(cut -d' ' -f1-3 /proc/loadavg)
 results=()
 for variant in cube1M cube1M_binary; do
   best_wall=""; worst_rss=0
@@ -62,26 +63,31 @@ for variant in cube1M cube1M_binary; do
     wall=$(sed -n 's/.*Elapsed (wall clock) time (h:mm:ss or m:ss): //p' "$work/log.$variant.$i" |
            awk -F: '{ if (NF == 3) print $1*3600 + $2*60 + $3; else print $1*60 + $2 }')
     rss=$(sed -n 's/.*Maximum resident set size (kbytes): //p' "$work/log.$variant.$i")
-    echo "run_benchmark: $variant run $i: wall $wall s, peak RSS $((rss / 1024)) MB"
-    if [ -z "$best_wall" ] || awk "BEGIN{exit !($wall < $best_wall)}"; then best_wall=$wall; fi
+    cpu=$(awk -F': ' '/User time|System time/ { t += $2 } END { print t }' "$work/log.$variant.$i")
+    echo "run_benchmark: $variant run $i: wall $wall s, cpu $cpu s, peak RSS $((rss / 1024)) MB"
+    if [ -z "$best_wall" ] || awk "BEGIN{exit !($wall < $best_wall)}"; then
+      best_wall=$wall
+      best_cpu=$cpu
+    fi
     [ "$rss" -gt "$worst_rss" ] && worst_rss=$rss
   done
   phases=$(grep -E 'mesh:|fields read|resampled|written' "$work/log.$variant.$repeat" |
            sed 's/^foam2grid //' | tr '\n' ';' | sed 's/;$//')
-  results+=("| $variant | $best_wall | $((worst_rss / 1024)) | $phases |")
+  results+=("| $variant | $best_wall | $best_cpu | $((worst_rss / 1024)) | $phases |")
 done
 
 cpu=$(sed -n 's/^model name[[:space:]]*: //p' /proc/cpuinfo | head -1)
 mem=$(awk '/MemTotal/ { printf "%.1f GB", $2 / 1048576 }' /proc/meminfo)
 block="<!-- bench:begin (written by bench/converter/run_benchmark.sh) -->
 Measured $(date -u '+%Y-%m-%d %H:%M UTC') on $(hostname): $cpu, $(nproc) cores visible,
-$mem RAM, OMP_NUM_THREADS=$OMP_NUM_THREADS. Case: foam_cases/tiny refined to 240 x 72 x 60
+$mem RAM, OMP_NUM_THREADS=$OMP_NUM_THREADS, load average before / after the runs
+$load_before / $(cut -d' ' -f1-3 /proc/loadavg) (other jobs share the cores). Case: foam_cases/tiny refined to 240 x 72 x 60
 ($ncells cells after cutting out the cube), $iterations simpleFoam iterations; grid 128^3
 (2 097 152 points, U k epsilon nut valid). Best wall time of $repeat runs, largest peak RSS
 (\`/usr/bin/time -v\`); the phases are the cumulative times foam2grid logs in its last run.
 
-| case files | wall time (s) | peak RSS (MB) | phases (cumulative) |
-|---|---|---|---|
+| case files | wall time (s) | CPU user+sys (s) | peak RSS (MB) | phases (cumulative wall) |
+|---|---|---|---|---|
 $(printf '%s\n' "${results[@]}")
 <!-- bench:end -->"
 
