@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <limits>
 #include <map>
 #include <sstream>
 #include <vector>
@@ -63,6 +64,9 @@ TriangleMesh read_obj(const std::string& path) {
   TriangleMesh m;
   std::string line;
   int lineno = 0;
+  long max_index = -1;  // largest 0-based vertex index used, and where
+  int max_index_line = 0;
+  std::string max_index_text;
   while (std::getline(in, line)) {
     ++lineno;
     if (!line.empty() && line.back() == '\r') line.pop_back();
@@ -88,13 +92,17 @@ TriangleMesh read_obj(const std::string& path) {
         if (idx.empty() || end != idx.c_str() + idx.size() || v == 0)
           bad(path, "face index '" + tok + "' is not a vertex number (1-based or negative)",
               lineno);
+        // negative: relative to the vertices so far; positive: may refer forward, checked at
+        // the end of the file
         const long n = static_cast<long>(m.vertices.size());
         const long zero_based = v > 0 ? v - 1 : n + v;
-        if (zero_based < 0 || zero_based >= n)
-          bad(path,
-              "face index " + std::to_string(v) + " refers to a vertex not yet defined (" +
-                  std::to_string(n) + " so far)",
-              lineno);
+        if (zero_based < 0 || zero_based > std::numeric_limits<int>::max())
+          bad(path, "face index " + std::to_string(v) + " is out of range", lineno);
+        if (zero_based >= max_index) {
+          max_index = zero_based;
+          max_index_line = lineno;
+          max_index_text = tok;
+        }
         poly.push_back(static_cast<int>(zero_based));
       }
       if (poly.size() < 3) bad(path, "face needs at least 3 vertices", lineno);
@@ -104,6 +112,11 @@ TriangleMesh read_obj(const std::string& path) {
     // vt, vn, o, g, s, usemtl, mtllib, l, ...: not needed for the geometry
   }
   if (m.faces.empty()) bad(path, "no faces ('f' lines) found");
+  if (max_index >= static_cast<long>(m.vertices.size()))
+    bad(path,
+        "face index " + max_index_text + " refers to vertex " + std::to_string(max_index + 1) +
+            " but the file has " + std::to_string(m.vertices.size()) + " vertices",
+        max_index_line);
   return m;
 }
 

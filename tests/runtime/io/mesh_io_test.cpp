@@ -4,7 +4,9 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <array>
 #include <filesystem>
+#include <fstream>
 #include <memory>
 #include <string>
 
@@ -88,6 +90,20 @@ TEST(MeshIo, SyntaxErrorsNameFileAndLine) {
   EXPECT_NE(tr.find("facet"), std::string::npos) << tr;
   EXPECT_NE(load_error("does_not_exist.obj").find("does not exist"), std::string::npos);
   EXPECT_NE(load_error("make_meshes.py").find("unknown mesh format"), std::string::npos);
+}
+
+TEST(MeshIo, ObjForwardAndNegativeIndices) {
+  const fs::path f =
+      fs::temp_directory_path() / ("lrigid_fwd_" + std::to_string(::getpid()) + ".obj");
+  {
+    std::ofstream out(f);
+    out << "f 1 3 2\nf 1 2 4\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf -4 -1 -2\nf 2 3 4\n";
+  }
+  const TriangleMesh m = read_mesh(f.string());
+  fs::remove(f);
+  ASSERT_EQ(m.faces.size(), 4u);
+  EXPECT_EQ(m.faces[2], (std::array<int, 3>{0, 3, 2}));
+  EXPECT_NEAR(mass_properties(m).volume, 1.0 / 6.0, 1e-15);
 }
 
 TEST(MeshIo, WriteAndReadBack) {
