@@ -9,7 +9,10 @@
 #include <cstring>
 #include <fstream>
 #include <sstream>
+#include <fcntl.h>
+#include <sys/mman.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include "error.h"
 
@@ -30,16 +33,6 @@ bool is_delimiter(char c) {
          c == '}' || c == ';' || c == '"' || c == '[' || c == ']';
 }
 
-std::string read_plain(const std::string& path) {
-  std::ifstream in(path, std::ios::binary | std::ios::ate);
-  if (!in) fail_input(path + ": cannot open the file");
-  const std::streamoff size = in.tellg();
-  std::string out(static_cast<std::size_t>(std::max<std::streamoff>(size, 0)), '\0');
-  in.seekg(0);
-  if (!in.read(out.data(), size)) fail_input(path + ": read error");
-  return out;
-}
-
 std::string read_gzip(const std::string& path) {
   gzFile gz = gzopen(path.c_str(), "rb");
   if (gz == nullptr) fail_input(path + ": cannot open the file");
@@ -55,14 +48,38 @@ std::string read_gzip(const std::string& path) {
 
 }  // namespace
 
+FoamFile::~FoamFile() {
+  if (map_ != nullptr) munmap(map_, map_size_);
+}
+
 bool FoamFile::exists(const std::string& path) { return is_file(path) || is_file(path + ".gz"); }
 
 FoamFile::FoamFile(const std::string& path) : path_(path) {
   if (is_file(path)) {
-    text_ = read_plain(path);
+    // mapped read-only: no copy of large mesh files
+    const int fd = open(path.c_str(), O_RDONLY);
+    if (fd < 0) fail_input(path + ": cannot open the file");
+    struct stat st;
+    if (fstat(fd, &st) != 0) {
+      close(fd);
+      fail_input(path + ": cannot read the file");
+    }
+    map_size_ = static_cast<std::size_t>(st.st_size);
+    if (map_size_ > 0) {
+      map_ = mmap(nullptr, map_size_, PROT_READ, MAP_PRIVATE, fd, 0);
+      if (map_ == MAP_FAILED) {
+        map_ = nullptr;
+        close(fd);
+        fail_input(path + ": cannot map the file into memory");
+      }
+      madvise(map_, map_size_, MADV_SEQUENTIAL);
+      text_ = std::string_view(static_cast<const char*>(map_), map_size_);
+    }
+    close(fd);
   } else if (is_file(path + ".gz")) {
     path_ = path + ".gz";
-    text_ = read_gzip(path_);
+    owned_ = read_gzip(path_);
+    text_ = owned_;
   } else {
     fail_input(path + ": file not found");
   }
@@ -149,14 +166,14 @@ std::string Cursor::token() {
   if (c == '"') {
     const std::size_t e = s_.find('"', pos_ + 1);
     if (e == std::string::npos) fail("unterminated string");
-    std::string out = s_.substr(pos_ + 1, e - pos_ - 1);
+    std::string out(s_.substr(pos_ + 1, e - pos_ - 1));
     pos_ = e + 1;
     return out;
   }
   if (is_delimiter(c)) fail(std::string("expected a word or number, found '") + c + "'");
   const std::size_t b = pos_;
   while (pos_ < s_.size() && !is_delimiter(s_[pos_])) ++pos_;
-  return s_.substr(b, pos_ - b);
+  return std::string(s_.substr(b, pos_ - b));
 }
 
 double Cursor::scalar() {

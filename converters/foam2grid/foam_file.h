@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace foam2grid {
@@ -19,14 +20,18 @@ struct FoamFormat {
 /// One OpenFOAM file held in memory.
 class FoamFile {
  public:
-  /// Reads path, or path.gz when only that exists; throws Error(kBadInput) if neither can be read.
+  /// Reads path (mapped into memory), or path.gz when only that exists (decompressed);
+  /// throws Error(kBadInput) if neither can be read.
   explicit FoamFile(const std::string& path);
+  ~FoamFile();
+  FoamFile(const FoamFile&) = delete;
+  FoamFile& operator=(const FoamFile&) = delete;
 
   /// True when path or path.gz exists.
   static bool exists(const std::string& path);
 
   const std::string& path() const { return path_; }
-  const std::string& text() const { return text_; }
+  std::string_view text() const { return text_; }
   const FoamFormat& format() const { return format_; }
   const std::string& class_name() const { return class_name_; }
   /// Offset of the first character after the FoamFile header.
@@ -34,7 +39,10 @@ class FoamFile {
 
  private:
   std::string path_;
-  std::string text_;
+  std::string owned_;        // decompressed text of a .gz file
+  void* map_ = nullptr;      // mapped plain file
+  std::size_t map_size_ = 0;
+  std::string_view text_;
   FoamFormat format_;
   std::string class_name_;
   std::size_t body_ = 0;
@@ -95,7 +103,7 @@ class Cursor {
  private:
   std::size_t raw_bytes_per_element(const std::string& list_type) const;
   const FoamFile& file_;
-  const std::string& s_;
+  std::string_view s_;
   std::size_t pos_;
 };
 
