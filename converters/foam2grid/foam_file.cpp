@@ -434,6 +434,24 @@ void Cursor::skip_value() {
       ++pos_;
     } else {
       const std::string t = token();
+      if (!file_.format().binary && !t.empty() && std::isdigit(static_cast<unsigned char>(t[0])) &&
+          last_word.rfind("List<", 0) == 0 && peek() == '(') {
+        // an ascii list (numbers and parentheses only): skip to its matching ')'
+        int list_depth = 0;
+        const std::size_t n = s_.size();
+        for (; pos_ < n; ++pos_) {
+          const char ch = s_[pos_];
+          if (ch == '(') {
+            ++list_depth;
+          } else if (ch == ')' && --list_depth == 0) {
+            ++pos_;
+            break;
+          }
+        }
+        if (list_depth != 0) fail("list not closed");
+        last_word.clear();
+        continue;
+      }
       if (file_.format().binary && !t.empty() && std::isdigit(static_cast<unsigned char>(t[0])) &&
           last_word.rfind("List<", 0) == 0 && peek() == '(') {
         std::int64_t n = 0;
