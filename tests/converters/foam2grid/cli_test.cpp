@@ -77,6 +77,15 @@ TEST(Foam2gridCli, HelpDocumentsEveryFlagWithUnits) {
   for (const char* unit : {"m/s", "m^2/s^2", "m^2/s^3", "m^2/s", " m"}) {
     EXPECT_NE(r.out.find(unit), std::string::npos) << unit;
   }
+  // usage errors exit 2 and name the flag
+  const Result bogus = f2g_run("--bogus");
+  EXPECT_EQ(bogus.rc, 2);
+  EXPECT_NE(bogus.out.find("--bogus"), std::string::npos) << bogus.out;
+  const Result nan = f2g_run("case -o x.vti --spacing abc");
+  EXPECT_EQ(nan.rc, 2);
+  EXPECT_NE(nan.out.find("--spacing"), std::string::npos) << nan.out;
+  EXPECT_EQ(f2g_run("").rc, 2);
+  EXPECT_EQ(f2g_run("case").rc, 2);  // no -o
 }
 
 TEST(Foam2gridCli, MissingCaseDirectory) {
