@@ -148,6 +148,48 @@ def landing_1d(law, z0, U=2.0):
     return x
 
 
+def settling_velocity():
+    mu = RHO_F * NU
+    lo, hi = 1e-6, 10.0
+    for _ in range(100):
+        u = 0.5 * (lo + hi)
+        re = RHO_F * u * D / mu
+        drag = 3 * math.pi * mu * D * u * cd_re("sn", re) / 24
+        if drag > (RHO_P - RHO_F) * math.pi * D ** 3 / 6 * 9.81:
+            hi = u
+        else:
+            lo = u
+    return u
+
+
+def expected_spread_ratio(grid, p):
+    """rough ratio of landing spreads lrigid/OpenFOAM from the two models' diffusivities:
+    lrigid (2k/3)·T_L·T_L/(T_L + τ_p) (inertial filtering), OpenFOAM (2k/9)·t_e/2 with the
+    eddy-crossing lifetime t_e = C_μ^{3/4} k^{3/2}/(ε u_s); k, ε averaged below the release."""
+    import vtk
+    from vtk.util import numpy_support as ns
+    r = vtk.vtkXMLImageDataReader()
+    r.SetFileName(grid)
+    r.Update()
+    img = r.GetOutput()
+    nx, ny, nz = img.GetDimensions()
+    o, h = img.GetOrigin(), img.GetSpacing()
+    k = ns.vtk_to_numpy(img.GetPointData().GetArray("k")).reshape(nz, ny, nx)
+    e = ns.vtk_to_numpy(img.GetPointData().GetArray("epsilon")).reshape(nz, ny, nx)
+    xs = o[0] + h[0] * np.arange(nx)
+    ys = o[1] + h[1] * np.arange(ny)
+    zs = o[2] + h[2] * np.arange(nz)
+    sel = np.ix_((zs > 0.01) & (zs <= p[2]), abs(ys - p[1]) <= 0.05, (xs >= p[0]) & (xs <= 0.8))
+    km, em = float(k[sel].mean()), float(e[sel].mean())
+    rl = math.sqrt(20 / 3 * km * km / (NU * em))
+    c0 = max(6.5 / (1 + 140 * rl ** (-4 / 3)), 1.0)
+    tl = 4 * km / (3 * c0 * em)
+    tau_p = RHO_P * D * D / (18 * RHO_F * NU)
+    us = settling_velocity()
+    te = min(km / em, 0.16432 * km ** 1.5 / (em * us))
+    return math.sqrt((2 * km / 3) * tl * tl / (tl + tau_p) / ((2 * km / 9) * te / 2))
+
+
 def main():
     args = vc.parse_args()
     st = vc.Study("openfoam_parcels", "Point-particle limit vs OpenFOAM Lagrangian tracking", args)
@@ -239,7 +281,7 @@ def main():
 
     # dispersion on: 3 release points × N parcels each
     n = 60 if args.quick else 200
-    rel = [(0.05, 0.05, 0.2), (0.05, 0.35, 0.2), (0.05, 0.12, 0.12)]
+    rel = [(0.5, 0.2, 0.12), (0.5, 0.12, 0.15), (0.5, 0.28, 0.15)]
     pts2 = [p for p in rel for _ in range(n)]
     case2 = parcel_case(st, base, "parcels_disp", pts2, "stochasticDispersionRAS", end, end)
     land2 = foam_landings(case2)
@@ -249,11 +291,21 @@ def main():
                  effects=["gravity", "buoyancy", "drag", "mean_flow", "turbulence"],
                  turbulence={"model": "seen", "drift": "stationary"},
                  output={"every": end, "formats": ["csv"]})
-    _, summ2, out2 = vc.run_scene(args, scene, st.path("lrigid_disp"))
+    tr2, summ2, out2 = vc.run_scene(args, scene, st.path("lrigid_disp"))
     lr2 = {}
     for line in open(os.path.join(out2, "landings.csv")).read().splitlines()[1:]:
         b, _, t, x, y, z = line.split(",")
         lr2[int(b)] = (float(x), float(y))
+    # bodies stopped as "exited" at the ground (z < 1 mm): they reached the ground; count them
+    # as arrivals for the statistics and report the flag separately
+    at_ground = [s_["body"] for s_ in summ2.get("stopped", []) if s_["status"] == "exited" and
+                 tr2["z"][-1, s_["body"]] < 1e-3]
+    for b in at_ground:
+        lr2[b] = (tr2["x"][-1, b], tr2["y"][-1, b])
+    st.check("dispersion: ground arrivals that lrigid flags 'exited' instead of 'landed'",
+             len(at_ground), 0, 0, "scene-format.md: reaching the ground plane is a landing",
+             tol_text="0", verdict="PASS" if not at_ground else "FAIL",
+             note="of %d ground arrivals" % len(lr2))
     fig, ax = plt.subplots(figsize=(7, 3.5))
     for r, p in enumerate(rel):
         idx = range(r * n, (r + 1) * n)
@@ -271,9 +323,11 @@ def main():
                  tol_text="±%.3f m (0.03 + 4 SE)" % (TOL + 4 * se))
         # expected spread ratio from the diffusivities at the release point
         ratio = b[:, 0].std(ddof=1) / a[:, 0].std(ddof=1)
+        est = expected_spread_ratio(grid, p)
         st.check("dispersion, release (%.2f, %.2f, %.2f): landing-x spread ratio lrigid/OpenFOAM"
-                 % p, ratio, 1.0, 0, "model difference (see note)", verdict="PASS" if ratio > 1
-                 else "FAIL", tol_text="> 1 expected (no crossing-trajectory effect in lrigid)",
+                 % p, ratio, est, 0, "model difference: diffusivity estimate (see note)",
+                 verdict="PASS" if est / 2 <= ratio <= 2 * est else "FAIL",
+                 tol_text="factor 2 (rough estimate)",
                  note="std x: lrigid %.3f m, OpenFOAM %.3f m; OpenFOAM fates: %s" % (
                      b[:, 0].std(ddof=1), a[:, 0].std(ddof=1), fates(land2, idx)))
     ax.set_xlabel("x [m]")
@@ -286,7 +340,9 @@ def main():
             "the air is the eddy-crossing time C_μ^{3/4} k^{3/2}/(ε|u_rel|) ≈ 0.01–0.02 s here, "
             "far below k/ε ≈ 0.3 s, and its per-component variance is 2k/9; lrigid's seen "
             "model keeps the fluid-tracer time scale T_L = 4k/(3C0 ε) and variance 2k/3, so "
-            "its heavy particles disperse more. Which is closer to reality for settling "
+            "its heavy particles disperse more. The reference ratio is the square root of the "
+            "ratio of the two diffusivities, lrigid (2k/3) T_L²/(T_L + τ_p) over OpenFOAM "
+            "(2k/9) t_e/2, with k and ε averaged below the release point. Which is closer to reality for settling "
             "particles is the crossing-trajectory question (Csanady 1963): the OpenFOAM model "
             "includes it, lrigid does not.")
     st.finish()
