@@ -1,0 +1,143 @@
+#!/usr/bin/python3
+"""Study 5: falling plates — steady descent, flutter and tumble over the (I*, Re) plane.
+
+Plates: boxes w = 2 cm wide, 10 cm span (quasi-2D strips), h = 0.5 mm thick (h/w = 1/40), in a
+fluid of density 1000 kg/m³; I* = ρ_s h/(ρ_f w) (Andersen, Pesavento & Wang 2005a's dimensionless
+moment of inertia for strips) is set by the plate density, Re = U w/ν by the viscosity (U the
+measured mean descent speed). Released at rest, tilted 10° about the span axis. Classified from
+the angle φ of the plate's chord in the x–z plane over the second half of the run:
+tumble — φ turns through more than 2π in total; flutter — φ oscillates with peak-to-peak > 20° and
+does not tumble; steady — peak-to-peak < 5°.
+
+References (qualitative; the boundaries are read from the papers' regime diagrams, not fitted):
+* Field, Klaus, Moore & Nori, Nature 388 (1997): falling disks descend steadily below Re ≈ 100;
+  above, periodic flutter at small I*, tumbling at large I*.
+* Andersen, Pesavento & Wang, JFM 541 (2005a, 2005b): strips at Re ≈ 10³ flutter at small I* and
+  tumble at large I*, the flutter period growing near the transition.
+Checks: (1) steady descent at Re < 100 for every I* of the sweep; (2) at Re ~ 10³ the smallest
+I* flutters and the largest tumbles; (3) at each Re the regimes are ordered in I*
+(steady/flutter below tumble). Published tumbling periods and descent angles are not compared:
+the values available to this project are unverified (physics-notes §4), so no number is claimed.
+
+The plate motion needs the plate lift model (effect "lift", issue 7). Without it the study is
+reported as FAIL ("not run: lift effect missing"), never as a pass.
+"""
+import math
+import os
+import subprocess
+import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "lib"))
+import vcommon as vc  # noqa: E402
+from vcommon import np, plt  # noqa: E402
+
+RHO_F, W, SPAN, H = 1000.0, 0.02, 0.1, 0.0005
+ISTARS = (0.05, 0.1, 0.2, 0.4, 0.8)
+NUS = (1e-5, 1e-4, 3e-4)
+EFFECTS = ["gravity", "buoyancy", "added_mass", "drag", "lift"]
+
+
+def scene(istar, nu, dur):
+    rho_s = istar * RHO_F * W / H
+    th = math.radians(10.0)
+    return {"version": 1, "fluid": vc.uniform_fluid(RHO_F, nu),
+            "gravity": [0, 0, -9.81], "effects": EFFECTS,
+            "integrator": {"scheme": "splitting", "dt": 2e-4}, "duration": dur, "seed": 1,
+            "bodies": [{"name": "plate", "shape": {"type": "box", "size": [W, SPAN, H]},
+                        "density": rho_s, "count": 1, "position": [0, 0, 0],
+                        "orientation": [math.cos(th / 2), 0, math.sin(th / 2), 0]}],
+            "output": {"every": 0.01, "formats": ["csv"]}}
+
+
+def lift_available(args, st):
+    p = vc.write_scene(st.path("probe_lift.json"), scene(0.2, 1e-6, 0.01))
+    r = subprocess.run([args.lrigid, "run", p, "-o", st.path("probe_out"), "--quiet",
+                        "--threads", "1"], capture_output=True, text=True)
+    return r.returncode == 0, (r.stderr or r.stdout).strip().splitlines()[-1:] or [""]
+
+
+def classify(tr):
+    t = tr["t"][:, 0]
+    qw, qx, qy, qz = (tr[c][:, 0] for c in ("qw", "qx", "qy", "qz"))
+    # chord direction (body x) in the world x–z plane
+    r00 = 1 - 2 * (qy * qy + qz * qz)
+    r20 = 2 * (qx * qz - qy * qw)
+    phi = np.unwrap(np.arctan2(r20, r00))
+    half = t >= t[-1] / 2
+    total = abs(phi[-1] - phi[0])
+    p2p = np.degrees(np.ptp(phi[half]))
+    z = tr["z"][:, 0]
+    x = tr["x"][:, 0]
+    U = abs(z[half][-1] - z[half][0]) / (t[half][-1] - t[half][0])
+    angle = math.degrees(math.atan2(abs(z[half][-1] - z[half][0]), abs(x[half][-1] - x[half][0])
+                                    + 1e-300))
+    if total > 2 * math.pi:
+        reg = "tumble"
+    elif p2p > 20:
+        reg = "flutter"
+    elif p2p < 5:
+        reg = "steady"
+    else:
+        reg = "unclassified"
+    return reg, U, angle, p2p
+
+
+def main():
+    args = vc.parse_args()
+    st = vc.Study("falling_plates", "Falling plates: regimes in the (I*, Re) plane", args)
+    ok, msg = lift_available(args, st)
+    if not ok:
+        st.fail("falling-plate regime map", "not run: lift effect missing (%s)" % msg[0],
+                "Field et al. 1997; Andersen, Pesavento & Wang 2005")
+        st.finish()
+    res = {}
+    for nu in NUS:
+        for istar in ISTARS:
+            u_est = math.sqrt((istar * W / H - 1) * 9.81 * H)
+            dur = min(60 * W / u_est, 20.0)
+            tr, summ, _ = vc.run_scene(args, scene(istar, nu, dur),
+                                       st.path("plate_I%g_nu%g" % (istar, nu)))
+            reg, U, ang, p2p = classify(tr)
+            res[(istar, nu)] = (reg, U * W / nu, ang, p2p)
+            print("I*=%g nu=%g: %s Re=%.3g descent angle %.1f° p2p %.1f°" % (
+                istar, nu, reg, U * W / nu, ang, p2p), flush=True)
+    # (1) steady at Re < 100
+    low = [(k, v) for k, v in res.items() if v[1] < 100]
+    nsteady = sum(v[0] == "steady" for _, v in low)
+    st.check("Re < 100: plates descending steadily (%d runs)" % len(low), nsteady, len(low), 0,
+             "Field et al. 1997 (steady below Re ≈ 100)", tol_text="all",
+             verdict="PASS" if low and nsteady == len(low) else "FAIL",
+             note="; ".join("I*=%g Re=%.3g: %s" % (k[0], v[1], v[0]) for k, v in low))
+    hi = [res[(i, NUS[0])] for i in ISTARS]
+    st.check("Re ~ 10³ (ν = 1e-5): smallest I* = %g flutters" % ISTARS[0], hi[0][0], "flutter", 0,
+             "Andersen et al. 2005; Field et al. 1997", verdict="PASS" if hi[0][0] == "flutter"
+             else "FAIL", tol_text="regime", note="Re = %.3g" % hi[0][1])
+    st.check("Re ~ 10³ (ν = 1e-5): largest I* = %g tumbles" % ISTARS[-1], hi[-1][0], "tumble", 0,
+             "Andersen et al. 2005; Field et al. 1997", verdict="PASS" if hi[-1][0] == "tumble"
+             else "FAIL", tol_text="regime", note="Re = %.3g" % hi[-1][1])
+    order = {"steady": 0, "flutter": 1, "unclassified": 1, "tumble": 2}
+    for nu in NUS:
+        seq = [order[res[(i, nu)][0]] for i in ISTARS]
+        mono = all(a <= b for a, b in zip(seq, seq[1:]))
+        st.check("ν = %g: regimes ordered in I* (steady/flutter below tumble)" % nu,
+                 " ".join(res[(i, nu)][0] for i in ISTARS), "ordered", 0,
+                 "Field et al. 1997; Andersen et al. 2005", tol_text="ordering",
+                 verdict="PASS" if mono else "FAIL")
+    fig, ax = plt.subplots(figsize=(6, 4))
+    mk = {"steady": ("o", "tab:green"), "flutter": ("s", "tab:blue"),
+          "tumble": ("^", "tab:red"), "unclassified": ("x", "k")}
+    for (istar, nu), (reg, re, ang, p2p) in res.items():
+        ax.loglog(re, istar, mk[reg][0], color=mk[reg][1], label=reg)
+    h, lab = ax.get_legend_handles_labels()
+    seen = dict(zip(lab, h))
+    ax.legend(seen.values(), seen.keys(), fontsize=7)
+    ax.axvline(100, color="0.5", ls=":", lw=0.8)
+    ax.set_xlabel("Re = U w / ν (measured descent speed)")
+    ax.set_ylabel("I* = ρ_s h / (ρ_f w)")
+    st.savefig(fig, "regime_map.png", "Regime map of falling plates (h/w = 1/40) from the sweep; "
+               "dotted: Re = 100 (steady below, Field et al. 1997)")
+    st.finish()
+
+
+if __name__ == "__main__":
+    main()
