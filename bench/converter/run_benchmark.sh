@@ -19,7 +19,7 @@ export OMP_NUM_THREADS=${OMP_NUM_THREADS:-2}
 repeat=${REPEAT:-3}
 iterations=${ITERATIONS:-3}
 [ -x "$bin" ] || { echo "run_benchmark: $bin not found: build the foam2grid target" >&2; exit 1; }
-[ -x /usr/bin/time ] || { echo "run_benchmark: /usr/bin/time missing: scripts/install-deps" >&2; exit 1; }
+[ -x /usr/bin/time ] || { echo "run_benchmark: no /usr/bin/time (scripts/install-deps)" >&2; exit 1; }
 
 export WM_PROJECT_DIR=/usr/share/openfoam
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
@@ -81,7 +81,8 @@ mem=$(awk '/MemTotal/ { printf "%.1f GB", $2 / 1048576 }' /proc/meminfo)
 block="<!-- bench:begin (written by bench/converter/run_benchmark.sh) -->
 Measured $(date -u '+%Y-%m-%d %H:%M UTC') on $(hostname): $cpu, $(nproc) cores visible,
 $mem RAM, OMP_NUM_THREADS=$OMP_NUM_THREADS, load average before / after the runs
-$load_before / $(cut -d' ' -f1-3 /proc/loadavg) (other jobs share the cores). Case: foam_cases/tiny refined to 240 x 72 x 60
+$load_before / $(cut -d' ' -f1-3 /proc/loadavg) (other jobs share the cores).
+Case: foam_cases/tiny refined to 240 x 72 x 60
 ($ncells cells after cutting out the cube), $iterations simpleFoam iterations; grid 128^3
 (2 097 152 points, U k epsilon nut valid). Best wall time of $repeat runs, largest peak RSS
 (\`/usr/bin/time -v\`); the phases are the cumulative times foam2grid logs in its last run.

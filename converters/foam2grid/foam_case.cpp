@@ -162,7 +162,8 @@ void read_topology(const FoamCase& fc, std::vector<MeshPart>* parts) {
       Cursor c(f, f.body());
       c.label_list(&tmp);
       m.neighbour.swap(tmp);
-      if (m.neighbour.size() > m.owner.size()) fail_input(f.path() + ": more neighbours than faces");
+      if (m.neighbour.size() > m.owner.size())
+        fail_input(f.path() + ": more neighbours than faces");
     }
     faces.get();
     {
@@ -335,9 +336,9 @@ void compute_geometry(MeshPart* mp) {
           if (own != (pass == 0)) continue;
           const double* fc = &geo[static_cast<std::size_t>(6 * (i - b))];
           const double* fa = fc + 3;
-          const double vol3 = (own ? 1.0 : -1.0) * (fa[0] * (fc[0] - est[0]) +
-                                                    fa[1] * (fc[1] - est[1]) +
-                                                    fa[2] * (fc[2] - est[2]));
+          const double vol3 =
+              (own ? 1.0 : -1.0) *
+              (fa[0] * (fc[0] - est[0]) + fa[1] * (fc[1] - est[1]) + fa[2] * (fc[2] - est[2]));
           for (int k = 0; k < 3; ++k) cc[k] += vol3 * ((3.0 / 4.0) * fc[k] + (1.0 / 4.0) * est[k]);
           vol += vol3;
         }
@@ -362,7 +363,8 @@ void compute_geometry(MeshPart* mp) {
       w[k] = d[k] - a[k];
     }
     return (u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) +
-            u[2] * (v[0] * w[1] - v[1] * w[0])) / 6.0;
+            u[2] * (v[0] * w[1] - v[1] * w[0])) /
+           6.0;
   };
 #pragma omp parallel for schedule(static)
   for (Label f = 0; f < nf; ++f) {
@@ -492,8 +494,8 @@ void read_fields(const MeshPart& m, const std::string& time_name,
         // evaluated as OpenFOAM does on reading: from the adjacent cells
         vals.assign(n * static_cast<std::size_t>(s.ncomp), 0.0);
         const bool no_slip = type == "noSlip";
-        const bool symmetric = type == "symmetry" || type == "symmetryPlane" || type == "slip" ||
-                               type == "wedge";
+        const bool symmetric =
+            type == "symmetry" || type == "symmetryPlane" || type == "slip" || type == "wedge";
         for (std::size_t i = 0; i < n; ++i) {
           const Label face = p.start + static_cast<Label>(i);
           const Label cell = m.owner[face];
@@ -517,7 +519,8 @@ void read_fields(const MeshPart& m, const std::string& time_name,
       for (std::size_t i = 0; i < n; ++i) {
         const Label bface = p.start - m.n_internal_faces() + static_cast<Label>(i);
         for (int k = 0; k < s.ncomp; ++k) {
-          const double v = vals[i * static_cast<std::size_t>(s.ncomp) + static_cast<std::size_t>(k)];
+          const double v =
+              vals[i * static_cast<std::size_t>(s.ncomp) + static_cast<std::size_t>(k)];
           if (!std::isfinite(v)) {
             fail_input(f.path() + ": boundaryField " + p.name + " of '" + s.name +
                        "' has a non-finite value in face " + std::to_string(i));

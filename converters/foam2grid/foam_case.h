@@ -23,8 +23,8 @@ struct Patch {
 
 /// One polyMesh (the whole case or one processor) with the geometry OpenFOAM derives from it.
 struct MeshPart {
-  std::string dir;              ///< case or processorN directory
-  std::vector<double> points;   ///< (nPoints x 3) coordinates, m
+  std::string dir;                  ///< case or processorN directory
+  std::vector<double> points;       ///< (nPoints x 3) coordinates, m
   std::vector<Label> face_offsets;  ///< (nFaces + 1) start of each face in face_points
   std::vector<Label> face_points;   ///< point labels of all faces, in OpenFOAM order
   std::vector<Label> owner;         ///< (nFaces) owner cell
@@ -36,11 +36,11 @@ struct MeshPart {
   // derived geometry (compute_geometry), as OpenFOAM's primitiveMesh computes it
   std::vector<double> boundary_face_centres;  ///< (nBoundaryFaces x 3) m
   std::vector<double> boundary_face_areas;    ///< (nBoundaryFaces x 3) area vectors, m^2
-  std::vector<double> cell_centres;  ///< (nCells x 3) m
-  std::vector<double> cell_volumes;  ///< (nCells) m^3
-  std::vector<Label> cell_face_offsets;  ///< (nCells + 1)
-  std::vector<Label> cell_faces;         ///< faces of each cell
-  std::vector<int> tet_base;             ///< (nFaces) base point of each face's triangle fan
+  std::vector<double> cell_centres;           ///< (nCells x 3) m
+  std::vector<double> cell_volumes;           ///< (nCells) m^3
+  std::vector<Label> cell_face_offsets;       ///< (nCells + 1)
+  std::vector<Label> cell_faces;              ///< faces of each cell
+  std::vector<int> tet_base;                  ///< (nFaces) base point of each face's triangle fan
 
   Label n_points() const { return static_cast<Label>(points.size() / 3); }
   Label n_faces() const { return static_cast<Label>(owner.size()); }
@@ -53,12 +53,12 @@ enum class CaseSource { kAuto, kReconstructed, kDecomposed };
 
 /// The case directory as found on disk.
 struct FoamCase {
-  std::string dir;                     ///< absolute case directory
-  std::string name;                    ///< its last path component
-  bool decomposed = false;             ///< read from processor* directories
-  std::vector<std::string> part_dirs;  ///< the case dir, or processor0, processor1, ...
-  std::vector<std::string> time_names; ///< written times (directory names), ascending
-  std::vector<double> time_values;     ///< the same as numbers, s
+  std::string dir;                      ///< absolute case directory
+  std::string name;                     ///< its last path component
+  bool decomposed = false;              ///< read from processor* directories
+  std::vector<std::string> part_dirs;   ///< the case dir, or processor0, processor1, ...
+  std::vector<std::string> time_names;  ///< written times (directory names), ascending
+  std::vector<double> time_values;      ///< the same as numbers, s
 };
 
 /// Opens a case: checks the directory, picks reconstructed or decomposed data and lists times.
@@ -76,9 +76,9 @@ void compute_geometry(MeshPart* m);
 
 /// A set of fields on one part, stacked component-wise: ncomp values per cell and per face.
 struct PartFields {
-  int ncomp = 0;                   ///< total components (U counts 3)
-  std::vector<double> cells;       ///< (nCells x ncomp)
-  std::vector<double> boundary;    ///< (nBoundaryFaces x ncomp) patch face values
+  int ncomp = 0;                 ///< total components (U counts 3)
+  std::vector<double> cells;     ///< (nCells x ncomp)
+  std::vector<double> boundary;  ///< (nBoundaryFaces x ncomp) patch face values
 };
 
 /// One requested field: name and components (1 or 3).

@@ -1,5 +1,9 @@
 #include "foam_file.h"
 
+#include <fcntl.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <unistd.h>
 #include <zlib.h>
 
 #include <algorithm>
@@ -9,10 +13,6 @@
 #include <cstring>
 #include <fstream>
 #include <sstream>
-#include <fcntl.h>
-#include <sys/mman.h>
-#include <sys/stat.h>
-#include <unistd.h>
 
 #include "error.h"
 
@@ -29,8 +29,8 @@ inline bool is_space(char c) {
 }
 
 bool is_delimiter(char c) {
-  return is_space(c) || c == '(' || c == ')' || c == '{' ||
-         c == '}' || c == ';' || c == '"' || c == '[' || c == ']';
+  return is_space(c) || c == '(' || c == ')' || c == '{' || c == '}' || c == ';' || c == '"' ||
+         c == '[' || c == ']';
 }
 
 std::string read_gzip(const std::string& path) {
@@ -98,7 +98,8 @@ FoamFile::FoamFile(const std::string& path) : path_(path) {
       v.fail("format must be ascii or binary, found '" + fmt + "'");
     }
   }
-  if (const DictEntry* e = find_entry(header, "class")) class_name_ = Cursor(*this, e->begin).token();
+  if (const DictEntry* e = find_entry(header, "class"))
+    class_name_ = Cursor(*this, e->begin).token();
   if (const DictEntry* e = find_entry(header, "arch")) {
     const std::string arch = Cursor(*this, e->begin).token();
     if (arch.find("label=64") != std::string::npos) format_.label_bytes = 8;

@@ -39,8 +39,8 @@ class FoamFile {
 
  private:
   std::string path_;
-  std::string owned_;        // decompressed text of a .gz file
-  void* map_ = nullptr;      // mapped plain file
+  std::string owned_;    // decompressed text of a .gz file
+  void* map_ = nullptr;  // mapped plain file
   std::size_t map_size_ = 0;
   std::string_view text_;
   FoamFormat format_;

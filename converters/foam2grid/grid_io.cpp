@@ -86,8 +86,8 @@ void write_vti(const std::string& path, const GridSpec& grid, const std::vector<
   const int ok = w->Write();
   if (!ok || w->GetErrorCode() != 0) {
     std::remove(tmp.c_str());
-    throw Error(Exit::kOutput, path + ": cannot write the grid file (VTK writer failed on " + tmp +
-                                   ")");
+    throw Error(Exit::kOutput,
+                path + ": cannot write the grid file (VTK writer failed on " + tmp + ")");
   }
   std::error_code ec;
   fs::rename(tmp, path, ec);
@@ -110,8 +110,8 @@ void write_pvd(const std::string& path, const std::vector<double>& times,
       // shortest text that reads back as the same double
       char buf[64];
       const auto r = std::to_chars(buf, buf + sizeof(buf), times[i]);
-      out << "    <DataSet timestep=\"" << std::string(buf, r.ptr) << "\" group=\"\" part=\"0\" file=\""
-          << files[i] << "\"/>\n";
+      out << "    <DataSet timestep=\"" << std::string(buf, r.ptr)
+          << "\" group=\"\" part=\"0\" file=\"" << files[i] << "\"/>\n";
     }
     out << "  </Collection>\n</VTKFile>\n";
     out.flush();
@@ -134,7 +134,8 @@ void info_vti(const std::string& path, std::ostream& os) {
   std::error_code ec;
   if (!fs::is_regular_file(path, ec)) fail_input("--info: file '" + path + "' not found");
   vtkNew<vtkXMLImageDataReader> r;
-  if (!r->CanReadFile(path.c_str())) fail_input("--info: '" + path + "' is not a VTK ImageData file");
+  if (!r->CanReadFile(path.c_str()))
+    fail_input("--info: '" + path + "' is not a VTK ImageData file");
   r->SetFileName(path.c_str());
   r->Update();
   if (r->GetErrorCode() != 0) fail_input("--info: cannot read '" + path + "'");
@@ -149,8 +150,7 @@ void info_vti(const std::string& path, std::ostream& os) {
   os << "  dimensions  " << d[0] << " x " << d[1] << " x " << d[2] << " = " << np << " points\n";
   os << "  spacing     " << h[0] << " " << h[1] << " " << h[2] << " m\n";
   os << "  bounds      x [" << o[0] << ", " << o[0] + (d[0] - 1) * h[0] << "]  y [" << o[1] << ", "
-     << o[1] + (d[1] - 1) * h[1] << "]  z [" << o[2] << ", " << o[2] + (d[2] - 1) * h[2]
-     << "] m\n";
+     << o[1] + (d[1] - 1) * h[1] << "]  z [" << o[2] << ", " << o[2] + (d[2] - 1) * h[2] << "] m\n";
   vtkFieldData* fd = im->GetFieldData();
   for (int i = 0; i < fd->GetNumberOfArrays(); ++i) {
     vtkAbstractArray* a = fd->GetAbstractArray(i);
@@ -162,8 +162,8 @@ void info_vti(const std::string& path, std::ostream& os) {
   vtkIdType nvalid = 0;
   if (valid) {
     for (vtkIdType i = 0; i < np; ++i) nvalid += valid->GetTuple1(i) != 0 ? 1 : 0;
-    os << "  invalid     " << std::setprecision(4) << 100.0 * static_cast<double>(np - nvalid) /
-                                                           static_cast<double>(std::max<vtkIdType>(np, 1))
+    os << "  invalid     " << std::setprecision(4)
+       << 100.0 * static_cast<double>(np - nvalid) / static_cast<double>(std::max<vtkIdType>(np, 1))
        << " % of the points (valid = 0)\n";
   } else {
     os << "  (no 'valid' array)\n";

@@ -15,7 +15,7 @@ namespace foam2grid {
 struct GridMeta {
   double kinematic_viscosity = 0;  ///< m^2/s
   std::string case_name;
-  double time = 0;                 ///< OpenFOAM time, s
+  double time = 0;  ///< OpenFOAM time, s
   std::string converter_version;
 };
 

@@ -98,7 +98,8 @@ std::vector<double> point_values(const std::vector<MeshPart>& parts,
   for (const MeshPart& m : parts) {
     for (const Patch& patch : m.patches) {
       if (!patch.gives_point_values()) continue;
-      for (Label j = m.face_offsets[patch.start]; j < m.face_offsets[patch.start + patch.size]; ++j) {
+      for (Label j = m.face_offsets[patch.start]; j < m.face_offsets[patch.start + patch.size];
+           ++j) {
         on_patch[m.global(m.face_points[j])] = 1;
       }
     }
@@ -153,7 +154,8 @@ std::vector<double> point_values(const std::vector<MeshPart>& parts,
         const double mag = std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
         if (mag <= 0) continue;
         for (Label j = m.face_offsets[f]; j < m.face_offsets[f + 1]; ++j) {
-          sym.push_back({m.global(m.face_points[j]), patch_id, {a[0] / mag, a[1] / mag, a[2] / mag}});
+          sym.push_back(
+              {m.global(m.face_points[j]), patch_id, {a[0] / mag, a[1] / mag, a[2] / mag}});
         }
       }
       ++patch_id;
@@ -246,10 +248,11 @@ void resample(const std::vector<MeshPart>& parts, const std::vector<PartFields>&
       for (long kz = i0[2]; kz <= i1[2]; ++kz) {
         for (long ky = i0[1]; ky <= i1[1]; ++ky) {
           for (long kx = i0[0]; kx <= i1[0]; ++kx) {
-            const std::size_t gi = static_cast<std::size_t>(kx) +
-                                   static_cast<std::size_t>(dims[0]) *
-                                       (static_cast<std::size_t>(ky) +
-                                        static_cast<std::size_t>(dims[1]) * static_cast<std::size_t>(kz));
+            const std::size_t gi =
+                static_cast<std::size_t>(kx) +
+                static_cast<std::size_t>(dims[0]) *
+                    (static_cast<std::size_t>(ky) +
+                     static_cast<std::size_t>(dims[1]) * static_cast<std::size_t>(kz));
             if (claimed[gi].load(std::memory_order_relaxed)) continue;
             const double x[3] = {o[0] + static_cast<double>(kx) * h[0],
                                  o[1] + static_cast<double>(ky) * h[1],
@@ -281,8 +284,7 @@ void resample(const std::vector<MeshPart>& parts, const std::vector<PartFields>&
                 const double c0[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
                                       e1[0] * e2[1] - e1[1] * e2[0]};
                 const double det = e0[0] * c0[0] + e0[1] * c0[1] + e0[2] * c0[2];
-                if (std::fabs(det) < 1e-14 * std::fabs(6.0 * m.cell_volumes[c]) ||
-                    det == 0.0) {
+                if (std::fabs(det) < 1e-14 * std::fabs(6.0 * m.cell_volumes[c]) || det == 0.0) {
                   continue;
                 }
                 const double c1[3] = {e2[1] * e0[2] - e2[2] * e0[1], e2[2] * e0[0] - e2[0] * e0[2],

@@ -1,10 +1,9 @@
 // foam2grid: resamples the fields of an OpenFOAM case onto a regular grid (.vti, or a .pvd
 // series), with OpenFOAM's own cellPoint interpolation. See docs/converter.md and
 // docs/grid-format.md.
-#include <CLI/CLI.hpp>
-
 #include <unistd.h>
 
+#include <CLI/CLI.hpp>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -130,7 +129,8 @@ std::vector<std::size_t> select_times(const FoamCase& fc, const std::string& spe
 }
 
 bool ends_with(const std::string& s, const std::string& suffix) {
-  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+  return s.size() >= suffix.size() &&
+         s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
 GridSpec make_grid(const Options& opt, const std::array<double, 6>& mb, double default_spacing) {
@@ -147,8 +147,8 @@ GridSpec make_grid(const Options& opt, const std::array<double, 6>& mb, double d
       }
       if (b[2 * k] < mb[2 * k] - tol || b[2 * k + 1] > mb[2 * k + 1] + tol) {
         fail_input("--bounds: " + std::string(1, axis[k]) + " range [" + fmt(b[2 * k]) + ", " +
-                   fmt(b[2 * k + 1]) + "] m lies outside the mesh, which spans [" +
-                   fmt(mb[2 * k]) + ", " + fmt(mb[2 * k + 1]) + "] m");
+                   fmt(b[2 * k + 1]) + "] m lies outside the mesh, which spans [" + fmt(mb[2 * k]) +
+                   ", " + fmt(mb[2 * k + 1]) + "] m");
       }
     }
   }
@@ -177,8 +177,9 @@ GridSpec make_grid(const Options& opt, const std::array<double, 6>& mb, double d
 int run(const Options& opt) {
   Clock clock;
   auto log = [&](const std::string& msg) {
-    if (!opt.quiet) std::cerr << "foam2grid [" << std::fixed << std::setprecision(2)
-                              << clock.seconds() << " s] " << msg << std::endl;
+    if (!opt.quiet)
+      std::cerr << "foam2grid [" << std::fixed << std::setprecision(2) << clock.seconds() << " s] "
+                << msg << std::endl;
   };
   // flags first: nothing is read before they are known to be sane
   if (opt.spacing_given && !(opt.spacing > 0)) {
@@ -189,7 +190,8 @@ int run(const Options& opt) {
     fail_usage("give only one of --spacing H (m) and --resolution NX NY NZ");
   }
   for (long n : opt.resolution) {
-    if (n < 2) fail_usage("--resolution: " + std::to_string(n) + " points: need at least 2 per axis");
+    if (n < 2)
+      fail_usage("--resolution: " + std::to_string(n) + " points: need at least 2 per axis");
   }
   for (double v : opt.bounds) {
     if (!std::isfinite(v)) fail_usage("--bounds: values must be finite numbers (m)");
@@ -220,12 +222,12 @@ int run(const Options& opt) {
     const fs::path parent = fs::absolute(opt.output).parent_path();
     std::error_code ec;
     if (!fs::is_directory(parent, ec)) {
-      throw Error(Exit::kOutput, "-o " + opt.output + ": directory " + parent.string() +
-                                     " does not exist");
+      throw Error(Exit::kOutput,
+                  "-o " + opt.output + ": directory " + parent.string() + " does not exist");
     }
     if (access(parent.c_str(), W_OK) != 0) {
-      throw Error(Exit::kOutput, "-o " + opt.output + ": directory " + parent.string() +
-                                     " is not writable");
+      throw Error(Exit::kOutput,
+                  "-o " + opt.output + ": directory " + parent.string() + " is not writable");
     }
   }
 
@@ -233,9 +235,9 @@ int run(const Options& opt) {
   const FoamCase fc = open_case(opt.case_dir, source);
   const std::vector<std::size_t> times = select_times(fc, opt.time);
   const double nu = read_viscosity(fc.dir);
-  log("case " + fc.dir + (fc.decomposed ? " (decomposed, " + std::to_string(fc.part_dirs.size()) +
-                                              " processors)"
-                                        : "") +
+  log("case " + fc.dir +
+      (fc.decomposed ? " (decomposed, " + std::to_string(fc.part_dirs.size()) + " processors)"
+                     : "") +
       ", " + std::to_string(times.size()) + " time(s), nu = " + fmt(nu) + " m^2/s");
 
   // points, bounds, grid, memory
@@ -246,8 +248,8 @@ int run(const Options& opt) {
   // size of a hexahedral mesh
   double mesh_points = 0;
   for (const MeshPart& m : parts) mesh_points += static_cast<double>(m.n_points());
-  const double box_volume = std::max(mb[1] - mb[0], 0.0) * std::max(mb[3] - mb[2], 0.0) *
-                            std::max(mb[5] - mb[4], 0.0);
+  const double box_volume =
+      std::max(mb[1] - mb[0], 0.0) * std::max(mb[3] - mb[2], 0.0) * std::max(mb[5] - mb[4], 0.0);
   const double default_spacing = std::cbrt(box_volume / std::max(mesh_points, 1.0));
   if (!(default_spacing > 0) && opt.spacing <= 0 && opt.resolution.empty()) {
     fail_input("the mesh of '" + fc.dir + "' is flat or empty: give --spacing or --resolution");
@@ -277,15 +279,15 @@ int run(const Options& opt) {
   read_topology(fc, &parts);
   Label ncells = 0;
   for (const MeshPart& m : parts) ncells += m.n_cells;
-  log("mesh: " + std::to_string(ncells) + " cells, " +
-      std::to_string(count_global_points(parts)) + " points");
+  log("mesh: " + std::to_string(ncells) + " cells, " + std::to_string(count_global_points(parts)) +
+      " points");
 
   // output locations
   const fs::path out_path = fs::absolute(opt.output);
   const std::string stem = out_path.stem().string();
   const fs::path series_dir = out_path.parent_path() / (stem + "_vti");
-  const fs::path series_tmp = out_path.parent_path() / ("." + stem + "_vti.tmp" +
-                                                        std::to_string(getpid()));
+  const fs::path series_tmp =
+      out_path.parent_path() / ("." + stem + "_vti.tmp" + std::to_string(getpid()));
   if (series) {
     std::error_code ec;
     fs::remove_all(series_tmp, ec);
@@ -332,12 +334,13 @@ int run(const Options& opt) {
     if (series) {
       // replace an older series directory, then write the collection
       std::error_code ec;
-      const fs::path old = out_path.parent_path() / ("." + stem + "_vti.old" +
-                                                     std::to_string(getpid()));
+      const fs::path old =
+          out_path.parent_path() / ("." + stem + "_vti.old" + std::to_string(getpid()));
       if (fs::exists(series_dir, ec)) fs::rename(series_dir, old, ec);
       if (ec) throw Error(Exit::kOutput, "cannot move the old " + series_dir.string() + " aside");
       fs::rename(series_tmp, series_dir, ec);
-      if (ec) throw Error(Exit::kOutput, "cannot rename " + series_tmp.string() + ": " + ec.message());
+      if (ec)
+        throw Error(Exit::kOutput, "cannot rename " + series_tmp.string() + ": " + ec.message());
       fs::remove_all(old, ec);
       write_pvd(out_path.string(), pvd_times, pvd_files);
     }
@@ -357,7 +360,8 @@ int run(const Options& opt) {
 int main(int argc, char** argv) {
   Options opt;
   CLI::App app{
-      "foam2grid " FOAM2GRID_VERSION ": resample the fields of an OpenFOAM case (U, k, epsilon, nut)\n"
+      "foam2grid " FOAM2GRID_VERSION
+      ": resample the fields of an OpenFOAM case (U, k, epsilon, nut)\n"
       "onto a regular grid, a VTK ImageData file (.vti) or a .pvd series of them, with OpenFOAM's\n"
       "cellPoint interpolation. All values in SI units (m, s, m/s, m^2/s^2, m^2/s^3, m^2/s).\n"
       "Exit codes: 0 ok, 2 usage, 3 bad input, 4 output cannot be written, 5 grid too large.",
@@ -366,10 +370,11 @@ int main(int argc, char** argv) {
   app.add_option("-o,--output", opt.output,
                  "output file: OUT.vti, or OUT.pvd with --time all (the .vti files then go to "
                  "OUT_vti/ beside it)");
-  CLI::Option* spacing = app.add_option("--spacing", opt.spacing,
-                 "grid spacing H in m, the same along x, y and z; the number of points per axis "
-                 "is floor(L/H)+1, so the upper bounds are rounded inward (default: "
-                 "(bounding-box volume / mesh points)^(1/3), about the mean cell size)");
+  CLI::Option* spacing = app.add_option(
+      "--spacing", opt.spacing,
+      "grid spacing H in m, the same along x, y and z; the number of points per axis "
+      "is floor(L/H)+1, so the upper bounds are rounded inward (default: "
+      "(bounding-box volume / mesh points)^(1/3), about the mean cell size)");
   app.add_option("--resolution", opt.resolution,
                  "grid points NX NY NZ along x, y, z (each >= 2); spacing = extent/(N-1)")
       ->expected(3);

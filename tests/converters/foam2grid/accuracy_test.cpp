@@ -53,7 +53,8 @@ std::vector<Sample> pick_points(vtkImageData* im, std::size_t n, unsigned seed) 
     double u[3];
     im->GetPointData()->GetArray("U")->GetTuple(ids[i], u);
     for (int k = 0; k < 3; ++k) out[i].ours[k] = u[k];
-    for (int f = 0; f < 3; ++f) out[i].ours[3 + f] = im->GetPointData()->GetArray(names[f])->GetTuple1(ids[i]);
+    for (int f = 0; f < 3; ++f)
+      out[i].ours[3 + f] = im->GetPointData()->GetArray(names[f])->GetTuple1(ids[i]);
   }
   return out;
 }
@@ -68,7 +69,8 @@ void sample_with_openfoam(const std::string& case_dir, std::vector<Sample>* s) {
       << "    fields (U k epsilon nut);\n    sets\n    (\n      pts\n      {\n"
       << "        type cloud;\n        axis xyz;\n        points\n        (\n";
     d << std::setprecision(17);
-    for (const Sample& p : *s) d << "          (" << p.x[0] << " " << p.x[1] << " " << p.x[2] << ")\n";
+    for (const Sample& p : *s)
+      d << "          (" << p.x[0] << " " << p.x[1] << " " << p.x[2] << ")\n";
     d << "        );\n      }\n    );\n  }\n}\n";
   }
   std::string log;
@@ -79,7 +81,8 @@ void sample_with_openfoam(const std::string& case_dir, std::vector<Sample>* s) {
                      &log);
   ASSERT_EQ(rc, 0) << "postProcess failed, see " << case_dir << "/log.postProcess " << log;
   fs::path dir;
-  for (const auto& e : fs::directory_iterator(case_dir + "/postProcessing/foam2gridCloud")) dir = e.path();
+  for (const auto& e : fs::directory_iterator(case_dir + "/postProcessing/foam2gridCloud"))
+    dir = e.path();
   auto match = [&](double x, double y, double z) -> Sample* {
     Sample* best = nullptr;
     double bd = 1e300;
@@ -98,7 +101,8 @@ void sample_with_openfoam(const std::string& case_dir, std::vector<Sample>* s) {
     double x, y, z, a, b, c;
     while (in >> x >> y >> z >> a >> b >> c) {
       Sample* p = match(x, y, z);
-      ASSERT_NE(p, nullptr) << "OpenFOAM sampled a point not asked for: " << x << " " << y << " " << z;
+      ASSERT_NE(p, nullptr) << "OpenFOAM sampled a point not asked for: " << x << " " << y << " "
+                            << z;
       p->of[0] = a;
       p->of[1] = b;
       p->of[2] = c;
@@ -153,13 +157,13 @@ void discrepancy(const std::vector<Sample>& s, const double r[4], double worst[4
   for (const Sample& p : s) {
     if (!p.have_u || !p.have_s) continue;
     ++*n;
-    for (int k = 0; k < 3; ++k) worst[0] = std::max(worst[0], std::fabs(p.ours[k] - p.of[k]) / r[0]);
+    for (int k = 0; k < 3; ++k)
+      worst[0] = std::max(worst[0], std::fabs(p.ours[k] - p.of[k]) / r[0]);
     for (int f = 1; f < 4; ++f) {
       worst[f] = std::max(worst[f], std::fabs(p.ours[2 + f] - p.of[2 + f]) / r[f]);
     }
   }
 }
-
 
 // runs foam2grid on case_dir, samples n random valid grid points with OpenFOAM, returns the
 // worst discrepancy per field relative to its range (U, k, epsilon, nut), checks >= 200 points
@@ -167,8 +171,11 @@ void compare(const std::string& case_dir, const std::string& w, const std::strin
              double worst[4], double ranges_out[4]) {
   const std::string vti = w + "/grid.vti";
   std::string out;
-  ASSERT_EQ(run(quote(foam2grid_bin()) + " " + quote(case_dir) + " -o " + quote(vti) + " " +
-                flags + " -q", &out), 0) << out;
+  ASSERT_EQ(run(quote(foam2grid_bin()) + " " + quote(case_dir) + " -o " + quote(vti) + " " + flags +
+                    " -q",
+                &out),
+            0)
+      << out;
   vtkSmartPointer<vtkImageData> im = read_vti(vti);
   std::vector<Sample> s = pick_points(im, 400, 20261122u);
   sample_with_openfoam(case_dir, &s);
@@ -194,8 +201,11 @@ TEST(Foam2gridAccuracy, CellPointMatchesOpenFoamSampleAtRandomGridPoints) {
   const std::string vti = w + "/tiny.vti";
   std::string out;
   // 0.0137 m: does not line up with the 0.03 m cells (nor with the 0.15 m cube)
-  ASSERT_EQ(run(quote(foam2grid_bin()) + " " + quote(c) + " -o " + quote(vti) +
-                " --spacing 0.0137 -q", &out), 0) << out;
+  ASSERT_EQ(
+      run(quote(foam2grid_bin()) + " " + quote(c) + " -o " + quote(vti) + " --spacing 0.0137 -q",
+          &out),
+      0)
+      << out;
   vtkSmartPointer<vtkImageData> im = read_vti(vti);
   std::vector<Sample> s = pick_points(im, 400, 20261122u);
   sample_with_openfoam(c, &s);
@@ -217,7 +227,10 @@ TEST(Foam2gridAccuracy, CellPointMatchesOpenFoamSampleAtRandomGridPoints) {
   // the check has teeth: the piecewise-constant cell scheme is far outside the tolerance
   const std::string vti_cell = w + "/tiny_cell.vti";
   ASSERT_EQ(run(quote(foam2grid_bin()) + " " + quote(c) + " -o " + quote(vti_cell) +
-                " --spacing 0.0137 --interpolation cell -q", &out), 0) << out;
+                    " --spacing 0.0137 --interpolation cell -q",
+                &out),
+            0)
+      << out;
   vtkSmartPointer<vtkImageData> im_cell = read_vti(vti_cell);
   std::vector<Sample> sc = pick_points(im_cell, 400, 20261122u);
   for (std::size_t i = 0; i < sc.size(); ++i) {
@@ -242,20 +255,20 @@ TEST(Foam2gridAccuracy, CellPointMatchesOpenFoamOnASkewedGradedMesh) {
   const std::string src = std::string(LRIGID_SOURCE_DIR) + "/foam_cases/tiny";
   std::string log;
   ASSERT_EQ(run("cp -r " + quote(src) + " " + quote(c) + " && cd " + quote(c) +
-                " && sed -i -e 's/(\\$xMax \\$yMax \\$zMax)/(1.32 0.46 0.34)/'"
-                " -e 's/(0     \\$yMax \\$zMax)/(-0.06 0.43 0.27)/'"
-                " -e 's/simpleGrading (1 1 1)/simpleGrading (2 0.5 3)/' system/blockMeshDict"
-                " && grep -q '(1.32 0.46 0.34)' system/blockMeshDict"
-                " && grep -q '(-0.06 0.43 0.27)' system/blockMeshDict"
-                " && grep -q 'simpleGrading (2 0.5 3)' system/blockMeshDict"
-                " && export WM_PROJECT_DIR=/usr/share/openfoam"
-                " && /usr/bin/blockMesh > log.blockMesh 2>&1"
-                " && /usr/bin/topoSet > log.topoSet 2>&1"
-                " && /usr/bin/subsetMesh fluid -patch obstacle -overwrite > log.subsetMesh 2>&1"
-                " && rm -rf 0 && cp -r 0.orig 0"
-                " && foamDictionary -entry endTime -set 30 system/controlDict > /dev/null"
-                " && foamDictionary -entry writeInterval -set 30 system/controlDict > /dev/null"
-                " && /usr/bin/simpleFoam > log.simpleFoam 2>&1 && test -d 30",
+                    " && sed -i -e 's/(\\$xMax \\$yMax \\$zMax)/(1.32 0.46 0.34)/'"
+                    " -e 's/(0     \\$yMax \\$zMax)/(-0.06 0.43 0.27)/'"
+                    " -e 's/simpleGrading (1 1 1)/simpleGrading (2 0.5 3)/' system/blockMeshDict"
+                    " && grep -q '(1.32 0.46 0.34)' system/blockMeshDict"
+                    " && grep -q '(-0.06 0.43 0.27)' system/blockMeshDict"
+                    " && grep -q 'simpleGrading (2 0.5 3)' system/blockMeshDict"
+                    " && export WM_PROJECT_DIR=/usr/share/openfoam"
+                    " && /usr/bin/blockMesh > log.blockMesh 2>&1"
+                    " && /usr/bin/topoSet > log.topoSet 2>&1"
+                    " && /usr/bin/subsetMesh fluid -patch obstacle -overwrite > log.subsetMesh 2>&1"
+                    " && rm -rf 0 && cp -r 0.orig 0"
+                    " && foamDictionary -entry endTime -set 30 system/controlDict > /dev/null"
+                    " && foamDictionary -entry writeInterval -set 30 system/controlDict > /dev/null"
+                    " && /usr/bin/simpleFoam > log.simpleFoam 2>&1 && test -d 30",
                 &log),
             0)
       << "preparing the skewed case failed in " << c << ": " << log;

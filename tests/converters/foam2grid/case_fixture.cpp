@@ -61,8 +61,7 @@ std::string prepared_case(const std::string& name, const std::string& variant,
   const int fd = open(lock_path.c_str(), O_CREAT | O_RDWR, 0644);
   if (fd < 0 || flock(fd, LOCK_EX) != 0) throw std::runtime_error("cannot lock " + lock_path);
   std::string fingerprint;
-  run("cd " + quote(src.string()) +
-          " && find . -type f -printf '%T@ %s %p\\n' | sort | md5sum",
+  run("cd " + quote(src.string()) + " && find . -type f -printf '%T@ %s %p\\n' | sort | md5sum",
       &fingerprint);
   fingerprint += extra_setup;
   const fs::path stamp = dst / ".prepared";
@@ -78,8 +77,8 @@ std::string prepared_case(const std::string& name, const std::string& variant,
     std::string log;
     const std::string cmd =
         "cp -r " + quote(src.string()) + " " + quote(dst.string()) + " && cd " +
-        quote(dst.string()) + " && FOAM_CASES_DIR=" +
-        quote((fs::path(LRIGID_SOURCE_DIR) / "foam_cases").string()) +
+        quote(dst.string()) +
+        " && FOAM_CASES_DIR=" + quote((fs::path(LRIGID_SOURCE_DIR) / "foam_cases").string()) +
         " ./Allrun > log.Allrun 2>&1" +
         (extra_setup.empty() ? ""
                              : " && export WM_PROJECT_DIR=/usr/share/openfoam && " + extra_setup +

@@ -129,8 +129,8 @@ TEST(Foam2gridCli, TimeNotWritten) {
   EXPECT_EQ(r.rc, 3) << r.out;
   EXPECT_NE(r.out.find("--time 7.5: time not written"), std::string::npos) << r.out;
   EXPECT_TRUE(files_in(w).empty());
-  const Result bad = f2g_run(quote(prepared_case("tiny")) + " -o " + quote(w + "/out.vti") +
-                             " --time soon -q");
+  const Result bad =
+      f2g_run(quote(prepared_case("tiny")) + " -o " + quote(w + "/out.vti") + " --time soon -q");
   EXPECT_EQ(bad.rc, 2) << bad.out;
   EXPECT_NE(bad.out.find("--time 'soon'"), std::string::npos) << bad.out;
 }
@@ -189,8 +189,8 @@ TEST(Foam2gridCli, ZeroOrNegativeSpacing) {
 
 TEST(Foam2gridCli, GridTooLargeForMemory) {
   const std::string w = work_dir("cli_too_large");
-  const Result r = f2g_run(quote(prepared_case("tiny")) + " -o " + quote(w + "/out.vti") +
-                           " --spacing 1e-5 -q");
+  const Result r =
+      f2g_run(quote(prepared_case("tiny")) + " -o " + quote(w + "/out.vti") + " --spacing 1e-5 -q");
   EXPECT_EQ(r.rc, 5) << r.out;
   EXPECT_NE(r.out.find("120001 x 40001 x 30001"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("would need about"), std::string::npos) << r.out;
@@ -199,8 +199,8 @@ TEST(Foam2gridCli, GridTooLargeForMemory) {
 
 TEST(Foam2gridCli, OutputCannotBeWritten) {
   const std::string w = work_dir("cli_output");
-  const Result r = f2g_run(quote(prepared_case("tiny")) + " -o " + quote(w + "/no/such/out.vti") +
-                           " -q");
+  const Result r =
+      f2g_run(quote(prepared_case("tiny")) + " -o " + quote(w + "/no/such/out.vti") + " -q");
   EXPECT_EQ(r.rc, 4) << r.out;
   EXPECT_NE(r.out.find("no/such"), std::string::npos) << r.out;
   const Result ext = f2g_run(quote(prepared_case("tiny")) + " -o " + quote(w + "/out.txt") + " -q");
@@ -223,8 +223,8 @@ TEST(Foam2gridCli, FailureKeepsAnEarlierOutputIntact) {
 TEST(Foam2gridFormat, ArraysFieldDataAndInvalidPoints) {
   const std::string w = work_dir("format");
   const std::string out = w + "/tiny.vti";
-  const Result r = f2g_run(quote(prepared_case("tiny")) + " -o " + quote(out) +
-                           " --spacing 0.0137 -q");
+  const Result r =
+      f2g_run(quote(prepared_case("tiny")) + " -o " + quote(out) + " --spacing 0.0137 -q");
   ASSERT_EQ(r.rc, 0) << r.out;
   vtkSmartPointer<vtkImageData> im = read_vti(out);
   // grid: origin at the mesh's lower corner, floor(L/H)+1 points (upper bound rounded inward)
@@ -261,7 +261,8 @@ TEST(Foam2gridFormat, ArraysFieldDataAndInvalidPoints) {
     ncube += in_cube;
     if (valid->GetValue(i) == 0) {
       ++ninvalid;
-      EXPECT_TRUE(in_cube) << "invalid point outside the cube at " << x[0] << " " << x[1] << " " << x[2];
+      EXPECT_TRUE(in_cube) << "invalid point outside the cube at " << x[0] << " " << x[1] << " "
+                           << x[2];
       for (int k = 0; k < 3; ++k) EXPECT_EQ(u->GetComponent(i, k), 0.0f);
       EXPECT_EQ(pd->GetArray("k")->GetTuple1(i), 0.0);
       EXPECT_EQ(pd->GetArray("epsilon")->GetTuple1(i), 0.0);
@@ -277,7 +278,8 @@ TEST(Foam2gridFormat, ArraysFieldDataAndInvalidPoints) {
   vtkFieldData* fd = im->GetFieldData();
   ASSERT_NE(fd->GetArray("kinematic_viscosity"), nullptr);
   EXPECT_EQ(fd->GetArray("kinematic_viscosity")->GetDataType(), VTK_DOUBLE);
-  EXPECT_DOUBLE_EQ(fd->GetArray("kinematic_viscosity")->GetTuple1(0), 1.5e-5);  // constant/transportProperties
+  EXPECT_DOUBLE_EQ(fd->GetArray("kinematic_viscosity")->GetTuple1(0),
+                   1.5e-5);  // constant/transportProperties
   ASSERT_NE(fd->GetArray("time"), nullptr);
   EXPECT_DOUBLE_EQ(fd->GetArray("time")->GetTuple1(0),
                    std::stod(latest_time(prepared_case("tiny"))));
@@ -291,7 +293,9 @@ TEST(Foam2gridFormat, ArraysFieldDataAndInvalidPoints) {
   // --fields: only those, plus valid; --resolution gives the point counts
   const std::string out2 = w + "/u_only.vti";
   ASSERT_EQ(f2g_run(quote(prepared_case("tiny")) + " -o " + quote(out2) +
-                    " --fields U --resolution 13 5 4 -q").rc, 0);
+                    " --fields U --resolution 13 5 4 -q")
+                .rc,
+            0);
   vtkSmartPointer<vtkImageData> im2 = read_vti(out2);
   EXPECT_EQ(im2->GetPointData()->GetNumberOfArrays(), 2);
   EXPECT_NE(im2->GetPointData()->GetArray("U"), nullptr);
@@ -316,11 +320,13 @@ TEST(Foam2gridFormat, BinaryAndCompressedCaseGiveTheSameGrid) {
   const std::string c = tiny_copy(w);
   ASSERT_EQ(f2g_run(quote(c) + " -o " + quote(w + "/ascii.vti") + " --spacing 0.0137 -q").rc, 0);
   // OpenFOAM rewrites mesh and fields in binary; then gzip them all (OpenFOAM reads name.gz)
-  ASSERT_EQ(run("cd " + quote(c) + " && export WM_PROJECT_DIR=/usr/share/openfoam && "
+  ASSERT_EQ(run("cd " + quote(c) +
+                " && export WM_PROJECT_DIR=/usr/share/openfoam && "
                 "foamDictionary -entry writeFormat -set binary system/controlDict >/dev/null && "
                 "/usr/bin/foamFormatConvert > log.foamFormatConvert 2>&1 && "
                 "grep -q 'format      binary' constant/polyMesh/faces && "
-                "gzip constant/polyMesh/faces " + latest_time(c) + "/U " + latest_time(c) + "/k"),
+                "gzip constant/polyMesh/faces " +
+                latest_time(c) + "/U " + latest_time(c) + "/k"),
             0);
   ASSERT_EQ(f2g_run(quote(c) + " -o " + quote(w + "/binary.vti") + " --spacing 0.0137 -q").rc, 0);
   vtkSmartPointer<vtkImageData> a = read_vti(w + "/ascii.vti");
@@ -385,7 +391,8 @@ TEST(Foam2gridSeries, TransientCaseBecomesAPvdTimeSeries) {
   const Result info = f2g_run("--info " + quote(pvd));
   EXPECT_EQ(info.rc, 0) << info.out;
   EXPECT_NE(info.out.find("collection of " + std::to_string(times.size()) + " grids"),
-            std::string::npos) << info.out;
+            std::string::npos)
+      << info.out;
   // a .vti output with --time all is a usage error
   EXPECT_EQ(f2g_run(quote(c) + " -o " + quote(w + "/x.vti") + " --time all -q").rc, 2);
 }

@@ -33,8 +33,8 @@ std::string header(const std::string& cls, bool binary) {
 }  // namespace
 
 TEST(FoamFile, AsciiVectorListAndFaceList) {
-  FoamFile pts(write_file("points", header("vectorField", false) +
-                                        "3\n(\n(0 0 0)\n(1 -2.5e-1 3)\n(1e3 2 nan)\n)\n"));
+  FoamFile pts(write_file(
+      "points", header("vectorField", false) + "3\n(\n(0 0 0)\n(1 -2.5e-1 3)\n(1e3 2 nan)\n)\n"));
   std::vector<double> v;
   Cursor(pts, pts.body()).scalar_list(3, &v);
   ASSERT_EQ(v.size(), 9u);
@@ -42,7 +42,8 @@ TEST(FoamFile, AsciiVectorListAndFaceList) {
   EXPECT_DOUBLE_EQ(v[6], 1000.0);
   EXPECT_TRUE(std::isnan(v[8]));
 
-  FoamFile faces(write_file("faces", header("faceList", false) + "2\n(\n4(0 1 2 3)\n3(3 2 4)\n)\n"));
+  FoamFile faces(
+      write_file("faces", header("faceList", false) + "2\n(\n4(0 1 2 3)\n3(3 2 4)\n)\n"));
   std::vector<std::int64_t> off, lab;
   Cursor(faces, faces.body()).face_list(&off, &lab);
   EXPECT_EQ(off, (std::vector<std::int64_t>{0, 4, 7}));
@@ -96,10 +97,9 @@ TEST(FoamFile, BinaryCompactFacesAndScalarList) {
 }
 
 TEST(FoamFile, UniformShorthandsAndEmptyNonuniform) {
-  FoamFile f(write_file("U", header("volVectorField", false) +
-                                 "internalField uniform (1 2 3);\n"
-                                 "a nonuniform 0();\n"
-                                 "b 3{0.5};\n"));
+  FoamFile f(write_file("U", header("volVectorField", false) + "internalField uniform (1 2 3);\n"
+                                                               "a nonuniform 0();\n"
+                                                               "b 3{0.5};\n"));
   Cursor c(f, f.body());
   const std::vector<DictEntry> top = c.dict(true);
   std::vector<double> v;

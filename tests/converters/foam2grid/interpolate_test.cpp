@@ -95,10 +95,10 @@ TEST(CellPoint, ReproducesPointValuesCellValuesAndTheWallRule) {
   resample({m}, fields, pv, specs, g, Scheme::kCellPoint, &out);
   auto at = [&](int i, int j, int k) { return std::size_t(i + 7 * (j + 3 * k)); };
   for (std::size_t i = 0; i < out.valid.size(); ++i) EXPECT_EQ(out.valid[i], 1) << i;
-  EXPECT_NEAR(out.arrays[0][at(0, 0, 0)], pv[0], 1e-6);                 // mesh point
+  EXPECT_NEAR(out.arrays[0][at(0, 0, 0)], pv[0], 1e-6);                    // mesh point
   EXPECT_NEAR(out.arrays[0][at(2, 2, 2)], pv[1 + 3 * (1 + 2 * 1)], 1e-6);  // (1,1,1)
-  EXPECT_NEAR(out.arrays[0][at(1, 1, 1)], 1.0, 1e-6);                   // centre of cell 0
-  EXPECT_NEAR(out.arrays[0][at(4, 1, 1)], 4.0, 1e-6);                   // centre of cell 1
+  EXPECT_NEAR(out.arrays[0][at(1, 1, 1)], 1.0, 1e-6);                      // centre of cell 0
+  EXPECT_NEAR(out.arrays[0][at(4, 1, 1)], 4.0, 1e-6);                      // centre of cell 1
   // cell scheme: the cell value everywhere in the cell
   GridFields cell;
   resample({m}, fields, pv, specs, g, Scheme::kCell, &cell);
