@@ -6,6 +6,7 @@
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <cmath>
+#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -177,9 +178,12 @@ GridSpec make_grid(const Options& opt, const std::array<double, 6>& mb, double d
 int run(const Options& opt) {
   Clock clock;
   auto log = [&](const std::string& msg) {
-    if (!opt.quiet)
-      std::cerr << "foam2grid [" << std::fixed << std::setprecision(2) << clock.seconds() << " s] "
-                << msg << std::endl;
+    // wall time and process CPU time (all threads) since the start
+    if (!opt.quiet) {
+      std::cerr << "foam2grid [" << std::fixed << std::setprecision(2) << clock.seconds()
+                << " s, cpu " << static_cast<double>(std::clock()) / CLOCKS_PER_SEC << " s] " << msg
+                << std::endl;
+    }
   };
   // flags first: nothing is read before they are known to be sane
   if (opt.spacing_given && !(opt.spacing > 0)) {
