@@ -10,8 +10,8 @@
 
 namespace lrigid {
 
-// Panel count used when `panels` is 0: about 1 % error on smooth bodies (sphere: 1280 panels,
-// -0.7 %), well under a second to compute.
+// Panel count used when `panels` is 0: sphere/ellipsoid meshes get 1280 panels (-0.5 %), a cube
+// 1536 (+1.0 %), a 1 % thick square plate 1792 (+2.3 %); 0.2-0.6 s on one core (LU-bound).
 constexpr int kDefaultPanels = 1500;
 
 struct AddedMass {
