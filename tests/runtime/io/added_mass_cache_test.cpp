@@ -5,9 +5,13 @@
 #include <stdlib.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <nlohmann/json.hpp>
+
+#include "body/tessellate.h"
 
 namespace lrigid {
 namespace {
@@ -82,6 +86,14 @@ TEST_F(CacheTest, KeyDependsOnGeometryAndPanels) {
   EXPECT_NE(added_mass_cache_file(a, 200), added_mass_cache_file(b, 200));
   EXPECT_NE(added_mass_cache_file(a, 200), added_mass_cache_file(a, 300));
   EXPECT_EQ(added_mass_cache_file(a, 0), added_mass_cache_file(a, kDefaultPanels));
+  // meshes: every vertex bit counts
+  auto m1 = std::make_shared<TriangleMesh>(tessellate(Shape::box(1, 1, 1), 100));
+  auto m2 = std::make_shared<TriangleMesh>(*m1);
+  m2->vertices[3].x() = std::nextafter(m2->vertices[3].x(), 10.0);
+  const Shape s1 = Shape::from_mesh(m1, "a.obj"), s2 = Shape::from_mesh(m2, "a.obj");
+  EXPECT_NE(added_mass_cache_file(s1, 200), added_mass_cache_file(s2, 200));
+  EXPECT_EQ(added_mass_cache_file(s1, 200),
+            added_mass_cache_file(Shape::from_mesh(m1, "other/name.stl"), 200));
   // analytic shapes bypass the cache
   const AddedMass s = cached_added_mass(Shape::sphere(1), 1.0);
   EXPECT_EQ(s.method, "analytic");
