@@ -9,6 +9,7 @@
 #include "integrate/simulation.h"
 #include "io/added_mass_cache.h"
 #include "io/grid_reader.h"
+#include "io/progress.h"
 #include "io/result_writer.h"
 #include "io/scene_json.h"
 #include "model/state.h"
@@ -71,23 +72,25 @@ void run(const RunArgs& a) {
   opt.every = scene.output.every;
   opt.threads = a.threads;
   opt.on_output = [&](const State& s) { writer.write_frame(s); };
-  double next_report = 0.1;
+  Progress progress("lrigid", a.quiet ? Progress::Mode::Quiet : Progress::Mode::Auto);
   if (!a.quiet)
     opt.on_progress = [&](const State& s, double f) {
-      if (f + 1e-12 < next_report && f < 1.0) return;
-      next_report = std::floor(f * 10 + 1e-9) / 10 + 0.1;
       size_t moving = 0, landed = 0, exited = 0;
       for (const BodyStatus b : s.status) {
         moving += b == BodyStatus::Moving;
         landed += b == BodyStatus::Landed;
         exited += b == BodyStatus::Exited || b == BodyStatus::Failed;
       }
-      std::fprintf(stderr, "lrigid: t = %.3f s (%3.0f %%), moving %zu, landed %zu, stopped %zu\n",
-                   s.t, 100 * f, moving, landed, exited);
+      char buf[160];
+      std::snprintf(buf, sizeof buf, "t = %.3f / %.3f s, moving %zu, landed %zu, stopped %zu", s.t,
+                    model.duration, moving, landed, exited);
+      progress.update(f, buf);
     };
   const RunStats stats = simulate(model, &state, opt);
+  progress.finish();
   nlohmann::json extra;
   extra["threads"] = a.threads;
+  if (!scene.uniform_field) extra["field"] = scene.field_path;  // for render and ParaView
   writer.finish(state, stats, extra);
   if (!a.quiet) {
     std::fprintf(stderr,

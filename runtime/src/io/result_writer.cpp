@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 #include <vtkCellArray.h>
+#include <vtkCellData.h>
 #include <vtkDoubleArray.h>
 #include <vtkIntArray.h>
 #include <vtkNew.h>
@@ -11,17 +12,72 @@
 #include <vtkUnsignedCharArray.h>
 #include <vtkXMLPolyDataWriter.h>
 
+#include <algorithm>
 #include <cinttypes>
+#include <cstdlib>
+#include <fstream>
 #include <filesystem>
 #include <iomanip>
 #include <sstream>
 
+#include "body/tessellate.h"
 #include "io/atomic_file.h"
+#include "io/mesh_io.h"
 #include "util/error.h"
 
 namespace lrigid {
 
 namespace fs = std::filesystem;
+
+TriangleMesh body_surface(const BodyType& type, int target_faces) {
+  TriangleMesh m = tessellate(type.shape, target_faces);
+  for (Vec3& v : m.vertices) v -= type.com;
+  return m;
+}
+
+int shape_faces_for(size_t bodies) {
+  // about 24,000 triangles a frame in all (a few hundred kB compressed), 20 to 320 per body
+  const size_t per_body = bodies > 0 ? 24000 / bodies : 320;
+  return int(std::clamp<size_t>(per_body, 20, 320));
+}
+
+namespace {
+
+// <name>_NNNNNN.vtp
+std::string frame_name(const char* stem, size_t i) {
+  std::ostringstream name;
+  name << stem << "_" << std::setw(6) << std::setfill('0') << i << ".vtp";
+  return name.str();
+}
+
+void make_dir(const std::string& d) {
+  std::error_code ec;
+  fs::create_directories(d, ec);
+  if (ec) throw Error(ExitCode::Output, where(d, "", "cannot create: " + ec.message()));
+}
+
+// renames a finished temporary directory over `final_dir`
+void move_dir(const std::string& tmp, const fs::path& final_dir) {
+  std::error_code ec;
+  fs::remove_all(final_dir, ec);
+  fs::rename(tmp, final_dir, ec);
+  if (ec)
+    throw Error(ExitCode::Output, where(final_dir.string(), "", "cannot move into place: " + ec.message()));
+}
+
+void write_pvd(const fs::path& path, const char* stem,
+               const std::vector<std::pair<double, std::string>>& frames) {
+  write_file_atomically(path.string(), [&](std::ostream& o) {
+    o << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n  <Collection>\n"
+      << std::setprecision(12);
+    for (const auto& f : frames)
+      o << "    <DataSet timestep=\"" << f.first << "\" group=\"\" part=\"0\" file=\"" << stem
+        << "/" << f.second << "\"/>\n";
+    o << "  </Collection>\n</VTKFile>\n";
+  });
+}
+
+}  // namespace
 
 ResultWriter::ResultWriter(const std::string& dir, const Model& model, const OutputSpec& spec)
     : dir_(dir), model_(model), spec_(spec), tag_(".tmp" + std::to_string(::getpid())) {
@@ -34,9 +90,14 @@ ResultWriter::ResultWriter(const std::string& dir, const Model& model, const Out
   }
   if (spec_.pvd) {
     vtp_tmp_dir_ = (fs::path(dir_) / ("bodies" + tag_)).string();
-    std::error_code ec;
-    fs::create_directories(vtp_tmp_dir_, ec);
-    if (ec) throw Error(ExitCode::Output, where(vtp_tmp_dir_, "", "cannot create: " + ec.message()));
+    make_dir(vtp_tmp_dir_);
+    shapes_tmp_dir_ = (fs::path(dir_) / ("shapes" + tag_)).string();
+    make_dir(shapes_tmp_dir_);
+    const int faces = shape_faces_for(model_.body_count);
+    for (const BodyType& t : model_.types) surfaces_.push_back(body_surface(t, faces));
+  }
+  if (spec_.glb) {
+    for (const BodyType& t : model_.types) gltf_.types.push_back({t.name, body_surface(t, 320)});
   }
 }
 
@@ -50,6 +111,7 @@ void ResultWriter::cleanup() {
   std::error_code ec;
   if (!csv_tmp_.empty()) fs::remove(csv_tmp_, ec);
   if (!vtp_tmp_dir_.empty()) fs::remove_all(vtp_tmp_dir_, ec);
+  if (!shapes_tmp_dir_.empty()) fs::remove_all(shapes_tmp_dir_, ec);
 }
 
 void ResultWriter::write_frame(const State& st) {
@@ -67,11 +129,69 @@ void ResultWriter::write_frame(const State& st) {
     if (std::ferror(csv_)) throw Error(ExitCode::Output, where(csv_tmp_, "", "write failed (disk full?)"));
   }
   if (spec_.pvd) {
-    std::ostringstream name;
-    name << "bodies_" << std::setw(6) << std::setfill('0') << frames_.size() << ".vtp";
-    write_vtp(st, (fs::path(vtp_tmp_dir_) / name.str()).string());
-    frames_.emplace_back(st.t, name.str());
+    const size_t i = frames_.size();
+    write_vtp(st, (fs::path(vtp_tmp_dir_) / frame_name("bodies", i)).string());
+    write_shapes_vtp(st, (fs::path(shapes_tmp_dir_) / frame_name("shapes", i)).string());
+    frames_.emplace_back(st.t, frame_name("bodies", i));
   }
+  if (spec_.glb) {
+    if (gltf_.body_type.empty())
+      for (size_t i = 0; i < st.size(); ++i) gltf_.body_type.push_back(st.type[i]);
+    gltf_.times.push_back(st.t);
+    gltf_.x.insert(gltf_.x.end(), st.x.begin(), st.x.end());
+    gltf_.q.insert(gltf_.q.end(), st.q.begin(), st.q.end());
+  }
+}
+
+void ResultWriter::write_shapes_vtp(const State& st, const std::string& path) const {
+  size_t np = 0, nc = 0;
+  for (size_t i = 0; i < st.size(); ++i) {
+    np += surfaces_[st.type[i]].vertices.size();
+    nc += surfaces_[st.type[i]].faces.size();
+  }
+  vtkNew<vtkPoints> pts;
+  pts->SetDataTypeToFloat();  // float is plenty for display and halves the files
+  pts->SetNumberOfPoints(vtkIdType(np));
+  vtkNew<vtkCellArray> polys;
+  polys->AllocateExact(vtkIdType(nc), vtkIdType(3 * nc));
+  vtkNew<vtkIntArray> id, type;
+  id->SetName("body");
+  id->SetNumberOfTuples(vtkIdType(nc));
+  type->SetName("type");
+  type->SetNumberOfTuples(vtkIdType(nc));
+  vtkNew<vtkUnsignedCharArray> status;
+  status->SetName("status");  // 0 moving, 1 landed, 2 exited, 3 failed
+  status->SetNumberOfTuples(vtkIdType(nc));
+  vtkIdType p0 = 0, c = 0;
+  for (size_t i = 0; i < st.size(); ++i) {
+    const TriangleMesh& s = surfaces_[st.type[i]];
+    const Mat3 R = st.q[i].toRotationMatrix();
+    for (size_t k = 0; k < s.vertices.size(); ++k) {
+      const Vec3 p = R * s.vertices[k] + st.x[i];
+      pts->SetPoint(p0 + vtkIdType(k), p.data());
+    }
+    for (const auto& f : s.faces) {
+      const vtkIdType tri[3] = {p0 + f[0], p0 + f[1], p0 + f[2]};
+      polys->InsertNextCell(3, tri);
+      id->SetValue(c, int(i));
+      type->SetValue(c, st.type[i]);
+      status->SetValue(c, static_cast<unsigned char>(st.status[i]));
+      ++c;
+    }
+    p0 += vtkIdType(s.vertices.size());
+  }
+  vtkNew<vtkPolyData> poly;
+  poly->SetPoints(pts);
+  poly->SetPolys(polys);
+  poly->GetCellData()->AddArray(id);
+  poly->GetCellData()->AddArray(type);
+  poly->GetCellData()->AddArray(status);
+  vtkNew<vtkXMLPolyDataWriter> w;
+  w->SetFileName(path.c_str());
+  w->SetInputData(poly);
+  w->SetDataModeToAppended();
+  w->SetCompressorTypeToZLib();
+  if (w->Write() != 1) throw Error(ExitCode::Output, where(path, "", "cannot write .vtp frame"));
 }
 
 void ResultWriter::write_vtp(const State& st, const std::string& path) const {
@@ -146,21 +266,16 @@ void ResultWriter::finish(const State& st, const RunStats& stats, const nlohmann
     csv_tmp_.clear();
   }
   if (spec_.pvd) {
-    const fs::path final_dir = fs::path(dir_) / "bodies";
-    std::error_code ec;
-    fs::remove_all(final_dir, ec);
-    fs::rename(vtp_tmp_dir_, final_dir, ec);
-    if (ec) throw Error(ExitCode::Output, where(final_dir.string(), "", "cannot move into place: " + ec.message()));
+    move_dir(vtp_tmp_dir_, fs::path(dir_) / "bodies");
     vtp_tmp_dir_.clear();
-    write_file_atomically((fs::path(dir_) / "bodies.pvd").string(), [&](std::ostream& o) {
-      o << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n  <Collection>\n"
-        << std::setprecision(12);
-      for (const auto& f : frames_)
-        o << "    <DataSet timestep=\"" << f.first << "\" group=\"\" part=\"0\" file=\"bodies/"
-          << f.second << "\"/>\n";
-      o << "  </Collection>\n</VTKFile>\n";
-    });
+    write_pvd(fs::path(dir_) / "bodies.pvd", "bodies", frames_);
+    move_dir(shapes_tmp_dir_, fs::path(dir_) / "shapes");
+    shapes_tmp_dir_.clear();
+    auto shape_frames = frames_;
+    for (size_t i = 0; i < shape_frames.size(); ++i) shape_frames[i].second = frame_name("shapes", i);
+    write_pvd(fs::path(dir_) / "shapes.pvd", "shapes", shape_frames);
   }
+  if (spec_.glb) write_gltf((fs::path(dir_) / "animation.glb").string(), gltf_);
   json s;
   s["bodies"] = st.size();
   s["body_steps"] = stats.body_steps;
@@ -177,7 +292,14 @@ void ResultWriter::finish(const State& st, const RunStats& stats, const nlohmann
                      {"volume", t.volume},
                      {"effects", effect_names(t.effects)},
                      {"added_mass_method", t.added_mass_method},
-                     {"added_mass_panels", t.added_mass_panels}});
+                     {"added_mass_panels", t.added_mass_panels},
+                     {"first_body", t.first_body},
+                     // enough to rebuild the surface (lrigid export-gltf, lrigid render)
+                     {"shape", {{"type", shape_type_name(t.shape.type)},
+                                {"half_extents", {t.shape.half_extents.x(), t.shape.half_extents.y(),
+                                                  t.shape.half_extents.z()}},
+                                {"source", t.shape.source}}},
+                     {"com", {t.com.x(), t.com.y(), t.com.z()}}});
   s["body_types"] = types;
   s["integrator"] = integrator_name(model_.integrator);
   s["dt"] = model_.dt;
@@ -198,10 +320,119 @@ void ResultWriter::finish(const State& st, const RunStats& stats, const nlohmann
   s["stopped"] = stopped;
   s["version"] = LRIGID_VERSION;
   s["scene"] = model_.scene_file;
+  s["output_every"] = spec_.every;
+  json outputs = json::array();
+  if (spec_.csv) outputs.push_back("trajectories.csv");
+  if (spec_.pvd) outputs.insert(outputs.end(), {"bodies.pvd", "shapes.pvd"});
+  if (spec_.glb) outputs.push_back("animation.glb");
+  s["outputs"] = outputs;
+  s["field"] = nullptr;  // the grid (.vti/.pvd) the run sampled; cmd_run fills it in
+  s["ground_z"] = model_.has_ground ? json(model_.ground_z) : json(nullptr);
   s.update(extra);
   write_file_atomically((fs::path(dir_) / "summary.json").string(),
                         [&](std::ostream& o) { o << s.dump(2) << '\n'; });
   finished_ = true;
+}
+
+namespace {
+
+Shape shape_from_summary(const nlohmann::json& j, const std::string& file, const std::string& key) {
+  try {
+    const std::string type = j.at("type").get<std::string>();
+    const auto h = j.at("half_extents");
+    const Vec3 he(h.at(0).get<double>(), h.at(1).get<double>(), h.at(2).get<double>());
+    if (type == "sphere") return Shape::sphere(he.x());
+    if (type == "ellipsoid") return Shape::ellipsoid(he.x(), he.y(), he.z());
+    if (type == "box") return Shape::box(2 * he.x(), 2 * he.y(), 2 * he.z());
+    if (type == "mesh") {
+      const std::string src = j.at("source").get<std::string>();
+      auto mesh = std::make_shared<TriangleMesh>(read_mesh(src));
+      // the scene may have scaled the mesh (uniformly): recover it from the extents
+      Vec3 lo = Vec3::Constant(1e300), hi = Vec3::Constant(-1e300);
+      for (const Vec3& v : mesh->vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
+      const double half = 0.5 * (hi - lo).maxCoeff();
+      const double scale = half > 0 ? he.maxCoeff() / half : 1.0;
+      for (Vec3& v : mesh->vertices) v *= scale;
+      return Shape::from_mesh(std::move(mesh), src);
+    }
+    fail_input(file, key + ".type", "unknown shape type \"" + type + "\"");
+  } catch (const nlohmann::json::exception& e) {
+    fail_input(file, key, std::string("malformed shape: ") + e.what());
+  }
+}
+
+}  // namespace
+
+Results read_results(const std::string& dir, int target_faces) {
+  Results r;
+  const std::string sum_path = (fs::path(dir) / "summary.json").string();
+  {
+    std::ifstream in(sum_path);
+    if (!in) fail_input(sum_path, "", fs::exists(sum_path) ? "cannot be read" : "file not found");
+    try {
+      r.summary = nlohmann::json::parse(in);
+    } catch (const nlohmann::json::exception& e) {
+      fail_input(sum_path, "", std::string("not valid JSON: ") + e.what());
+    }
+  }
+  GltfAnimation& a = r.frames;
+  std::vector<std::string> names;
+  try {
+    const auto& types = r.summary.at("body_types");
+    for (size_t i = 0; i < types.size(); ++i) {
+      const std::string key = "body_types[" + std::to_string(i) + "]";
+      const auto& t = types[i];
+      if (!t.contains("shape"))
+        fail_input(sum_path, key + ".shape", "missing (results written before lrigid recorded shapes)");
+      BodyType bt;
+      bt.name = t.at("name").get<std::string>();
+      bt.shape = shape_from_summary(t.at("shape"), sum_path, key + ".shape");
+      const auto& c = t.at("com");
+      bt.com = Vec3(c.at(0).get<double>(), c.at(1).get<double>(), c.at(2).get<double>());
+      a.types.push_back({bt.name, body_surface(bt, target_faces)});
+      names.push_back(bt.name);
+      for (size_t k = 0; k < t.at("count").get<size_t>(); ++k) a.body_type.push_back(int(i));
+    }
+  } catch (const nlohmann::json::exception& e) {
+    fail_input(sum_path, "body_types", e.what());
+  }
+  const size_t nb = a.body_type.size();
+  const std::string csv = (fs::path(dir) / "trajectories.csv").string();
+  std::ifstream in(csv);
+  if (!in) fail_input(csv, "", fs::exists(csv) ? "cannot be read" : "file not found (needs \"csv\" in output.formats)");
+  std::string line;
+  std::getline(in, line);
+  if (line.rfind("body,type,t,x,y,z,qw,qx,qy,qz", 0) != 0)
+    fail_input(csv, "line 1", "unexpected header \"" + line + "\"");
+  size_t row = 0;
+  while (std::getline(in, line)) {
+    if (line.empty()) continue;
+    const std::string at = "line " + std::to_string(row + 2);
+    const char* p = line.c_str();
+    char* end = nullptr;
+    const unsigned long body = std::strtoul(p, &end, 10);
+    if (end == p || *end != ',') fail_input(csv, at, "malformed row \"" + line + "\"");
+    if (body != row % nb)
+      fail_input(csv, at, "body " + std::to_string(body) + " where body " +
+                              std::to_string(row % nb) + " was expected (rows go frame by frame)");
+    p = std::strchr(end + 1, ',');  // skip the type name
+    if (!p) fail_input(csv, at, "malformed row \"" + line + "\"");
+    double v[8];
+    for (double& x : v) {
+      x = std::strtod(p + 1, &end);
+      if (end == p + 1 || (*end != ',' && *end != '\0')) fail_input(csv, at, "malformed number in \"" + line + "\"");
+      p = end;
+    }
+    if (row % nb == 0) a.times.push_back(v[0]);
+    a.x.emplace_back(v[1], v[2], v[3]);
+    a.q.emplace_back(v[4], v[5], v[6], v[7]);  // Eigen order w, x, y, z
+    ++row;
+  }
+  if (nb == 0 || row == 0) fail_input(csv, "", "no rows");
+  if (row % nb != 0)
+    fail_input(csv, "", std::to_string(row) + " rows is not a whole number of frames of " +
+                            std::to_string(nb) + " bodies (summary.json)");
+  return r;
 }
 
 }  // namespace lrigid

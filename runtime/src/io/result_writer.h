@@ -1,6 +1,9 @@
 // Writes a run's results into a directory (docs/outputs.md):
 //   trajectories.csv   body,type,t,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz (SI, world frame)
 //   bodies.pvd + bodies/bodies_NNNNNN.vtp   ParaView time series of body points with arrays
+//   shapes.pvd + shapes/shapes_NNNNNN.vtp   the same frames as surfaces: each body's shape
+//                      (tessellated, coarser for many bodies) placed at (x, q); with "pvd"
+//   animation.glb      glTF 2.0 baked animation for DCC tools (io/gltf_writer.h); with "glb"
 //   landings.csv       body,type,t,x,y,z of bodies that reached the ground (scenes with ground)
 //   summary.json       counts, timing, effects, stopped bodies and why
 // Nothing appears under its final name until the run completed: files are written under
@@ -12,10 +15,28 @@
 #include <vector>
 
 #include "integrate/simulation.h"
+#include "io/gltf_writer.h"
 #include "model/state.h"
 #include "nlohmann/json.hpp"
 
 namespace lrigid {
+
+// The surface of a body type in its body frame (origin at the centre of mass, shape axes):
+// tessellate(shape, target_faces) shifted by -com. m
+TriangleMesh body_surface(const BodyType& type, int target_faces);
+
+// Faces per body used for the shapes series: fewer for many bodies (docs/outputs.md).
+int shape_faces_for(size_t bodies);
+
+// A results directory read back (for lrigid export-gltf and lrigid render): summary.json and
+// trajectories.csv, with each body type's surface rebuilt from the shape recorded in the summary
+// (`target_faces` as for tessellate()). Throws lrigid::Error(ExitCode::BadInput) naming the file,
+// line or key when something is missing or malformed.
+struct Results {
+  nlohmann::json summary;
+  GltfAnimation frames;  // types with surfaces, body types, times, x, q
+};
+Results read_results(const std::string& dir, int target_faces);
 
 class ResultWriter {
  public:
@@ -32,6 +53,7 @@ class ResultWriter {
 
  private:
   void write_vtp(const State& state, const std::string& path) const;
+  void write_shapes_vtp(const State& state, const std::string& path) const;
   void cleanup();
 
   std::string dir_;
@@ -41,6 +63,9 @@ class ResultWriter {
   std::FILE* csv_ = nullptr;
   std::string csv_tmp_;
   std::string vtp_tmp_dir_;
+  std::string shapes_tmp_dir_;
+  std::vector<TriangleMesh> surfaces_;  // (ntype) for the shapes series
+  GltfAnimation gltf_;                  // frames kept for animation.glb
   std::vector<std::pair<double, std::string>> frames_;
   bool finished_ = false;
 };

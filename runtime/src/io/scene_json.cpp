@@ -312,13 +312,15 @@ Scene parse_scene(const std::string& text, const std::string& path) {
     if (o.has("dir")) s.output.dir = o.string("dir");  // relative to the working directory
     s.output.every = o.positive_or("every", s.output.every);
     if (const json* f = o.find("formats")) {
-      if (!f->is_array()) o.fail("formats", "must be a list of \"csv\" and/or \"pvd\"");
-      s.output.csv = s.output.pvd = false;
+      if (!f->is_array()) o.fail("formats", "must be a list of \"csv\", \"pvd\", \"glb\"");
+      s.output.csv = s.output.pvd = s.output.glb = false;
       for (size_t i = 0; i < f->size(); ++i) {
         const std::string k = (*f)[i].is_string() ? (*f)[i].get<std::string>() : "";
         if (k == "csv") s.output.csv = true;
         else if (k == "pvd") s.output.pvd = true;
-        else o.fail("formats[" + std::to_string(i) + "]", "must be \"csv\" or \"pvd\", got " + Obj::dump((*f)[i]));
+        else if (k == "glb") s.output.glb = true;
+        else o.fail("formats[" + std::to_string(i) + "]",
+                    "must be \"csv\", \"pvd\" or \"glb\", got " + Obj::dump((*f)[i]));
       }
     }
     o.finish();

@@ -39,6 +39,7 @@ struct OutputSpec {
   double every = 0.1;                     // s between written states
   bool csv = true;
   bool pvd = true;
+  bool glb = false;                       // animation.glb (glTF 2.0, docs/outputs.md)
 };
 
 struct Scene {

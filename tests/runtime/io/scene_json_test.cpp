@@ -140,7 +140,7 @@ INSTANTIATE_TEST_SUITE_P(
                   j["bodies"][0]["shape"] = {{"type", "mesh"}, {"file", "no.obj"}};
                 }, "no.obj"},
         BadCase{"bad format", [](json& j) { j["output"]["formats"] = {"csv", "xls"}; },
-                "output.formats[1]: must be \"csv\" or \"pvd\", got \"xls\""},
+                "output.formats[1]: must be \"csv\", \"pvd\" or \"glb\", got \"xls\""},
         BadCase{"turbulence model", [](json& j) { j["turbulence"]["model"] = "les"; },
                 "turbulence.model: must be \"body\" or \"seen\", got \"les\""},
         BadCase{"schema version", [](json& j) { j["version"] = 2; },

@@ -1,0 +1,455 @@
+// lrigid render RESULTS_DIR [-o preview.png] [--frames N --gif out.gif]
+// Draws the bodies of a finished run with VTK (offscreen; needs an X display: xvfb-run -a),
+// over a slice of k (or streamlines of U) from the run's grid, the ground otherwise.
+#include <dlfcn.h>
+#include <unistd.h>
+#include <vtkActor.h>
+#include <vtkCamera.h>
+#include <vtkCellArray.h>
+#include <vtkCellData.h>
+#include <vtkCutter.h>
+#include <vtkDataArray.h>
+#include <vtkImageData.h>
+#include <vtkLineSource.h>
+#include <vtkLookupTable.h>
+#include <vtkNew.h>
+#include <vtkPNGWriter.h>
+#include <vtkPlane.h>
+#include <vtkPlaneSource.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkPolyDataMapper.h>
+#include <vtkProperty.h>
+#include <vtkRenderWindow.h>
+#include <vtkRenderer.h>
+#include <vtkScalarBarActor.h>
+#include <vtkSmartPointer.h>
+#include <vtkStreamTracer.h>
+#include <vtkTextActor.h>
+#include <vtkTextProperty.h>
+#include <vtkUnsignedCharArray.h>
+#include <vtkWindowToImageFilter.h>
+#include <vtkXMLImageDataReader.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+#include "commands.h"
+#include "io/result_writer.h"
+#include "util/error.h"
+
+namespace lrigid::app {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct RenderArgs {
+  std::string dir;
+  std::string out;
+  std::string gif;
+  int frames = 0;
+  int width = 1280, height = 720;
+  double time = -1;  // s; < 0: the last frame
+  std::string context = "auto";
+  double body_scale = 0;  // 0: enlarge tiny bodies so they stay visible
+  bool quiet = false;
+};
+
+// VTK's X window aborts the process when it cannot open a display: check first
+void require_display() {
+  const char* d = std::getenv("DISPLAY");
+  const std::string hint =
+      "lrigid render draws with VTK/OpenGL and needs an X display; without one run it under a "
+      "virtual display: xvfb-run -a lrigid render ...";
+  if (!d || !*d) throw Error(ExitCode::Runtime, "no X display (DISPLAY is not set). " + hint);
+  void* x11 = dlopen("libX11.so.6", RTLD_LAZY | RTLD_LOCAL);
+  if (!x11) return;  // let VTK try
+  using OpenFn = void* (*)(const char*);
+  using CloseFn = int (*)(void*);
+  auto open = reinterpret_cast<OpenFn>(dlsym(x11, "XOpenDisplay"));
+  auto close = reinterpret_cast<CloseFn>(dlsym(x11, "XCloseDisplay"));
+  bool ok = true;
+  if (open && close) {
+    void* dpy = open(nullptr);
+    ok = dpy != nullptr;
+    if (dpy) close(dpy);
+  }
+  dlclose(x11);
+  if (!ok) throw Error(ExitCode::Runtime, std::string("cannot open X display \"") + d + "\". " + hint);
+}
+
+void type_colour(size_t i, unsigned char rgb[3]) {
+  static const unsigned char kPalette[][3] = {{230, 140, 50}, {60, 130, 220}, {110, 190, 80},
+                                              {210, 80, 110}, {150, 110, 210}, {220, 200, 80}};
+  for (int k = 0; k < 3; ++k) rgb[k] = kPalette[i % 6][k];
+}
+
+// all bodies of frame f as one surface, coloured by type
+vtkSmartPointer<vtkPolyData> bodies_at(const GltfAnimation& a, size_t f,
+                                       const std::vector<double>& scale) {
+  const size_t nb = a.bodies();
+  auto pts = vtkSmartPointer<vtkPoints>::New();
+  auto polys = vtkSmartPointer<vtkCellArray>::New();
+  auto col = vtkSmartPointer<vtkUnsignedCharArray>::New();
+  col->SetName("colour");
+  col->SetNumberOfComponents(3);
+  for (size_t b = 0; b < nb; ++b) {
+    const TriangleMesh& s = a.types[size_t(a.body_type[b])].surface;
+    const Mat3 R = a.q[f * nb + b].normalized().toRotationMatrix();
+    const Vec3& x = a.x[f * nb + b];
+    const double k = scale[size_t(a.body_type[b])];
+    const vtkIdType p0 = pts->GetNumberOfPoints();
+    for (const Vec3& v : s.vertices) {
+      const Vec3 p = R * (k * v) + x;
+      pts->InsertNextPoint(p.data());
+    }
+    unsigned char rgb[3];
+    type_colour(size_t(a.body_type[b]), rgb);
+    for (const auto& tri : s.faces) {
+      const vtkIdType ids[3] = {p0 + tri[0], p0 + tri[1], p0 + tri[2]};
+      polys->InsertNextCell(3, ids);
+      col->InsertNextTypedTuple(rgb);
+    }
+  }
+  auto poly = vtkSmartPointer<vtkPolyData>::New();
+  poly->SetPoints(pts);
+  poly->SetPolys(polys);
+  poly->GetCellData()->SetScalars(col);
+  return poly;
+}
+
+// the grid's first (or only) .vti: a .pvd names its files relative to itself
+std::string first_vti(const std::string& field) {
+  if (fs::path(field).extension() != ".pvd") return field;
+  std::ifstream in(field);
+  if (!in) fail_input(field, "", "cannot be read (summary.json \"field\")");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  std::smatch m;
+  const std::string text = ss.str();
+  if (!std::regex_search(text, m, std::regex("file=\"([^\"]+)\"")))
+    fail_input(field, "", "no DataSet file in the collection");
+  return (fs::path(field).parent_path() / m[1].str()).string();
+}
+
+struct Bounds {
+  Vec3 lo = Vec3::Constant(1e300), hi = Vec3::Constant(-1e300);
+  void add(const Vec3& p) { lo = lo.cwiseMin(p), hi = hi.cwiseMax(p); }
+  double diag() const { return (hi - lo).norm(); }
+};
+
+class Renderer {
+ public:
+  Renderer(const RenderArgs& args, const Results& r) : args_(args), r_(r) {
+    const GltfAnimation& a = r.frames;
+    for (const Vec3& x : a.x) box_.add(x);
+    // per body type: keep at least ~5 pixels per body unless told otherwise
+    const double extent = std::max(box_.diag(), 1e-9);
+    double reach = 0;
+    for (const auto& t : a.types) {
+      Bounds b;
+      for (const Vec3& v : t.surface.vertices) b.add(v);
+      const double size = std::max(b.diag(), 1e-12);
+      const double k = args.body_scale > 0 ? args.body_scale
+                                           : std::max(1.0, 5.0 * extent / (args.width * size));
+      scale_.push_back(k);
+      reach = std::max(reach, 0.5 * k * size);
+    }
+    box_.lo -= Vec3::Constant(reach);
+    box_.hi += Vec3::Constant(reach);
+
+    ren_->GradientBackgroundOn();
+    ren_->SetBackground(0.93, 0.94, 0.96);
+    ren_->SetBackground2(0.62, 0.68, 0.78);
+    win_->SetOffScreenRendering(1);
+    win_->SetSize(args.width, args.height);
+    win_->AddRenderer(ren_);
+    add_context();
+    body_mapper_->SetScalarModeToUseCellData();
+    body_mapper_->SetColorModeToDirectScalars();
+    body_actor_->SetMapper(body_mapper_);
+    body_actor_->GetProperty()->SetSpecular(0.2);
+    ren_->AddActor(body_actor_);
+    text_->GetTextProperty()->SetFontSize(std::max(12, args.height / 36));
+    text_->GetTextProperty()->SetColor(0.1, 0.1, 0.15);
+    text_->SetPosition(12, 10);
+    ren_->AddActor2D(text_);
+    // fixed camera over the whole run: bodies move, the view does not
+    vtkCamera* cam = ren_->GetActiveCamera();
+    const Vec3 c = 0.5 * (box_.lo + box_.hi);
+    cam->SetFocalPoint(c.data());
+    const Vec3 eye = c + Vec3(0.9, -1.6, 0.8).normalized();
+    cam->SetPosition(eye.data());
+    cam->SetViewUp(0, 0, 1);
+    double b[6] = {box_.lo.x(), box_.hi.x(), box_.lo.y(), box_.hi.y(), box_.lo.z(), box_.hi.z()};
+    ren_->ResetCamera(b);
+    cam->Zoom(1.3);
+  }
+
+
+  void draw(size_t f, const std::string& png) {
+    const GltfAnimation& a = r_.frames;
+    body_mapper_->SetInputData(bodies_at(a, f, scale_));
+    char buf[128];
+    std::snprintf(buf, sizeof buf, "t = %.2f s   %zu bodies", a.times[f], a.bodies());
+    std::string label = buf;
+    for (size_t i = 0; i < a.types.size(); ++i)
+      if (scale_[i] > 1.01) {
+        std::snprintf(buf, sizeof buf, "   %s drawn %.0fx enlarged", a.types[i].name.c_str(),
+                      scale_[i]);
+        label += buf;
+      }
+    text_->SetInput(label.c_str());
+    win_->Render();
+    vtkNew<vtkWindowToImageFilter> grab;
+    grab->SetInput(win_);
+    grab->ReadFrontBufferOff();
+    grab->Update();
+    const std::string tmp = png + ".tmp" + std::to_string(::getpid()) + ".png";
+    vtkNew<vtkPNGWriter> w;
+    w->SetFileName(tmp.c_str());
+    w->SetInputConnection(grab->GetOutputPort());
+    w->Write();
+    std::error_code ec;
+    if (!fs::exists(tmp) || fs::file_size(tmp, ec) == 0) {
+      fs::remove(tmp, ec);
+      throw Error(ExitCode::Output, where(png, "", "cannot write the image"));
+    }
+    fs::rename(tmp, png, ec);
+    if (ec) throw Error(ExitCode::Output, where(png, "", "cannot move into place: " + ec.message()));
+  }
+
+ private:
+  void add_context() {
+    const auto& s = r_.summary;
+    const bool has_field = s.contains("field") && s["field"].is_string();
+    std::string mode = args_.context;
+    if (mode == "auto") mode = has_field ? "k" : "ground";
+    if ((mode == "k" || mode == "streamlines") && !has_field)
+      throw Error(ExitCode::Usage, where((fs::path(args_.dir) / "summary.json").string(), "field",
+                                         "--context " + mode + " needs a grid run (uniform flow has none)"));
+    if (mode == "k" || mode == "streamlines") {
+      const std::string vti = first_vti(s["field"].get<std::string>());
+      if (!fs::exists(vti)) fail_input(vti, "", "grid file not found (summary.json \"field\")");
+      reader_->SetFileName(vti.c_str());
+      reader_->Update();
+      vtkImageData* img = reader_->GetOutput();
+      double gb[6];
+      img->GetBounds(gb);
+      for (int k = 0; k < 3; ++k) box_.add(Vec3(gb[0], gb[2], gb[4])), box_.add(Vec3(gb[1], gb[3], gb[5]));
+      if (mode == "k") add_k_slice(img, gb);
+      else add_streamlines(img, gb);
+      return;
+    }
+    if (mode == "ground" && s.contains("ground_z") && s["ground_z"].is_number()) {
+      const double z = s["ground_z"].get<double>();
+      const Vec3 d = box_.hi - box_.lo;
+      const double m = 0.15 * std::max(d.x(), d.y());
+      vtkNew<vtkPlaneSource> plane;
+      plane->SetOrigin(box_.lo.x() - m, box_.lo.y() - m, z);
+      plane->SetPoint1(box_.hi.x() + m, box_.lo.y() - m, z);
+      plane->SetPoint2(box_.lo.x() - m, box_.hi.y() + m, z);
+      plane->SetResolution(10, 10);
+      vtkNew<vtkPolyDataMapper> pm;
+      pm->SetInputConnection(plane->GetOutputPort());
+      vtkNew<vtkActor> pa;
+      pa->SetMapper(pm);
+      pa->GetProperty()->SetColor(0.78, 0.80, 0.74);
+      pa->GetProperty()->LightingOff();
+      pa->GetProperty()->EdgeVisibilityOn();
+      pa->GetProperty()->SetEdgeColor(0.62, 0.64, 0.58);
+      ren_->AddActor(pa);
+      box_.add(Vec3(box_.lo.x() - m, box_.lo.y() - m, z));
+      box_.add(Vec3(box_.hi.x() + m, box_.hi.y() + m, z));
+    } else if (mode != "ground" && mode != "none") {
+      throw Error(ExitCode::Usage, "--context must be auto, k, streamlines, ground or none, got \"" +
+                                       args_.context + "\"");
+    }
+  }
+
+  // horizontal slice of k at a quarter of the grid's height (below most bodies)
+  void add_k_slice(vtkImageData* img, const double gb[6]) {
+    if (!img->GetPointData()->GetArray("k")) return;
+    vtkNew<vtkPlane> plane;
+    plane->SetOrigin(0.5 * (gb[0] + gb[1]), 0.5 * (gb[2] + gb[3]), gb[4] + 0.25 * (gb[5] - gb[4]));
+    plane->SetNormal(0, 0, 1);
+    vtkNew<vtkCutter> cut;
+    cut->SetCutFunction(plane);
+    cut->SetInputData(img);
+    cut->Update();
+    cut->GetOutput()->GetPointData()->SetActiveScalars("k");
+    double range[2];
+    img->GetPointData()->GetArray("k")->GetRange(range);
+    vtkNew<vtkLookupTable> lut;
+    lut->SetHueRange(0.66, 0.0);
+    lut->SetTableRange(range);
+    lut->Build();
+    vtkNew<vtkPolyDataMapper> m;
+    m->SetInputConnection(cut->GetOutputPort());
+    m->SetLookupTable(lut);
+    m->SetScalarRange(range);
+    m->SetScalarModeToUsePointData();
+    vtkNew<vtkActor> actor;
+    actor->SetMapper(m);
+    actor->GetProperty()->SetOpacity(0.85);
+    actor->GetProperty()->LightingOff();
+    ren_->AddActor(actor);
+    vtkNew<vtkScalarBarActor> bar;
+    bar->SetLookupTable(lut);
+    bar->SetTitle("k (m^2/s^2)");
+    bar->SetNumberOfLabels(4);
+    bar->SetMaximumWidthInPixels(90);
+    bar->SetMaximumHeightInPixels(args_.height / 2);
+    bar->GetTitleTextProperty()->SetColor(0.1, 0.1, 0.15);
+    bar->GetLabelTextProperty()->SetColor(0.1, 0.1, 0.15);
+    ren_->AddActor2D(bar);
+  }
+
+  // streamlines of U seeded along a line across the inflow side
+  void add_streamlines(vtkImageData* img, const double gb[6]) {
+    if (!img->GetPointData()->GetArray("U")) return;
+    img->GetPointData()->SetActiveVectors("U");
+    vtkNew<vtkLineSource> seeds;
+    const double zc = gb[4] + 0.3 * (gb[5] - gb[4]);
+    seeds->SetPoint1(gb[0] + 0.02 * (gb[1] - gb[0]), gb[2] + 0.05 * (gb[3] - gb[2]), zc);
+    seeds->SetPoint2(gb[0] + 0.02 * (gb[1] - gb[0]), gb[3] - 0.05 * (gb[3] - gb[2]), zc);
+    seeds->SetResolution(24);
+    vtkNew<vtkStreamTracer> st;
+    st->SetInputData(img);
+    st->SetSourceConnection(seeds->GetOutputPort());
+    st->SetIntegrationDirectionToForward();
+    st->SetMaximumPropagation(4 * (gb[1] - gb[0] + gb[3] - gb[2] + gb[5] - gb[4]));
+    st->SetIntegratorTypeToRungeKutta45();
+    vtkNew<vtkPolyDataMapper> m;
+    m->SetInputConnection(st->GetOutputPort());
+    m->ScalarVisibilityOff();
+    vtkNew<vtkActor> actor;
+    actor->SetMapper(m);
+    actor->GetProperty()->SetColor(0.25, 0.3, 0.45);
+    actor->GetProperty()->SetLineWidth(1.5);
+    ren_->AddActor(actor);
+  }
+
+  const RenderArgs& args_;
+  const Results& r_;
+  Bounds box_;
+  std::vector<double> scale_;  // (ntype) drawing scale of each body type
+  vtkNew<vtkRenderer> ren_;
+  vtkNew<vtkRenderWindow> win_;
+  vtkNew<vtkXMLImageDataReader> reader_;
+  vtkNew<vtkPolyDataMapper> body_mapper_;
+  vtkNew<vtkActor> body_actor_;
+  vtkNew<vtkTextActor> text_;
+};
+
+std::string shell_quote(const std::string& s) {
+  std::string q = "'";
+  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+size_t frame_at(const std::vector<double>& times, double t) {
+  if (t < 0) return times.size() - 1;
+  size_t best = 0;
+  for (size_t i = 1; i < times.size(); ++i)
+    if (std::abs(times[i] - t) < std::abs(times[best] - t)) best = i;
+  return best;
+}
+
+void render(RenderArgs a) {
+  if (a.out.empty() && a.gif.empty()) a.out = (fs::path(a.dir) / "preview.png").string();
+  if (!a.gif.empty() && a.frames < 2) a.frames = 60;
+  if (a.frames > 0 && a.gif.empty())
+    throw Error(ExitCode::Usage, "--frames needs --gif OUT.gif (where to write the animation)");
+  std::string convert;
+  if (!a.gif.empty()) {
+    // ImageMagick assembles the frames (VTK has no GIF writer)
+    for (const char* p : {"/usr/bin/convert", "/usr/bin/convert-im6.q16"})
+      if (convert.empty() && fs::exists(p)) convert = p;
+    if (convert.empty())
+      throw Error(ExitCode::Runtime, "--gif needs ImageMagick's convert (Debian package "
+                                     "imagemagick; scripts/install-deps installs it)");
+  }
+  require_display();
+  const Results r = read_results(a.dir, 80);
+  Renderer ren(a, r);
+  const auto& times = r.frames.times;
+  if (!a.out.empty()) {
+    ren.draw(frame_at(times, a.time), a.out);
+    if (!a.quiet) std::fprintf(stderr, "lrigid: wrote %s\n", a.out.c_str());
+  }
+  if (!a.gif.empty()) {
+    const std::string tmp_dir = a.gif + ".frames.tmp" + std::to_string(::getpid());
+    std::error_code ec;
+    fs::create_directories(tmp_dir, ec);
+    if (ec) throw Error(ExitCode::Output, where(tmp_dir, "", "cannot create: " + ec.message()));
+    struct Cleanup {
+      std::string d;
+      ~Cleanup() {
+        std::error_code e;
+        fs::remove_all(d, e);
+      }
+    } cleanup{tmp_dir};
+    const int n = a.frames;
+    const size_t nf = times.size();
+    for (int i = 0; i < n; ++i) {
+      const size_t f = nf == 1 ? 0 : size_t(std::lround(double(i) * double(nf - 1) / (n - 1)));
+      char name[32];
+      std::snprintf(name, sizeof name, "frame_%05d.png", i);
+      ren.draw(f, (fs::path(tmp_dir) / name).string());
+      if (!a.quiet && isatty(STDERR_FILENO))
+        std::fprintf(stderr, "\rlrigid: frame %d / %d", i + 1, n);
+    }
+    if (!a.quiet && isatty(STDERR_FILENO)) std::fputc('\n', stderr);
+    // play at simulated speed, within what GIF viewers honour (2..50 hundredths of a second)
+    const double span = nf > 1 ? times.back() - times.front() : 1.0;
+    const int delay = std::clamp(int(std::lround(100 * span / std::max(1, n - 1))), 2, 50);
+    const std::string tmp_gif = a.gif + ".tmp" + std::to_string(::getpid()) + ".gif";
+    const std::string cmd = shell_quote(convert) + " -delay " + std::to_string(delay) +
+                            " -loop 0 " + shell_quote(tmp_dir) + "/frame_*.png -layers Optimize " +
+                            shell_quote(tmp_gif);
+    if (std::system(cmd.c_str()) != 0 || !fs::exists(tmp_gif)) {
+      fs::remove(tmp_gif, ec);
+      throw Error(ExitCode::Output, where(a.gif, "", "ImageMagick could not assemble the GIF"));
+    }
+    fs::rename(tmp_gif, a.gif, ec);
+    if (ec) throw Error(ExitCode::Output, where(a.gif, "", "cannot move into place: " + ec.message()));
+    if (!a.quiet) std::fprintf(stderr, "lrigid: wrote %s (%d frames)\n", a.gif.c_str(), n);
+  }
+}
+
+}  // namespace
+
+void add_render_command(CLI::App& app) {
+  auto args = std::make_shared<RenderArgs>();
+  auto* cmd = app.add_subcommand(
+      "render", "Draw a run's bodies to a PNG (and a GIF) with VTK; needs X: use xvfb-run -a");
+  cmd->add_option("results", args->dir, "Results directory of lrigid run")
+      ->required()
+      ->check(CLI::ExistingDirectory);
+  cmd->add_option("-o,--output", args->out, "PNG of one frame (default RESULTS/preview.png)");
+  cmd->add_option("--time", args->time, "Time of the PNG's frame, s (default: the last)");
+  cmd->add_option("--frames", args->frames, "Frames of the animation (default 60 with --gif)")
+      ->check(CLI::Range(2, 100000));
+  cmd->add_option("--gif", args->gif, "Animated GIF to write (ImageMagick assembles it)");
+  cmd->add_option("--width", args->width, "Image width, pixels")->check(CLI::Range(16, 8192));
+  cmd->add_option("--height", args->height, "Image height, pixels")->check(CLI::Range(16, 8192));
+  cmd->add_option("--context", args->context,
+                  "What to draw behind the bodies: auto (k slice for grid runs, else the "
+                  "ground), k, streamlines, ground, none");
+  cmd->add_option("--body-scale", args->body_scale,
+                  "Draw bodies this many times larger (default: enlarge tiny ones to ~5 px)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_flag("--quiet", args->quiet, "Print nothing but errors");
+  cmd->callback([args] { render(*args); });
+}
+
+}  // namespace lrigid::app

@@ -1,0 +1,42 @@
+// Baked animation of the bodies as glTF 2.0 binary (.glb) for DCC tools (Blender, Houdini):
+//  - one mesh per body type (its surface in the body frame, origin at the centre of mass),
+//    stored once and shared by every body of that type;
+//  - one node per body, child of a root node "lrigid_world_z_up", with a translation and a
+//    rotation channel sampled at the output times (LINEAR: lerp / slerp between samples);
+//  - axes: the simulation is Z-up; glTF is Y-up. Body nodes keep the simulation's world frame
+//    (translation = x, rotation = q, metres), and the root node carries a rotation of -90 degrees
+//    about x that maps Z-up onto Y-up, so importers that convert Y-up back (Blender) show the
+//    scene with z up, as in the simulation.
+// See docs/outputs.md for sizes and timings at 10,000 bodies.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "body/shape.h"
+#include "util/types.h"
+
+namespace lrigid {
+
+struct GltfBodyType {
+  std::string name;
+  TriangleMesh surface;  // body frame (origin at the centre of mass), m
+};
+
+// Frame-major samples: entry [frame * nbody + body].
+struct GltfAnimation {
+  std::vector<GltfBodyType> types;
+  std::vector<int> body_type;  // (nbody) index into types
+  std::vector<double> times;   // (nframe) s, increasing
+  std::vector<Vec3> x;         // (nframe * nbody) centre of mass, world, m
+  std::vector<Quat> q;         // (nframe * nbody) orientation, body -> world
+  size_t bodies() const { return body_type.size(); }
+};
+
+// Writes `anim` to `path` (temporary name, then rename). Throws lrigid::Error(ExitCode::Output)
+// naming the path on failure, ExitCode::Usage for inconsistent sizes or no frames.
+void write_gltf(const std::string& path, const GltfAnimation& anim);
+
+// The root node's rotation (glTF order x, y, z, w): -90 degrees about x, Z-up -> Y-up.
+constexpr double kGltfRootRotation[4] = {-0.70710678118654752, 0, 0, 0.70710678118654752};
+
+}  // namespace lrigid

@@ -1,0 +1,219 @@
+// glTF export: a run's animation.glb (and lrigid export-gltf's rebuild from the results files)
+// read back with tinygltf must reproduce trajectories.csv at every output time.
+#include <gtest/gtest.h>
+#include <tiny_gltf.h>
+#include <unistd.h>
+
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "integrate/simulation.h"
+#include "io/gltf_writer.h"
+#include "io/result_writer.h"
+#include "support/fixture.h"
+#include "util/error.h"
+
+namespace lrigid {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Row {
+  double t;
+  Vec3 x;
+  Quat q;
+};
+
+// trajectories.csv by body
+std::map<int, std::vector<Row>> read_csv(const std::string& path) {
+  std::ifstream in(path);
+  std::string line;
+  std::getline(in, line);
+  std::map<int, std::vector<Row>> rows;
+  while (std::getline(in, line)) {
+    std::stringstream ss(line);
+    std::string cell;
+    std::vector<std::string> c;
+    while (std::getline(ss, cell, ',')) c.push_back(cell);
+    Row r;
+    r.t = std::stod(c[2]);
+    r.x = Vec3(std::stod(c[3]), std::stod(c[4]), std::stod(c[5]));
+    r.q = Quat(std::stod(c[6]), std::stod(c[7]), std::stod(c[8]), std::stod(c[9]));
+    rows[std::stoi(c[0])].push_back(r);
+  }
+  return rows;
+}
+
+template <typename T>
+std::vector<T> accessor_data(const tinygltf::Model& m, int index, int comps) {
+  const tinygltf::Accessor& a = m.accessors[size_t(index)];
+  const tinygltf::BufferView& v = m.bufferViews[size_t(a.bufferView)];
+  const unsigned char* p = m.buffers[size_t(v.buffer)].data.data() + v.byteOffset + a.byteOffset;
+  std::vector<T> out(a.count * size_t(comps));
+  std::memcpy(out.data(), p, out.size() * sizeof(T));
+  return out;
+}
+
+// a free-flight run of spheres and boxes, tumbling (no effects: x = x0 + v t, torque-free spin)
+Scene tumbling_scene(const std::string& dir) {
+  Scene s = test::sphere_scene(0.01, 500, 1000, 1e-6, 3);
+  s.bodies[0].velocity = Vec3(0.3, 0.0, -0.2);
+  s.bodies[0].angular_velocity = Vec3(1.0, 2.0, 0.5);
+  BodySpec box = s.bodies[0];
+  box.name = "card";
+  box.shape = Shape::box(0.09, 0.05, 0.004);
+  box.count = 4;
+  box.spawn_in_box = true;
+  box.box_lo = Vec3(0, 0, 1);
+  box.box_hi = Vec3(1, 1, 2);
+  box.random_orientation = true;
+  box.angular_velocity = Vec3(-3.0, 0.7, 5.0);
+  s.bodies.push_back(box);
+  s.dt = 0.01;
+  s.duration = 1.0;
+  s.output.dir = dir;
+  s.output.every = 0.1;
+  s.output.csv = true;
+  s.output.pvd = true;
+  s.output.glb = true;
+  return s;
+}
+
+std::string run_to(const std::string& dir) {
+  fs::remove_all(dir);
+  const Scene scene = tumbling_scene(dir);
+  const Model model = test::compile(scene);
+  State st = initial_state(model, scene);
+  ResultWriter w(dir, model, scene.output);
+  RunOptions opt;
+  opt.every = scene.output.every;
+  opt.on_output = [&](const State& s) { w.write_frame(s); };
+  const RunStats stats = simulate(model, &st, opt);
+  w.finish(st, stats, nlohmann::json::object());
+  return dir;
+}
+
+// every body node's channels against trajectories.csv
+void expect_matches_csv(const std::string& glb, const std::string& csv, size_t ntypes) {
+  tinygltf::TinyGLTF loader;
+  tinygltf::Model m;
+  std::string err, warn;
+  ASSERT_TRUE(loader.LoadBinaryFromFile(&m, &err, &warn, glb)) << err;
+  const auto rows = read_csv(csv);
+  const size_t nb = rows.size();
+  ASSERT_EQ(nb, 7u);
+  ASSERT_EQ(m.nodes.size(), nb + 1);
+  ASSERT_EQ(m.meshes.size(), ntypes);
+  ASSERT_EQ(m.scenes.size(), 1u);
+  ASSERT_EQ(m.scenes[0].nodes, std::vector<int>{0});
+
+  // root: Z-up world -> glTF Y-up: the simulation's +z must become +y, +y become -z
+  const tinygltf::Node& root = m.nodes[0];
+  ASSERT_EQ(root.rotation.size(), 4u);
+  const Quat rq(root.rotation[3], root.rotation[0], root.rotation[1], root.rotation[2]);
+  EXPECT_TRUE(test::near(rq * Vec3(0, 0, 1), Vec3(0, 1, 0), 1e-12));
+  EXPECT_TRUE(test::near(rq * Vec3(0, 1, 0), Vec3(0, 0, -1), 1e-12));
+  EXPECT_EQ(root.children.size(), nb);
+
+  ASSERT_EQ(m.animations.size(), 1u);
+  const tinygltf::Animation& an = m.animations[0];
+  EXPECT_EQ(an.channels.size(), 2 * nb);
+  size_t checked = 0;
+  for (const auto& ch : an.channels) {
+    const int b = ch.target_node - 1;
+    ASSERT_TRUE(rows.count(b)) << "node " << ch.target_node;
+    const auto& r = rows.at(b);
+    const tinygltf::AnimationSampler& s = an.samplers[size_t(ch.sampler)];
+    EXPECT_EQ(s.interpolation, "LINEAR");
+    const auto t = accessor_data<float>(m, s.input, 1);
+    ASSERT_EQ(t.size(), r.size());
+    for (size_t f = 0; f < r.size(); ++f) EXPECT_NEAR(t[f], r[f].t, 1e-6);
+    if (ch.target_path == "translation") {
+      const auto x = accessor_data<float>(m, s.output, 3);
+      for (size_t f = 0; f < r.size(); ++f)
+        EXPECT_TRUE(test::near(Vec3(x[3 * f], x[3 * f + 1], x[3 * f + 2]), r[f].x, 1e-6));
+    } else {
+      ASSERT_EQ(ch.target_path, "rotation");
+      const auto q = accessor_data<float>(m, s.output, 4);  // x, y, z, w
+      for (size_t f = 0; f < r.size(); ++f) {
+        const Quat g(q[4 * f + 3], q[4 * f], q[4 * f + 1], q[4 * f + 2]);
+        // the same rotation (q and -q are one rotation): compare the rotated axes
+        EXPECT_TRUE(test::near(g.toRotationMatrix(), r[f].q.toRotationMatrix(), 2e-6));
+        if (f > 0) {  // samples stay in one hemisphere so slerp takes the short way
+          const Quat p(q[4 * f - 1], q[4 * f - 4], q[4 * f - 3], q[4 * f - 2]);
+          EXPECT_GE(p.dot(g), 0.0);
+        }
+      }
+    }
+    // the static pose of the node is the first sample
+    ++checked;
+  }
+  EXPECT_EQ(checked, 2 * nb);
+  // the rotation really changes over the run (the test would not see a frozen export otherwise)
+  EXPECT_GT(rows.at(0).back().q.angularDistance(rows.at(0).front().q), 0.5);
+
+  // meshes are in the body frame: the box's vertices span exactly its half sizes
+  for (size_t i = 0; i < m.meshes.size(); ++i) {
+    const auto& prim = m.meshes[i].primitives.at(0);
+    const auto& acc = m.accessors[size_t(prim.attributes.at("POSITION"))];
+    ASSERT_EQ(acc.maxValues.size(), 3u);
+    if (m.meshes[i].name == "card") {
+      EXPECT_NEAR(acc.maxValues[0], 0.045, 1e-7);
+      EXPECT_NEAR(acc.minValues[1], -0.025, 1e-7);
+      EXPECT_NEAR(acc.maxValues[2], 0.002, 1e-7);
+    } else {
+      const auto p = accessor_data<float>(m, prim.attributes.at("POSITION"), 3);
+      for (size_t k = 0; k < p.size(); k += 3)
+        EXPECT_NEAR(Vec3(p[k], p[k + 1], p[k + 2]).norm(), 0.01, 1e-7);
+    }
+    EXPECT_GT(m.accessors[size_t(prim.indices)].count, 0u);
+  }
+  for (size_t b = 1; b <= nb; ++b) EXPECT_EQ(m.nodes[b].mesh, b <= 3 ? 0 : 1);
+}
+
+TEST(Gltf, RunAnimationMatchesTrajectories) {
+  const std::string dir = ::testing::TempDir() + "gltf_run_" + std::to_string(::getpid());
+  run_to(dir);
+  expect_matches_csv(dir + "/animation.glb", dir + "/trajectories.csv", 2);
+  // the shapes series came along with the points
+  EXPECT_TRUE(fs::exists(dir + "/shapes.pvd"));
+  EXPECT_TRUE(fs::exists(dir + "/shapes/shapes_000010.vtp"));
+  // no temporary names left behind
+  for (const auto& e : fs::directory_iterator(dir))
+    EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos) << e.path();
+  fs::remove_all(dir);
+}
+
+TEST(Gltf, ExportFromResultsFilesMatchesTrajectories) {
+  const std::string dir = ::testing::TempDir() + "gltf_export_" + std::to_string(::getpid());
+  run_to(dir);
+  const Results r = read_results(dir, 320);
+  EXPECT_EQ(r.frames.times.size(), 11u);
+  write_gltf(dir + "/exported.glb", r.frames);
+  expect_matches_csv(dir + "/exported.glb", dir + "/trajectories.csv", 2);
+  fs::remove_all(dir);
+}
+
+TEST(Gltf, BadInputIsRefused) {
+  const std::string dir = ::testing::TempDir();
+  GltfAnimation a;
+  a.types.push_back({"s", {}});
+  a.body_type = {0};
+  EXPECT_THROW(write_gltf(dir + "/none.glb", a), Error);  // no frames
+  a.times = {0.0};
+  a.x = {Vec3::Zero()};
+  EXPECT_THROW(write_gltf(dir + "/none.glb", a), Error);  // q missing
+  EXPECT_FALSE(fs::exists(dir + "/none.glb"));
+  try {
+    read_results(dir + "/no_such_results", 20);
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("summary.json: file not found"), std::string::npos);
+  }
+}
+
+}  // namespace
+}  // namespace lrigid
