@@ -54,6 +54,7 @@ CASES = {
                  rel=[(0.5, 0.2, 0.12), (0.5, 0.12, 0.15), (0.5, 0.28, 0.15)]),
     "windCourtyard": dict(D=5e-4, spacing=1.0, TOL=1.0, obstacle="buildings", xout=109.5,
                           patches="ground buildings outlet inlet top", end=12.0, dt=5e-3,
+                          libs='"libatmosphericModels.so"',  # the inlet's ABL condition
                           write=0.2, U1d=5.0, z1d=12.0,
                           pts=[(x, y, z) for x in (-20.0, -8.0) for z in (8.0, 14.0)
                                for y in (-15.0, -4.0, 0.0, 6.0, 15.0)],
@@ -69,7 +70,7 @@ def parcel_case(st, base, name, points, dispersion, cfg):
     subst = {"@INTEGRATION@": "analytical", "@RHOP@": repr(RHO_P), "@DIAM@": repr(cfg["D"]),
              "@DISPERSION@": dispersion, "@RHOF@": repr(RHO_F), "@NU@": repr(NU),
              "@ENDTIME@": repr(cfg["end"]), "@DT@": repr(cfg["dt"]), "@WRITE@": repr(write),
-             "@PATCHES@": cfg["patches"]}
+             "@PATCHES@": cfg["patches"], "@LIBS@": cfg.get("libs", "")}
     for f in ("constant/kinematicCloudProperties", "constant/transportProperties",
               "system/controlDict"):
         p = os.path.join(case, f)
