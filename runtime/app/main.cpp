@@ -2,9 +2,11 @@
 #include <iostream>
 
 #include "commands.h"
+#include "signals.h"
 #include "util/error.h"
 
 int main(int argc, char** argv) {
+  lrigid::app::install_signal_cleanup();  // interrupted runs leave no temporary files
   CLI::App app{"lrigid: rigid bodies immersed in turbulent flow (Langevin Rigid). Units are SI."};
   app.set_version_flag("--version", std::string("lrigid ") + LRIGID_VERSION);
   app.require_subcommand(1);

@@ -1,0 +1,110 @@
+// Grid hard cases (issue 9): a flow that carries bodies through a slab where k = 0 and
+// epsilon = 0, a slab where k = 0 but epsilon > 0 (eps/k infinite), past a block of invalid
+// grid points, and out of the grid. Every body must stay finite and bounded while inside and
+// end "exited" (never "failed") at a position inside the grid box.
+#include <gtest/gtest.h>
+
+#include "stability/hard_case.h"
+
+namespace lrigid {
+namespace {
+
+constexpr double kRhoAir = 1.204, kNuAir = 1.5e-5;
+const Vec3 kU(2, 0, 0);
+
+// [0, 2] x [0, 1] x [0, 1] m, spacing 0.1 m
+FluidField hard_grid() {
+  GridGeometry g;
+  g.n[0] = 21;
+  g.n[1] = 11;
+  g.n[2] = 11;
+  g.spacing = Vec3(0.1, 0.1, 0.1);
+  RawGridFrame f;
+  const size_t n = g.points();
+  f.U.resize(3 * n);
+  f.k.resize(n);
+  f.epsilon.resize(n);
+  f.valid.resize(n);
+  for (int kz = 0; kz < g.n[2]; ++kz)
+    for (int jy = 0; jy < g.n[1]; ++jy)
+      for (int ix = 0; ix < g.n[0]; ++ix) {
+        const size_t p = ix + size_t(g.n[0]) * (jy + size_t(g.n[1]) * kz);
+        const double x = 0.1 * ix, y = 0.1 * jy;
+        for (int a = 0; a < 3; ++a) f.U[3 * p + a] = float(kU[a]);
+        f.k[p] = 0.3f;
+        f.epsilon[p] = 1.0f;
+        if (x >= 0.55 && x <= 0.85) f.k[p] = f.epsilon[p] = 0.f;  // no turbulence at all
+        if (x >= 0.95 && x <= 1.25) {                            // eps/k infinite
+          f.k[p] = 0.f;
+          f.epsilon[p] = 5.f;
+        }
+        // a solid block over the lower half of the channel
+        f.valid[p] = (x >= 1.35 && x <= 1.55 && y <= 0.45) ? 0 : 1;
+      }
+  return FluidField::grid(g, {f}, kNuAir, Drift::Stationary, TimeMode::Clamp);
+}
+
+struct GridCase {
+  double density_ratio;
+  double aspect;
+  double dt;
+};
+
+class GridHardCases : public ::testing::TestWithParam<GridCase> {};
+
+TEST_P(GridHardCases, BodiesCrossKZeroAndInvalidRegionsAndExitCleanly) {
+  const GridCase c = GetParam();
+  Scene s = test::sphere_scene(0.01, c.density_ratio * kRhoAir, kRhoAir, kNuAir, 64);
+  s.uniform_field = false;
+  if (c.aspect > 1) s.bodies[0].shape = Shape::ellipsoid(0.01, 0.01, 0.01 / c.aspect);
+  s.bodies[0].spawn_in_box = true;
+  s.bodies[0].box_lo = Vec3(0.1, 0.1, 0.3);
+  s.bodies[0].box_hi = Vec3(0.3, 0.9, 0.9);
+  s.bodies[0].random_orientation = true;
+  s.effects = stability::all_effects();
+  s.gravity = Vec3(9.81, 0, 0);  // a vertical channel flowing down: heavy bodies cross it too
+  s.integrator = Integrator::Splitting;
+  s.dt = c.dt;
+  s.duration = 4;  // 2 m at 2 m/s, twice over
+  const Model m = test::compile(s, hard_grid());
+  State st = initial_state(m, s);
+  std::ostringstream id;
+  id << "rho_b/rho_f = " << c.density_ratio << ", aspect " << c.aspect << ", dt = " << c.dt;
+  SCOPED_TRACE(id.str());
+  const stability::Observed o = stability::run_observed(m, &st, kU);
+  EXPECT_EQ(o.failure, "");
+  EXPECT_EQ(o.stats.failed, 0u);
+  EXPECT_EQ(o.stats.exited, st.size()) << "every body leaves the grid (through a side or the "
+                                          "solid block)";
+  const Vec3 hi = m.field.geometry().upper();
+  size_t crossed_k0 = 0;
+  for (size_t i = 0; i < st.size(); ++i) {
+    EXPECT_EQ(st.status[i], BodyStatus::Exited) << "body " << i << ": " << st.reason[i];
+    EXPECT_FALSE(st.reason[i].empty());
+    EXPECT_GT(st.t_stop[i], 0);
+    EXPECT_TRUE((st.x[i].array() >= -1e-12).all() && (st.x[i].array() <= hi.array() + 1e-12).all())
+        << "body " << i << " stopped outside the grid at " << st.x[i].transpose();
+    if (st.x[i].x() > 1.25) ++crossed_k0;
+  }
+  // the test means something only if bodies went through both k = 0 slabs
+  EXPECT_GT(crossed_k0, st.size() / 4) << "bodies that crossed the k = 0 slabs";
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Grid, GridHardCases,
+    ::testing::Values(GridCase{1, 1, 1e-4}, GridCase{1, 1, 1e-3}, GridCase{1, 1, 0.05},
+                      GridCase{0.001, 1, 1e-3}, GridCase{0.001, 100, 1e-3},
+                      GridCase{1000, 1, 1e-3}, GridCase{1000, 1000, 0.05},
+                      GridCase{0.01, 1000, 0.05}),
+    [](const auto& info) {
+      std::ostringstream n;
+      n << "ratio" << info.param.density_ratio << "_aspect" << info.param.aspect << "_dt"
+        << info.param.dt;
+      std::string s = n.str();
+      for (char& ch : s)
+        if (ch == '.' || ch == '-') ch = 'p';
+      return s;
+    });
+
+}  // namespace
+}  // namespace lrigid
