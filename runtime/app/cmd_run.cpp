@@ -12,7 +12,9 @@
 #include "io/progress.h"
 #include "io/result_writer.h"
 #include "io/scene_json.h"
+#include "io/tolerance_table.h"
 #include "model/state.h"
+#include "model/tolerance.h"
 #include "util/error.h"
 
 namespace lrigid::app {
@@ -25,7 +27,22 @@ struct RunArgs {
   long long seed = -1;
   int threads = 0;
   bool quiet = false;
+  double tolerance = 0;            // relative error; > 0: choose scheme and dt (docs/accuracy.md)
+  std::string tolerance_table;     // empty: default_tolerance_table_path()
 };
+
+// --tolerance E: the cheapest measured integrator and dt reaching E for this kind of scene
+void apply_tolerance(const RunArgs& a, Scene* scene) {
+  const std::string path =
+      a.tolerance_table.empty() ? default_tolerance_table_path() : a.tolerance_table;
+  const ToleranceChoice c =
+      choose_for_tolerance(read_tolerance_table(path), scene_kind(*scene), a.tolerance);
+  scene->integrator = c.entry.integrator == "euler" ? Integrator::Euler
+                      : c.entry.integrator == "rk4" ? Integrator::RK4
+                                                    : Integrator::Splitting;
+  scene->dt = c.entry.dt;
+  if (!a.quiet) std::fprintf(stderr, "lrigid: %s; from %s\n", c.explanation.c_str(), path.c_str());
+}
 
 // bytes of state per body (State arrays plus the writer's per-frame buffers)
 constexpr double kBytesPerBody = 4 * sizeof(Vec3) + sizeof(Quat) + sizeof(Vec3) + 64;
@@ -60,6 +77,7 @@ void check_memory(const Scene& scene) {
 
 void run(const RunArgs& a) {
   Scene scene = read_scene(a.scene);
+  if (a.tolerance > 0) apply_tolerance(a, &scene);
   if (a.seed >= 0) scene.seed = static_cast<uint64_t>(a.seed);
   if (!a.out.empty()) scene.output.dir = a.out;
   check_memory(scene);
@@ -115,6 +133,13 @@ void add_run_command(CLI::App& app) {
                                               "depend on it")
       ->check(CLI::Range(1, 1024));
   cmd->add_flag("--quiet", args->quiet, "Print nothing but errors");
+  cmd->add_option("--tolerance", args->tolerance,
+                  "Relative error to reach: picks the cheapest integrator and dt of the measured "
+                  "table for this kind of scene (docs/accuracy.md) and says what it chose")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--tolerance-table", args->tolerance_table,
+                  "Measured table for --tolerance (default: next to the binary, else "
+                  "docs/accuracy/tolerance_table.json)");
   cmd->callback([args] { run(*args); });
 }
 
