@@ -19,7 +19,8 @@ I* flutters and the largest tumbles; (3) at each Re the regimes are ordered in I
 (steady/flutter below tumble). Published tumbling periods and descent angles are not compared:
 the values available to this project are unverified (physics-notes §4), so no number is claimed.
 
-The plate motion needs the plate lift model (effect "lift", issue 7). Without it the study is
+The viscosities (1e-6 … 3e-4 m²/s) span Re ≈ 1 to a few thousand; the "Re ~ 10³" checks use the
+row whose measured Re is closest to 10³. The plate motion needs the plate lift model (effect "lift", issue 7). Without it the study is
 reported as FAIL ("not run: lift effect missing"), never as a pass.
 """
 import math
@@ -33,7 +34,7 @@ from vcommon import np, plt  # noqa: E402
 
 RHO_F, W, SPAN, H = 1000.0, 0.02, 0.1, 0.0005
 ISTARS = (0.05, 0.1, 0.2, 0.4, 0.8)
-NUS = (1e-5, 1e-4, 3e-4)
+NUS = (1e-6, 1e-5, 1e-4, 3e-4)
 EFFECTS = ["gravity", "buoyancy", "added_mass", "drag", "lift"]
 
 
@@ -108,11 +109,16 @@ def main():
              "Field et al. 1997 (steady below Re ≈ 100)", tol_text="all",
              verdict="PASS" if low and nsteady == len(low) else "FAIL",
              note="; ".join("I*=%g Re=%.3g: %s" % (k[0], v[1], v[0]) for k, v in low))
-    hi = [res[(i, NUS[0])] for i in ISTARS]
-    st.check("Re ~ 10³ (ν = 1e-5): smallest I* = %g flutters" % ISTARS[0], hi[0][0], "flutter", 0,
+    # the viscosity row whose measured Re is closest to 10³ (geometric mean over I*)
+    nu_hi = min(NUS, key=lambda nu: abs(np.mean([math.log10(res[(i, nu)][1]) for i in ISTARS])
+                                        - 3.0))
+    hi = [res[(i, nu_hi)] for i in ISTARS]
+    st.check("Re ~ 10³ (ν = %g): smallest I* = %g flutters" % (nu_hi, ISTARS[0]), hi[0][0],
+             "flutter", 0,
              "Andersen et al. 2005; Field et al. 1997", verdict="PASS" if hi[0][0] == "flutter"
              else "FAIL", tol_text="regime", note="Re = %.3g" % hi[0][1])
-    st.check("Re ~ 10³ (ν = 1e-5): largest I* = %g tumbles" % ISTARS[-1], hi[-1][0], "tumble", 0,
+    st.check("Re ~ 10³ (ν = %g): largest I* = %g tumbles" % (nu_hi, ISTARS[-1]), hi[-1][0],
+             "tumble", 0,
              "Andersen et al. 2005; Field et al. 1997", verdict="PASS" if hi[-1][0] == "tumble"
              else "FAIL", tol_text="regime", note="Re = %.3g" % hi[-1][1])
     order = {"steady": 0, "flutter": 1, "unclassified": 1, "tumble": 2}
