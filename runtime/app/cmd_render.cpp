@@ -202,8 +202,8 @@ class Renderer {
     std::snprintf(buf, sizeof buf, "t = %.2f s   %zu bodies", a.times[f], a.bodies());
     std::string label = buf;
     for (size_t i = 0; i < a.types.size(); ++i)
-      if (scale_[i] > 1.01) {
-        std::snprintf(buf, sizeof buf, "   %s drawn %.0fx enlarged", a.types[i].name.c_str(),
+      if (scale_[i] > 1.05) {
+        std::snprintf(buf, sizeof buf, "   %s drawn %.2gx enlarged", a.types[i].name.c_str(),
                       scale_[i]);
         label += buf;
       }
@@ -244,7 +244,8 @@ class Renderer {
       vtkImageData* img = reader_->GetOutput();
       double gb[6];
       img->GetBounds(gb);
-      for (int k = 0; k < 3; ++k) box_.add(Vec3(gb[0], gb[2], gb[4])), box_.add(Vec3(gb[1], gb[3], gb[5]));
+      // the camera frames the bodies (and the floor below them), not the whole grid
+      box_.add(Vec3(box_.lo.x(), box_.lo.y(), gb[4]));
       if (mode == "k") add_k_slice(img, gb);
       else add_streamlines(img, gb);
       return;
@@ -275,11 +276,12 @@ class Renderer {
     }
   }
 
-  // horizontal slice of k at a quarter of the grid's height (below most bodies)
+  // horizontal slice of k just above the grid's floor: a map under the bodies (obstacles show
+  // as k = 0, the value the grid keeps at invalid points)
   void add_k_slice(vtkImageData* img, const double gb[6]) {
     if (!img->GetPointData()->GetArray("k")) return;
     vtkNew<vtkPlane> plane;
-    plane->SetOrigin(0.5 * (gb[0] + gb[1]), 0.5 * (gb[2] + gb[3]), gb[4] + 0.25 * (gb[5] - gb[4]));
+    plane->SetOrigin(0.5 * (gb[0] + gb[1]), 0.5 * (gb[2] + gb[3]), gb[4] + 0.04 * (gb[5] - gb[4]));
     plane->SetNormal(0, 0, 1);
     vtkNew<vtkCutter> cut;
     cut->SetCutFunction(plane);
@@ -289,7 +291,10 @@ class Renderer {
     double range[2];
     img->GetPointData()->GetArray("k")->GetRange(range);
     vtkNew<vtkLookupTable> lut;
-    lut->SetHueRange(0.66, 0.0);
+    // pale to deep blue: the body colours (orange, green, red) stay readable on top
+    lut->SetHueRange(0.58, 0.62);
+    lut->SetSaturationRange(0.05, 0.85);
+    lut->SetValueRange(0.97, 0.5);
     lut->SetTableRange(range);
     lut->Build();
     vtkNew<vtkPolyDataMapper> m;
