@@ -51,6 +51,14 @@ FluidField FluidField::grid(const GridGeometry& geometry, const std::vector<RawG
   return f;
 }
 
+bool FluidField::in_box(const Vec3& x) const {
+  if (frames_.empty()) return true;
+  const Vec3 hi = geometry_.upper();
+  for (int a = 0; a < 3; ++a)
+    if (!(x[a] >= geometry_.origin[a] && x[a] <= hi[a])) return false;
+  return true;
+}
+
 size_t FluidField::bytes() const {
   size_t b = 0;
   for (const auto& fr : frames_) b += fr.size() * sizeof(GridRecord);

@@ -68,6 +68,8 @@ class FluidField {
   bool sample(const Vec3& x, double t, bool gradients, FluidSample* out) const;
 
   bool is_uniform() const { return frames_.empty(); }
+  // x lies in the grid's box (always true for a uniform field)
+  bool in_box(const Vec3& x) const;
   const GridGeometry& geometry() const { return geometry_; }
   size_t frame_count() const { return frames_.size(); }
   const std::vector<double>& times() const { return times_; }

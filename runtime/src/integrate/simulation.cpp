@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <string>
 
 #include "integrate/integrators.h"
 
@@ -23,6 +24,14 @@ bool touches_ground(const Model& m, const BodyType& type, const BodyState& s) {
   double reach = 0;
   for (int a = 0; a < 3; ++a) reach += std::abs(R(2, a)) * type.half_extents[a];
   return s.x.z() - reach <= m.ground_z;
+}
+
+// where a body that could not be sampled went: where one more step would take it
+std::string exit_reason(const Model& m, const BodyState& b) {
+  const Vec3 next = b.x + m.dt * (b.q * b.v);
+  if (m.field.in_box(next) && m.field.in_box(b.x))
+    return "hit a solid: no valid grid point around it (a wall, a building, an obstacle)";
+  return "left the grid";
 }
 
 }  // namespace
@@ -47,7 +56,7 @@ RunStats simulate(const Model& model, State* state, const RunOptions& options) {
     for (int64_t i = 0; i < n; ++i) {
       if (st.status[i] != BodyStatus::Moving) continue;
       const BodyType& type = model.types[st.type[i]];
-      BodyState b{st.x[i], st.q[i], st.v[i], st.w[i], st.u_seen[i]};
+      BodyState b{st.x[i], st.q[i], st.v[i], st.w[i], st.u_seen[i], st.history_of(size_t(i))};
       for (uint64_t k = first; k < last; ++k) {
         const double t = static_cast<double>(k) * model.dt;
         std::string reason;
@@ -55,7 +64,7 @@ RunStats simulate(const Model& model, State* state, const RunOptions& options) {
         if (out != StepOutcome::Ok) {
           st.status[i] = out == StepOutcome::Exited ? BodyStatus::Exited : BodyStatus::Failed;
           st.t_stop[i] = t;
-          st.reason[i] = reason;
+          st.reason[i] = out == StepOutcome::Exited ? exit_reason(model, b) : reason;
           break;
         }
         ++body_steps;
