@@ -87,7 +87,7 @@ Case: foam_cases/tiny refined to 240 x 72 x 60
 (2 097 152 points, U k epsilon nut valid). Best wall time of $repeat runs, largest peak RSS
 (\`/usr/bin/time -v\`); the phases are the cumulative times foam2grid logs in its last run.
 
-| case files | wall time (s) | CPU user+sys (s) | peak RSS (MB) | phases (cumulative wall) |
+| case files | wall time (s) | CPU user+sys (s) | peak RSS (MB) | phases (cumulative wall, cpu) |
 |---|---|---|---|---|
 $(printf '%s\n' "${results[@]}")
 <!-- bench:end -->"
