@@ -1,6 +1,9 @@
 #include "effects/drag.h"
 
+#include <algorithm>
 #include <cmath>
+
+#include "effects/lift.h"
 
 namespace lrigid {
 
@@ -51,6 +54,48 @@ Wrench drag_wrench(const BodyType& type, const Vec3& u_rel, const Vec3& w, doubl
     stiffness->p = p;
     stiffness->u_hat = u_hat;
     stiffness->c_ang = c_ang + rho * kDragRotation * type.rot_drag_len5.maxCoeff() * w_norm;
+  }
+  return make_wrench(force, torque);
+}
+
+Wrench plate_drag_wrench(const BodyType& type, const Vec3& u_rel, const Vec3& w, double rho,
+                         double nu, DragStiffness* stiffness) {
+  const Vec3 u = u_rel + w.cross(type.r_cob);
+  const double speed = u.norm();
+  const int na = type.normal_axis;
+  const double S = type.plate_area;
+  Vec3 force = Vec3::Zero();
+  double c_lin = 0;
+  if (speed > 0) {
+    const double un = u[na];
+    const double cos2a = (speed * speed - 2.0 * un * un) / (speed * speed);
+    c_lin = 0.5 * rho * S * (kPlateDragA - kPlateDragB * cos2a) * speed;
+    force = -c_lin * u;
+  }
+  Vec3 torque = type.r_cob.cross(force);
+  // pitching (in-plane axes): APW's dissipative torque
+  const Vec3 n = Vec3::Unit(na);
+  const Vec3 wp = w - w[na] * n;
+  const double wp_norm = wp.norm();
+  double c_ang = 0;
+  if (wp_norm > 0) {
+    const double c = 0.5 * plate_chord(type, n.cross(wp) / wp_norm);
+    const double span = S / (2.0 * c);
+    const double U = type.apw_speed > 0 ? type.apw_speed : speed;
+    const double k = M_PI * rho * std::pow(c, 4) * span;
+    torque -= k * (kPlateTorqueMu1 * U / c + kPlateTorqueMu2 * wp_norm) * wp;
+    c_ang = k * (kPlateTorqueMu1 * U / c + 2.0 * kPlateTorqueMu2 * wp_norm);
+  }
+  // spin about the normal: viscous plus out-of-roundness drag, as for any body
+  const double r_m = type.ell.mean();
+  const double c_n = 8.0 * M_PI * rho * nu * r_m * r_m * r_m +
+                     0.5 * rho * kDragRotation * type.rot_drag_len5[na] * std::abs(w[na]);
+  torque[na] -= c_n * w[na];
+  if (stiffness) {
+    stiffness->c_lin = c_lin;
+    stiffness->p = 1.0;
+    stiffness->u_hat = speed > 0 ? Vec3(u / speed) : Vec3::Zero();
+    stiffness->c_ang = std::max(c_ang, 2.0 * c_n);
   }
   return make_wrench(force, torque);
 }

@@ -31,4 +31,18 @@ struct DragStiffness {
 Wrench drag_wrench(const BodyType& type, const Vec3& u_rel, const Vec3& w, double rho, double nu,
                    DragStiffness* stiffness = nullptr);
 
+// Drag of flat bodies (BodyType::flat), after Andersen, Pesavento & Wang (2005), in 3D
+// (docs/physics/lift.md): F = -1/2 rho S (A - B cos 2a) |u| u with cos 2a = (|u_t|^2 - u_n^2)/|u|^2
+// (a: angle of attack, S: planform area), and the dissipative torque about the in-plane axes
+// T = -pi rho c^4 L (mu1 U / c + mu2 |w_p|) w_p (c: half chord across w_p, L = S / (2 c) the
+// span, U the APW velocity scale sqrt(|rho_b/rho_f - 1| g b), b the half thickness). Spin about
+// the normal uses the generic angular drag.
+constexpr double kPlateDragA = 1.4;   // APW 2005
+constexpr double kPlateDragB = 1.0;
+constexpr double kPlateTorqueMu1 = 0.2;
+constexpr double kPlateTorqueMu2 = 0.2;
+
+Wrench plate_drag_wrench(const BodyType& type, const Vec3& u_rel, const Vec3& w, double rho,
+                         double nu, DragStiffness* stiffness = nullptr);
+
 }  // namespace lrigid

@@ -1,8 +1,10 @@
 // The generalized Kirchhoff equations of one body, body frame, about the centre of mass:
 //   M xi' = sum of effect wrenches - (w x P_b; w x L_b)    with xi = (v; w), (P_b; L_b) = M_body xi
 // M = M_body (+ K_fluid with added mass) is constant in the body frame and inverted once per body
-// type (Model). Only selected effects are evaluated.
+// type (Model). The effect wrenches are the terms of the body type's plan (effects/plan.h): only
+// selected effects are evaluated, by both forms below (sum_effect_wrenches).
 #pragma once
+#include "effects/context.h"
 #include "effects/drag.h"
 #include "fluid/field.h"
 #include "model/model.h"
@@ -15,13 +17,44 @@ struct Kinematics {
   Vec3 v;       // body frame, m/s
   Vec3 w;       // body frame, rad/s
   Vec3 u_seen;  // seen fluctuation, world frame, m/s
+  const double* history = nullptr;  // Basset history (BassetKernel::stride() doubles) or null
 };
 
 enum class EvalResult { Ok, Outside };
 
 // Does the body need the fluid field sampled at all?
-inline bool needs_field(const BodyType& t) {
-  return t.effects.has(Effect::MeanFlow) || t.effects.has(Effect::Turbulence);
+inline bool needs_field(const BodyType& t) { return t.plan.sample_field; }
+
+// Applies the scene's art-direction scales to a field sample: U (and its derivatives) by
+// model.mean_flow_scale, the turbulent velocity by model.turbulence_scale (sigma2 and its
+// gradient by its square, beta by it).
+inline void apply_art_scales(const Model& m, FluidSample* s) {
+  if (m.mean_flow_scale != 1.0) {
+    s->U *= m.mean_flow_scale;
+    s->grad_U *= m.mean_flow_scale;
+    s->dU_dt *= m.mean_flow_scale;
+  }
+  if (m.turbulence_scale != 1.0) {
+    const double t2 = m.turbulence_scale * m.turbulence_scale;
+    s->beta *= m.turbulence_scale;
+    s->sigma2 *= t2;
+    s->grad_sigma2 *= t2;
+  }
+}
+
+// model.field.sample followed by apply_art_scales
+inline bool sample_fluid(const Model& m, const Vec3& x, double t, bool gradients,
+                         FluidSample* out) {
+  if (!m.field.sample(x, t, gradients, out)) return false;
+  apply_art_scales(m, out);
+  return true;
+}
+
+// Sum of the wrenches of the selected effects (the plan's terms), body frame.
+inline Vec6 sum_effect_wrenches(const EffectContext& c) {
+  Vec6 f = Vec6::Zero();
+  for (WrenchTerm term : c.type->plan.terms) f += term(c);
+  return f;
 }
 
 // Acceleration xi' (body frame) and, when asked, the drag stiffness for implicit steps.
@@ -49,9 +82,14 @@ EvalResult impulse_rates(const Model& model, const BodyType& type, const Kinemat
 Vec6 velocity_from_impulse(const BodyType& type, const Vec6& impulse, const Vec3& u_fluid_body,
                            bool fluid_inertia);
 
-// Sum of the effect wrenches alone (no rigid gyroscopic term): used by tests to check each
-// effect's exact contribution.
+// Sum of the effect wrenches alone in the velocity form (no rigid gyroscopic term): used by
+// tests to check each effect's exact contribution.
 EvalResult effect_wrench(const Model& model, const BodyType& type, const Kinematics& k, double t,
                          Vec6* wrench, FluidSample* fluid, DragStiffness* stiffness = nullptr);
+
+// The context the wrench terms see (velocity form unless impulse_form); u_fluid: the fluid
+// velocity around the body, world frame. false when the body is outside the fluid.
+bool effect_context(const Model& model, const BodyType& type, const Kinematics& k, double t,
+                    bool impulse_form, FluidSample* fluid, EffectContext* c, Vec3* u_fluid);
 
 }  // namespace lrigid

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "effects/basset.h"
 #include "effects/turbulence.h"
 #include "integrate/dynamics.h"
 #include "util/rng.h"
@@ -23,7 +24,7 @@ Quat rotate_body(const Quat& q, const Vec3& theta) {
 namespace {
 
 Kinematics kinematics(const BodyState& s) {
-  return Kinematics{s.x, s.q.toRotationMatrix(), s.v, s.w, s.u_seen};
+  return Kinematics{s.x, s.q.toRotationMatrix(), s.v, s.w, s.u_seen, s.history};
 }
 
 bool uses_turbulence(const Model& m, const BodyType& t, TurbulenceModel which) {
@@ -36,7 +37,7 @@ StepOutcome turbulence_update(const Model& model, const BodyType& type, double t
                               bool exact, const double* z, BodyState* s) {
   FluidSample fs;
   const bool seen = model.turbulence_model == TurbulenceModel::Seen;
-  if (!model.field.sample(s->x, t, seen && !model.field.is_uniform(), &fs))
+  if (!sample_fluid(model, s->x, t, seen && !model.field.is_uniform(), &fs))
     return StepOutcome::Exited;
   const Vec3 xi1(z[0], z[1], z[2]);
   double decay, noise;
@@ -86,12 +87,23 @@ StepOutcome impulse_step(const Model& model, const BodyType& type, double t, boo
   if (impulse_rates(model, type, k, t, &r, implicit ? &ds : nullptr) == EvalResult::Outside)
     return StepOutcome::Exited;
   Vec6 dPi = h * r.rate;
-  if (implicit && type.effects.has(Effect::Drag) && (ds.c_lin > 0 || ds.c_ang > 0)) {
+  const bool implicit_drag =
+      implicit && type.effects.has(Effect::Drag) && (ds.c_lin > 0 || ds.c_ang > 0);
+  const bool basset = type.plan.basset && s->history;
+  if (implicit_drag || basset) {
     // (I + h J M^-1) dPi = h G  <=>  dPi = M (M + h J)^-1 h G
     Mat6 A = type.M;
-    A.block<3, 3>(0, 0) +=
-        h * ds.c_lin * (Mat3::Identity() + ds.p * ds.u_hat * ds.u_hat.transpose());
-    A.block<3, 3>(3, 3) += h * ds.c_ang * Mat3::Identity();
+    if (implicit_drag) {
+      A.block<3, 3>(0, 0) +=
+          h * ds.c_lin * (Mat3::Identity() + ds.p * ds.u_hat * ds.u_hat.transpose());
+      A.block<3, 3>(3, 3) += h * ds.c_ang * Mat3::Identity();
+    }
+    if (basset) {
+      // current interval of the history force: 2 C sqrt(h) (du_f - dv) / h
+      const double b = type.basset.implicit_mass;
+      A.block<3, 3>(0, 0) += b * Mat3::Identity();
+      dPi.head<3>() += b * (k.R.transpose() * (h * r.a_fluid));
+    }
     dPi = type.M * A.ldlt().solve(dPi);
   }
   const Vec6 Pi_world = rotate6(k.R, r.impulse + dPi);
@@ -146,6 +158,16 @@ StepOutcome rk4(const Model& model, const BodyType& type, double t, BodyState* s
   const Vec6 dxi = h / 6.0 * (kxi[0] + 2 * kxi[1] + 2 * kxi[2] + kxi[3]);
   s->v += dxi.head<3>();
   s->w += dxi.tail<3>();
+  if (type.plan.basset && s->history) {
+    // current interval of the history force, implicitly: (M + b P) xi = M xi* + b P xi_0
+    const Mat3 R10 = s->q.toRotationMatrix().transpose() * q0.toRotationMatrix();
+    const Vec3 v0 = R10 * (s->v - dxi.head<3>());
+    Vec6 d = Vec6::Zero();
+    d.head<3>() = type.basset.implicit_mass * (v0 - s->v);
+    const Vec6 corr = type.basset.implicit_inv * d;
+    s->v += corr.head<3>();
+    s->w += corr.tail<3>();
+  }
   return StepOutcome::Ok;
 }
 
@@ -246,6 +268,14 @@ StepOutcome step_body(const Model& model, const BodyType& type, uint32_t body, u
     *s = before;
     *reason = std::string("non-finite ") + what;
     return StepOutcome::Failed;
+  }
+  if (type.plan.basset && s->history) {
+    // relative velocity g = u_f - v at the end of the step enters the history
+    Vec3 uf = Vec3::Zero();
+    FluidSample fs;
+    if (type.plan.mean_flow && sample_fluid(model, s->x, t + h, false, &fs)) uf += fs.U;
+    if (type.plan.seen) uf += s->u_seen;
+    basset_push(type.basset, uf - s->q.toRotationMatrix() * s->v, h, s->history);
   }
   return StepOutcome::Ok;
 }

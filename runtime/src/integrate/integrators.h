@@ -10,6 +10,10 @@
 //              step for the deterministic part (drag stiffness on the left-hand side) with the
 //              exponential map for the rotation, exact OU half step. Order 1 deterministic,
 //              stable for any alpha h and any drag stiffness.
+// Basset history force: its past part is a wrench term like any other effect; the current
+// interval's part acts as a mass 2 C sqrt(h) on the translation and is taken implicitly (impulse
+// step: on the left-hand side with the drag stiffness; rk4: a correction after the step). The
+// history is appended once the step succeeded.
 // Orientation is always updated by multiplying by a unit quaternion and renormalized, so
 // |q| - 1 stays at round-off.
 #pragma once
@@ -26,6 +30,7 @@ struct BodyState {
   Vec3 v;        // body frame, m/s
   Vec3 w;        // body frame, rad/s
   Vec3 u_seen;   // world, m/s
+  double* history = nullptr;  // Basset history in State (BassetKernel::stride()), or null
 };
 
 enum class StepOutcome { Ok, Exited, Failed };

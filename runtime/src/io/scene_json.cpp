@@ -171,6 +171,32 @@ BodySpec read_body(Obj o) {
   }
   b.velocity = o.vec3_or("velocity", Vec3::Zero());
   b.angular_velocity = o.vec3_or("angular_velocity", Vec3::Zero());
+  if (o.has("variation")) {
+    // art direction: per-body draws from [lo, hi] (docs/effects.md)
+    Obj v = o.object("variation");
+    auto range = [&v](const std::string& key, double lo_min, double* lo, double* hi) {
+      const json& r = v.get(key);
+      if (!r.is_array() || r.size() != 2)
+        v.fail(key, "must be [lo, hi], got " + Obj::dump(r));
+      *lo = v.as_number(r[0], key + "[0]");
+      *hi = v.as_number(r[1], key + "[1]");
+      if (!(*lo >= lo_min) || (lo_min > 0 && !(*lo > 0)))
+        v.fail(key, "lower bound must be " + std::string(lo_min > 0 ? "> 0" : ">= 0") +
+                        ", got " + Obj::dump(r));
+      if (!(*hi >= *lo)) v.fail(key, "upper bound below lower bound, got " + Obj::dump(r));
+    };
+    if (v.has("size")) range("size", 1e-300, &b.size_min, &b.size_max);
+    if (v.has("density")) range("density", 1e-300, &b.density_min, &b.density_max);
+    if (v.has("spin")) range("spin", 0, &b.spin_min, &b.spin_max);
+    if (const json* n = v.find("variants")) {
+      if (!n->is_number_integer() || n->get<long long>() < 1 || n->get<long long>() > 256)
+        v.fail("variants", "must be an integer in [1, 256], got " + Obj::dump(*n));
+      b.variants = n->get<int>();
+    } else if (v.has("size") || v.has("density")) {
+      b.variants = 16;
+    }
+    v.finish();
+  }
   o.finish();
   return b;
 }
@@ -306,6 +332,17 @@ Scene parse_scene(const std::string& text, const std::string& path) {
       else t.fail("drift", "must be \"original\" or \"stationary\", got \"" + d + "\"");
     }
     t.finish();
+  }
+  if (top.has("art")) {
+    // art direction: scales of what the bodies see of the field (docs/effects.md)
+    Obj a = top.object("art");
+    for (const char* key : {"mean_flow_scale", "turbulence_scale"}) {
+      if (!a.has(key)) continue;
+      const double v = a.number(key);
+      if (!(v >= 0)) a.fail(key, "must be >= 0, got " + Obj::dump(a.get(key)));
+      (std::string(key) == "mean_flow_scale" ? s.mean_flow_scale : s.turbulence_scale) = v;
+    }
+    a.finish();
   }
   if (top.has("output")) {
     Obj o = top.object("output");

@@ -10,6 +10,9 @@ const std::vector<EffectInfo>& all_effects() {
       {Effect::Drag, "drag", "quasi-steady drag on the velocity relative to the fluid"},
       {Effect::MeanFlow, "mean_flow", "the fluid moves with the field's mean velocity U"},
       {Effect::Turbulence, "turbulence", "Langevin model from k and epsilon"},
+      {Effect::Lift, "lift", "circulation lift of flat bodies (Andersen, Pesavento & Wang 2005)"},
+      {Effect::Magnus, "magnus", "lift of a spinning body, C_M rho V w x v_r"},
+      {Effect::Basset, "basset", "history force, window plus exponential-sum tail"},
   };
   return list;
 }

@@ -14,6 +14,9 @@ enum class Effect : uint32_t {
   Drag = 1u << 3,        // quasi-steady linear and angular drag on the relative velocity
   MeanFlow = 1u << 4,    // the body sees the field's mean velocity U (else the fluid is at rest)
   Turbulence = 1u << 5,  // Langevin model from k and epsilon
+  Lift = 1u << 6,        // circulation lift of flat bodies (Andersen, Pesavento & Wang 2005)
+  Magnus = 1u << 7,      // lift of a spinning body, C_M rho V w x v_r
+  Basset = 1u << 8,      // Basset-Boussinesq history force (window + exponential-sum tail)
 };
 
 struct EffectSet {

@@ -1,10 +1,17 @@
 #include "model/model.h"
 
-#include <cmath>
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 
 #include "body/mass_properties.h"
+#include "effects/basset.h"
+#include "effects/drag.h"
+#include "effects/lift.h"
+#include "effects/magnus.h"
+#include "effects/plan.h"
 #include "util/error.h"
+#include "util/rng_uniform.h"
 
 namespace lrigid {
 
@@ -39,33 +46,289 @@ Mat6 shift_tensor(const Mat6& K_centroid, const Vec3& r) {
   return T.transpose() * K_centroid * T;
 }
 
-bool field_has_flow(const Scene& s) { return !s.uniform_field || s.uniform_U.norm() > 0; }
-bool field_has_turbulence(const Scene& s) { return !s.uniform_field || s.uniform_k > 0; }
+double median(std::vector<double> v) {
+  if (v.empty()) return 0;
+  const size_t m = v.size() / 2;
+  std::nth_element(v.begin(), v.begin() + m, v.end());
+  return v[m];
+}
+
+// drag force on the body at relative speed U (quasi-steady, broadside for flat bodies), N
+double drag_force(const BodyType& t, double U, double rho, double nu) {
+  if (!(U > 0)) return 0;
+  if (t.flat) return 0.5 * rho * t.plate_area * (kPlateDragA + kPlateDragB) * U * U;
+  const double d = 2.0 * t.r_eq;
+  return 0.5 * rho * schiller_naumann(U * d / nu) * M_PI * t.r_eq * t.r_eq * U * U;
+}
+
+// U with drag_force(U) = F (bisection in log U)
+double speed_for_force(const BodyType& t, double F, double rho, double nu) {
+  if (!(F > 0)) return 0;
+  double lo = 1e-12, hi = 1e4;
+  for (int i = 0; i < 200; ++i) {
+    const double mid = std::sqrt(lo * hi);
+    (drag_force(t, mid, rho, nu) < F ? lo : hi) = mid;
+  }
+  return std::sqrt(lo * hi);
+}
+
+Shape scaled_shape(const Shape& s, double f) {
+  if (f == 1.0) return s;
+  switch (s.type) {
+    case ShapeType::Sphere: return Shape::sphere(f * s.half_extents.x());
+    case ShapeType::Ellipsoid:
+      return Shape::ellipsoid(f * s.half_extents.x(), f * s.half_extents.y(),
+                              f * s.half_extents.z());
+    case ShapeType::Box:
+      return Shape::box(2 * f * s.half_extents.x(), 2 * f * s.half_extents.y(),
+                        2 * f * s.half_extents.z());
+    case ShapeType::Mesh: {
+      auto m = std::make_shared<TriangleMesh>(*s.mesh);
+      for (Vec3& v : m->vertices) v *= f;
+      return Shape::from_mesh(std::move(m), s.source);
+    }
+  }
+  return s;
+}
 
 }  // namespace
 
-EffectSet auto_effects(const Scene& scene, const BodyType& type,
-                       std::vector<std::string>* reasons) {
-  auto skip = [&](const std::string& why) {
-    if (reasons) reasons->push_back(why);
-  };
-  EffectSet s;
-  if (scene.gravity.norm() > 0) s.add(Effect::Gravity);
-  else skip("gravity: the scene's gravity is zero");
-  const double ratio = scene.fluid_density / type.density;
-  if (ratio >= 1e-3) s.add(Effect::Buoyancy);
-  else skip("buoyancy: rho_f/rho_b = " + std::to_string(ratio) + " < 1e-3");
-  // largest added mass (any direction) relative to the body's mass
-  const double am = type.K_fluid.block<3, 3>(0, 0).diagonal().maxCoeff() / type.mass;
-  if (am >= 1e-2) s.add(Effect::AddedMass);
-  else skip("added_mass: largest added mass / mass = " + std::to_string(am) + " < 1e-2");
-  s.add(Effect::Drag);
-  if (field_has_flow(scene)) s.add(Effect::MeanFlow);
-  else skip("mean_flow: the uniform field has U = 0");
-  if (field_has_turbulence(scene)) s.add(Effect::Turbulence);
-  else skip("turbulence: the uniform field has k = 0");
-  return s;
+FlowScales flow_scales(const Scene& scene, const FluidField& field) {
+  FlowScales f;
+  const double ms = scene.mean_flow_scale, ts2 = scene.turbulence_scale * scene.turbulence_scale;
+  if (scene.uniform_field) {
+    f.U = ms * scene.uniform_U.norm();
+    f.k = ts2 * scene.uniform_k;
+    f.eps = ts2 * scene.uniform_epsilon;
+    f.source = "uniform field";
+    return f;
+  }
+  // up to ~32^3 grid points of the first frame; k, eps recovered from the median sigma2, beta^2
+  const GridGeometry& g = field.geometry();
+  int stride[3];
+  for (int a = 0; a < 3; ++a) stride[a] = std::max(1, (g.n[a] + 31) / 32);
+  std::vector<double> U, s2, b2;
+  const double t0 = field.times().empty() ? 0.0 : field.times().front();
+  for (int i = 0; i < g.n[0]; i += stride[0])
+    for (int j = 0; j < g.n[1]; j += stride[1])
+      for (int k = 0; k < g.n[2]; k += stride[2]) {
+        const Vec3 x = g.origin + Vec3(i * g.spacing.x(), j * g.spacing.y(), k * g.spacing.z());
+        FluidSample s;
+        if (!field.sample(x, t0, false, &s)) continue;
+        U.push_back(s.U.norm());
+        s2.push_back(s.sigma2);
+        b2.push_back(s.beta * s.beta);
+      }
+  const double sigma2 = median(s2), beta2 = median(b2);
+  double c0 = 6.5;
+  for (int it = 0; it < 30 && sigma2 > 0; ++it) {
+    f.k = scene.drift == Drift::Stationary ? 1.5 * sigma2 : sigma2 * (1 + 1.5 * c0) / c0;
+    f.eps = beta2 / c0;
+    c0 = std::max(1.0, c0_of_reynolds(taylor_reynolds(f.k, f.eps, scene.kinematic_viscosity)));
+  }
+  f.U = ms * median(U);
+  f.k *= ts2;
+  f.eps *= ts2;
+  f.source = "grid: medians over " + std::to_string(U.size()) +
+             " valid points of |U|, and k, eps from the median Langevin sigma2, beta^2";
+  return f;
 }
+
+namespace {
+constexpr double kKeep = 1e-2;        // force (or inertia) / reference below which an effect goes
+constexpr double kKeepBasset = 0.1;   // history force / quasi-steady drag
+constexpr double kBassetMaxRe = 100;  // the t^-1/2 kernel is a low-Re result (Mei & Adrian 1992)
+constexpr double kTurbulenceMaxStokes = 1e4;
+
+std::string fmt(double x) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.3g", x);
+  return b;
+}
+}  // namespace
+
+EffectAnalysis analyze_effects(const Scene& scene, const BodyType& t, const FlowScales& flow,
+                               const BodySpec& spec) {
+  EffectAnalysis a;
+  const double rho = scene.fluid_density, nu = scene.kinematic_viscosity;
+  const double g = scene.gravity.norm();
+  const double W = t.mass * g, B = rho * t.volume * g;
+  const double m_a = t.K_fluid.block<3, 3>(0, 0).diagonal().maxCoeff();
+  const double m_eff = t.mass + t.K_fluid.block<3, 3>(0, 0).trace() / 3.0;
+  Vec3 sorted = t.ell;
+  std::sort(sorted.data(), sorted.data() + 3);
+  a.density_ratio = rho / t.density;
+  a.aspect_ratio = sorted[0] / sorted[2];
+  a.size = t.flat ? 2.0 * sorted[1] : 2.0 * t.r_eq;
+  a.terminal_speed = speed_for_force(t, std::abs(W - B), rho, nu);
+  const double u_turb = std::sqrt(2.0 * flow.k / 3.0);
+  const double T_flow = flow.k > 0 && flow.eps > 0 ? flow.k / flow.eps : 0;
+  const double tau_eta = flow.eps > 0 ? std::sqrt(nu / flow.eps) : 0;
+  // characteristic relative speed: settling plus the part of the turbulent velocity the body
+  // does not follow (first-order filter of an exponentially correlated velocity)
+  double U = std::max(a.terminal_speed, 1e-12), c = 0;
+  for (int it = 0; it < 20; ++it) {
+    const double Ue = std::max(U, 1e-9);
+    c = drag_force(t, Ue, rho, nu) / Ue;
+    a.tau_p = c > 0 ? m_eff / c : 0;
+    const double st = T_flow > 0 ? a.tau_p / T_flow : 0;
+    const double u_rel = u_turb * std::sqrt(st / (1.0 + st));
+    U = std::sqrt(a.terminal_speed * a.terminal_speed + u_rel * u_rel);
+  }
+  a.speed = U;
+  a.reynolds = U * a.size / nu;
+  a.stokes_k_eps = T_flow > 0 ? a.tau_p / T_flow : 0;
+  a.stokes_kolmogorov = tau_eta > 0 ? a.tau_p / tau_eta : 0;
+  const double spin = spec.angular_velocity.norm() + std::max(spec.spin_min, spec.spin_max);
+  a.spin_ratio = U > 0 ? t.r_eq * spin / U : 0;
+  const double F_drag = c * U;
+  const double F_ref = std::max({std::abs(W - B), F_drag, 1e-300});
+
+  auto decide = [&](Effect e, double size, bool keep, const std::string& why) {
+    a.size_rel.emplace_back(e, size);
+    if (keep) a.chosen.add(e);
+    else a.skipped.emplace_back(e, why);
+  };
+  const std::string ref = " of max(|W - B|, drag)";
+  decide(Effect::Gravity, W / F_ref, W / F_ref >= kKeep,
+         "weight = " + fmt(W / F_ref) + ref + " < " + fmt(kKeep));
+  decide(Effect::Buoyancy, B / F_ref, B / F_ref >= kKeep,
+         "buoyancy = " + fmt(B / F_ref) + ref + " < " + fmt(kKeep));
+  decide(Effect::AddedMass, m_a / t.mass, m_a / t.mass >= kKeep,
+         "largest added mass / mass = " + fmt(m_a / t.mass) + " < " + fmt(kKeep));
+  decide(Effect::Drag, F_drag / F_ref, F_drag / F_ref >= kKeep,
+         "drag = " + fmt(F_drag / F_ref) + ref + " < " + fmt(kKeep));
+  const double F_mean = c * flow.U;
+  decide(Effect::MeanFlow, F_mean / F_ref, flow.U > 0 && F_mean / F_ref >= kKeep,
+         flow.U > 0 ? "drag of the mean flow = " + fmt(F_mean / F_ref) + ref + " < " + fmt(kKeep)
+                    : "the field's U is zero");
+  const double u_seen = u_turb / std::sqrt(1.0 + a.stokes_k_eps);
+  const double F_turb = c * u_seen;
+  std::string why_t;
+  if (!(flow.k > 0)) why_t = "the field's k is zero";
+  else if (a.stokes_k_eps > kTurbulenceMaxStokes)
+    why_t = "St = tau_p eps/k = " + fmt(a.stokes_k_eps) + " > " + fmt(kTurbulenceMaxStokes);
+  else why_t = "turbulent drag = " + fmt(F_turb / F_ref) + ref + " < " + fmt(kKeep);
+  decide(Effect::Turbulence, F_turb / F_ref,
+         flow.k > 0 && a.stokes_k_eps <= kTurbulenceMaxStokes && F_turb / F_ref >= kKeep, why_t);
+  const double F_lift = t.flat ? 0.5 * rho * kLiftTranslational * t.plate_area * U * U : 0;
+  decide(Effect::Lift, F_lift / F_ref, t.flat && F_lift / F_ref >= kKeep,
+         t.flat ? "lift = " + fmt(F_lift / F_ref) + ref + " < " + fmt(kKeep)
+                : "not flat: thickness/width = " + fmt(sorted[0] / sorted[1]) + " > " +
+                      fmt(kFlatRatio));
+  const double F_mag = kMagnus * rho * t.volume * spin * U;
+  decide(Effect::Magnus, F_mag / F_ref, F_mag / F_ref >= kKeep,
+         spin > 0 ? "Magnus force = " + fmt(F_mag / F_ref) + ref + " < " + fmt(kKeep)
+                  : "no initial spin");
+  // history force at the response time scale, relative to the quasi-steady drag
+  const double coef = 6.0 * t.r_eq * t.r_eq * rho * std::sqrt(M_PI * nu);
+  const double basset = (a.tau_p > 0 && c > 0) ? coef / (std::sqrt(a.tau_p) * c) : 0;
+  decide(Effect::Basset, basset, basset >= kKeepBasset && a.reynolds <= kBassetMaxRe,
+         a.reynolds > kBassetMaxRe
+             ? "Re = " + fmt(a.reynolds) + " > " + fmt(kBassetMaxRe) +
+                   " (the memory decays faster than t^-1/2)"
+             : "history force / drag = " + fmt(basset) + " < " + fmt(kKeepBasset));
+  a.cost_ns = estimated_cost_ns(a.chosen, scene.integrator, !scene.uniform_field, t.flat);
+  return a;
+}
+
+EffectSet auto_effects(const Scene& scene, const BodyType& type, const FlowScales& flow,
+                       const BodySpec& spec) {
+  return analyze_effects(scene, type, flow, spec).chosen;
+}
+
+double estimated_cost_ns(EffectSet set, Integrator integrator, bool grid, bool flat) {
+  // additive fit to bench/effects_bench (docs/effects.md: splitting, uniform field, one core);
+  // sampling a grid costs more than the uniform field and is not included
+  (void)grid;
+  (void)flat;
+  double ns = 330;
+  if (set.has(Effect::Gravity)) ns += 10;
+  if (set.has(Effect::Buoyancy)) ns += 10;
+  if (set.has(Effect::AddedMass)) ns += 40;
+  if (set.has(Effect::Drag)) ns += 100;
+  if (set.has(Effect::MeanFlow) || set.has(Effect::Turbulence)) ns += 70;
+  if (set.has(Effect::Turbulence)) ns += 200;
+  if (set.has(Effect::Lift)) ns += 70;
+  if (set.has(Effect::Magnus)) ns += 10;
+  if (set.has(Effect::Basset)) ns += 110;
+  if (integrator == Integrator::Euler) ns *= 0.55;
+  if (integrator == Integrator::RK4) ns *= 1.6;
+  return ns;
+}
+
+namespace {
+
+BodyType make_body_type(const Scene& scene, const BodySpec& b, const Shape& shape,
+                        double density, const FluidField& field, const FlowScales& flow,
+                        const AddedMassProvider& added_mass, const std::string& key) {
+  BodyType t;
+  t.name = b.name;
+  t.shape = shape;
+  t.density = density;
+  const MassProperties mp = mass_properties(shape);
+  t.volume = mp.volume;
+  t.mass = density * mp.volume;
+  t.centroid = mp.centroid;
+  t.com = mp.centroid + b.mass_offset;
+  t.r_cob = -b.mass_offset;
+  // inertia: the uniform body's inertia, taken about the (possibly offset) centre of mass
+  t.M_body.setZero();
+  t.M_body.block<3, 3>(0, 0) = t.mass * Mat3::Identity();
+  t.M_body.block<3, 3>(3, 3) = density * mp.inertia;
+
+  // equivalent ellipsoid for drag: exact for spheres/ellipsoids; boxes and meshes use their
+  // bounding box scaled by sqrt(4/pi), so face areas match (pi l1 l2 = 4 h1 h2)
+  const Vec3 h = shape.half_extents;
+  t.half_extents = h;
+  t.ell = (shape.type == ShapeType::Sphere || shape.type == ShapeType::Ellipsoid)
+              ? h
+              : Vec3(h * std::sqrt(4.0 / M_PI));
+  Vec3 sorted = t.ell;
+  std::sort(sorted.data(), sorted.data() + 3);
+  t.area_max = M_PI * sorted[1] * sorted[2];
+  t.r_eq = std::cbrt(3.0 * t.volume / (4.0 * M_PI));
+  for (int a = 0; a < 3; ++a) {
+    const double lj = t.ell[(a + 1) % 3], lk = t.ell[(a + 2) % 3];
+    // rotation about axis a pushes fluid in proportion to the body's out-of-roundness
+    t.rot_drag_len5[a] = t.ell[a] * std::abs(std::pow(lj, 4) - std::pow(lk, 4));
+  }
+  // flat: the smallest semi-axis is at most kFlatRatio of the middle one
+  t.ell.minCoeff(&t.normal_axis);
+  t.flat = sorted[0] <= kFlatRatio * sorted[1];
+  t.plate_area = t.area_max;
+  t.apw_speed =
+      std::sqrt(std::abs(density / scene.fluid_density - 1.0) * scene.gravity.norm() * sorted[0]);
+
+  // the fluid tensor is computed for every body type: "auto" needs its size
+  const AddedMass am = added_mass(shape, scene.fluid_density, b.panels);
+  t.K_fluid = shift_tensor(am.tensor, t.centroid - t.com);
+  t.added_mass_method = am.method;
+  t.added_mass_panels = am.panels;
+
+  t.effects = scene.effects_auto ? auto_effects(scene, t, flow, b) : scene.effects;
+  t.M = t.M_body;
+  if (t.effects.has(Effect::AddedMass)) t.M += t.K_fluid;
+  t.M = 0.5 * (t.M + t.M.transpose());
+  Eigen::LDLT<Mat6> ldlt(t.M);
+  if (ldlt.info() != Eigen::Success || !ldlt.isPositive() || ldlt.vectorD().minCoeff() <= 0) {
+    fail_input(scene.file, key, "generalized mass matrix is not positive definite");
+  }
+  t.M_inv = ldlt.solve(Mat6::Identity());
+  if (t.effects.has(Effect::Basset)) {
+    const double coef = 6.0 * t.r_eq * t.r_eq * scene.fluid_density *
+                        std::sqrt(M_PI * scene.kinematic_viscosity);
+    t.basset = make_basset_kernel(coef, scene.dt, kBassetWindow, scene.duration);
+    Mat6 A = t.M;
+    A.block<3, 3>(0, 0) += t.basset.implicit_mass * Mat3::Identity();
+    t.basset.implicit_inv = A.inverse();
+  }
+  build_effect_plan(&t, scene.turbulence_model);
+  (void)field;
+  return t;
+}
+
+}  // namespace
 
 Model compile_model(const Scene& scene, FluidField field, const AddedMassProvider& added_mass) {
   Model m;
@@ -73,7 +336,6 @@ Model compile_model(const Scene& scene, FluidField field, const AddedMassProvide
   m.fluid_density = scene.fluid_density;
   m.nu = scene.kinematic_viscosity;
   m.gravity = scene.gravity;
-  m.field = std::move(field);
   m.integrator = scene.integrator;
   m.dt = scene.dt;
   m.duration = scene.duration;
@@ -82,65 +344,38 @@ Model compile_model(const Scene& scene, FluidField field, const AddedMassProvide
   m.drift = scene.drift;
   m.has_ground = scene.has_ground;
   m.ground_z = scene.ground_z;
+  m.mean_flow_scale = scene.mean_flow_scale;
+  m.turbulence_scale = scene.turbulence_scale;
+  const FlowScales flow = scene.effects_auto ? flow_scales(scene, field) : FlowScales();
 
   size_t first = 0;
   for (size_t i = 0; i < scene.bodies.size(); ++i) {
     const BodySpec& b = scene.bodies[i];
     const std::string key = "bodies[" + std::to_string(i) + "]";
-    BodyType t;
-    t.name = b.name;
-    t.shape = b.shape;
-    t.density = b.density;
-    const MassProperties mp = mass_properties(b.shape);
-    t.volume = mp.volume;
-    t.mass = b.density * mp.volume;
-    t.centroid = mp.centroid;
-    t.com = mp.centroid + b.mass_offset;
-    t.r_cob = -b.mass_offset;
-    // inertia: the uniform body's inertia, taken about the (possibly offset) centre of mass
-    t.M_body.setZero();
-    t.M_body.block<3, 3>(0, 0) = t.mass * Mat3::Identity();
-    t.M_body.block<3, 3>(3, 3) = b.density * mp.inertia;
-
-    // equivalent ellipsoid for drag: exact for spheres/ellipsoids; boxes and meshes use their
-    // bounding box scaled by sqrt(4/pi), so face areas match (pi l1 l2 = 4 h1 h2)
-    const Vec3 h = b.shape.half_extents;
-    t.half_extents = h;
-    t.ell = (b.shape.type == ShapeType::Sphere || b.shape.type == ShapeType::Ellipsoid)
-                ? h
-                : Vec3(h * std::sqrt(4.0 / M_PI));
-    Vec3 sorted = t.ell;
-    std::sort(sorted.data(), sorted.data() + 3);
-    t.area_max = M_PI * sorted[1] * sorted[2];
-    t.r_eq = std::cbrt(3.0 * t.volume / (4.0 * M_PI));
-    for (int a = 0; a < 3; ++a) {
-      const double lj = t.ell[(a + 1) % 3], lk = t.ell[(a + 2) % 3];
-      // rotation about axis a pushes fluid in proportion to the body's out-of-roundness
-      t.rot_drag_len5[a] = t.ell[a] * std::abs(std::pow(lj, 4) - std::pow(lk, 4));
+    const bool varied = b.variants > 1 && (b.size_max != b.size_min ||
+                                           b.density_max != b.density_min);
+    const int nv = varied ? std::min(b.variants, b.count) : 1;
+    for (int j = 0; j < nv; ++j) {
+      double f_size = b.size_min, f_rho = b.density_min;
+      if (varied) {
+        // variant j's factors, keyed by (seed, body entry, variant)
+        double u[4];
+        uniforms4(scene.seed, static_cast<uint32_t>(i), 0x76000000u + uint32_t(j), u);
+        f_size = b.size_min + u[0] * (b.size_max - b.size_min);
+        f_rho = b.density_min + u[1] * (b.density_max - b.density_min);
+      }
+      BodyType t = make_body_type(scene, b, scaled_shape(b.shape, f_size), f_rho * b.density,
+                                  field, flow, added_mass, key);
+      t.spec = i;
+      t.first_body = first;
+      t.count = size_t(b.count / nv + (j < b.count % nv ? 1 : 0));
+      first += t.count;
+      m.types.push_back(std::move(t));
     }
-
-    // the fluid tensor is computed for every body type: "auto" needs its size
-    const AddedMass am = added_mass(b.shape, scene.fluid_density, b.panels);
-    t.K_fluid = shift_tensor(am.tensor, t.centroid - t.com);
-    t.added_mass_method = am.method;
-    t.added_mass_panels = am.panels;
-
-    t.effects = scene.effects_auto ? auto_effects(scene, t) : scene.effects;
-    t.M = t.M_body;
-    if (t.effects.has(Effect::AddedMass)) t.M += t.K_fluid;
-    t.M = 0.5 * (t.M + t.M.transpose());
-    Eigen::LDLT<Mat6> ldlt(t.M);
-    if (ldlt.info() != Eigen::Success || !ldlt.isPositive() ||
-        ldlt.vectorD().minCoeff() <= 0) {
-      fail_input(scene.file, key, "generalized mass matrix is not positive definite");
-    }
-    t.M_inv = ldlt.solve(Mat6::Identity());
-    t.first_body = first;
-    t.count = size_t(b.count);
-    first += t.count;
-    m.types.push_back(std::move(t));
   }
+  if (m.types.size() > 65535) fail_input(scene.file, "bodies", "more than 65535 body variants");
   m.body_count = first;
+  m.field = std::move(field);
   return m;
 }
 

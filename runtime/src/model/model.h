@@ -13,6 +13,34 @@
 
 namespace lrigid {
 
+// The selected wrench terms of a body type, built once by compile_model (effects/plan.h): the
+// step loops over these only, so an effect that is not selected costs nothing.
+struct EffectContext;  // effects/context.h
+using WrenchTerm = Vec6 (*)(const EffectContext&);
+struct EffectPlan {
+  std::vector<WrenchTerm> terms;   // evaluation order of all_effects()
+  std::vector<Effect> term_effect; // which effect each term belongs to
+  bool sample_field = false;       // mean flow or turbulence: the field is sampled
+  bool gradients = false;          // added mass in a mean flow: grad U and dU/dt are needed
+  bool mean_flow = false;
+  bool seen = false;               // seen turbulence moves the surrounding fluid
+  bool basset = false;
+};
+
+// Basset history kernel of a body type (effects/basset.h), for the model's fixed dt.
+struct BassetKernel {
+  double coef = 0;                 // 6 a^2 rho sqrt(pi nu), a = r_eq, N s^0.5 / (m/s)
+  int window = 0;                  // steps kept exactly
+  std::vector<double> lambda;      // (modes) rates of the exponential-sum tail, 1/s
+  std::vector<double> weight;      // (modes) s^-1/2 ~ sum weight_i exp(-lambda_i s), s^-1/2
+  std::vector<double> window_w;    // (window) kernel integral over the interval of age m, s^0.5
+  std::vector<double> decay;       // (modes) exp(-lambda_i dt)
+  std::vector<double> inject;      // (modes) weight of an interval leaving the window, s^0.5
+  double implicit_mass = 0;        // 2 coef sqrt(dt): current interval on the left-hand side, kg
+  Mat6 implicit_inv = Mat6::Zero();  // (M + implicit P_lin)^-1 for the rk4 correction
+  size_t stride() const { return 3 * (2 + size_t(window) + decay.size()) + 1; }
+};
+
 struct BodyType {
   std::string name;
   Shape shape;
@@ -36,7 +64,19 @@ struct BodyType {
   Vec3 rot_drag_len5 = Vec3::Zero();  // per body axis, integral r^3 dA of the swept body, m^5
   Vec3 half_extents = Vec3::Zero();   // of the shape's bounding box, m (ground contact)
   size_t first_body = 0, count = 0;   // bodies [first, first + count) are of this type
+  size_t spec = 0;                    // index of the scene's body entry (variants share one)
+  // flat bodies (thickness <= kFlatRatio x width of the equivalent ellipsoid): lift and the
+  // Andersen-Pesavento-Wang drag and torque (effects/lift.h, effects/drag.h)
+  bool flat = false;
+  int normal_axis = 2;                // body axis normal to the plate
+  double plate_area = 0;              // planform area, m^2
+  double apw_speed = 0;               // APW velocity scale sqrt(|rho_b/rho_f - 1| g b), m/s
+  BassetKernel basset;
+  EffectPlan plan;
 };
+
+// thickness / width below which a body counts as flat
+constexpr double kFlatRatio = 0.25;
 
 struct Model {
   std::string scene_file;
@@ -57,6 +97,8 @@ struct Model {
   // Brownian path resolution: each step's noise is the sum of this many finer increments, so a
   // run with dt = r h sees the same path as a run with dt = h and 1 (accuracy study, issue 8)
   uint32_t noise_substeps = 1;
+  double mean_flow_scale = 1;    // art direction: U seen by the bodies is scaled by this
+  double turbulence_scale = 1;   // art direction: u' seen by the bodies is scaled by this
   std::vector<BodyType> types;
   size_t body_count = 0;
   EffectSet union_effects() const;
@@ -64,11 +106,44 @@ struct Model {
 
 using AddedMassProvider = std::function<AddedMass(const Shape&, double fluid_density, int panels)>;
 
-// Effects chosen for "effects": "auto": a body type keeps an effect unless it is negligible
-// (see docs/effects.md). `type` must have its mass properties and fluid tensor filled in.
-// Returns the set and, per skipped effect, the reason.
-EffectSet auto_effects(const Scene& scene, const BodyType& type,
-                       std::vector<std::string>* reasons = nullptr);
+// Representative flow of a scene for the dimensionless numbers of "auto" and `lrigid explain`.
+// Uniform field: its U, k, eps. Grid: medians over valid grid points (up to ~32^3 sampled) of
+// |U|, and of k and eps recovered from the Langevin coefficients (first frame).
+struct FlowScales {
+  double U = 0;        // |U|, m/s
+  double k = 0;        // m^2/s^2
+  double eps = 0;      // m^2/s^3
+  std::string source;  // how they were obtained
+};
+FlowScales flow_scales(const Scene& scene, const FluidField& field);
+
+// Why "auto" keeps or skips each effect of a body type (docs/effects.md states the thresholds).
+struct EffectAnalysis {
+  double density_ratio = 0;    // rho_f / rho_b
+  double aspect_ratio = 1;     // smallest / largest semi-axis of the equivalent ellipsoid
+  double size = 0;             // d: diameter of the equal-volume sphere (chord for flat), m
+  double speed = 0;            // characteristic speed relative to the fluid, m/s
+  double terminal_speed = 0;   // settling speed in still fluid, m/s
+  double reynolds = 0;         // speed d / nu
+  double tau_p = 0;            // response time m_eff / drag coefficient, s
+  double stokes_k_eps = 0;     // tau_p / (k / eps)
+  double stokes_kolmogorov = 0;  // tau_p / sqrt(nu / eps)
+  double spin_ratio = 0;       // r_eq |w0| / speed
+  std::vector<std::pair<Effect, double>> size_rel;  // force (or inertia) / driving force
+  EffectSet chosen;
+  std::vector<std::pair<Effect, std::string>> skipped;
+  double cost_ns = 0;          // estimated cost per body-step (docs/effects.md table)
+};
+EffectAnalysis analyze_effects(const Scene& scene, const BodyType& type, const FlowScales& flow,
+                               const BodySpec& spec);
+
+// Effects chosen for "effects": "auto" (analyze_effects().chosen).
+EffectSet auto_effects(const Scene& scene, const BodyType& type, const FlowScales& flow,
+                       const BodySpec& spec);
+
+// Estimated cost of one body-step for an effect set and integrator, ns: an additive fit to the
+// table in docs/effects.md (uniform field; grid sampling is extra). A guide, not a promise.
+double estimated_cost_ns(EffectSet set, Integrator integrator, bool grid, bool flat);
 
 // Throws lrigid::Error naming the scene file and key for physically impossible input.
 Model compile_model(const Scene& scene, FluidField field, const AddedMassProvider& added_mass);

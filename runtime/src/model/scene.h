@@ -32,6 +32,14 @@ struct BodySpec {
   Quat orientation = Quat::Identity();    // body -> world
   Vec3 velocity = Vec3::Zero();           // world, m/s
   Vec3 angular_velocity = Vec3::Zero();   // world, rad/s
+  // art direction (docs/effects.md): per-body spin magnitude drawn uniformly from
+  // [spin_min, spin_max] about a uniformly random axis, added to angular_velocity, rad/s
+  double spin_min = 0, spin_max = 0;
+  // per-body size and density factors drawn from [lo, hi]; bodies are spread over `variants`
+  // body types (quantized draws) so the model stays constant per type
+  double size_min = 1, size_max = 1;       // -
+  double density_min = 1, density_max = 1; // -
+  int variants = 1;
 };
 
 struct OutputSpec {
@@ -63,6 +71,10 @@ struct Scene {
   double ground_z = 0;                    // m
   TurbulenceModel turbulence_model = TurbulenceModel::Seen;
   Drift drift = Drift::Stationary;
+  // art direction: scales of the mean flow U and of the turbulent velocity (sqrt k) the bodies
+  // see; 1 is the physical field (docs/effects.md)
+  double mean_flow_scale = 1;             // -
+  double turbulence_scale = 1;            // -
   OutputSpec output;
 };
 

@@ -24,6 +24,14 @@ struct State {
   std::vector<BodyStatus> status;  // (nbody)
   std::vector<double> t_stop;   // (nbody) time the body stopped (landed, exited, failed), s
   std::vector<std::string> reason;  // (nbody) why a body failed (empty otherwise)
+  // Basset history (effects/basset.h), only for body types with the effect:
+  // body i owns history[history_offset[i], + model.types[type[i]].basset.stride())
+  std::vector<double> history;        // (sum of strides)
+  std::vector<size_t> history_offset; // (nbody)
+  double* history_of(size_t i) {
+    return history_offset[i] == kNoHistory ? nullptr : history.data() + history_offset[i];
+  }
+  static constexpr size_t kNoHistory = ~size_t(0);
   size_t size() const { return x.size(); }
 };
 

@@ -152,6 +152,52 @@ INSTANTIATE_TEST_SUITE_P(
       return n;
     });
 
+TEST(SceneJson, ArtDirectionAndVariation) {
+  json j = valid_scene();
+  j["effects"] = {"gravity", "drag", "lift", "magnus", "basset"};
+  j["art"] = {{"mean_flow_scale", 1.5}, {"turbulence_scale", 0.5}};
+  j["bodies"][0]["variation"] = {
+      {"size", {0.8, 1.2}}, {"density", {0.9, 1.1}}, {"spin", {0, 20}}, {"variants", 4}};
+  const Scene s = parse_scene(j.dump(), "/tmp/scene.json");
+  EXPECT_TRUE(s.effects.has(Effect::Lift));
+  EXPECT_TRUE(s.effects.has(Effect::Magnus));
+  EXPECT_TRUE(s.effects.has(Effect::Basset));
+  EXPECT_EQ(s.mean_flow_scale, 1.5);
+  EXPECT_EQ(s.turbulence_scale, 0.5);
+  const BodySpec& b = s.bodies[0];
+  EXPECT_EQ(b.size_min, 0.8);
+  EXPECT_EQ(b.size_max, 1.2);
+  EXPECT_EQ(b.density_min, 0.9);
+  EXPECT_EQ(b.density_max, 1.1);
+  EXPECT_EQ(b.spin_max, 20);
+  EXPECT_EQ(b.variants, 4);
+}
+
+TEST(SceneJson, BadArtDirectionNamesTheKey) {
+  json j = valid_scene();
+  j["art"] = {{"turbulence_scale", -1}};
+  EXPECT_NE(error_of(j).find("art.turbulence_scale: must be >= 0, got -1"), std::string::npos)
+      << error_of(j);
+  j = valid_scene();
+  j["art"] = {{"wind", 2}};
+  EXPECT_NE(error_of(j).find("art.wind: unknown key"), std::string::npos) << error_of(j);
+  j = valid_scene();
+  j["bodies"][0]["variation"] = {{"size", {1.2, 0.8}}};
+  EXPECT_NE(error_of(j).find("bodies[0].variation.size: upper bound below lower bound"),
+            std::string::npos)
+      << error_of(j);
+  j = valid_scene();
+  j["bodies"][0]["variation"] = {{"density", {0, 2}}};
+  EXPECT_NE(error_of(j).find("bodies[0].variation.density: lower bound must be > 0"),
+            std::string::npos)
+      << error_of(j);
+  j = valid_scene();
+  j["bodies"][0]["variation"] = {{"variants", 0}};
+  EXPECT_NE(error_of(j).find("bodies[0].variation.variants: must be an integer in [1, 256]"),
+            std::string::npos)
+      << error_of(j);
+}
+
 TEST(SceneJson, MissingFileSaysSo) {
   try {
     read_scene("/nonexistent/scene.json");

@@ -1,0 +1,31 @@
+#include "effects/lift.h"
+
+#include <cmath>
+
+namespace lrigid {
+
+double plate_chord(const BodyType& type, const Vec3& d) {
+  const int i1 = (type.normal_axis + 1) % 3, i2 = (type.normal_axis + 2) % 3;
+  const double a = d[i1] / type.ell[i1], b = d[i2] / type.ell[i2];
+  return 2.0 / std::sqrt(a * a + b * b);
+}
+
+Wrench lift_wrench(const BodyType& type, const Vec3& u_rel, const Vec3& w, double rho) {
+  const Vec3 u = u_rel + w.cross(type.r_cob);
+  const double speed = u.norm();
+  if (!(speed > 0)) return Wrench::Zero();
+  const Vec3 n = Vec3::Unit(type.normal_axis);
+  const double un = u[type.normal_axis];
+  const Vec3 ut = u - un * n;
+  const double S = type.plate_area;
+  Vec3 f = -rho * kLiftTranslational * S * (un / speed) * (ut.squaredNorm() * n - un * ut);
+  const Vec3 wp = w - w[type.normal_axis] * n;
+  const double wp_norm = wp.norm();
+  if (wp_norm > 0) {
+    const double chord = plate_chord(type, n.cross(wp) / wp_norm);
+    f += 0.5 * rho * kLiftRotational * chord * S * wp.cross(u);
+  }
+  return make_wrench(f, type.r_cob.cross(f));
+}
+
+}  // namespace lrigid

@@ -1,0 +1,27 @@
+// Lift of flat bodies: the quasi-steady circulation model of Andersen, Pesavento & Wang
+// (JFM 541, 2005, "Analysis of transitions between fluttering, tumbling and steady descent of
+// falling cards"), generalized to 3D (docs/physics/lift.md). Per unit span APW write the
+// circulation Gamma = -C_T l v_x v_y / |v| + 1/2 C_R l^2 w and the lift rho Gamma z x v. In 3D,
+// with n the plate normal, u the velocity of the centroid relative to the fluid, u_n = u . n,
+// u_t = u - u_n n, w_p the in-plane part of the angular velocity, S the planform area and l the
+// chord across w_p:
+//   translational  F = -rho C_T S (u_n / |u|) (|u_t|^2 n - u_n u_t)   (normal to u, in span(u, n))
+//   rotational     F = 1/2 rho C_R l S  w_p x u
+// Both act at the centroid. The added-mass (Munk) torque and the plate drag and dissipative
+// torque (effects/drag.h) complete APW's model. Only for flat bodies (BodyType::flat).
+#pragma once
+#include "effects/wrench.h"
+#include "model/model.h"
+
+namespace lrigid {
+
+constexpr double kLiftTranslational = 1.2;  // C_T, APW 2005 (fit to experiments and DNS)
+constexpr double kLiftRotational = M_PI;    // C_R, APW 2005
+
+// chord of the plate's planform (equivalent ellipse) along the in-plane unit direction d, m
+double plate_chord(const BodyType& type, const Vec3& d);
+
+// u_rel: velocity of the centre of mass relative to the fluid, w: angular velocity (body frame)
+Wrench lift_wrench(const BodyType& type, const Vec3& u_rel, const Vec3& w, double rho);
+
+}  // namespace lrigid
