@@ -7,6 +7,7 @@
 #include <vtkCamera.h>
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
+#include <vtkContourFilter.h>
 #include <vtkCutter.h>
 #include <vtkDataArray.h>
 #include <vtkImageData.h>
@@ -246,6 +247,7 @@ class Renderer {
       img->GetBounds(gb);
       // the camera frames the bodies (and the floor below them), not the whole grid
       box_.add(Vec3(box_.lo.x(), box_.lo.y(), gb[4]));
+      add_obstacles(img);
       if (mode == "k") add_k_slice(img, gb);
       else add_streamlines(img, gb);
       return;
@@ -274,6 +276,23 @@ class Renderer {
       throw Error(ExitCode::Usage, "--context must be auto, k, streamlines, ground or none, got \"" +
                                        args_.context + "\"");
     }
+  }
+
+  // solids (buildings, tank walls) as the surface where the grid's `valid` mask drops to 0
+  void add_obstacles(vtkImageData* img) {
+    if (!img->GetPointData()->GetArray("valid")) return;
+    vtkNew<vtkContourFilter> c;
+    c->SetInputData(img);
+    c->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "valid");
+    c->SetValue(0, 0.5);
+    c->ComputeScalarsOff();
+    vtkNew<vtkPolyDataMapper> m;
+    m->SetInputConnection(c->GetOutputPort());
+    m->ScalarVisibilityOff();
+    vtkNew<vtkActor> a;
+    a->SetMapper(m);
+    a->GetProperty()->SetColor(0.72, 0.70, 0.66);
+    ren_->AddActor(a);
   }
 
   // horizontal slice of k just above the grid's floor: a map under the bodies (obstacles show
