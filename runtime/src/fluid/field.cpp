@@ -102,7 +102,9 @@ bool FluidField::sample_frame(const std::vector<GridRecord>& frame, const Vec3& 
         for (int a = 0; a < 3; ++a) dv[q][a] += dw[a] * gv[q];
     }
   }
-  if (nvalid == 0 || W < 1e-12) return false;
+  // the wall lies between a valid and an invalid grid point: x is in the fluid when the valid
+  // corners carry at least half of the trilinear weight (the wall at mid-spacing, error <= h/2)
+  if (nvalid == 0 || W < 0.5) return false;
   const double inv = 1.0 / W;
   out->U = Vec3(v[0], v[1], v[2]) * inv;
   out->alpha = v[3] * inv;

@@ -5,8 +5,9 @@
 // Grid storage: one 32-byte record per grid point holding everything the step needs (U, alpha,
 // beta, sigma2, valid), so the 8 corners of a trilinear sample touch 8 cache lines at most.
 // Invalid points (inside solids or outside the CFD mesh) get weight 0: the value at x is the
-// trilinear blend over the valid corners, renormalized; x is "outside" when no corner is valid
-// or x lies outside the grid box.
+// trilinear blend over the valid corners, renormalized. x is "outside" when it lies outside the
+// grid box or when the valid corners carry less than half of the trilinear weight: the wall is
+// taken halfway between a valid and an invalid grid point.
 #pragma once
 #include <cstdint>
 #include <string>

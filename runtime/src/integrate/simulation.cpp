@@ -61,6 +61,19 @@ RunStats simulate(const Model& model, State* state, const RunOptions& options) {
         const double t = static_cast<double>(k) * model.dt;
         std::string reason;
         const StepOutcome out = step_body(model, type, static_cast<uint32_t>(i), k, t, &b, &reason);
+        if (out == StepOutcome::Exited && model.has_ground) {
+          // a step that would cross the ground (often also the grid's bottom) lands the body,
+          // even when a stage of it sampled below the grid first
+          BodyState next = b;
+          next.x += model.dt * (b.q * b.v) + model.dt * b.u_seen;
+          if (touches_ground(model, type, next)) {
+            st.status[i] = BodyStatus::Landed;
+            st.t_stop[i] = t + model.dt;
+            b.v.setZero();
+            b.w.setZero();
+            break;
+          }
+        }
         if (out != StepOutcome::Ok) {
           st.status[i] = out == StepOutcome::Exited ? BodyStatus::Exited : BodyStatus::Failed;
           st.t_stop[i] = t;

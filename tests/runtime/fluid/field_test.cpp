@@ -75,12 +75,17 @@ TEST(FluidField, InvalidPointsGetNoWeight) {
   const FluidField f = FluidField::grid(g, {fr}, 1e-6, Drift::Stationary, TimeMode::Clamp);
   FluidSample s;
   // a point in a cell touching the invalid corner: a convex blend of the valid corners
-  ASSERT_TRUE(f.sample(Vec3(-0.6, 0.2, 2.8), 0, true, &s));
+  // (cell (0,0,0) at fractions 0.5: the invalid corner (1,1,1) has weight 1/8)
+  ASSERT_TRUE(f.sample(Vec3(-0.75, 0.125, 2.5), 0, true, &s));
   EXPECT_LT(s.U.x(), 1.0);  // valid corners have U_x in [-1, 1]
   EXPECT_GT(s.U.x(), -1.0);
   EXPECT_TRUE(s.grad_U.isZero());  // no gradient next to invalid points
   // exactly at the invalid point: the blend of its neighbours has no weight there -> outside
   EXPECT_FALSE(f.sample(Vec3(-0.5, 0.25, 3.0), 0, false, &s));
+  // nearer the invalid point than halfway (fractions 0.8: its weight 0.512 > 1/2): in the solid
+  EXPECT_FALSE(f.sample(Vec3(-0.6, 0.2, 2.8), 0, false, &s));
+  // nearer the valid side (fractions 0.75: weight 0.42): still in the fluid
+  EXPECT_TRUE(f.sample(Vec3(-0.625, 0.1875, 2.75), 0, false, &s));
 }
 
 TEST(FluidField, TimeSeriesInterpolatesLinearlyAndLoopsOrClamps) {
