@@ -6,8 +6,6 @@ namespace lrigid::app {
 
 void add_run_command(CLI::App& app);         // cmd_run.cpp
 void add_added_mass_command(CLI::App& app);  // cmd_added_mass.cpp
-void add_export_gltf_command(CLI::App& app);  // cmd_export_gltf.cpp
-void add_render_command(CLI::App& app);       // cmd_render.cpp
 void add_explain_command(CLI::App& app);     // cmd_explain.cpp
 void add_export_gltf_command(CLI::App& app);  // cmd_export_gltf.cpp
 void add_render_command(CLI::App& app);       // cmd_render.cpp

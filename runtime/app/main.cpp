@@ -12,8 +12,6 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   lrigid::app::add_run_command(app);
   lrigid::app::add_added_mass_command(app);
-  lrigid::app::add_export_gltf_command(app);
-  lrigid::app::add_render_command(app);
   lrigid::app::add_explain_command(app);
   lrigid::app::add_export_gltf_command(app);
   lrigid::app::add_render_command(app);
