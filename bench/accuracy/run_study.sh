@@ -21,7 +21,7 @@ if [ -d "$src/results/cases/windCourtyard" ]; then
   name=windCourtyard
   case_dir=$src/results/cases/windCourtyard
   bounds=(--bounds -20 60 -25 25 0 25)
-  scene=$src/scenes/leaves_wind.json
+  base=$src/scenes/leaves_wind.json
   res=(32 64 128)
 else
   name=tiny
@@ -33,8 +33,7 @@ else
     FOAM_CASES_DIR=$src/foam_cases "$case_dir/Allrun" > "$work/log.tiny" 2>&1
     touch "$case_dir/.done"
   fi
-  scene=$work/tiny_scene.json
-  sed "s|@FIELD@|$work/grid_${name}_0.vti|" "$src/bench/accuracy/tiny_scene.json.in" > "$scene"
+  base=$src/bench/accuracy/tiny_scene.json.in
   res=(16 32 64 128)
 fi
 files=()
@@ -43,7 +42,15 @@ for n in "${res[@]}"; do
   [ -f "$f" ] || "$build/bin/foam2grid" "$case_dir" -o "$f" "${bounds[@]}" --resolution "$n" "$n" "$n" -q
   files+=("$f")
 done
-cp "${files[0]}" "$work/grid_${name}_0.vti"  # the scene's nominal field (replaced per run)
+# the scene on the finest grid (replaced per run), at most 2 s
+scene=$work/grid_scene.json
+/usr/bin/python3 - "$base" "${files[-1]}" "$scene" <<'PY'
+import json, sys
+s = json.loads(open(sys.argv[1]).read().replace("@FIELD@", sys.argv[2]))
+s["fluid"]["field"] = sys.argv[2]
+s["duration"] = min(s["duration"], 2.0)
+json.dump(s, open(sys.argv[3], "w"), indent=1)
+PY
 list=$(IFS=,; echo "${files[*]}")
 "$build/bin/accuracy_study" --source-dir "$src" --out "$work/grid" --scenes none \
   --grids "$name:$scene:$list" 2>&1 | tee "$work/log.grid"
