@@ -194,6 +194,13 @@ TEST_F(Cli, WrongTypes) {
                3, {"scene.json", "gravity", "9.81"});
 }
 
+TEST_F(Cli, NumberTooLargeForADouble) {
+  // found by fuzz_scene: nlohmann::json throws out_of_range (406) for 1e999, which must still
+  // be a bad-input error naming the file, not an internal error (exit 1)
+  expect_error(run_scene(replace(base_scene(), "\"duration\": 0.05", "\"duration\": 1e999")), 3,
+               {"scene.json", "1e999"});
+}
+
 struct BadValue {
   const char* from;
   const char* to;
@@ -311,6 +318,15 @@ TEST_F(Cli, EmptyGrids) {
   put(dir_ / "empty.pvd", "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\">\n<Collection>\n"
                           "</Collection>\n</VTKFile>\n");
   expect_error(run_scene(grid_scene("empty.pvd")), 3, {"empty.pvd", "empty"});
+}
+
+TEST_F(Cli, SeriesEntryWithAnOverlongFileName) {
+  // found by fuzz_grid: std::filesystem throws (ENAMETOOLONG) on a 300-character name, which
+  // must be a bad-input error naming the series, not an internal error (exit 1)
+  put(dir_ / "long.pvd", "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\">\n<Collection>\n"
+                         "<DataSet timestep=\"0\" file=\"" + std::string(300, 'g') + ".vti\"/>\n"
+                         "</Collection>\n</VTKFile>\n");
+  expect_error(run_scene(grid_scene("long.pvd")), 3, {"long.pvd"});
 }
 
 // ---- meshes ----
