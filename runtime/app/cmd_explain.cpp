@@ -39,8 +39,8 @@ void explain(const std::string& path) {
   std::printf("scene: %s\n", path.c_str());
   std::printf("fluid: rho_f = %g kg/m^3, nu = %g m^2/s, gravity = %g m/s^2\n",
               scene.fluid_density, nu, scene.gravity.norm());
-  std::printf("flow (%s): |U| = %.3g m/s, k = %.3g m^2/s^2, eps = %.3g m^2/s^3", flow.source.c_str(),
-              flow.U, flow.k, flow.eps);
+  std::printf("flow (%s): |U| = %.3g m/s, k = %.3g m^2/s^2, eps = %.3g m^2/s^3",
+              flow.source.c_str(), flow.U, flow.k, flow.eps);
   if (flow.k > 0 && flow.eps > 0)
     std::printf(", k/eps = %.3g s, tau_eta = sqrt(nu/eps) = %.3g s", flow.k / flow.eps,
                 std::sqrt(nu / flow.eps));

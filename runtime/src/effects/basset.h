@@ -1,7 +1,8 @@
 // Basset-Boussinesq history force (docs/physics/basset.md; physics-notes §6). For a sphere in
 // unsteady Stokes flow (Maxey & Riley 1983), with g = u - v the fluid velocity minus the body's
 // (world frame):
-//   F_B(t) = C int_0^t g'(tau) / sqrt(t - tau) dtau,   C = 6 a^2 rho sqrt(pi nu) = 3/2 d^2 sqrt(pi rho mu)
+//   F_B(t) = C int_0^t g'(tau) / sqrt(t - tau) dtau,
+//   C = 6 a^2 rho sqrt(pi nu) = 3/2 d^2 sqrt(pi rho mu)
 // with a = r_eq for other shapes. The memory term is evaluated with g' piecewise constant per
 // step (dt = h):
 //   - the current interval, exactly: 2 C sqrt(h) (g_{n+1} - g_n) / h. It acts like a mass

@@ -49,12 +49,11 @@ TEST(Lift, TranslationalLiftIsNormalToVelocityAndPeaksAt45Degrees) {
     EXPECT_NEAR(f.dot(u), 0.0, 1e-15) << deg;          // perpendicular to u
     EXPECT_NEAR(f.y(), 0.0, 1e-15) << deg;             // in the plane of u and n
     // |F| = rho C_T S U^2 |sin a cos a|
-    EXPECT_NEAR(f.norm(), rho * kLiftTranslational * S * U * U * std::abs(std::sin(a) * std::cos(a)),
-                1e-12)
-        << deg;
+    const double sc = std::abs(std::sin(a) * std::cos(a));
+    EXPECT_NEAR(f.norm(), rho * kLiftTranslational * S * U * U * sc, 1e-12) << deg;
   }
-  // a plate falling with its leading edge down (u_n < 0, u_t > 0) is pushed towards +x... the
-  // 2D APW sign: F_x = -rho Gamma v_y with Gamma = -C_T l v_x v_y / |v| (per unit span)
+  // sign as in APW's 2D equations: F_x = -rho Gamma v_y, F_y = rho Gamma v_x with
+  // Gamma = -C_T l v_x v_y / |v| (per unit span; x along the plate, y = n)
   const Vec3 u(0.2, 0, -0.1);
   const Vec3 f = lift_wrench(t, u, Vec3::Zero(), rho).head<3>();
   const double gamma_per_area = -kLiftTranslational * u.x() * u.z() / u.norm();
@@ -90,7 +89,8 @@ TEST(PlateDrag, DissipativeTorqueOpposesPitch) {
   const double rho = 1000, wy = 2.0, c = 0.02, span = t.plate_area / (2 * c);
   const Vec3 tq = plate_drag_wrench(t, Vec3::Zero(), Vec3(0, wy, 0), rho, 1e-6).tail<3>();
   const double expect =
-      -M_PI * rho * std::pow(c, 4) * span * (kPlateTorqueMu1 * t.apw_speed / c + kPlateTorqueMu2 * wy) * wy;
+      -M_PI * rho * std::pow(c, 4) * span *
+      (kPlateTorqueMu1 * t.apw_speed / c + kPlateTorqueMu2 * wy) * wy;
   EXPECT_NEAR(tq.y(), expect, 1e-15);
   EXPECT_GT(t.apw_speed, 0);
 }
