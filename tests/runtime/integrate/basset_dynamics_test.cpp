@@ -46,8 +46,10 @@ struct Case {
 
 // v_z(t) of the sphere; window > 0 replaces the kernel by a direct full-history quadrature
 std::vector<std::pair<double, double>> run(const Case& c, double dt, double T, bool basset,
-                                           int direct_window = 0) {
+                                           int direct_window = 0,
+                                           Integrator integ = Integrator::Splitting) {
   Scene s = test::sphere_scene(c.a, c.rho_p, c.rho, c.nu);
+  s.integrator = integ;
   s.gravity = Vec3(0, 0, -c.g);
   s.effects = test::effects({Effect::Gravity, Effect::Buoyancy, Effect::AddedMass, Effect::Drag});
   if (basset) s.effects.add(Effect::Basset);
@@ -93,6 +95,22 @@ TEST(BassetDynamics, SphereFromRestMatchesTheClosedForm) {
   EXPECT_LT(err, 5e-3 * std::abs(v_term));
   EXPECT_GT(gap, 20 * err) << "the history force must matter in this case";
   RecordProperty("max_error_rel_terminal", std::to_string(err / std::abs(v_term)));
+}
+
+TEST(BassetDynamics, EulerAndRk4AlsoMatchTheClosedForm) {
+  // the history force enters both step forms (impulse form: euler; velocity form: rk4)
+  const Case c;
+  const double tau = 1 / c.alpha(), dt = tau / 400, T = 20 * tau;
+  const double v_term = std::abs(c.gamma() / c.alpha());
+  for (Integrator integ : {Integrator::Euler, Integrator::RK4}) {
+    const auto v = run(c, dt, T, true, 0, integ);
+    double err = 0;
+    for (size_t i = 1; i < v.size(); ++i)
+      err = std::max(err, std::abs(v[i].second - c.exact(v[i].first)));
+    std::printf("Basset, %s: max |v - v_exact| = %.2e of v_terminal\n", integrator_name(integ),
+                err / v_term);
+    EXPECT_LT(err, 5e-3 * v_term) << integrator_name(integ);
+  }
 }
 
 TEST(BassetDynamics, FastKernelMatchesFullHistoryQuadrature) {
