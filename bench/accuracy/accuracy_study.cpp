@@ -82,8 +82,8 @@ void add(const Case& c, const std::string& sweep, const RunSpec& s, const std::s
 std::string csv_text() {
   std::ostringstream o;
   o << "scene,sweep,integrator,dt,substeps,effects,grid,bodies,metric,error,error_se,valid,"
-       "ref_check,body_steps,wall_s,ns_per_body_step,wall_total_s,cpu_s,cpu_ns_per_body_step,failed,"
-       "note\n";
+       "ref_check,body_steps,wall_s,ns_per_body_step,wall_total_s,cpu_s,cpu_ns_per_body_step,"
+       "failed,note\n";
   for (const Row& r : g_rows) {
     char buf[512];
     const double steps = r.stats.body_steps ? double(r.stats.body_steps) : 1.0;
@@ -207,7 +207,8 @@ void sweep_effects(const Case& c, const Scene& base, const FluidField& field, in
         add(c, "effects_det", s, "", "trajectory", pathwise_error(r, full), 0, r);
       } else {
         for (const auto& nm : kStochMetrics)
-          if (std::string(nm.name) != "strong") add(c, "effects", s, "", nm.name, nm.fn(r, full), 0, r);
+          if (std::string(nm.name) != "strong")
+            add(c, "effects", s, "", nm.name, nm.fn(r, full), 0, r);
       }
       log(c.name + ": effects " + effect_mode_name(mode) + (turbulence ? " (turbulence)" : ""));
     }
@@ -240,7 +241,8 @@ void sweep_grids(const Case& c, const Scene& base, const std::vector<std::string
         add(c, "grid", s, gname, "trajectory", pathwise_error(r, fine), 0, r);
       } else {
         for (const auto& nm : kStochMetrics)
-          if (std::string(nm.name) != "strong") add(c, "grid", s, gname, nm.name, nm.fn(r, fine), 0, r);
+          if (std::string(nm.name) != "strong")
+            add(c, "grid", s, gname, nm.name, nm.fn(r, fine), 0, r);
       }
       log(c.name + ": grid " + gname + (turbulence ? " (turbulence)" : ""));
     }

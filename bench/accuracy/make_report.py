@@ -307,8 +307,6 @@ def report(rows, slopes, kinds, sources, scenes, date, seconds):
                 w("* `%s` scenes: no measured point reaches %g %% (smallest: %s at dt = %g s, "
                   "%.2g)." % (kind, tol * 100, best["integrator"] if best else "-",
                               best["dt"] if best else 0, best["error"] if best else 0))
-    for s in slopes:
-        pass
     det = {(s["scene"], s["integrator"]): s for s in slopes
            if s["sweep"] == "dt_det" and s["metric"] == "trajectory"}
     for scene in scenes:
@@ -333,9 +331,11 @@ def report(rows, slopes, kinds, sources, scenes, date, seconds):
     grid = [r for r in rows if r["sweep"] == "grid" and r["valid"]]
     for r in grid:
         if r["metric"] in ("trajectory", "weak_mean"):
-            w("* grid `%s` against the finest grid (%s): %s error %.2g%s." %
-              (r["grid"], r["scene"], r["metric"], r["error"],
-               (" ± %.1g" % r["error_se"]) if r["error_se"] else ""))
+            w("* grid `%s` against the finest grid (%s, %s at dt %g s): %s error %.2g%s "
+              "(%.0f ns CPU per body-step)." %
+              (r["grid"], r["scene"], r["integrator"], r["dt"], r["metric"], r["error"],
+               (" ± %.1g" % r["error_se"]) if r["error_se"] else "",
+               r["cpu_ns_per_body_step"]))
     w("")
     w("## Measured convergence slopes")
     w("")
