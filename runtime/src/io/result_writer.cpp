@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <cinttypes>
+#include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <filesystem>
@@ -97,6 +98,18 @@ ResultWriter::ResultWriter(const std::string& dir, const Model& model, const Out
     for (const BodyType& t : model_.types) surfaces_.push_back(body_surface(t, faces));
   }
   if (spec_.glb) {
+    // the animation keeps every frame in memory until the end (x and q, 56 bytes a sample)
+    const double frames = std::floor(model_.duration / spec_.every + 1e-9) + 2;
+    const double need = frames * double(model_.body_count) * (sizeof(Vec3) + sizeof(Quat));
+    const double have = double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGE_SIZE));
+    if (need > 0.5 * have) {
+      char buf[240];
+      std::snprintf(buf, sizeof buf,
+                    "\"glb\" would keep %.1f GiB of frames in memory (%.1f GiB here); drop it and "
+                    "bake afterwards with lrigid export-gltf, or raise output.every",
+                    need / (1 << 30), have / (1 << 30));
+      throw Error(ExitCode::Resource, where(model_.scene_file, "output.formats", buf));
+    }
     for (const BodyType& t : model_.types) gltf_.types.push_back({t.name, body_surface(t, 320)});
   }
 }

@@ -197,6 +197,21 @@ TEST(Gltf, ExportFromResultsFilesMatchesTrajectories) {
   fs::remove_all(dir);
 }
 
+TEST(Gltf, RunTooLongToKeepInMemoryIsRefusedUpFront) {
+  const std::string dir = ::testing::TempDir() + "gltf_huge_" + std::to_string(::getpid());
+  Scene scene = tumbling_scene(dir);
+  scene.duration = 1e9;  // 1e10 frames of 7 bodies: far beyond any machine's memory
+  const Model model = test::compile(scene);
+  try {
+    ResultWriter w(dir, model, scene.output);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), ExitCode::Resource);
+    EXPECT_NE(std::string(e.what()).find("output.formats"), std::string::npos) << e.what();
+  }
+  fs::remove_all(dir);
+}
+
 TEST(Gltf, BadInputIsRefused) {
   const std::string dir = ::testing::TempDir();
   GltfAnimation a;
