@@ -52,10 +52,33 @@ def read_rows(paths):
     return rows
 
 
+DET_NS = {}      # (scene, integrator, dt) -> CPU ns per body-step with turbulence off
+TURB_FACTOR = {}  # scene -> CPU cost with turbulence / without (effects sweep, substeps 1)
+
+
+def index_costs(rows):
+    for r in rows:
+        if r["sweep"] == "dt_det":
+            DET_NS[(r["scene"], r["integrator"], r["dt"])] = r["cpu_ns_per_body_step"]
+    for scene in {r["scene"] for r in rows}:
+        on = [r for r in rows if r["scene"] == scene and r["sweep"] == "effects"
+              and r["effects"] == "auto"]
+        off = [r for r in rows if r["scene"] == scene and r["sweep"] == "effects_det"
+               and r["effects"] == "auto"]
+        if on and off and off[0]["cpu_ns_per_body_step"] > 0:
+            TURB_FACTOR[scene] = on[0]["cpu_ns_per_body_step"] / off[0]["cpu_ns_per_body_step"]
+
+
 def cost(r):
     """CPU seconds per body per simulated second (process CPU time, robust on a shared
-    machine; the wall time is in the CSV too)."""
+    machine; the wall time is in the CSV too). A stochastic sweep run sums r = dt/h fine
+    increments per step to keep the Brownian path, which production runs (substeps 1) do not:
+    its cost is the turbulence-off run's at the same scheme and dt times the scene's measured
+    turbulence factor (auto effects, substeps 1)."""
     ns = r["cpu_ns_per_body_step"] or r["ns_per_body_step"]
+    key = (r["scene"], r["integrator"], r["dt"])
+    if r["sweep"] in ("dt_stoch", "reference_stoch") and key in DET_NS:
+        ns = DET_NS[key] * TURB_FACTOR.get(r["scene"], 1.0)
     return ns * 1e-9 / r["dt"]
 
 
@@ -125,7 +148,7 @@ def table_points(rows, scene):
         if any(not x["valid"] or x["failed"] for x in parts):
             continue
         err = max(x["error"] for x in parts)
-        c = cost(sto[key]) if key in sto else cost(det[key])
+        c = cost(sto[key]) if key in sto else cost(det[key]) * TURB_FACTOR.get(scene, 1.0)
         pts.append({"integrator": key[0], "dt": key[1], "error": err, "cost": c})
     return pts
 
@@ -198,6 +221,7 @@ def main():
     ap.add_argument("--study-seconds", type=float, default=float("nan"))
     a = ap.parse_args()
     rows = read_rows(a.csv)
+    index_costs(rows)
     os.makedirs(a.out, exist_ok=True)
 
     # merged CSV
@@ -407,8 +431,13 @@ same integrator and dt (the wind case when `results/cases/windCourtyard` exists,
 OpenFOAM case that `run_study.sh` runs).
 
 **Cost.** Process CPU time of the integration per body-step (and wall time, in the CSV) measured
-in the same run, one thread. The machine is shared by other jobs, so wall times scatter; CPU
-times are steadier. Cost per simulated second = CPU time per body-step / dt.
+in the same run, one thread. The machine is shared by other jobs, so wall times scatter (wall was
+3-7× CPU during this study); CPU times are steadier. Cost per simulated second = CPU time per
+body-step / dt. The stochastic sweep's own runs are *not* used for cost: to keep one Brownian
+path they sum dt/h fine increments per step (`noise_substeps`), a constant ~2.7 s of CPU per
+run here that production runs (substeps 1) never pay. Their cost is the turbulence-off run's at
+the same scheme and dt times the scene's turbulence factor, measured in the effect-set sweep
+(auto effects with and without turbulence, substeps 1).
 
 **Scene kinds** (for `lrigid run --tolerance E`): `<field>-<medium>`, field `uniform` or `grid`
 (a CFD field adds shear and k gradients), medium `air` when the fluid density is below
