@@ -219,6 +219,7 @@ def main():
     ap.add_argument("--out", required=True)
     ap.add_argument("--doc")
     ap.add_argument("--study-seconds", type=float, default=float("nan"))
+    ap.add_argument("--note", default="", help="a line for the document (e.g. the commit)")
     a = ap.parse_args()
     rows = read_rows(a.csv)
     index_costs(rows)
@@ -291,7 +292,7 @@ def main():
     if dt_scenes:
         plot(rows, dt_scenes, os.path.join(a.out, "error_vs_cost.png"))
     if a.doc:
-        text = report(rows, slopes, kinds, sources, dt_scenes, date, a.study_seconds)
+        text = report(rows, slopes, kinds, sources, dt_scenes, date, a.study_seconds, a.note)
         atomic_write(a.doc, lambda f: f.write(text))
     print("make_report.py: wrote %s (%d points, %d slopes)" % (a.out, len(rows), len(slopes)))
 
@@ -301,7 +302,7 @@ def cheapest(pts, tol):
     return min(ok, key=lambda p: p["cost"]) if ok else None
 
 
-def report(rows, slopes, kinds, sources, scenes, date, seconds):
+def report(rows, slopes, kinds, sources, scenes, date, seconds, note=""):
     L = []
     w = L.append
     w("# Accuracy versus cost")
@@ -310,6 +311,8 @@ def report(rows, slopes, kinds, sources, scenes, date, seconds):
       "report `bench/accuracy/make_report.py`) on %s. Machine: %s." % (date, machine()))
     if math.isfinite(seconds):
         w("The study took %.0f s (wall, shared machine)." % seconds)
+    if note:
+        w(note)
     w("Do not edit by hand: rerun the study. All numbers: `docs/accuracy/accuracy.csv`; slopes: "
       "`docs/accuracy/slopes.csv`; plot: `docs/accuracy/error_vs_cost.png`; the table "
       "`lrigid run --tolerance` reads: `docs/accuracy/tolerance_table.json`.")

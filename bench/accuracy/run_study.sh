@@ -57,4 +57,4 @@ list=$(IFS=,; echo "${files[*]}")
 
 /usr/bin/python3 "$src/bench/accuracy/make_report.py" --csv "$work/main/accuracy.csv" \
   "$work/grid/accuracy.csv" --out "$out" --doc "$src/docs/accuracy.md" \
-  --study-seconds $((SECONDS - t0))
+  --study-seconds $((SECONDS - t0)) --note "Runtime measured: commit $(git -C "$src" rev-parse --short HEAD)."
