@@ -137,9 +137,12 @@ class Cli : public ::testing::Test {
   void expect_error(const Result& r, int code, const std::vector<std::string>& needles) {
     EXPECT_EQ(r.code, code) << r.err;
     // usage errors come from CLI11 with its own wording
-    if (code != 2) EXPECT_NE(r.err.find("lrigid: error: "), std::string::npos) << r.err;
-    for (const auto& n : needles) EXPECT_NE(r.err.find(n), std::string::npos)
-                                      << "message lacks '" << n << "': " << r.err;
+    if (code != 2) {
+      EXPECT_NE(r.err.find("lrigid: error: "), std::string::npos) << r.err;
+    }
+    for (const auto& n : needles) {
+      EXPECT_NE(r.err.find(n), std::string::npos) << "message lacks '" << n << "': " << r.err;
+    }
     expect_no_results();
   }
 

@@ -29,7 +29,8 @@ std::string fmt(double v) {
 }
 
 void read_vti(const std::string& path, GridGeometry* geom, RawGridFrame* frame, double* nu) {
-  if (!fs::is_regular_file(path)) fail_input(path, "", "grid file not found");
+  std::error_code ec;  // the non-throwing overload: an over-long or odd name is a bad input too
+  if (!fs::is_regular_file(path, ec)) fail_input(path, "", "grid file not found");
   vtkNew<vtkXMLImageDataReader> reader;
   if (!reader->CanReadFile(path.c_str())) fail_input(path, "", "not a VTK XML ImageData (.vti) file");
   reader->SetFileName(path.c_str());
@@ -152,7 +153,12 @@ GridFile read_grid(const std::string& path) {
     GridGeometry geom;
     RawGridFrame f;
     double nu = 0;
-    read_vti(entries[i].second, &geom, &f, &nu);
+    try {
+      read_vti(entries[i].second, &geom, &f, &nu);
+    } catch (const Error& e) {
+      // name the series and the entry as well as the frame file
+      fail_input(path, "DataSet[" + std::to_string(i) + "]", e.what());
+    }
     f.time = entries[i].first;
     if (i == 0) {
       g.geometry = geom;
