@@ -101,11 +101,12 @@ Shape read_shape(Obj o, BodySpec* b) {
     s = Shape::sphere(o.positive("radius"));
   } else if (type == "ellipsoid") {
     const Vec3 a = o.vec3("semi_axes");
-    if (!(a.minCoeff() > 0)) o.fail("semi_axes", "must all be > 0");
+    if (!(a.minCoeff() > 0))
+      o.fail("semi_axes", "must all be > 0, got " + Obj::dump(o.get("semi_axes")));
     s = Shape::ellipsoid(a.x(), a.y(), a.z());
   } else if (type == "box") {
     const Vec3 l = o.vec3("size");
-    if (!(l.minCoeff() > 0)) o.fail("size", "must all be > 0");
+    if (!(l.minCoeff() > 0)) o.fail("size", "must all be > 0, got " + Obj::dump(o.get("size")));
     s = Shape::box(l.x(), l.y(), l.z());
   } else if (type == "mesh") {
     const std::string file = resolve(o.string("file"), o.file());
@@ -203,7 +204,9 @@ BodySpec read_body(Obj o) {
 
 }  // namespace
 
-Scene parse_scene(const std::string& text, const std::string& path) {
+namespace {
+
+Scene parse_scene_unchecked(const std::string& text, const std::string& path) {
   json j;
   try {
     j = json::parse(text);
@@ -240,7 +243,8 @@ Scene parse_scene(const std::string& text, const std::string& path) {
     if (field) {
       s.uniform_field = false;
       s.field_path = resolve(f.string("field"), path);
-      if (!fs::exists(s.field_path))
+      std::error_code ec;
+      if (!fs::exists(s.field_path, ec))
         f.fail("field", "file not found: " + s.field_path);
       if (f.has("time")) {
         const std::string m = f.string("time");
@@ -366,9 +370,21 @@ Scene parse_scene(const std::string& text, const std::string& path) {
   return s;
 }
 
+}  // namespace
+
+Scene parse_scene(const std::string& text, const std::string& path) {
+  try {
+    return parse_scene_unchecked(text, path);
+  } catch (const json::exception& e) {
+    // e.g. a number too large for a double (out_of_range): still a bad input, never a crash
+    fail_input(path, "", std::string("invalid JSON: ") + e.what());
+  }
+}
+
 Scene read_scene(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) fail_input(path, "", fs::exists(path) ? "cannot be read" : "file not found");
+  std::error_code ec;
+  if (!in) fail_input(path, "", fs::exists(path, ec) ? "cannot be read" : "file not found");
   std::stringstream ss;
   ss << in.rdbuf();
   return parse_scene(ss.str(), path);
