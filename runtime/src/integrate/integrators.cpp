@@ -37,8 +37,7 @@ StepOutcome turbulence_update(const Model& model, const BodyType& type, double t
                               bool exact, const double* z, BodyState* s) {
   FluidSample fs;
   const bool seen = model.turbulence_model == TurbulenceModel::Seen;
-  if (!sample_fluid(model, s->x, t, seen && !model.field.is_uniform(), &fs))
-    return StepOutcome::Exited;
+  if (!sample_fluid(model, s->x, t, !model.field.is_uniform(), &fs)) return StepOutcome::Exited;
   const Vec3 xi1(z[0], z[1], z[2]);
   double decay, noise;
   if (exact) {
@@ -49,19 +48,16 @@ StepOutcome turbulence_update(const Model& model, const BodyType& type, double t
     decay = 1.0 - fs.alpha * h;
     noise = fs.beta * std::sqrt(h);
   }
-  if (seen) {
-    const Vec3 U = type.effects.has(Effect::MeanFlow) ? fs.U : Vec3::Zero();
-    FluidSample drift_sample = fs;
-    drift_sample.U = U;
-    const Vec3 drift =
-        model.well_mixed_correction ? well_mixed_drift(s->u_seen, drift_sample) : Vec3::Zero();
-    s->u_seen = decay * s->u_seen + h * drift + noise * xi1;
-  } else {
-    // the body's velocity relative to the mean flow, world frame
-    const Mat3 R = s->q.toRotationMatrix();
-    const Vec3 U = type.effects.has(Effect::MeanFlow) ? fs.U : Vec3::Zero();
-    const Vec3 rel = decay * (R * s->v - U) + noise * xi1;
-    s->v = R.transpose() * (rel + U);
+  // the turbulent velocity u' (world frame, in u_seen) follows the OU process with Thomson's
+  // well-mixed drift in both models: "seen" makes it the fluid velocity around the body (acting
+  // through drag and added mass), "body" adds it to the body's own velocity (x' = R v + u')
+  const Vec3 U = type.effects.has(Effect::MeanFlow) ? fs.U : Vec3::Zero();
+  FluidSample drift_sample = fs;
+  drift_sample.U = U;
+  const Vec3 drift =
+      model.well_mixed_correction ? well_mixed_drift(s->u_seen, drift_sample) : Vec3::Zero();
+  s->u_seen = decay * s->u_seen + h * drift + noise * xi1;
+  if (!seen) {
     const Vec3 xi2(z[3], z[4], z[5]);
     s->w = decay * s->w + (noise / type.r_eq) * xi2;
   }
@@ -241,12 +237,10 @@ StepOutcome step_body(const Model& model, const BodyType& type, uint32_t body, u
       if (out == StepOutcome::Ok && turb) {
         BodyState inc = start;
         out = turbulence_update(model, type, t, h, false, z, &inc);
-        if (model.turbulence_model == TurbulenceModel::Seen) {
-          s->u_seen = inc.u_seen;
-        } else {
-          // add the Langevin increment (computed at the start state) to the deterministic result
-          const Mat3 R0 = start.q.toRotationMatrix(), R1 = s->q.toRotationMatrix();
-          s->v += R1.transpose() * (R0 * (inc.v - start.v));
+        s->u_seen = inc.u_seen;
+        if (model.turbulence_model == TurbulenceModel::Body) {
+          // the body model's turbulent velocity moves the body directly (Ito: start value)
+          s->x += h * start.u_seen;
           s->w += inc.w - start.w;
         }
       }
@@ -255,6 +249,9 @@ StepOutcome step_body(const Model& model, const BodyType& type, uint32_t body, u
     case Integrator::Splitting:
       if (turb) out = turbulence_update(model, type, t, 0.5 * h, true, z1, s);
       if (out == StepOutcome::Ok) out = impulse_step(model, type, t, true, s);
+      // body model: the turbulent velocity at mid-step carries the body directly
+      if (out == StepOutcome::Ok && turb && model.turbulence_model == TurbulenceModel::Body)
+        s->x += h * s->u_seen;
       if (out == StepOutcome::Ok && turb)
         out = turbulence_update(model, type, t + 0.5 * h, 0.5 * h, true, z2, s);
       break;

@@ -28,6 +28,18 @@
 
 namespace lrigid {
 
+namespace {
+// world-frame velocity of body i: with the "body" turbulence model the turbulent velocity u'
+// moves the body directly and is part of its velocity
+Vec3 body_velocity(const Model& m, const State& st, size_t i, const Mat3& R) {
+  Vec3 v = R * st.v[i];
+  if (m.turbulence_model == TurbulenceModel::Body &&
+      m.types[st.type[i]].effects.has(Effect::Turbulence))
+    v += st.u_seen[i];
+  return v;
+}
+}  // namespace
+
 namespace fs = std::filesystem;
 
 TriangleMesh body_surface(const BodyType& type, int target_faces) {
@@ -131,7 +143,7 @@ void ResultWriter::write_frame(const State& st) {
   if (csv_) {
     for (size_t i = 0; i < st.size(); ++i) {
       const Mat3 R = st.q[i].toRotationMatrix();
-      const Vec3 v = R * st.v[i], w = R * st.w[i];
+      const Vec3 v = body_velocity(model_, st, i, R), w = R * st.w[i];
       const Quat& q = st.q[i];
       std::fprintf(csv_,
                    "%zu,%s,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n",
@@ -233,7 +245,7 @@ void ResultWriter::write_vtp(const State& st, const std::string& path) const {
   status->SetNumberOfTuples(n);
   for (vtkIdType i = 0; i < n; ++i) {
     const Mat3 R = st.q[i].toRotationMatrix();
-    const Vec3 v = R * st.v[i], w = R * st.w[i];
+    const Vec3 v = body_velocity(model_, st, i, R), w = R * st.w[i];
     pts->SetPoint(i, st.x[i].data());
     verts->InsertNextCell(1, &i);
     const double q[4] = {st.q[i].w(), st.q[i].x(), st.q[i].y(), st.q[i].z()};

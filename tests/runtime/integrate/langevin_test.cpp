@@ -44,7 +44,9 @@ Stats measure(const Scene& s, double burn_in, double lag, bool seen) {
   std::vector<std::vector<Vec3>> frames;
   opt.on_output = [&](const State& x) {
     std::vector<Vec3> u(x.size());
-    for (size_t i = 0; i < x.size(); ++i) u[i] = seen ? x.u_seen[i] : Vec3(x.q[i] * x.v[i]);
+    // body model: the body's velocity R v + u' (v stays 0 without other effects)
+    for (size_t i = 0; i < x.size(); ++i)
+      u[i] = seen ? x.u_seen[i] : Vec3(x.q[i] * x.v[i] + x.u_seen[i]);
     frames.push_back(u);
   };
   Model mm = m;
@@ -122,7 +124,8 @@ TEST(OUStatistics, EulerMaruyamaVarianceIsBiasedAsTheoryPredicts) {
 // Tracers in a field whose k grows along x stay uniformly spread (Thomson's well-mixed
 // condition); without the drift correction they drain towards low k.
 // Returns the counts in 8 bins across [-2, 2] m after 8 s.
-std::vector<int> tracer_bins(bool correction, int n) {
+std::vector<int> tracer_bins(bool correction, int n,
+                             TurbulenceModel model = TurbulenceModel::Seen) {
   GridGeometry g;
   g.n[0] = 81;
   g.n[1] = 2;
@@ -144,7 +147,7 @@ std::vector<int> tracer_bins(bool correction, int n) {
   }
   Scene s = test::sphere_scene(1e-4, 1000, 1000, kNu, n);
   s.effects = test::effects({Effect::Drag, Effect::Turbulence});
-  s.turbulence_model = TurbulenceModel::Seen;
+  s.turbulence_model = model;
   s.drift = Drift::Stationary;
   s.integrator = Integrator::Splitting;
   s.dt = 0.02;
@@ -221,11 +224,46 @@ TEST(BrownianPath, CoarseStepsSumTheFineIncrements) {
                 other = final_velocity(0.01, 1, 10);
     double same = 0, diff = 0;
     for (size_t i = 0; i < coarse.size(); ++i) {
-      same = std::max(same, (coarse.q[i] * coarse.v[i] - fine.q[i] * fine.v[i]).norm());
-      diff = std::max(diff, (other.q[i] * other.v[i] - fine.q[i] * fine.v[i]).norm());
+      same = std::max(same, (coarse.u_seen[i] - fine.u_seen[i]).norm());
+      diff = std::max(diff, (other.u_seen[i] - fine.u_seen[i]).norm());
     }
     EXPECT_LT(same, 0.02 * diff) << integrator_name(scheme);
   }
+}
+
+}  // namespace
+}  // namespace lrigid
+
+namespace lrigid {
+namespace {
+
+// The "body" model with drag on: drag acts on the body's own (non-turbulent) motion, the
+// turbulent velocity u' moves the body directly, so the body's velocity variance is the field's
+// 2k/3 for any dt (before, drag relaxed the fluctuation away within the step: ~beta^2 h / 2).
+TEST(OUStatistics, BodyModelWithDragKeepsTheFieldsKForAnyDt) {
+  for (double dt : {1e-3, 1e-2}) {
+    const int n = 20000;
+    Scene s = ou_scene(TurbulenceModel::Body, Drift::Stationary, Integrator::Splitting, dt, n);
+    s.effects.add(Effect::Drag);
+    const Stats st = measure(s, 3.0, 0.1, false);
+    EXPECT_NEAR(st.var, 2.0 / 3.0 * 0.06, 4 * 0.04 * std::sqrt(2.0 / (3.0 * n))) << "dt " << dt;
+  }
+}
+
+}  // namespace
+}  // namespace lrigid
+
+namespace lrigid {
+namespace {
+
+TEST(WellMixed, BodyModelTracersStayUniformToo) {
+  const int n = 30000;
+  const std::vector<int> bins = tracer_bins(true, n, TurbulenceModel::Body);
+  const double low = bins[0] + bins[1] + bins[2] + bins[3];
+  const double high = bins[4] + bins[5] + bins[6] + bins[7];
+  const double expect = n * 0.5 / 16.0;
+  std::printf("well-mixed, body model: low/high = %.4f\n", low / high);
+  EXPECT_NEAR(low / high, 1.0, 4 * std::sqrt(2.0 / (4 * expect)));
 }
 
 }  // namespace
