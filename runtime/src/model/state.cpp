@@ -73,7 +73,10 @@ State initial_state(const Model& model, const Scene& scene) {
         const Vec3 axis = Vec3(z[0], z[1], z[2]).normalized();
         s.w[i] += (spec.spin_min + u[0] * (spec.spin_max - spec.spin_min)) * axis;
       }
-      if (type.effects.has(Effect::Turbulence)) {
+      // seen model: the fluid's fluctuation starts stationary; body model: the body starts with
+      // exactly the scene's velocity (its turbulent velocity starts at 0)
+      if (type.effects.has(Effect::Turbulence) &&
+          model.turbulence_model == TurbulenceModel::Seen) {
         FluidSample fs;
         if (model.field.sample(s.x[i], 0.0, false, &fs)) {
           NormalStream ns(model.seed, id, ~uint64_t(1));
