@@ -38,6 +38,16 @@ Vec3 body_velocity(const Model& m, const State& st, size_t i, const Mat3& R) {
     v += st.u_seen[i];
   return v;
 }
+
+// one compressed .vtp file (appended binary, zlib), or ExitCode::Output naming the path
+void write_polydata(vtkPolyData* poly, const std::string& path) {
+  vtkNew<vtkXMLPolyDataWriter> w;
+  w->SetFileName(path.c_str());
+  w->SetInputData(poly);
+  w->SetDataModeToAppended();
+  w->SetCompressorTypeToZLib();
+  if (w->Write() != 1) throw Error(ExitCode::Output, where(path, "", "cannot write .vtp frame"));
+}
 }  // namespace
 
 namespace fs = std::filesystem;
@@ -211,12 +221,7 @@ void ResultWriter::write_shapes_vtp(const State& st, const std::string& path) co
   poly->GetCellData()->AddArray(id);
   poly->GetCellData()->AddArray(type);
   poly->GetCellData()->AddArray(status);
-  vtkNew<vtkXMLPolyDataWriter> w;
-  w->SetFileName(path.c_str());
-  w->SetInputData(poly);
-  w->SetDataModeToAppended();
-  w->SetCompressorTypeToZLib();
-  if (w->Write() != 1) throw Error(ExitCode::Output, where(path, "", "cannot write .vtp frame"));
+  write_polydata(poly, path);
 }
 
 void ResultWriter::write_vtp(const State& st, const std::string& path) const {
@@ -263,12 +268,7 @@ void ResultWriter::write_vtp(const State& st, const std::string& path) const {
                           static_cast<vtkDataArray*>(angvel.Get()), static_cast<vtkDataArray*>(id.Get()),
                           static_cast<vtkDataArray*>(type.Get()), static_cast<vtkDataArray*>(status.Get())})
     poly->GetPointData()->AddArray(a);
-  vtkNew<vtkXMLPolyDataWriter> w;
-  w->SetFileName(path.c_str());
-  w->SetInputData(poly);
-  w->SetDataModeToAppended();
-  w->SetCompressorTypeToZLib();
-  if (w->Write() != 1) throw Error(ExitCode::Output, where(path, "", "cannot write .vtp frame"));
+  write_polydata(poly, path);
 }
 
 void ResultWriter::finish(const State& st, const RunStats& stats, const nlohmann::json& extra) {
