@@ -6,10 +6,14 @@
 //              integrated through dexp^-1) for the deterministic part, order 4; the noise is
 //              added once per step with sqrt(h) scaling as in the seed method, so the stochastic
 //              order is 1. Stable for h < 2.79/lambda_drag, alpha h < 2.
-//   splitting  Strang splitting: exact Ornstein-Uhlenbeck half step, a linearly implicit Euler
-//              step for the deterministic part (drag stiffness on the left-hand side) with the
-//              exponential map for the rotation, exact OU half step. Order 1 deterministic,
-//              stable for any alpha h and any drag stiffness.
+//   splitting  Strang splitting: exact Ornstein-Uhlenbeck half step, the deterministic step,
+//              exact OU half step. The deterministic step is itself split (Lie-Trotter): the
+//              free Kirchhoff flow (gyroscopic and Munk terms, rotation) by the implicit
+//              midpoint rule with the Cayley rotation, which conserves the relative kinetic
+//              energy exactly; then the forces with the drag implicit (linearly implicit Euler,
+//              Newton-iterated to backward Euler when the drag is stiff). Order 1
+//              deterministic, stable for any alpha h, any drag stiffness and any added-mass
+//              anisotropy (paper-thin plates).
 // Basset history force: its past part is a wrench term like any other effect; the current
 // interval's part acts as a mass 2 C sqrt(h) on the translation and is taken implicitly (impulse
 // step: on the left-hand side with the drag stiffness; rk4: a correction after the step). The
