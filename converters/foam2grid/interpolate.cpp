@@ -1,5 +1,7 @@
 #include "interpolate.h"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -200,7 +202,8 @@ std::vector<double> point_values(const std::vector<MeshPart>& parts,
 
 void resample(const std::vector<MeshPart>& parts, const std::vector<PartFields>& fields,
               const std::vector<double>& point_vals, const std::vector<FieldSpec>& specs,
-              const GridSpec& grid, Scheme scheme, GridFields* out) {
+              const GridSpec& grid, Scheme scheme, GridFields* out,
+              const ResampleProgress& on_progress) {
   const std::size_t np = grid.n_points();
   const int nc = fields.empty() ? 0 : fields[0].ncomp;
   out->arrays.resize(specs.size());
@@ -216,12 +219,39 @@ void resample(const std::vector<MeshPart>& parts, const std::vector<PartFields>&
   const long* dims = grid.dims.data();
   constexpr double kTol = 1e-10;  // barycentric tolerance (points on faces and edges)
 
+  // progress: cells done and points resampled per thread (each counter written by its own
+  // thread only, so no contention); thread 0 adds them up and reports every kReport cells
+  struct alignas(64) Counts {
+    std::atomic<std::size_t> cells{0}, points{0};
+  };
+  std::vector<Counts> counts(static_cast<std::size_t>(std::max(1, omp_get_max_threads())));
+  double total_cells = 0;
+  for (const MeshPart& m : parts) total_cells += static_cast<double>(m.n_cells);
+  auto report = [&] {
+    std::size_t cells = 0, points = 0;
+    for (const Counts& n : counts) {
+      cells += n.cells.load(std::memory_order_relaxed);
+      points += n.points.load(std::memory_order_relaxed);
+    }
+    on_progress(static_cast<double>(cells) / std::max(total_cells, 1.0), points);
+  };
+  constexpr std::size_t kReport = 4096;
+  auto bump = [](std::atomic<std::size_t>& a) {
+    a.store(a.load(std::memory_order_relaxed) + 1, std::memory_order_relaxed);
+  };
+
   for (std::size_t part = 0; part < parts.size(); ++part) {
     const MeshPart& m = parts[part];
     const PartFields& pf = fields[part];
     const Label ncell = m.n_cells;
 #pragma omp parallel for schedule(dynamic, 1024)
     for (Label c = 0; c < ncell; ++c) {
+      const int tid = omp_get_thread_num();
+      Counts& mine = counts[static_cast<std::size_t>(tid)];
+      bump(mine.cells);
+      if (tid == 0 && on_progress && mine.cells.load(std::memory_order_relaxed) % kReport == 0) {
+        report();
+      }
       // grid index range of the cell's bounding box
       double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
       for (Label i = m.cell_face_offsets[c]; i < m.cell_face_offsets[c + 1]; ++i) {
@@ -329,11 +359,13 @@ void resample(const std::vector<MeshPart>& parts, const std::vector<PartFields>&
               }
             }
             out->valid[gi] = 1;
+            bump(mine.points);
           }
         }
       }
     }
   }
+  if (on_progress) report();
 }
 
 }  // namespace foam2grid

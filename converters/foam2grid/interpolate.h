@@ -4,6 +4,7 @@
 #pragma once
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "foam_case.h"
@@ -45,10 +46,15 @@ struct GridFields {
   std::vector<std::uint8_t> valid;
 };
 
+/// Progress of resample(): fraction of the cells done (0..1) and grid points resampled so far.
+/// Called from one thread only, every few thousand cells.
+using ResampleProgress = std::function<void(double fraction, std::size_t points)>;
+
 /// Samples the fields at every grid point (OpenMP over cells).
 void resample(const std::vector<MeshPart>& parts, const std::vector<PartFields>& fields,
               const std::vector<double>& point_vals, const std::vector<FieldSpec>& specs,
-              const GridSpec& grid, Scheme scheme, GridFields* out);
+              const GridSpec& grid, Scheme scheme, GridFields* out,
+              const ResampleProgress& on_progress = {});
 
 /// Bounding box of all mesh points: xmin, xmax, ymin, ymax, zmin, zmax (m).
 std::array<double, 6> mesh_bounds(const std::vector<MeshPart>& parts);

@@ -17,6 +17,7 @@
 #include "foam_case.h"
 #include "grid_io.h"
 #include "interpolate.h"
+#include "io/progress.h"
 
 #ifndef FOAM2GRID_VERSION
 #define FOAM2GRID_VERSION "unknown"
@@ -177,13 +178,15 @@ GridSpec make_grid(const Options& opt, const std::array<double, 6>& mb, double d
 
 int run(const Options& opt) {
   Clock clock;
+  // the runtime's progress display: a bar on a terminal, a line per 10 % otherwise
+  using lrigid::Progress;
+  Progress progress("foam2grid", opt.quiet ? Progress::Mode::Quiet : Progress::Mode::Auto);
   auto log = [&](const std::string& msg) {
     // wall time and process CPU time (all threads) since the start
-    if (!opt.quiet) {
-      std::cerr << "foam2grid [" << std::fixed << std::setprecision(2) << clock.seconds()
-                << " s, cpu " << static_cast<double>(std::clock()) / CLOCKS_PER_SEC << " s] " << msg
-                << std::endl;
-    }
+    std::ostringstream line;
+    line << "foam2grid [" << std::fixed << std::setprecision(2) << clock.seconds() << " s, cpu "
+         << static_cast<double>(std::clock()) / CLOCKS_PER_SEC << " s] " << msg;
+    progress.message(line.str());
   };
   // flags first: nothing is read before they are known to be sane
   if (opt.spacing_given && !(opt.spacing > 0)) {
@@ -302,17 +305,28 @@ int run(const Options& opt) {
   std::vector<double> pvd_times;
   std::vector<std::string> pvd_files;
   try {
-    for (std::size_t ti : times) {
+    for (std::size_t n = 0; n < times.size(); ++n) {
+      const std::size_t ti = times[n];
       const std::string& tname = fc.time_names[ti];
+      // progress over all times: time n of N, then the fraction of its cells resampled
+      const std::string which = "time " + std::to_string(n + 1) + "/" +
+                                std::to_string(times.size()) + " (" + tname + " s)";
+      const double per_time = 1.0 / static_cast<double>(times.size());
+      progress.update(static_cast<double>(n) * per_time, which + ": reading fields");
       std::vector<PartFields> fields(parts.size());
       for (std::size_t p = 0; p < parts.size(); ++p) {
         read_fields(parts[p], tname, specs, &fields[p]);
       }
       log("time " + tname + ": fields read");
+      progress.update(static_cast<double>(n) * per_time, which + ": point values");
       std::vector<double> pv;
       if (scheme == Scheme::kCellPoint) pv = point_values(parts, fields, specs);
       GridFields data;
-      resample(parts, fields, pv, specs, grid, scheme, &data);
+      const std::string of_points = " of " + std::to_string(grid.n_points()) + " points resampled";
+      resample(parts, fields, pv, specs, grid, scheme, &data, [&](double f, std::size_t points) {
+        progress.update((static_cast<double>(n) + f) * per_time,
+                        which + ": " + std::to_string(points) + of_points);
+      });
       std::size_t nvalid = 0;
       for (std::uint8_t v : data.valid) nvalid += v;
       log("time " + tname + ": resampled, " + std::to_string(nvalid) + " of " +
@@ -355,6 +369,7 @@ int run(const Options& opt) {
     }
     throw;
   }
+  progress.finish();
   log("done: " + out_path.string());
   return 0;
 }

@@ -31,9 +31,12 @@ Progress::~Progress() { finish(); }
 std::string Progress::format_duration(double s) {
   char buf[64];
   if (!std::isfinite(s) || s < 0) return "?";
-  if (s < 60) std::snprintf(buf, sizeof buf, "%.0f s", s);
-  else if (s < 3600) std::snprintf(buf, sizeof buf, "%d min %02d s", int(s / 60), int(s) % 60);
-  else std::snprintf(buf, sizeof buf, "%d h %02d min", int(s / 3600), int(s / 60) % 60);
+  if (s < 60)
+    std::snprintf(buf, sizeof buf, "%.0f s", s);
+  else if (s < 3600)
+    std::snprintf(buf, sizeof buf, "%d min %02d s", int(s / 60), int(s) % 60);
+  else
+    std::snprintf(buf, sizeof buf, "%d h %02d min", int(s / 3600), int(s / 60) % 60);
   return buf;
 }
 
@@ -47,10 +50,10 @@ void Progress::update(double f, const std::string& detail) {
                               ? format_duration(elapsed * (1 - f) / f)
                               : std::string("?");
   if (mode_ == Mode::Lines) {
-    if (f + 1e-12 < next_line_ && f < 1.0) return;
+    if (f + 1e-12 < next_line_) return;  // after 100 % next_line_ is 1.1: printed once
     next_line_ = std::floor(f * 10 + 1e-9) / 10 + 0.1;
-    std::fprintf(out_, "%s: %3.0f %%, %s, %s remaining\n", label_.c_str(), 100 * f,
-                 detail.c_str(), eta.c_str());
+    std::fprintf(out_, "%s: %3.0f %%, %s, %s remaining\n", label_.c_str(), 100 * f, detail.c_str(),
+                 eta.c_str());
     std::fflush(out_);
     return;
   }
@@ -61,11 +64,23 @@ void Progress::update(double f, const std::string& detail) {
   const int filled = int(std::lround(f * kWidth));
   std::string bar(size_t(filled), '#');
   bar.append(size_t(kWidth - filled), '.');
+  char head[64];
+  std::snprintf(head, sizeof head, "] %3.0f %% ", 100 * f);
+  bar_line_ = label_ + " [" + bar + head + detail + ", ETA " + (f >= 1.0 ? "0 s" : eta);
   // \r back to column 0, \033[K clears what a longer earlier line left
-  std::fprintf(out_, "\r%s [%s] %3.0f %% %s, ETA %s\033[K", label_.c_str(), bar.c_str(), 100 * f,
-               detail.c_str(), f >= 1.0 ? "0 s" : eta.c_str());
+  std::fprintf(out_, "\r%s\033[K", bar_line_.c_str());
   std::fflush(out_);
   drawn_ = true;
+}
+
+void Progress::message(const std::string& text) {
+  if (mode_ == Mode::Quiet) return;
+  if (mode_ == Mode::Bar && drawn_ && !done_) {
+    std::fprintf(out_, "\r\033[K%s\n%s", text.c_str(), bar_line_.c_str());
+  } else {
+    std::fprintf(out_, "%s\n", text.c_str());
+  }
+  std::fflush(out_);
 }
 
 void Progress::finish() {
