@@ -64,8 +64,10 @@ RunStats simulate(const Model& model, State* state, const RunOptions& options) {
         if (out == StepOutcome::Exited && model.has_ground) {
           // a step that would cross the ground (often also the grid's bottom) lands the body,
           // even when a stage of it sampled below the grid first
+          // (u_seen moves the body only in the body model; in the seen model it is the fluid's)
           BodyState next = b;
-          next.x += model.dt * (b.q * b.v) + model.dt * b.u_seen;
+          next.x += model.dt * (b.q * b.v);
+          if (model.turbulence_model == TurbulenceModel::Body) next.x += model.dt * b.u_seen;
           if (touches_ground(model, type, next)) {
             st.status[i] = BodyStatus::Landed;
             st.t_stop[i] = t + model.dt;
