@@ -337,9 +337,11 @@ def study_case(st, args, name, cfg):
     for line in open(os.path.join(out2, "landings.csv")).read().splitlines()[1:]:
         b, _, t, x, y, z = line.split(",")
         lr2[int(b)] = (float(x), float(y))
-    # bodies stopped as "exited" at the ground (z < 1 mm): they reached the ground; count them
-    # as arrivals for the statistics and report the flag separately
+    # bodies stopped as "exited" at the ground (z < 1 mm) without hitting a solid: they reached
+    # the ground; count them as arrivals for the statistics and report the flag separately (a
+    # body that hit an obstacle's face just above the ground is an obstacle hit, as in OpenFOAM)
     at_ground = [s_["body"] for s_ in summ2.get("stopped", []) if s_["status"] == "exited" and
+                 not s_.get("reason", "").startswith("hit a solid") and
                  tr2["z"][-1, s_["body"]] < 1e-3]
     for b in at_ground:
         lr2[b] = (tr2["x"][-1, b], tr2["y"][-1, b])

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "body/added_mass.h"
 #include "effects/lift.h"
 
 namespace lrigid {
@@ -58,6 +59,18 @@ Wrench drag_wrench(const BodyType& type, const Vec3& u_rel, const Vec3& w, doubl
   return make_wrench(force, torque);
 }
 
+void ellipsoid_stokes_resistance(const Vec3& s, Vec3* k, Vec3* r) {
+  // Lamb's constants are s1 s2 s3 a_i
+  const Vec3 a = ellipsoid_constants(s) / s.prod();
+  const Vec3 s2 = s.cwiseProduct(s);
+  const double chi = s2.dot(a);
+  for (int i = 0; i < 3; ++i) {
+    const int j = (i + 1) % 3, l = (i + 2) % 3;
+    (*k)[i] = 16.0 * M_PI / (chi + s2[i] * a[i]);
+    (*r)[i] = 16.0 * M_PI * (s2[j] + s2[l]) / (3.0 * (s2[j] * a[j] + s2[l] * a[l]));
+  }
+}
+
 Wrench plate_drag_wrench(const BodyType& type, const Vec3& u_rel, const Vec3& w, double rho,
                          double nu, DragStiffness* stiffness) {
   const Vec3 u = u_rel + w.cross(type.r_cob);
@@ -72,6 +85,10 @@ Wrench plate_drag_wrench(const BodyType& type, const Vec3& u_rel, const Vec3& w,
     c_lin = 0.5 * rho * S * (kPlateDragA - kPlateDragB * cos2a) * speed;
     force = -c_lin * u;
   }
+  // viscous (Stokes) part, linear in u
+  const double mu = rho * nu;
+  force -= mu * type.stokes_force.cwiseProduct(u);
+  const double c_visc = mu * type.stokes_force.maxCoeff();
   Vec3 torque = type.r_cob.cross(force);
   // pitching (in-plane axes): APW's dissipative torque
   const Vec3 n = Vec3::Unit(na);
@@ -83,17 +100,23 @@ Wrench plate_drag_wrench(const BodyType& type, const Vec3& u_rel, const Vec3& w,
     const double span = S / (2.0 * c);
     const double U = type.apw_speed > 0 ? type.apw_speed : speed;
     const double k = M_PI * rho * std::pow(c, 4) * span;
-    torque -= k * (kPlateTorqueMu1 * U / c + kPlateTorqueMu2 * wp_norm) * wp;
-    c_ang = k * (kPlateTorqueMu1 * U / c + 2.0 * kPlateTorqueMu2 * wp_norm);
+    // APW's linear (viscous) damping, fitted at Re ~ 10^3, scaled as a laminar boundary layer
+    const double re = std::max(speed * plate_width(type) / nu, kPlateTorqueReMin);
+    const double mu1 = kPlateTorqueMu1 * std::sqrt(kPlateTorqueFitRe / re);
+    torque -= k * (mu1 * U / c + kPlateTorqueMu2 * wp_norm) * wp;
+    c_ang = k * (mu1 * U / c + 2.0 * kPlateTorqueMu2 * wp_norm);
   }
-  // spin about the normal: viscous plus out-of-roundness drag, as for any body
-  const double r_m = type.ell.mean();
-  const double c_n = 8.0 * M_PI * rho * nu * r_m * r_m * r_m +
+  // viscous (Stokes) torque about the in-plane axes
+  torque -= mu * type.stokes_torque.cwiseProduct(wp);
+  c_ang += mu * std::max(type.stokes_torque[(na + 1) % 3], type.stokes_torque[(na + 2) % 3]);
+  // spin about the normal: Stokes torque plus out-of-roundness drag, as for any body
+  const double c_n = mu * type.stokes_torque[na] +
                      0.5 * rho * kDragRotation * type.rot_drag_len5[na] * std::abs(w[na]);
   torque[na] -= c_n * w[na];
   if (stiffness) {
-    stiffness->c_lin = c_lin;
-    stiffness->p = 1.0;
+    // quadratic part c_lin (I + u^ u^T), viscous part c_visc I
+    stiffness->c_lin = c_lin + c_visc;
+    stiffness->p = c_lin + c_visc > 0 ? c_lin / (c_lin + c_visc) : 0.0;
     stiffness->u_hat = speed > 0 ? Vec3(u / speed) : Vec3::Zero();
     stiffness->c_ang = std::max(c_ang, 2.0 * c_n);
   }

@@ -34,13 +34,30 @@ Wrench drag_wrench(const BodyType& type, const Vec3& u_rel, const Vec3& w, doubl
 // Drag of flat bodies (BodyType::flat), after Andersen, Pesavento & Wang (2005), in 3D
 // (docs/physics/lift.md): F = -1/2 rho S (A - B cos 2a) |u| u with cos 2a = (|u_t|^2 - u_n^2)/|u|^2
 // (a: angle of attack, S: planform area), and the dissipative torque about the in-plane axes
-// T = -pi rho c^4 L (mu1 U / c + mu2 |w_p|) w_p (c: half chord across w_p, L = S / (2 c) the
-// span, U the APW velocity scale sqrt(|rho_b/rho_f - 1| g b), b the half thickness). Spin about
-// the normal uses the generic angular drag.
+// T = -pi rho c^4 L (mu1(Re) U / c + mu2 |w_p|) w_p (c: half chord across w_p, L = S / (2 c) the
+// span, U the APW velocity scale sqrt(|rho_b/rho_f - 1| g b), b the half thickness). APW fitted
+// these at Re ~ 10^3, where viscous stresses are negligible; the viscous part is added as the
+// exact Stokes resistance of the equivalent ellipsoid, F_i = -mu k_i u_i and T_i = -mu r_i w_i
+// (BodyType::stokes_force, stokes_torque), which dominates as Re falls (Re < ~30). Spin about the
+// normal: the Stokes torque plus the generic out-of-roundness drag.
 constexpr double kPlateDragA = 1.4;   // APW 2005
 constexpr double kPlateDragB = 1.0;
-constexpr double kPlateTorqueMu1 = 0.2;
+constexpr double kPlateTorqueMu1 = 0.2;  // at Re = kPlateTorqueFitRe
 constexpr double kPlateTorqueMu2 = 0.2;
+// mu1 is the linear, viscous part of APW's torque; they fitted it at Re ~ 10^3. Scaled with the
+// laminar boundary-layer law mu1 (Re_fit / Re)^(1/2), Re = |u| w / nu (w: planform width), Re
+// held at >= kPlateTorqueReMin (below it the Stokes torque dominates).
+constexpr double kPlateTorqueFitRe = 1000.0;
+constexpr double kPlateTorqueReMin = 10.0;
+
+// Stokes-flow resistance of an ellipsoid of semi-axes s (Oberbeck 1876, Edwardes 1892, Jeffery
+// 1922; Happel & Brenner 1965 section 5-11): along axis i F_i = -mu k_i u_i with
+// k_i = 16 pi / (chi + s_i^2 a_i), about axis i T_i = -mu r_i w_i with
+// r_i = 16 pi (s_j^2 + s_k^2) / (3 (s_j^2 a_j + s_k^2 a_k)), where
+// a_i = int_0^inf dl / ((s_i^2 + l) D(l)), D(l) = sqrt(prod_j (s_j^2 + l)), chi = sum_i s_i^2 a_i.
+// k in m, r in m^3 (sphere: 6 pi R and 8 pi R^3; disk of radius R: 16 R broadside, 32/3 R edgewise,
+// 32/3 R^3 about a diameter).
+void ellipsoid_stokes_resistance(const Vec3& s, Vec3* k, Vec3* r);
 
 Wrench plate_drag_wrench(const BodyType& type, const Vec3& u_rel, const Vec3& w, double rho,
                          double nu, DragStiffness* stiffness = nullptr);

@@ -39,7 +39,7 @@ Vec6 plate_drag_term(const EffectContext& c) {
 }
 
 Vec6 lift_term(const EffectContext& c) {
-  return lift_wrench(*c.type, c.v_rel, c.w, c.model->fluid_density);
+  return lift_wrench(*c.type, c.v_rel, c.w, c.model->fluid_density, c.model->nu);
 }
 
 Vec6 magnus_term(const EffectContext& c) {

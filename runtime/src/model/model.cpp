@@ -299,6 +299,7 @@ BodyType make_body_type(const Scene& scene, const BodySpec& b, const Shape& shap
   t.plate_area = t.area_max;
   t.apw_speed =
       std::sqrt(std::abs(density / scene.fluid_density - 1.0) * scene.gravity.norm() * sorted[0]);
+  if (t.flat) ellipsoid_stokes_resistance(t.ell, &t.stokes_force, &t.stokes_torque);
 
   // the fluid tensor is computed for every body type: "auto" needs its size
   const AddedMass am = added_mass(shape, scene.fluid_density, b.panels);

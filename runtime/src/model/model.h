@@ -71,6 +71,8 @@ struct BodyType {
   int normal_axis = 2;                // body axis normal to the plate
   double plate_area = 0;              // planform area, m^2
   double apw_speed = 0;               // APW velocity scale sqrt(|rho_b/rho_f - 1| g b), m/s
+  Vec3 stokes_force = Vec3::Zero();   // Stokes drag F_i = -mu k_i u_i of the ellipsoid ell, m
+  Vec3 stokes_torque = Vec3::Zero();  // Stokes torque T_i = -mu r_i w_i of the ellipsoid, m^3
   BassetKernel basset;
   EffectPlan plan;
 };

@@ -16,6 +16,9 @@ namespace {
 using test::compile;
 using test::effects;
 
+// a viscosity so small that the circulation is fully developed (Re ~ 1e10)
+constexpr double kNuInviscid = 1e-12;
+
 // a thin circular disk (oblate ellipsoid), normal along body z
 Model disk_model(EffectSet e, double a = 0.02, double c = 0.001) {
   Scene s = test::sphere_scene(1, 2700, 1000, 1e-6);
@@ -44,7 +47,7 @@ TEST(Lift, TranslationalLiftIsNormalToVelocityAndPeaksAt45Degrees) {
   for (double deg : {0.0, 10.0, 30.0, 45.0, 60.0, 90.0}) {
     const double a = deg * M_PI / 180;
     const Vec3 u(U * std::cos(a), 0, -U * std::sin(a));
-    const Wrench w = lift_wrench(t, u, Vec3::Zero(), rho);
+    const Wrench w = lift_wrench(t, u, Vec3::Zero(), rho, kNuInviscid);
     const Vec3 f = w.head<3>();
     EXPECT_NEAR(f.dot(u), 0.0, 1e-15) << deg;          // perpendicular to u
     EXPECT_NEAR(f.y(), 0.0, 1e-15) << deg;             // in the plane of u and n
@@ -55,7 +58,7 @@ TEST(Lift, TranslationalLiftIsNormalToVelocityAndPeaksAt45Degrees) {
   // sign as in APW's 2D equations: F_x = -rho Gamma v_y, F_y = rho Gamma v_x with
   // Gamma = -C_T l v_x v_y / |v| (per unit span; x along the plate, y = n)
   const Vec3 u(0.2, 0, -0.1);
-  const Vec3 f = lift_wrench(t, u, Vec3::Zero(), rho).head<3>();
+  const Vec3 f = lift_wrench(t, u, Vec3::Zero(), rho, kNuInviscid).head<3>();
   const double gamma_per_area = -kLiftTranslational * u.x() * u.z() / u.norm();
   EXPECT_NEAR(f.x(), -rho * S * gamma_per_area * u.z(), 1e-12);
   EXPECT_NEAR(f.z(), rho * S * gamma_per_area * u.x(), 1e-12);
@@ -66,32 +69,98 @@ TEST(Lift, RotationalLiftIsHalfRhoCRChordAreaOmegaCrossU) {
   const BodyType& t = m.types[0];
   const double rho = 1000;
   const Vec3 u(0.2, 0, 0), w(0, 3, 0);  // edgewise motion: no translational lift
-  const Vec3 f = lift_wrench(t, u, w, rho).head<3>();
+  const Vec3 f = lift_wrench(t, u, w, rho, kNuInviscid).head<3>();
   const Vec3 expect = 0.5 * rho * kLiftRotational * (2 * 0.02) * t.plate_area * w.cross(u);
   EXPECT_TRUE(test::near(f, expect, 1e-12));
   // spin about the normal gives no lift
-  EXPECT_NEAR(lift_wrench(t, u, Vec3(0, 0, 5), rho).norm(), 0.0, 1e-15);
+  EXPECT_NEAR(lift_wrench(t, u, Vec3(0, 0, 5), rho, kNuInviscid).norm(), 0.0, 1e-15);
+}
+
+// the circulation fades below the wake-instability Reynolds number: f = x / (1 + x),
+// x = (Re / Re_c)^n, Re = |u| w / nu with w the planform width (the disk's diameter)
+TEST(Lift, CirculationFadesAtLowReynoldsNumber) {
+  const Model m = disk_model(effects({Effect::Lift}));
+  const BodyType& t = m.types[0];
+  EXPECT_NEAR(plate_width(t), 0.04, 1e-15);
+  const double rho = 1000, U = 0.1;
+  const Vec3 u(U, 0, U);  // 45 degrees: largest translational lift
+  const double full = lift_wrench(t, u, Vec3::Zero(), rho, kNuInviscid).head<3>().norm();
+  const double nu_c = u.norm() * 0.04 / kLiftReCritical;  // Re = Re_c
+  EXPECT_NEAR(lift_wrench(t, u, Vec3::Zero(), rho, nu_c).head<3>().norm() / full, 0.5, 1e-9);
+  EXPECT_NEAR(circulation_factor(kLiftReCritical / 2), 1.0 / 17.0, 1e-12);
+  EXPECT_LT(lift_wrench(t, u, Vec3::Zero(), rho, 100 * nu_c).head<3>().norm() / full, 1e-7);
+  // a box's width is its own, not that of the area-equivalent ellipse
+  Scene s = test::sphere_scene(1, 2700, 1000, 1e-6);
+  s.bodies[0].shape = Shape::box(0.02, 0.1, 0.0005);
+  s.effects = effects({Effect::Lift});
+  const Model mb = compile(s);
+  EXPECT_NEAR(plate_width(mb.types[0]), 0.02, 1e-15);
+  EXPECT_NEAR(plate_chord(mb.types[0], Vec3(1, 0, 0)), 0.02, 1e-15);
+  EXPECT_NEAR(plate_chord(mb.types[0], Vec3(0, 1, 0)), 0.1, 1e-15);
 }
 
 TEST(PlateDrag, BroadsideAndEdgewiseCoefficients) {
   const Model m = disk_model(effects({Effect::Drag}));
   const BodyType& t = m.types[0];
   const double rho = 1000, U = 0.1, S = t.plate_area;
-  const Vec3 fb = plate_drag_wrench(t, Vec3(0, 0, U), Vec3::Zero(), rho, 1e-6).head<3>();
-  EXPECT_NEAR(fb.z(), -0.5 * rho * S * (kPlateDragA + kPlateDragB) * U * U, 1e-12);
-  const Vec3 fe = plate_drag_wrench(t, Vec3(U, 0, 0), Vec3::Zero(), rho, 1e-6).head<3>();
-  EXPECT_NEAR(fe.x(), -0.5 * rho * S * (kPlateDragA - kPlateDragB) * U * U, 1e-12);
+  // APW's quadratic drag plus the Stokes drag of the disk (16 mu a broadside, 32/3 mu a edgewise)
+  const double nu = 1e-6, mu = rho * nu, a = 0.02;
+  const Vec3 fb = plate_drag_wrench(t, Vec3(0, 0, U), Vec3::Zero(), rho, nu).head<3>();
+  EXPECT_NEAR(fb.z(), -0.5 * rho * S * (kPlateDragA + kPlateDragB) * U * U - 16 * mu * a * U,
+              2e-3 * 16 * mu * a * U);
+  const Vec3 fe = plate_drag_wrench(t, Vec3(U, 0, 0), Vec3::Zero(), rho, nu).head<3>();
+  EXPECT_NEAR(fe.x(), -0.5 * rho * S * (kPlateDragA - kPlateDragB) * U * U - 32.0 / 3 * mu * a * U,
+              0.1 * 32.0 / 3 * mu * a * U);
+}
+
+// Oberbeck/Jeffery resistance against its closed-form limits: sphere (6 pi R, 8 pi R^3) and thin
+// disk (16 R broadside, 32/3 R edgewise, 32/3 R^3 about a diameter; Happel & Brenner 1965)
+TEST(PlateDrag, StokesResistanceOfEllipsoidLimits) {
+  Vec3 k, r;
+  ellipsoid_stokes_resistance(Vec3(0.3, 0.3, 0.3), &k, &r);
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_NEAR(k[i], 6 * M_PI * 0.3, 1e-12);
+    EXPECT_NEAR(r[i], 8 * M_PI * 0.027, 1e-12);
+  }
+  const double R = 0.5, c = 1e-5;  // c/R = 2e-5: corrections O(c/R)
+  ellipsoid_stokes_resistance(Vec3(R, R, c), &k, &r);
+  EXPECT_NEAR(k.z() / (16 * R), 1.0, 1e-4);
+  EXPECT_NEAR(k.x() / (32.0 / 3 * R), 1.0, 1e-4);
+  EXPECT_NEAR(r.x() / (32.0 / 3 * R * R * R), 1.0, 1e-4);
+  EXPECT_NEAR(r.y() / (32.0 / 3 * R * R * R), 1.0, 1e-4);
+  // spin about the normal: 32/3 R^3 as well (Jeffery's formula with s_j = s_k)
+  EXPECT_NEAR(r.z() / (32.0 / 3 * R * R * R), 1.0, 1e-4);
+  // a prolate spheroid moves more easily along its axis than across it
+  ellipsoid_stokes_resistance(Vec3(1.0, 0.2, 0.2), &k, &r);
+  EXPECT_LT(k.x(), k.y());
+  EXPECT_NEAR(k.y(), k.z(), 1e-12);
+}
+
+// at low Reynolds number the plate drag is the Stokes drag: linear in the speed
+TEST(PlateDrag, ViscousPartDominatesAtLowReynoldsNumber) {
+  const Model m = disk_model(effects({Effect::Drag}));
+  const BodyType& t = m.types[0];
+  const double rho = 1000, nu = 1.0, U = 1e-4;  // Re = U 2a / nu = 4e-6
+  const double fz = plate_drag_wrench(t, Vec3(0, 0, U), Vec3::Zero(), rho, nu)[2];
+  EXPECT_NEAR(fz, -t.stokes_force.z() * rho * nu * U, 1e-5 * std::abs(fz));
+  EXPECT_NEAR(t.stokes_force.z() / (16 * 0.02), 1.0, 0.08);  // c/a = 0.05: O(c/a) above 16 a
+  const double fz2 = plate_drag_wrench(t, Vec3(0, 0, 2 * U), Vec3::Zero(), rho, nu)[2];
+  EXPECT_NEAR(fz2 / fz, 2.0, 1e-4);
 }
 
 TEST(PlateDrag, DissipativeTorqueOpposesPitch) {
   const Model m = disk_model(effects({Effect::Drag}));
   const BodyType& t = m.types[0];
   const double rho = 1000, wy = 2.0, c = 0.02, span = t.plate_area / (2 * c);
-  const Vec3 tq = plate_drag_wrench(t, Vec3::Zero(), Vec3(0, wy, 0), rho, 1e-6).tail<3>();
+  const double nu = 1e-6;
+  const Vec3 tq = plate_drag_wrench(t, Vec3::Zero(), Vec3(0, wy, 0), rho, nu).tail<3>();
+  // at rest (Re below kPlateTorqueReMin) mu1 is scaled by (Re_fit / Re_min)^(1/2)
+  const double mu1 = kPlateTorqueMu1 * std::sqrt(kPlateTorqueFitRe / kPlateTorqueReMin);
   const double expect =
-      -M_PI * rho * std::pow(c, 4) * span *
-      (kPlateTorqueMu1 * t.apw_speed / c + kPlateTorqueMu2 * wy) * wy;
+      -M_PI * rho * std::pow(c, 4) * span * (mu1 * t.apw_speed / c + kPlateTorqueMu2 * wy) * wy -
+      rho * nu * t.stokes_torque.y() * wy;
   EXPECT_NEAR(tq.y(), expect, 1e-15);
+  EXPECT_GT(t.stokes_torque.y(), 0);
   EXPECT_GT(t.apw_speed, 0);
 }
 
