@@ -60,7 +60,9 @@ vtkSmartPointer<vtkPolyData> read_vtp(const std::string& path) {
 class ParaviewSeries : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = std::string(LRIGID_BINARY_DIR) + "/tests/render/paraview_series";
+    // one directory per test: ctest runs the tests in parallel
+    dir_ = std::string(LRIGID_BINARY_DIR) + "/tests/render/paraview_series_" +
+           ::testing::UnitTest::GetInstance()->current_test_info()->name();
     fs::remove_all(dir_);
     fs::create_directories(dir_);
     // uniform_box.json, small: 6 paper cards and 4 beads, 0.5 s, outputs every 0.1 s
