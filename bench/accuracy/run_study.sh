@@ -1,9 +1,11 @@
 #!/bin/bash
-# The whole error-versus-cost study (docs/accuracy.md), about 10-15 minutes on 2 cores:
+# The whole error-versus-cost study (docs/accuracy.md), about 20-30 minutes on 2 shared cores:
 #   1. accuracy_study on the standard scenes whose fields exist (uniform box always; leaves in
-#      the wind after ./Allrun, debris in the tank after ./Allrun -all);
-#   2. the grid sweep: one converted case at several resolutions against the finest (the wind
-#      case when results/cases/windCourtyard exists, else the tiny OpenFOAM case, run here);
+#      the wind after ./Allrun, debris in the tank after ./Allrun -all), two processes per
+#      scene (stochastic sweep; the others), side by side;
+#   2. the grid sweep, alongside: one converted case at 32^3 .. 256^3 points against the finest
+#      (the wind case: $ACCURACY_WIND_CASE, default results/cases/windCourtyard, copied first;
+#      else the tiny OpenFOAM case, run here);
 #   3. make_report.py: docs/accuracy/error_vs_cost.png, tolerance_table.json, docs/accuracy.md.
 # usage: bench/accuracy/run_study.sh [BUILD_DIR]   (default: build; needs accuracy_study, foam2grid)
 set -euo pipefail
@@ -14,15 +16,14 @@ out=$src/docs/accuracy
 mkdir -p "$work" "$out"
 t0=$SECONDS
 
-"$build/bin/accuracy_study" --source-dir "$src" --out "$work/main" 2>&1 | tee "$work/log.main"
-
-grids=()
-if [ -d "$src/results/cases/windCourtyard" ]; then
+wind_case=${ACCURACY_WIND_CASE:-$src/results/cases/windCourtyard}
+if [ -d "$wind_case" ]; then
   name=windCourtyard
-  case_dir=$src/results/cases/windCourtyard
+  case_dir=$work/windCourtyard_case
+  [ -d "$case_dir" ] || cp -r "$wind_case" "$case_dir"   # foam2grid never writes the source
   bounds=(--bounds -20 60 -25 25 0 25)
   base=$src/scenes/leaves_wind.json
-  res=(32 64 128)
+  res=(32 64 128 256)
 else
   name=tiny
   case_dir=$work/tiny
@@ -42,19 +43,50 @@ for n in "${res[@]}"; do
   [ -f "$f" ] || "$build/bin/foam2grid" "$case_dir" -o "$f" "${bounds[@]}" --resolution "$n" "$n" "$n" -q
   files+=("$f")
 done
-# the scene on the finest grid (replaced per run), at most 2 s
+# the scene on the finest grid (replaced per run); the wind's leaves spawned 0.5-3 m high for
+# 4 s, as in the main study, so that the landing points are compared too
 scene=$work/grid_scene.json
-/usr/bin/python3 - "$base" "${files[-1]}" "$scene" <<'PY'
+/usr/bin/python3 - "$base" "${files[-1]}" "$scene" "$name" <<'PY'
 import json, sys
 s = json.loads(open(sys.argv[1]).read().replace("@FIELD@", sys.argv[2]))
 s["fluid"]["field"] = sys.argv[2]
 s["duration"] = min(s["duration"], 2.0)
+if sys.argv[4] == "windCourtyard":
+    s["duration"] = 4.0
+    for b in s["bodies"]:
+        b["spawn_box"][0][2], b["spawn_box"][1][2] = 0.5, 3.0
 json.dump(s, open(sys.argv[3], "w"), indent=1)
 PY
 list=$(IFS=,; echo "${files[*]}")
-"$build/bin/accuracy_study" --source-dir "$src" --out "$work/grid" --scenes none \
-  --grids "$name:$scene:$list" 2>&1 | tee "$work/log.grid"
 
-/usr/bin/python3 "$src/bench/accuracy/make_report.py" --csv "$work/main/accuracy.csv" \
-  "$work/grid/accuracy.csv" --out "$out" --doc "$src/docs/accuracy.md" \
-  --study-seconds $((SECONDS - t0)) --note "Runtime measured: commit $(git -C "$src" rev-parse --short HEAD)."
+# every scene's stochastic sweep, its other sweeps and the grid sweep side by side, each in
+# its own process (one thread: the cost is the process's CPU time); logs in $work/log.<job>
+jobs_=()
+for s in uniform_box leaves_wind debris_tank; do jobs_+=("$s.det" "$s.stoch"); done
+jobs_+=(grid)
+pids=()
+for j in "${jobs_[@]}"; do
+  case $j in
+    grid) args=(--scenes none --grids "$name:$scene:$list") ;;
+    *.det) args=(--scenes "${j%.det}" --sweeps det,effects) ;;
+    *.stoch) args=(--scenes "${j%.stoch}" --sweeps stoch) ;;
+  esac
+  "$build/bin/accuracy_study" --source-dir "$src" --out "$work/$j" "${args[@]}" \
+    > "$work/log.$j" 2>&1 &
+  pids+=($!)
+done
+for k in "${!jobs_[@]}"; do
+  if wait "${pids[$k]}"; then
+    echo "run_study: ${jobs_[$k]} done after $((SECONDS - t0)) s ($(cut -d' ' -f1-3 /proc/loadavg))"
+  else
+    # a scene whose field is missing is skipped (its log says why); the others still report
+    echo "run_study: ${jobs_[$k]} failed, see $work/log.${jobs_[$k]}" >&2
+    rm -f "$work/${jobs_[$k]}/accuracy.csv"
+  fi
+done
+
+csvs=()
+for j in "${jobs_[@]}"; do csvs+=("$work/$j/accuracy.csv"); done
+/usr/bin/python3 "$src/bench/accuracy/make_report.py" --csv "${csvs[@]}" --out "$out" \
+  --doc "$src/docs/accuracy.md" --study-seconds $((SECONDS - t0)) \
+  --note "Runtime measured: commit $(git -C "$src" rev-parse --short HEAD)."
