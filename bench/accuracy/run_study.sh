@@ -65,6 +65,7 @@ jobs_=()
 for s in uniform_box leaves_wind debris_tank; do jobs_+=("$s.det" "$s.stoch"); done
 jobs_+=(grid)
 pids=()
+done_lines=""
 for j in "${jobs_[@]}"; do
   case $j in
     grid) args=(--scenes none --grids "$name:$scene:$list") ;;
@@ -77,7 +78,9 @@ for j in "${jobs_[@]}"; do
 done
 for k in "${!jobs_[@]}"; do
   if wait "${pids[$k]}"; then
-    echo "run_study: ${jobs_[$k]} done after $((SECONDS - t0)) s ($(cut -d' ' -f1-3 /proc/loadavg))"
+    line="${jobs_[$k]} done after $((SECONDS - t0)) s (load $(cut -d' ' -f1-3 /proc/loadavg))"
+    echo "run_study: $line"
+    done_lines+="${done_lines:+; }$line"
   else
     # a scene whose field is missing is skipped (its log says why); the others still report
     echo "run_study: ${jobs_[$k]} failed, see $work/log.${jobs_[$k]}" >&2
@@ -89,4 +92,6 @@ csvs=()
 for j in "${jobs_[@]}"; do csvs+=("$work/$j/accuracy.csv"); done
 /usr/bin/python3 "$src/bench/accuracy/make_report.py" --csv "${csvs[@]}" --out "$out" \
   --doc "$src/docs/accuracy.md" --study-seconds $((SECONDS - t0)) \
-  --note "Runtime measured: commit $(git -C "$src" rev-parse --short HEAD)."
+  --note "Runtime measured: commit $(git -C "$src" rev-parse --short HEAD) (contains main at \
+$(git -C "$src" merge-base HEAD main 2>/dev/null | cut -c1-7)). Processes (wall, since the \
+start, one thread each): $done_lines."
