@@ -200,8 +200,17 @@ def plot(rows, scenes, path):
             ax.set_title("%s\n%s" % (scene, title), fontsize=9)
             ax.set_xlabel("cost: CPU s per body per simulated s")
             ax.set_ylabel("relative error")
-            ax.grid(True, which="both", alpha=0.3)
-            ax.legend(fontsize=7)
+            finish_axes(ax)
+    save_figure(fig, path)
+
+
+def finish_axes(ax):
+    ax.grid(True, which="both", alpha=0.3)
+    if ax.get_legend_handles_labels()[0]:
+        ax.legend(fontsize=7)
+
+
+def save_figure(fig, path):
     fig.tight_layout()
     tmp = path + ".tmp.png"
     fig.savefig(tmp, dpi=110)
@@ -236,12 +245,8 @@ def plot_grid(rows, path):
     ax.set_ylabel("relative error against the finest grid")
     ax.set_title("grid error (%s; error bars: 2 Monte Carlo s.e.)" % ", ".join(scenes),
                  fontsize=9)
-    ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=7)
-    fig.tight_layout()
-    tmp = path + ".tmp.png"
-    fig.savefig(tmp, dpi=110)
-    os.replace(tmp, path)
+    finish_axes(ax)
+    save_figure(fig, path)
 
 
 def machine():
