@@ -253,6 +253,7 @@ void sweep_grids(const Case& c, const Scene& base, const std::vector<std::string
       const std::string gname = grids[g].substr(grids[g].find_last_of('/') + 1);
       if (!turbulence) {
         add(c, "grid", s, gname, "trajectory", pathwise_error(r, fine), 0, r);
+        add(c, "grid", s, gname, "trajectory_t1", pathwise_error(r, fine, 1), 0, r);
       } else {
         for (const auto& nm : kStochMetrics)
           if (std::string(nm.name) != "strong")

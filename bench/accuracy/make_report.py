@@ -223,7 +223,8 @@ def grid_points(n):
     return int(digits) if digits.isdigit() else 0
 
 
-GRID_METRICS = ["trajectory", "weak_mean", "weak_var", "landing_mean", "landing_var"]
+GRID_METRICS = ["trajectory", "trajectory_t1", "weak_mean", "weak_var", "landing_mean",
+                "landing_var"]
 
 
 def plot_grid(rows, path):
@@ -411,8 +412,9 @@ def report(rows, slopes, kinds, sources, scenes, date, seconds, note=""):
         if r and math.isfinite(r["slope"]) and r["slope"] < 3:
             w("* On `%s` rk4 converges with slope %.2f, not 4: the scene's events and kinks "
               "(ground contact detected at the end of a step, the drag of flat bodies through "
-              "|direction cosines|) are first order and tumbling amplifies them, so rk4's extra stages buy accuracy only "
-              "through a smaller error constant." % (scene, r["slope"]))
+              "|direction cosines|) are first order and tumbling amplifies them, so rk4's "
+              "extra stages buy accuracy only through a smaller error constant." %
+              (scene, r["slope"]))
     eff = [r for r in rows if r["sweep"] in ("effects_det", "effects") and
            r["effects"] != "full" and r["valid"]]
     for r in eff:
@@ -506,7 +508,7 @@ def report(rows, slopes, kinds, sources, scenes, date, seconds, note=""):
                                              if r["metric"] in GRID_METRICS else 9,
                                              grid_points(r["grid"]))):
             w("| %s | %s | %s | %s | %s | %d | %.0f | %s |" %
-              (r["grid"], "off" if r["metric"] == "trajectory" else "on", r["metric"],
+              (r["grid"], "off" if r["metric"].startswith("trajectory") else "on", r["metric"],
                "%.3g" % r["error"] if r["valid"] else "–",
                "%.2g" % r["error_se"] if r["error_se"] else "–", r["bodies"],
                r["cpu_ns_per_body_step"], r["note"]))
@@ -544,12 +546,14 @@ the bodies moved).
 reference is the splitting scheme at h, checked against the splitting at 2h. Strong error: the
 same pathwise formula. Weak errors: the mean position |⟨x⟩ − ⟨x_ref⟩| / L and the total variance
 |V − V_ref| / V_ref at the last time, and the same for the horizontal landing points of bodies that
-landed in both runs (needs ≥ 30; the CSV's note gives how many). Monte Carlo error bars come from the paired differences
-(common random numbers), so they measure how well the *difference* is known.
+landed in both runs (needs ≥ 30; the CSV's note gives how many). Monte Carlo error bars come
+from the paired differences (common random numbers), so they measure how well the *difference*
+is known.
 
 **Effect sets.** `full` (every effect the build knows), `auto` (the scene's automatic selection)
 and `minimal` (gravity, buoyancy, drag, mean flow, turbulence) at the scene's integrator and dt,
-against `full`: with turbulence off (trajectory error) and on (weak errors).
+against `full`: with turbulence off (trajectory error: `trajectory` the worst over the compared
+times, `trajectory_t1` at the first) and on (weak errors).
 
 **Grid error.** One OpenFOAM case converted with `foam2grid --resolution N N N` at N = 32, 64,
 128 and 256 (the solved coarse windCourtyard case, copied, with `./Allrun`'s bounds), the wind
@@ -559,12 +563,12 @@ and Brownian path) at its integrator and dt, against the 256³ grid: with turbul
 `run_study.sh` runs the tiny OpenFOAM case instead (16³-128³).
 
 **Cost.** Process CPU time of the integration per body-step (and wall time, in the CSV) measured
-in the same run, one thread. The machine is shared by other jobs, so wall times scatter (wall was
-3-7× CPU during this study); CPU times are steadier. Cost per simulated second = CPU time per
+in the same run, one thread. The machine is shared by other jobs, so wall times scatter (the
+load is given above); CPU times are steadier. Cost per simulated second = CPU time per
 body-step / dt. The stochastic sweep's own runs are *not* used for cost: to keep one Brownian
 path they sum dt/h fine increments per step (`noise_substeps`), a cost per step that grows
-with dt/h and that production runs (substeps 1) never pay. Their cost is the turbulence-off run's at
-the same scheme and dt times the scene's turbulence factor, measured in the effect-set sweep
+with dt/h and that production runs (substeps 1) never pay. Their cost is the turbulence-off
+run's at the same scheme and dt times the scene's turbulence factor, measured in the effect-set sweep
 (auto effects with and without turbulence, substeps 1).
 
 **Scene kinds** (for `lrigid run --tolerance E`): `<field>-<medium>`, field `uniform` or `grid`
@@ -577,8 +581,8 @@ is the largest of the deterministic trajectory error at the first compared time 
 1 s) and the weak errors of the mean and variance of positions at the last time, each plus 2
 Monte Carlo standard errors. Not the strong error nor the trajectory error over the whole run:
 flat bodies tumble, so a small difference in one step changes when they flip and pathwise
-differences grow to the size of the spread within a second or two at any dt (the
-first-time/worst-time columns of the CSV show it); the statistics of many bodies are what a
+differences grow to the size of the spread within a second or two at any dt (compare the
+metrics `trajectory_t1` and `trajectory` in the CSV); the statistics of many bodies are what a
 scene's result depends on.
 
 **CSV columns** (`accuracy.csv`): scene, sweep (`reference_det`, `dt_det`, `reference_stoch`,
