@@ -2,7 +2,6 @@
 // epsilon = 0, a slab where k = 0 but epsilon > 0 (eps/k infinite), past a block of invalid
 // grid points, and out of the grid. Every body must stay finite and bounded while inside and
 // end "exited" (never "failed") at a position inside the grid box.
-#include "known_failures.h"
 #include <gtest/gtest.h>
 
 #include "stability/hard_case.h"
@@ -54,7 +53,6 @@ struct GridCase {
 class GridHardCases : public ::testing::TestWithParam<GridCase> {};
 
 TEST_P(GridHardCases, BodiesCrossKZeroAndInvalidRegionsAndExitCleanly) {
-  LRIGID_SKIP_KNOWN_STABILITY_FAILURE();
   const GridCase c = GetParam();
   Scene s = test::sphere_scene(0.01, c.density_ratio * kRhoAir, kRhoAir, kNuAir, 64);
   s.uniform_field = false;

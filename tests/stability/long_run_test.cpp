@@ -3,7 +3,6 @@
 // tightly: the seen turbulent velocity has the field's variance 2k/3 within 3 %, and a
 // neutrally buoyant sphere, which filters the turbulence it sees, moves with at most that
 // variance.
-#include "known_failures.h"
 #include <gtest/gtest.h>
 
 #include "stability/hard_case.h"
@@ -25,7 +24,6 @@ struct LongCase {
 class LongRun : public ::testing::TestWithParam<LongCase> {};
 
 TEST_P(LongRun, MillionStepsStayFiniteBoundedAndStatisticallyRight) {
-  LRIGID_SKIP_KNOWN_STABILITY_FAILURE();
   const LongCase c = GetParam();
   const Vec3 U(1, 0.5, 0);
   const double k = 0.2;

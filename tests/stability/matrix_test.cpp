@@ -6,7 +6,6 @@
 // Every step: finite, ||q| - 1| < 1e-12, speed and kinetic energy under the physical bound of
 // hard_case.h. Per run: the variance of the seen turbulent velocity is that of the field
 // (2k/3, exact OU update) within a factor 1.5 (not exploding, not collapsing).
-#include "known_failures.h"
 #include <gtest/gtest.h>
 
 #include <map>
@@ -54,7 +53,6 @@ Model compile_cached(const Scene& s) {
 class StabilityMatrix : public ::testing::TestWithParam<MatrixCase> {};
 
 TEST_P(StabilityMatrix, SplittingStaysFiniteAndBounded) {
-  LRIGID_SKIP_KNOWN_STABILITY_FAILURE();
   const MatrixCase c = GetParam();
   for (double dt : {1e-4, 1e-3, 1e-2, 0.05}) {
     for (double ek_dt : {0.01, 1.0, 100.0}) {

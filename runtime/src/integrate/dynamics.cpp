@@ -5,12 +5,10 @@
 
 namespace lrigid {
 
-bool effect_context(const Model& model, const BodyType& type, const Kinematics& k, double t,
-                    bool impulse_form, FluidSample* fluid, EffectContext* c, Vec3* u_fluid) {
+void context_from_sample(const Model& model, const BodyType& type, const Kinematics& k,
+                         bool impulse_form, const FluidSample* fluid, EffectContext* c,
+                         Vec3* u_fluid) {
   const EffectPlan& p = type.plan;
-  // sample the fluid only when an effect needs it; gradients only for the added-mass drag-along
-  *fluid = FluidSample();
-  if (p.sample_field && !sample_fluid(model, k.x, t, p.gradients, fluid)) return false;
   // fluid velocity around the body (world): mean flow plus the seen fluctuation
   Vec3 uf = Vec3::Zero();
   if (p.mean_flow) uf += fluid->U;
@@ -31,6 +29,15 @@ bool effect_context(const Model& model, const BodyType& type, const Kinematics& 
     if (p.gradients) c->fluid_acc += c->Rt * mean_flow_acceleration(*fluid);
   }
   *u_fluid = uf;
+}
+
+bool effect_context(const Model& model, const BodyType& type, const Kinematics& k, double t,
+                    bool impulse_form, FluidSample* fluid, EffectContext* c, Vec3* u_fluid) {
+  const EffectPlan& p = type.plan;
+  // sample the fluid only when an effect needs it; gradients only for the added-mass drag-along
+  *fluid = FluidSample();
+  if (p.sample_field && !sample_fluid(model, k.x, t, p.gradients, fluid)) return false;
+  context_from_sample(model, type, k, impulse_form, fluid, c, u_fluid);
   return true;
 }
 
@@ -65,6 +72,88 @@ EvalResult impulse_rates(const Model& model, const BodyType& type, const Kinemat
   }
   out->rate = sum_effect_wrenches(c);
   return EvalResult::Ok;
+}
+
+namespace {
+
+constexpr int kKirchhoffMaxNewton = 12;
+constexpr double kKirchhoffTol = 1e-13;  // Newton update / |Y|, energy norm
+
+// One implicit-midpoint step of the free Kirchhoff flow from Y0 (see kirchhoff_flow): false
+// when Newton did not converge. w_mid: the angular velocity at the midpoint.
+bool kirchhoff_midpoint(const BodyType& type, double h, const Vec6& Y0, Vec6* Y1, Vec3* w_mid,
+                        int* iterations) {
+  const Mat6& Mi = type.M_inv;
+  const double norm0 = Y0.dot(Mi * Y0);  // twice the relative kinetic energy
+  Vec6 Y = Y0;
+  for (int it = 0; it < kKirchhoffMaxNewton; ++it) {
+    ++*iterations;
+    const Vec6 Ym = 0.5 * (Y0 + Y);
+    const Vec6 xm = Mi * Ym;
+    const Vec3 v = xm.head<3>(), w = xm.tail<3>(), P = Ym.head<3>(), L = Ym.tail<3>();
+    const Vec6 r = Y - Y0 + h * kirchhoff_gyro(v, w, Ym);
+    // d(gyro)/dY = [w^ 0; v^ w^] + [0 -P^; -P^ -L^] M^-1
+    Mat6 D = Mat6::Zero(), E = Mat6::Zero();
+    D.block<3, 3>(0, 0) = skew(w);
+    D.block<3, 3>(3, 0) = skew(v);
+    D.block<3, 3>(3, 3) = skew(w);
+    E.block<3, 3>(0, 3) = -skew(P);
+    E.block<3, 3>(3, 0) = -skew(P);
+    E.block<3, 3>(3, 3) = -skew(L);
+    const Mat6 J = Mat6::Identity() + 0.5 * h * (D + E * Mi);
+    const Vec6 d = J.partialPivLu().solve(-r);
+    Y += d;
+    if (!Y.allFinite()) return false;
+    if (d.dot(Mi * d) <= kKirchhoffTol * kKirchhoffTol * norm0) {
+      *Y1 = Y;
+      *w_mid = (Mi * (0.5 * (Y0 + Y))).tail<3>();
+      return true;
+    }
+  }
+  return false;
+}
+
+// q cay(theta): the rotation by the Cayley map of the body-frame vector theta (rad), the
+// quaternion (1, theta/2) normalized (angle 2 atan(|theta|/2))
+Quat rotate_cayley(const Quat& q, const Vec3& theta) {
+  return (q * Quat(1.0, 0.5 * theta.x(), 0.5 * theta.y(), 0.5 * theta.z())).normalized();
+}
+
+// kirchhoff_flow on the relative impulse Y over h, split into n equal substeps
+bool kirchhoff_substeps(const BodyType& type, double h, int n, Quat* q, Vec6* Y,
+                        int* iterations) {
+  Quat qn = *q;
+  Vec6 Yn = *Y;
+  for (int i = 0; i < n; ++i) {
+    Vec6 Y1;
+    Vec3 w_mid;
+    if (!kirchhoff_midpoint(type, h / n, Yn, &Y1, &w_mid, iterations)) return false;
+    qn = rotate_cayley(qn, (h / n) * w_mid);
+    Yn = Y1;
+  }
+  *q = qn;
+  *Y = Yn;
+  return true;
+}
+
+}  // namespace
+
+int kirchhoff_flow(const BodyType& type, const Vec3& u_fluid, double h, Quat* q, Vec3* v,
+                   Vec3* w) {
+  const Vec3 uf_b = q->toRotationMatrix().transpose() * u_fluid;
+  Vec6 xi_r;
+  xi_r << *v - uf_b, *w;
+  Vec6 Y = type.M * xi_r;
+  int iterations = 0;
+  int n = 1;
+  while (!kirchhoff_substeps(type, h, n, q, &Y, &iterations) && n < kKirchhoffMaxSubsteps)
+    n *= 2;
+  // (after the last substep count the state is left unchanged if Newton still failed: the
+  // step keeps the start orientation and velocity, which is finite and conserves the energy)
+  xi_r = type.M_inv * Y;
+  *v = xi_r.head<3>() + q->toRotationMatrix().transpose() * u_fluid;
+  *w = xi_r.tail<3>();
+  return iterations;
 }
 
 Vec6 velocity_from_impulse(const BodyType& type, const Vec6& impulse, const Vec3& u_fluid_body,

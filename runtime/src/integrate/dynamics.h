@@ -92,4 +92,22 @@ EvalResult effect_wrench(const Model& model, const BodyType& type, const Kinemat
 bool effect_context(const Model& model, const BodyType& type, const Kinematics& k, double t,
                     bool impulse_form, FluidSample* fluid, EffectContext* c, Vec3* u_fluid);
 
+// effect_context on a fluid sample taken before (the sample is not repeated): the context
+// keeps a pointer to `fluid`.
+void context_from_sample(const Model& model, const BodyType& type, const Kinematics& k,
+                         bool impulse_form, const FluidSample* fluid, EffectContext* c,
+                         Vec3* u_fluid);
+
+// The free Kirchhoff flow (no forces) of the motion relative to a fluid moving uniformly with
+// u_fluid (world, m/s) over h (s): Y' = -(w x P; w x L + v x P) for Y = (P; L) = M xi_r,
+// xi_r = (v - R^T u_fluid; w), and R' = R w^. One implicit-midpoint step in the body frame,
+// solved by Newton on the 6 components of Y, with the rotation q <- q cay(h w_mid): the
+// midpoint rule keeps every quadratic invariant, so the relative kinetic energy 1/2 Y^T M^-1 Y,
+// |P|^2 and P.L are conserved to the solver tolerance, and the Cayley rotation makes the
+// world-frame impulse R P exactly constant. Substeps (up to kKirchhoffMaxSubsteps) when Newton
+// does not converge. Returns the number of Newton iterations (cost accounting).
+constexpr int kKirchhoffMaxSubsteps = 64;
+int kirchhoff_flow(const BodyType& type, const Vec3& u_fluid, double h, Quat* q, Vec3* v,
+                   Vec3* w);
+
 }  // namespace lrigid

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "effects/basset.h"
+#include "effects/mean_flow.h"
 #include "effects/turbulence.h"
 #include "integrate/dynamics.h"
 #include "util/rng.h"
@@ -71,52 +72,131 @@ Vec6 rotate6(const Mat3& R, const Vec6& a) {
   return r;
 }
 
-// One step in world-frame impulse form (see dynamics.h). implicit: drag stiffness on the
-// left-hand side, orientation advanced with the updated angular velocity and position by the
-// trapezoidal rule; explicit: plain Euler from the start of the step.
-StepOutcome impulse_step(const Model& model, const BodyType& type, double t, bool implicit,
-                         BodyState* s) {
+// One explicit Euler step in world-frame impulse form (see dynamics.h): forces, Munk moment
+// and rotation from the start of the step (euler). The Basset history's current interval is
+// implicit (a mass on the left-hand side).
+StepOutcome impulse_step(const Model& model, const BodyType& type, double t, BodyState* s) {
   const double h = model.dt;
   const Kinematics k = kinematics(*s);
   ImpulseRates r;
-  DragStiffness ds;
-  if (impulse_rates(model, type, k, t, &r, implicit ? &ds : nullptr) == EvalResult::Outside)
+  if (impulse_rates(model, type, k, t, &r, nullptr) == EvalResult::Outside)
     return StepOutcome::Exited;
   Vec6 dPi = h * r.rate;
-  const bool implicit_drag =
-      implicit && type.effects.has(Effect::Drag) && (ds.c_lin > 0 || ds.c_ang > 0);
-  const bool basset = type.plan.basset && s->history;
-  if (implicit_drag || basset) {
-    // (I + h J M^-1) dPi = h G  <=>  dPi = M (M + h J)^-1 h G
+  if (type.plan.basset && s->history) {
+    // current interval of the history force: 2 C sqrt(h) (du_f - dv) / h
+    const double b = type.basset.implicit_mass;
     Mat6 A = type.M;
-    if (implicit_drag) {
-      A.block<3, 3>(0, 0) +=
-          h * ds.c_lin * (Mat3::Identity() + ds.p * ds.u_hat * ds.u_hat.transpose());
-      A.block<3, 3>(3, 3) += h * ds.c_ang * Mat3::Identity();
-    }
-    if (basset) {
-      // current interval of the history force: 2 C sqrt(h) (du_f - dv) / h
-      const double b = type.basset.implicit_mass;
-      A.block<3, 3>(0, 0) += b * Mat3::Identity();
-      dPi.head<3>() += b * (k.R.transpose() * (h * r.a_fluid));
-    }
+    A.block<3, 3>(0, 0) += b * Mat3::Identity();
+    dPi.head<3>() += b * (k.R.transpose() * (h * r.a_fluid));
     dPi = type.M * A.ldlt().solve(dPi);
   }
   const Vec6 Pi_world = rotate6(k.R, r.impulse + dPi);
   const Vec3 u_fluid_new = r.u_fluid + h * r.a_fluid;  // world frame
   const Vec3 V0 = k.R * s->v;
-  Vec3 w_rot = s->w;
-  if (implicit)
-    w_rot = velocity_from_impulse(type, r.impulse + dPi, k.R.transpose() * u_fluid_new,
-                                  r.fluid_inertia)
-                .tail<3>();
-  s->q = rotate_body(s->q, h * w_rot);
+  s->q = rotate_body(s->q, h * s->w);
   const Mat3 R1 = s->q.toRotationMatrix();
   const Vec6 xi = velocity_from_impulse(type, rotate6(R1.transpose(), Pi_world),
                                         R1.transpose() * u_fluid_new, r.fluid_inertia);
   s->v = xi.head<3>();
   s->w = xi.tail<3>();
-  s->x += implicit ? Vec3(0.5 * h * (V0 + R1 * s->v)) : Vec3(h * V0);
+  s->x += h * V0;
+  return StepOutcome::Ok;
+}
+
+// Deterministic part of the splitting scheme (docs/physics/integrators.md), Lie-Trotter:
+//   1. the free Kirchhoff flow of the motion relative to the fluid (gyroscopic and Munk terms,
+//      rotation): implicit midpoint + Cayley (kirchhoff_flow), energy-conserving;
+//   2. the forces at the new orientation in impulse form, drag implicit: one linearly implicit
+//      step (M + h J) dPi = M h G, iterated by Newton to the backward Euler solution when the
+//      drag changes the relative velocity by more than kStiffChange in the step;
+//   3. x by the trapezoidal rule on the world velocity.
+// The field is sampled once, at the start of the step.
+constexpr double kStiffChange = 0.1;  // relative change of the relative velocity (energy norm)
+constexpr int kDragMaxNewton = 12;
+constexpr double kDragTol = 1e-10;    // Newton update / relative velocity (energy norm)
+
+StepOutcome split_deterministic_step(const Model& model, const BodyType& type, double t,
+                                     BodyState* s) {
+  const double h = model.dt;
+  const EffectPlan& plan = type.plan;
+  FluidSample fluid;
+  if (plan.sample_field && !sample_fluid(model, s->x, t, plan.gradients, &fluid))
+    return StepOutcome::Exited;
+  // fluid velocity around the body (world), constant over the Kirchhoff flow
+  Vec3 uf = Vec3::Zero();
+  if (plan.mean_flow) uf += fluid.U;
+  if (plan.seen) uf += s->u_seen;
+  const Vec3 V0 = s->q * s->v;
+  kirchhoff_flow(type, uf, h, &s->q, &s->v, &s->w);
+  const Kinematics k = kinematics(*s);
+  EffectContext c;
+  context_from_sample(model, type, k, true, &fluid, &c, &uf);
+  // forces at the new orientation; the added-mass term is all in the Kirchhoff flow
+  DragStiffness ds;
+  c.stiffness = &ds;
+  Vec6 rate = Vec6::Zero(), drag = Vec6::Zero();
+  WrenchTerm drag_term = nullptr;
+  for (size_t i = 0; i < plan.terms.size(); ++i) {
+    const Effect e = plan.term_effect[i];
+    if (e == Effect::AddedMass) continue;
+    const Vec6 f = plan.terms[i](c);
+    rate += f;
+    if (e == Effect::Drag) {
+      drag = f;
+      drag_term = plan.terms[i];
+    }
+  }
+  const bool fluid_inertia = type.effects.has(Effect::AddedMass);
+  const Vec3 a_fluid =
+      fluid_inertia && plan.mean_flow ? mean_flow_acceleration(fluid) : Vec3::Zero();
+  const Vec3 uf_b = c.Rt * uf;
+  const Vec3 uf_b_new = c.Rt * (uf + h * a_fluid);
+  Vec6 xi;
+  xi << s->v, s->w;
+  Vec6 Pi = type.M * xi;
+  if (fluid_inertia) Pi -= type.K_fluid.leftCols<3>() * uf_b;
+  // (M + h J + b P) M^-1 dPi = h G + b h a: drag stiffness J, Basset's current interval b
+  const double b = plan.basset && s->history ? type.basset.implicit_mass : 0.0;
+  const Vec3 basset_rhs = b * (h * (c.Rt * a_fluid));
+  auto lhs = [&]() {
+    Mat6 A = type.M;
+    if (drag_term) {
+      A.block<3, 3>(0, 0) +=
+          h * ds.c_lin * (Mat3::Identity() + ds.p * ds.u_hat * ds.u_hat.transpose());
+      A.block<3, 3>(3, 3) += h * ds.c_ang * Mat3::Identity();
+    }
+    A.block<3, 3>(0, 0) += b * Mat3::Identity();
+    return A;
+  };
+  Vec6 rhs = h * rate;
+  rhs.head<3>() += basset_rhs;
+  Vec6 dPi = type.M * lhs().ldlt().solve(rhs);
+  Vec6 xi_new = velocity_from_impulse(type, Pi + dPi, uf_b_new, fluid_inertia);
+  if (drag_term) {
+    Vec6 xi_r;
+    xi_r << s->v - uf_b, s->w;
+    const double norm_r = xi_r.dot(type.M * xi_r);
+    const Vec6 dxi = type.M_inv * dPi;
+    if (dxi.dot(type.M * dxi) > kStiffChange * kStiffChange * norm_r) {
+      // stiff drag: Newton on R(dPi) = dPi - h (G_other + F_drag(xi(dPi))) - b (h a - dv)
+      const Vec6 other = rate - drag;
+      EffectContext cd = c;
+      for (int it = 0; it < kDragMaxNewton; ++it) {
+        cd.v_rel = xi_new.head<3>() - uf_b;
+        cd.w = xi_new.tail<3>();
+        Vec6 res = dPi - h * (other + drag_term(cd));
+        res.head<3>() -= basset_rhs - b * (type.M_inv * dPi).head<3>();
+        const Vec6 d = -(type.M * lhs().ldlt().solve(res));
+        dPi += d;
+        xi_new = velocity_from_impulse(type, Pi + dPi, uf_b_new, fluid_inertia);
+        const Vec6 dv = type.M_inv * d;
+        if (dv.dot(type.M * dv) <= kDragTol * kDragTol * norm_r) break;
+      }
+    }
+  }
+  s->v = xi_new.head<3>();
+  s->w = xi_new.tail<3>();
+  s->x += 0.5 * h * (V0 + k.R * s->v);
   return StepOutcome::Ok;
 }
 
@@ -232,7 +312,7 @@ StepOutcome step_body(const Model& model, const BodyType& type, uint32_t body, u
     case Integrator::RK4: {
       // the noise uses the state at the start of the step (Ito), one draw per step
       BodyState start = *s;
-      out = model.integrator == Integrator::Euler ? impulse_step(model, type, t, false, s)
+      out = model.integrator == Integrator::Euler ? impulse_step(model, type, t, s)
                                                   : rk4(model, type, t, s);
       if (out == StepOutcome::Ok && turb) {
         BodyState inc = start;
@@ -248,7 +328,7 @@ StepOutcome step_body(const Model& model, const BodyType& type, uint32_t body, u
     }
     case Integrator::Splitting:
       if (turb) out = turbulence_update(model, type, t, 0.5 * h, true, z1, s);
-      if (out == StepOutcome::Ok) out = impulse_step(model, type, t, true, s);
+      if (out == StepOutcome::Ok) out = split_deterministic_step(model, type, t, s);
       // body model: the turbulent velocity at mid-step carries the body directly
       if (out == StepOutcome::Ok && turb && model.turbulence_model == TurbulenceModel::Body)
         s->x += h * s->u_seen;

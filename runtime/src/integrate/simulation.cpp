@@ -26,9 +26,19 @@ bool touches_ground(const Model& m, const BodyType& type, const BodyState& s) {
   return s.x.z() - reach <= m.ground_z;
 }
 
+// where one more step would take the body: its world velocity R v, plus the turbulent velocity
+// u' for the body turbulence model (which carries the body directly; for the seen model u' is
+// the fluid's and acts through the forces)
+Vec3 predicted_position(const Model& m, const BodyType& type, const BodyState& b) {
+  Vec3 velocity = b.q * b.v;
+  if (type.effects.has(Effect::Turbulence) && m.turbulence_model == TurbulenceModel::Body)
+    velocity += b.u_seen;
+  return b.x + m.dt * velocity;
+}
+
 // where a body that could not be sampled went: where one more step would take it
-std::string exit_reason(const Model& m, const BodyState& b) {
-  const Vec3 next = b.x + m.dt * (b.q * b.v);
+std::string exit_reason(const Model& m, const BodyType& type, const BodyState& b) {
+  const Vec3 next = predicted_position(m, type, b);
   if (m.field.in_box(next) && m.field.in_box(b.x))
     return "hit a solid: no valid grid point around it (a wall, a building, an obstacle)";
   return "left the grid";
@@ -65,7 +75,7 @@ RunStats simulate(const Model& model, State* state, const RunOptions& options) {
           // a step that would cross the ground (often also the grid's bottom) lands the body,
           // even when a stage of it sampled below the grid first
           BodyState next = b;
-          next.x += model.dt * (b.q * b.v) + model.dt * b.u_seen;
+          next.x = predicted_position(model, type, b);
           if (touches_ground(model, type, next)) {
             st.status[i] = BodyStatus::Landed;
             st.t_stop[i] = t + model.dt;
@@ -77,7 +87,7 @@ RunStats simulate(const Model& model, State* state, const RunOptions& options) {
         if (out != StepOutcome::Ok) {
           st.status[i] = out == StepOutcome::Exited ? BodyStatus::Exited : BodyStatus::Failed;
           st.t_stop[i] = t;
-          st.reason[i] = out == StepOutcome::Exited ? exit_reason(model, b) : reason;
+          st.reason[i] = out == StepOutcome::Exited ? exit_reason(model, type, b) : reason;
           break;
         }
         ++body_steps;
