@@ -15,6 +15,7 @@ work=$build/accuracy_work
 out=$src/docs/accuracy
 mkdir -p "$work" "$out"
 t0=$SECONDS
+load0=$(cut -d' ' -f1-3 /proc/loadavg)
 
 wind_case=${ACCURACY_WIND_CASE:-$src/results/cases/windCourtyard}
 if [ -d "$wind_case" ]; then
@@ -61,6 +62,9 @@ list=$(IFS=,; echo "${files[*]}")
 
 # every scene's stochastic sweep, its other sweeps and the grid sweep side by side, each in
 # its own process (one thread: the cost is the process's CPU time); logs in $work/log.<job>
+# rk4's stochastic sweep costs as much again as euler's and splitting's together (4 force
+# evaluations per step at the finest steps): ACCURACY_STOCH_INTEGRATORS=euler,rk4,splitting
+stoch_schemes=${ACCURACY_STOCH_INTEGRATORS:-euler,splitting}
 jobs_=()
 for s in uniform_box leaves_wind debris_tank; do jobs_+=("$s.det" "$s.stoch"); done
 jobs_+=(grid)
@@ -70,7 +74,7 @@ for j in "${jobs_[@]}"; do
   case $j in
     grid) args=(--scenes none --grids "$name:$scene:$list") ;;
     *.det) args=(--scenes "${j%.det}" --sweeps det,effects) ;;
-    *.stoch) args=(--scenes "${j%.stoch}" --sweeps stoch) ;;
+    *.stoch) args=(--scenes "${j%.stoch}" --sweeps stoch --integrators "$stoch_schemes") ;;
   esac
   "$build/bin/accuracy_study" --source-dir "$src" --out "$work/$j" "${args[@]}" \
     > "$work/log.$j" 2>&1 &
@@ -78,7 +82,8 @@ for j in "${jobs_[@]}"; do
 done
 for k in "${!jobs_[@]}"; do
   if wait "${pids[$k]}"; then
-    line="${jobs_[$k]} done after $((SECONDS - t0)) s (load $(cut -d' ' -f1-3 /proc/loadavg))"
+    took=$(sed -n 's/.* in \([0-9.]*\) s$/\1/p' "$work/log.${jobs_[$k]}" | tail -1)
+    line="${jobs_[$k]} ${took%.*} s"
     echo "run_study: $line"
     done_lines+="${done_lines:+; }$line"
   else
@@ -93,5 +98,6 @@ for j in "${jobs_[@]}"; do csvs+=("$work/$j/accuracy.csv"); done
 /usr/bin/python3 "$src/bench/accuracy/make_report.py" --csv "${csvs[@]}" --out "$out" \
   --doc "$src/docs/accuracy.md" --study-seconds $((SECONDS - t0)) \
   --note "Runtime measured: commit $(git -C "$src" rev-parse --short HEAD) (contains main at \
-$(git -C "$src" merge-base HEAD main 2>/dev/null | cut -c1-7)). Processes (wall, since the \
-start, one thread each): $done_lines."
+$(git -C "$src" merge-base HEAD main 2>/dev/null | cut -c1-7)). Processes (wall, one \
+thread each, side by side): $done_lines; load average $load0 at the start, \
+$(cut -d' ' -f1-3 /proc/loadavg) at the end (2 cores)."
