@@ -1,6 +1,7 @@
 #!/usr/bin/python3
 """Turns the accuracy study's CSV (bench/accuracy/accuracy_study) into
   OUT/error_vs_cost.png   error versus cost, log-log, one curve per integrator, Pareto front marked
+  OUT/grid_error.png      grid error against the finest grid, per metric (when grid rows exist)
   OUT/slopes.csv          measured convergence slopes
   OUT/tolerance_table.json  what `lrigid run --tolerance E` chooses from
   OUT/accuracy.csv        all points (the inputs merged)
@@ -136,25 +137,38 @@ def sweep_points(rows, scene, sweep, metric):
 
 
 def table_points(rows, scene):
-    """per (integrator, dt): the relative pathwise error used by --tolerance, the max of the
-    deterministic trajectory error and the strong error; cost from the stochastic run"""
+    """per (integrator, dt): the relative error used by --tolerance, the largest of the
+    deterministic trajectory error at the first compared time and the weak errors of the mean
+    and variance of positions (each plus 2 Monte Carlo standard errors: no point claims more
+    than 1000 bodies resolve); cost from the turbulence-off run times the turbulence factor"""
     det = {(r["integrator"], r["dt"]): r for r in rows
-           if r["scene"] == scene and r["sweep"] == "dt_det" and r["metric"] == "trajectory"}
-    sto = {(r["integrator"], r["dt"]): r for r in rows
-           if r["scene"] == scene and r["sweep"] == "dt_stoch" and r["metric"] == "strong"}
+           if r["scene"] == scene and r["sweep"] == "dt_det" and r["metric"] == "trajectory_t1"}
+    weak = {}
+    for r in rows:
+        if r["scene"] == scene and r["sweep"] == "dt_stoch" and r["metric"] in TOL_WEAK:
+            weak.setdefault((r["integrator"], r["dt"]), []).append(r)
+    # schemes without a stochastic sweep (run_study.sh leaves rk4 out by default) are not offered
+    stoch = {k[0] for k in weak}
     pts = []
-    for key in sorted(set(det) | set(sto)):
-        parts = [x for x in (det.get(key), sto.get(key)) if x is not None]
+    for key in sorted(set(det) | set(weak)):
+        if key[0] not in stoch:
+            continue
+        parts = ([det[key]] if key in det else []) + weak.get(key, [])
         if any(not x["valid"] or x["failed"] for x in parts):
             continue
-        err = max(x["error"] for x in parts)
-        c = cost(sto[key]) if key in sto else cost(det[key]) * TURB_FACTOR.get(scene, 1.0)
+        err = max(x["error"] + 2 * x["error_se"] for x in parts)
+        sto = weak.get(key)
+        c = cost(sto[0]) if sto else cost(det[key]) * TURB_FACTOR.get(scene, 1.0)
         pts.append({"integrator": key[0], "dt": key[1], "error": err, "cost": c})
     return pts
 
 
+TOL_WEAK = ("weak_mean", "weak_var")
+
+
 def plot(rows, scenes, path):
-    panels = [("dt_det", "trajectory", "deterministic: trajectory error"),
+    panels = [("dt_det", "trajectory", "deterministic: trajectory error (max over times)"),
+              ("dt_det", "trajectory_t1", "deterministic: trajectory error, first time"),
               ("dt_stoch", "strong", "stochastic: strong error (same Brownian path)"),
               ("dt_stoch", "weak_mean", "stochastic: weak error of the mean position")]
     fig, axes = plt.subplots(len(scenes), len(panels), figsize=(5 * len(panels), 4 * len(scenes)),
@@ -190,12 +204,54 @@ def plot(rows, scenes, path):
             ax.set_title("%s\n%s" % (scene, title), fontsize=9)
             ax.set_xlabel("cost: CPU s per body per simulated s")
             ax.set_ylabel("relative error")
-            ax.grid(True, which="both", alpha=0.3)
-            ax.legend(fontsize=7)
+            finish_axes(ax)
+    save_figure(fig, path)
+
+
+def finish_axes(ax):
+    ax.grid(True, which="both", alpha=0.3)
+    if ax.get_legend_handles_labels()[0]:
+        ax.legend(fontsize=7)
+
+
+def save_figure(fig, path):
     fig.tight_layout()
     tmp = path + ".tmp.png"
     fig.savefig(tmp, dpi=110)
     os.replace(tmp, path)
+
+
+def grid_points(n):
+    """the points per axis of a grid file name grid_<case>_<N>.vti (0 if it has none)"""
+    digits = n.rsplit("_", 1)[-1].split(".")[0]
+    return int(digits) if digits.isdigit() else 0
+
+
+GRID_METRICS = ["trajectory", "trajectory_t1", "weak_mean", "weak_var", "landing_mean",
+                "landing_var"]
+
+
+def plot_grid(rows, path):
+    """grid error against the finest grid, per metric, against the points per axis"""
+    fig, ax = plt.subplots(figsize=(6, 4.5))
+    scenes = sorted({r["scene"] for r in rows if r["sweep"] == "grid"})
+    for metric in GRID_METRICS:
+        rs = sorted((r for r in rows if r["sweep"] == "grid" and r["metric"] == metric
+                     and r["valid"] and r["error"] > 0), key=lambda r: grid_points(r["grid"]))
+        if not rs:
+            continue
+        xs = [grid_points(r["grid"]) for r in rs]
+        ys = [r["error"] for r in rs]
+        ax.errorbar(xs, ys, yerr=[2 * r["error_se"] for r in rs], fmt="o-", capsize=3,
+                    label=metric)
+    ax.set_xscale("log", base=2)
+    ax.set_yscale("log")
+    ax.set_xlabel("grid points per axis (N^3 grid)")
+    ax.set_ylabel("relative error against the finest grid")
+    ax.set_title("grid error (%s; error bars: 2 Monte Carlo s.e.)" % ", ".join(scenes),
+                 fontsize=9)
+    finish_axes(ax)
+    save_figure(fig, path)
 
 
 def machine():
@@ -242,7 +298,7 @@ def main():
     # slopes
     slopes = []
     for scene in dt_scenes:
-        for sweep, metrics in (("dt_det", ["trajectory"]),
+        for sweep, metrics in (("dt_det", ["trajectory", "trajectory_t1"]),
                                ("dt_stoch", ["strong", "weak_mean", "weak_var", "landing_mean",
                                              "landing_var"])):
             for metric in metrics:
@@ -281,9 +337,10 @@ def main():
         sources.setdefault(k, []).append(scene)
     date = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
     table = {"generated": date, "machine": machine(), "scenes": sources,
-             "error": "relative pathwise error: max over compared times of RMS |x - x_ref| / RMS "
-                      "displacement, the larger of the deterministic (turbulence off) and the "
-                      "strong (same Brownian path) error",
+             "error": "relative error: the largest of the deterministic (turbulence off) "
+                      "trajectory error RMS |x - x_ref| / RMS displacement at the first compared "
+                      "time and the weak errors of the mean and variance of positions at the "
+                      "last time, each plus 2 Monte Carlo standard errors",
              "cost": "CPU seconds per body per simulated second, one thread",
              "kinds": kinds}
     atomic_write(os.path.join(a.out, "tolerance_table.json"),
@@ -291,6 +348,8 @@ def main():
 
     if dt_scenes:
         plot(rows, dt_scenes, os.path.join(a.out, "error_vs_cost.png"))
+    if any(r["sweep"] == "grid" for r in rows):
+        plot_grid(rows, os.path.join(a.out, "grid_error.png"))
     if a.doc:
         text = report(rows, slopes, kinds, sources, dt_scenes, date, a.study_seconds, a.note)
         atomic_write(a.doc, lambda f: f.write(text))
@@ -337,12 +396,29 @@ def report(rows, slopes, kinds, sources, scenes, date, seconds, note=""):
     det = {(s["scene"], s["integrator"]): s for s in slopes
            if s["sweep"] == "dt_det" and s["metric"] == "trajectory"}
     for scene in scenes:
+        first = {(r["integrator"], r["dt"]): r["error"] for r in rows if r["scene"] == scene
+                 and r["sweep"] == "dt_det" and r["metric"] == "trajectory_t1" and r["valid"]}
+        whole = {(r["integrator"], r["dt"]): r["error"] for r in rows if r["scene"] == scene
+                 and r["sweep"] == "dt_det" and r["metric"] == "trajectory" and r["valid"]}
+        dts = sorted(d for (i, d) in whole if i == "euler" and (i, d) in first)
+        rk = sorted(d for (i, d) in whole if i == "rk4")
+        if dts and rk:
+            d, dr = dts[0], rk[0]
+            w("* `%s`, turbulence off: euler at dt = %g s has trajectory error %.2g at the first "
+              "compared time and %.2g at the worst; rk4 at dt = %g s %.2g and %.2g. An error "
+              "that grows over time much faster than the step's (flat bodies tumbling: a small "
+              "difference changes how they flip) makes long-horizon pathwise errors saturate, "
+              "so `--tolerance` uses the first compared time and the weak errors." %
+              (scene, d, first[("euler", d)], whole[("euler", d)], dr,
+               first.get(("rk4", dr), float("nan")), whole[("rk4", dr)]))
+    for scene in scenes:
         r = det.get((scene, "rk4"))
         if r and math.isfinite(r["slope"]) and r["slope"] < 3:
             w("* On `%s` rk4 converges with slope %.2f, not 4: the scene's events and kinks "
               "(ground contact detected at the end of a step, the drag of flat bodies through "
-              "|direction cosines|) are first order, so rk4's extra stages buy accuracy only "
-              "through a smaller error constant." % (scene, r["slope"]))
+              "|direction cosines|) are first order and tumbling amplifies them, so rk4's "
+              "extra stages buy accuracy only through a smaller error constant." %
+              (scene, r["slope"]))
     eff = [r for r in rows if r["sweep"] in ("effects_det", "effects") and
            r["effects"] != "full" and r["valid"]]
     for r in eff:
@@ -355,14 +431,38 @@ def report(rows, slopes, kinds, sources, scenes, date, seconds, note=""):
               (r["scene"], r["effects"], r["integrator"], "dt %g s" % r["dt"], r["metric"],
                r["error"], (" ± %.1g" % r["error_se"]) if r["error_se"] else "", r["effects"],
                speed))
+    for scene in scenes:
+        land = [r for r in rows if r["scene"] == scene and r["sweep"] == "dt_stoch"
+                and r["metric"].startswith("landing") and r["valid"]]
+        if not land:
+            continue
+        for integ in SCHEMES:
+            mine = sorted((r for r in land if r["integrator"] == integ), key=lambda r: r["dt"])
+            for metric in ("landing_mean", "landing_var"):
+                pts = [r for r in mine if r["metric"] == metric]
+                if not pts:
+                    continue
+                what = "mean" if metric == "landing_mean" else "variance"
+                w("* `%s` landing points, weak error of the %s, %s (%s): %s." %
+                  (scene, what, integ, pts[0]["note"] or "landed bodies",
+                   ", ".join("dt %g s: %.2g ± %.1g" % (r["dt"], r["error"], r["error_se"])
+                             for r in pts)))
+    for scene in scenes:
+        bad = sorted({(r["integrator"], r["dt"]) for r in rows if r["scene"] == scene
+                      and r["sweep"] in ("dt_det", "dt_stoch") and r["failed"]})
+        if bad:
+            w("* `%s`: bodies failed (non-finite state) with %s; those points are not used." %
+              (scene, ", ".join("%s at dt %g s" % b for b in bad)))
     grid = [r for r in rows if r["sweep"] == "grid" and r["valid"]]
-    for r in grid:
-        if r["metric"] in ("trajectory", "weak_mean"):
-            w("* grid `%s` against the finest grid (%s, %s at dt %g s): %s error %.2g%s "
-              "(%.0f ns CPU per body-step)." %
-              (r["grid"], r["scene"], r["integrator"], r["dt"], r["metric"], r["error"],
-               (" ± %.1g" % r["error_se"]) if r["error_se"] else "",
-               r["cpu_ns_per_body_step"]))
+    for metric in GRID_METRICS:
+        rs = sorted((r for r in grid if r["metric"] == metric),
+                    key=lambda r: grid_points(r["grid"]))
+        if rs:
+            w("* grid error of the `%s` (%s, %s at dt %g s) against the finest grid: %s." %
+              (metric, rs[0]["scene"], rs[0]["integrator"], rs[0]["dt"],
+               ", ".join("%d³ %.2g%s" % (grid_points(r["grid"]), r["error"],
+                                         (" ± %.1g" % r["error_se"]) if r["error_se"] else "")
+                         for r in rs)))
     w("")
     w("## Measured convergence slopes")
     w("")
@@ -383,8 +483,9 @@ def report(rows, slopes, kinds, sources, scenes, date, seconds, note=""):
     w("")
     w("## Error and cost per integrator and dt")
     w("")
-    w("Error: the `--tolerance` error (the larger of the deterministic trajectory error and the "
-      "strong error); cost: CPU s per body per simulated s (one thread).")
+    w("Error: the `--tolerance` error, the largest of the deterministic trajectory error at the "
+      "first compared time and the weak errors of the mean and variance of positions (each plus "
+      "2 Monte Carlo standard errors); cost: CPU s per body per simulated s (one thread).")
     w("")
     for kind, pts in sorted(kinds.items()):
         w("### `%s` (%s)" % (kind, ", ".join(sources[kind])))
@@ -393,6 +494,27 @@ def report(rows, slopes, kinds, sources, scenes, date, seconds, note=""):
         w("|---|---|---|---|")
         for p in sorted(pts, key=lambda p: (p["integrator"], p["dt"])):
             w("| %s | %g | %.3g | %.3g |" % (p["integrator"], p["dt"], p["error"], p["cost"]))
+        w("")
+    grid = [r for r in rows if r["sweep"] == "grid"]
+    if grid:
+        w("## Grid error")
+        w("")
+        w("![grid error](accuracy/grid_error.png)")
+        w("")
+        w("The same scene and Brownian path on coarser conversions of one OpenFOAM case, against "
+          "the finest; cost: CPU ns per body-step.")
+        w("")
+        w("| grid | turbulence | metric | relative error | Monte Carlo s.e. | bodies | CPU ns per "
+          "body-step | note |")
+        w("|---|---|---|---|---|---|---|---|")
+        for r in sorted(grid, key=lambda r: (GRID_METRICS.index(r["metric"])
+                                             if r["metric"] in GRID_METRICS else 9,
+                                             grid_points(r["grid"]))):
+            w("| %s | %s | %s | %s | %s | %d | %.0f | %s |" %
+              (r["grid"], "off" if r["metric"].startswith("trajectory") else "on", r["metric"],
+               "%.3g" % r["error"] if r["valid"] else "–",
+               "%.2g" % r["error_se"] if r["error_se"] else "–", r["bodies"],
+               r["cpu_ns_per_body_step"], r["note"]))
         w("")
     w("## Reference checks")
     w("")
@@ -407,39 +529,52 @@ def report(rows, slopes, kinds, sources, scenes, date, seconds, note=""):
 
 METHOD = """## Method
 
-**Scenes.** The standard scenes of `scenes/` whose fields exist: `uniform_box` always,
-`leaves_wind` after `./Allrun`, `debris_tank` after `./Allrun -all` (skipped otherwise, with a
-message). Each is run for 2 s with the body counts scaled (100 bodies for deterministic sweeps,
-1000 for stochastic ones) and compared at t = 0.5, 1, 1.5, 2 s.
+**Scenes.** The standard scenes of `scenes/` whose fields exist: `uniform_box` (uniform field,
+always), `leaves_wind` (the steady windCourtyard case, after `./Allrun`) and `debris_tank` (the
+transient tankJet series, frames 0.5 s apart interpolated in time, after `./Allrun -all`);
+skipped otherwise, with a message. `uniform_box` and `debris_tank` run for 2 s, compared at
+t = 0.5, 1, 1.5, 2 s. In `leaves_wind` the leaves are spawned 0.5-3 m above the ground instead
+of the scene's 14-20 m (which take ~15 s to fall) and run for 4 s, compared at t = 1, 2, 3, 4 s,
+so that about 90 % of its 1200 stochastic bodies land and the landing points can be compared.
+Body counts are scaled: 100 bodies for the deterministic sweeps, 1000 (wind: 1200) for the
+stochastic ones. Each scene runs in its own process, one thread, side by side.
 
 **Deterministic error** (turbulence removed from every body type): positions against rk4 at
-dt = h = 5e-5 s; that reference is checked against rk4 at 2h. Trajectory error = max over the
+dt = h = 1e-4 s; that reference is checked against rk4 at 2h. Trajectory error = max over the
 compared times of RMS_bodies |x − x_ref| / RMS_bodies |x_ref(t) − x_ref(0)| (relative to how far
 the bodies moved).
 
 **Stochastic error.** The noise is a Brownian path resolved at h: a run at dt = r·h uses
 `noise_substeps = r`, so it sums the reference's increments and every dt sees the same path. The
-reference is the splitting scheme at h, checked against the splitting at 2h. Strong error: the
+reference is the splitting scheme at h, checked against the splitting at 2h. `run_study.sh`
+sweeps euler and splitting here (rk4's sweep would cost as much again;
+`ACCURACY_STOCH_INTEGRATORS=euler,rk4,splitting` adds it), and `--tolerance` offers only the
+schemes that have a stochastic sweep. Strong error: the
 same pathwise formula. Weak errors: the mean position |⟨x⟩ − ⟨x_ref⟩| / L and the total variance
 |V − V_ref| / V_ref at the last time, and the same for the horizontal landing points of bodies that
-landed in both runs (needs ≥ 30). Monte Carlo error bars come from the paired differences
-(common random numbers), so they measure how well the *difference* is known.
+landed in both runs (needs ≥ 30; the CSV's note gives how many). Monte Carlo error bars come
+from the paired differences (common random numbers), so they measure how well the *difference*
+is known.
 
 **Effect sets.** `full` (every effect the build knows), `auto` (the scene's automatic selection)
 and `minimal` (gravity, buoyancy, drag, mean flow, turbulence) at the scene's integrator and dt,
-against `full`: with turbulence off (trajectory error) and on (weak errors).
+against `full`: with turbulence off (trajectory error: `trajectory` the worst over the compared
+times, `trajectory_t1` at the first) and on (weak errors).
 
-**Grid error.** One converted case at several `foam2grid --resolution N N N` against the finest,
-same integrator and dt (the wind case when `results/cases/windCourtyard` exists, else the tiny
-OpenFOAM case that `run_study.sh` runs).
+**Grid error.** One OpenFOAM case converted with `foam2grid --resolution N N N` at N = 32, 64,
+128 and 256 (the solved coarse windCourtyard case, copied, with `./Allrun`'s bounds), the wind
+scene as in the main study (leaves spawned 0.5-3 m high, 4 s, 100 / 1200 bodies, the same seed
+and Brownian path) at its integrator and dt, against the 256³ grid: with turbulence off
+(trajectory error) and on (weak errors of positions and landing points). Without the wind case,
+`run_study.sh` runs the tiny OpenFOAM case instead (16³-128³).
 
 **Cost.** Process CPU time of the integration per body-step (and wall time, in the CSV) measured
-in the same run, one thread. The machine is shared by other jobs, so wall times scatter (wall was
-3-7× CPU during this study); CPU times are steadier. Cost per simulated second = CPU time per
+in the same run, one thread. The machine is shared by other jobs, so wall times scatter (the
+load is given above); CPU times are steadier. Cost per simulated second = CPU time per
 body-step / dt. The stochastic sweep's own runs are *not* used for cost: to keep one Brownian
-path they sum dt/h fine increments per step (`noise_substeps`), a constant ~2.7 s of CPU per
-run here that production runs (substeps 1) never pay. Their cost is the turbulence-off run's at
-the same scheme and dt times the scene's turbulence factor, measured in the effect-set sweep
+path they sum dt/h fine increments per step (`noise_substeps`), a cost per step that grows
+with dt/h and that production runs (substeps 1) never pay. Their cost is the turbulence-off
+run's at the same scheme and dt times the scene's turbulence factor, measured in the effect-set sweep
 (auto effects with and without turbulence, substeps 1).
 
 **Scene kinds** (for `lrigid run --tolerance E`): `<field>-<medium>`, field `uniform` or `grid`
@@ -447,7 +582,14 @@ the same scheme and dt times the scene's turbulence factor, measured in the effe
 100 kg/m³ (bodies 10²–10³ times denser than the fluid, thin ones with stiff drag) else `water`
 (density ratios of order 1: added mass and buoyancy dominate). `--tolerance E` picks, among the
 measured points of the scene's kind (else a kind with the same medium), the cheapest whose error
-is ≤ E, overrides `integrator.scheme` and `integrator.dt`, and prints its choice.
+is ≤ E, overrides `integrator.scheme` and `integrator.dt`, and prints its choice. Its error
+is the largest of the deterministic trajectory error at the first compared time (0.5 s; wind
+1 s) and the weak errors of the mean and variance of positions at the last time, each plus 2
+Monte Carlo standard errors. Not the strong error nor the trajectory error over the whole run:
+flat bodies tumble, so a small difference in one step changes when they flip and pathwise
+differences grow to the size of the spread within a second or two at any dt (compare the
+metrics `trajectory_t1` and `trajectory` in the CSV); the statistics of many bodies are what a
+scene's result depends on.
 
 **CSV columns** (`accuracy.csv`): scene, sweep (`reference_det`, `dt_det`, `reference_stoch`,
 `dt_stoch`, `effects_det`, `effects`, `grid`), integrator, dt (s), substeps, effects, grid,

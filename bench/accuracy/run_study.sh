@@ -1,9 +1,11 @@
 #!/bin/bash
-# The whole error-versus-cost study (docs/accuracy.md), about 10-15 minutes on 2 cores:
+# The whole error-versus-cost study (docs/accuracy.md), about 20-30 minutes on 2 shared cores:
 #   1. accuracy_study on the standard scenes whose fields exist (uniform box always; leaves in
-#      the wind after ./Allrun, debris in the tank after ./Allrun -all);
-#   2. the grid sweep: one converted case at several resolutions against the finest (the wind
-#      case when results/cases/windCourtyard exists, else the tiny OpenFOAM case, run here);
+#      the wind after ./Allrun, debris in the tank after ./Allrun -all), two processes per
+#      scene (stochastic sweep; the others), side by side;
+#   2. the grid sweep, alongside: one converted case at 32^3 .. 256^3 points against the finest
+#      (the wind case: $ACCURACY_WIND_CASE, default results/cases/windCourtyard, copied first;
+#      else the tiny OpenFOAM case, run here);
 #   3. make_report.py: docs/accuracy/error_vs_cost.png, tolerance_table.json, docs/accuracy.md.
 # usage: bench/accuracy/run_study.sh [-q] [BUILD_DIR]   (default: build; needs accuracy_study,
 #   foam2grid). Progress (step k of n, elapsed, time remaining; validation/lib/progress.py):
@@ -24,14 +26,16 @@ step() {  # step K NAME LOG COMMAND...: one step of nsteps under the progress di
     --step "$k" --of "$nsteps" --name "$name" --history "$work/progress_history.json" \
     ${log:+--log "$log"} -- "$@"
 }
+load0=$(cut -d' ' -f1-3 /proc/loadavg)
 
-grids=()
-if [ -d "$src/results/cases/windCourtyard" ]; then
+wind_case=${ACCURACY_WIND_CASE:-$src/results/cases/windCourtyard}
+if [ -d "$wind_case" ]; then
   name=windCourtyard
-  case_dir=$src/results/cases/windCourtyard
+  case_dir=$work/windCourtyard_case
+  [ -d "$case_dir" ] || cp -r "$wind_case" "$case_dir"   # foam2grid never writes the source
   bounds=(--bounds -20 60 -25 25 0 25)
   base=$src/scenes/leaves_wind.json
-  res=(32 64 128)
+  res=(32 64 128 256)
 else
   name=tiny
   case_dir=$work/tiny
@@ -45,12 +49,9 @@ else
   base=$src/bench/accuracy/tiny_scene.json.in
   res=(16 32 64 128)
 fi
-# steps: the main study, one conversion per resolution, the grid study, the report
-nsteps=$((${#res[@]} + 3))
-rm -f "$work/log.main"
-step 1 "accuracy_study (scenes)" "$work/log.main" \
-  "$build/bin/accuracy_study" --source-dir "$src" --out "$work/main"
-k=1
+# steps: one conversion per resolution, the processes side by side, the report
+nsteps=$((${#res[@]} + 2))
+k=0
 files=()
 for n in "${res[@]}"; do
   f=$work/grid_${name}_$n.vti
@@ -59,21 +60,36 @@ for n in "${res[@]}"; do
     "$build/bin/foam2grid" "$case_dir" -o "$f" "${bounds[@]}" --resolution "$n" "$n" "$n" -q
   files+=("$f")
 done
-# the scene on the finest grid (replaced per run), at most 2 s
+# the scene on the finest grid (replaced per run); the wind's leaves spawned 0.5-3 m high for
+# 4 s, as in the main study, so that the landing points are compared too
 scene=$work/grid_scene.json
-/usr/bin/python3 - "$base" "${files[-1]}" "$scene" <<'PY'
+/usr/bin/python3 - "$base" "${files[-1]}" "$scene" "$name" <<'PY'
 import json, sys
 s = json.loads(open(sys.argv[1]).read().replace("@FIELD@", sys.argv[2]))
 s["fluid"]["field"] = sys.argv[2]
 s["duration"] = min(s["duration"], 2.0)
+if sys.argv[4] == "windCourtyard":
+    s["duration"] = 4.0
+    for b in s["bodies"]:
+        b["spawn_box"][0][2], b["spawn_box"][1][2] = 0.5, 3.0
 json.dump(s, open(sys.argv[3], "w"), indent=1)
 PY
 list=$(IFS=,; echo "${files[*]}")
-rm -f "$work/log.grid"
-step $((nsteps - 1)) "accuracy_study (grids)" "$work/log.grid" \
-  "$build/bin/accuracy_study" --source-dir "$src" --out "$work/grid" --scenes none \
-  --grids "$name:$scene:$list"
 
+# every scene's stochastic sweep, its other sweeps and the grid sweep side by side
+step $((nsteps - 1)) "accuracy_study: 7 processes side by side" "" \
+  "$src/bench/accuracy/run_jobs.sh" "$build" "$src" "$work" \
+  "${ACCURACY_STOCH_INTEGRATORS:-euler,splitting}" "$name" "$scene" "$list"
+done_lines=$(paste -sd';' "$work/jobs.txt" | sed 's/;/; /g')
+jobs_=(uniform_box.det uniform_box.stoch leaves_wind.det leaves_wind.stoch debris_tank.det \
+  debris_tank.stoch grid)
+
+csvs=()
+for j in "${jobs_[@]}"; do csvs+=("$work/$j/accuracy.csv"); done
 step $nsteps "report" "" /usr/bin/python3 "$src/bench/accuracy/make_report.py" \
-  --csv "$work/main/accuracy.csv" "$work/grid/accuracy.csv" --out "$out" --doc "$src/docs/accuracy.md" \
-  --study-seconds $((SECONDS - t0)) --note "Runtime measured: commit $(git -C "$src" rev-parse --short HEAD)."
+  --csv "${csvs[@]}" --out "$out" \
+  --doc "$src/docs/accuracy.md" --study-seconds $((SECONDS - t0)) \
+  --note "Runtime measured: commit $(git -C "$src" rev-parse --short HEAD) (contains main at \
+$(git -C "$src" merge-base HEAD main 2>/dev/null | cut -c1-7)). Processes (wall, one \
+thread each, side by side): $done_lines; load average $load0 at the start, \
+$(cut -d' ' -f1-3 /proc/loadavg) at the end (2 cores)."

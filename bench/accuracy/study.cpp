@@ -201,12 +201,12 @@ std::vector<size_t> landed_in_both(const RunResult& a, const RunResult& r) {
 
 }  // namespace
 
-Metric pathwise_error(const RunResult& a, const RunResult& ref) {
+Metric pathwise_error(const RunResult& a, const RunResult& ref, size_t last) {
   Metric m;
   if (!comparable(a, ref, &m)) return m;
   const std::vector<size_t> idx = all_bodies(ref);
   double worst = 0;
-  for (size_t j = 1; j < ref.times.size(); ++j) {
+  for (size_t j = 1; j < ref.times.size() && j <= last; ++j) {
     const double L = scale(ref, j);
     if (L <= 0) continue;
     double s = 0;
@@ -241,7 +241,9 @@ Metric landing_mean_error(const RunResult& a, const RunResult& ref) {
     return m;
   }
   const size_t j = ref.times.size() - 1;
-  return mean_error(a.x[j], ref.x[j], idx, scale(ref, j), true);
+  m = mean_error(a.x[j], ref.x[j], idx, scale(ref, j), true);
+  m.note = std::to_string(idx.size()) + " landed in both";
+  return m;
 }
 
 Metric landing_variance_error(const RunResult& a, const RunResult& ref) {
@@ -253,7 +255,9 @@ Metric landing_variance_error(const RunResult& a, const RunResult& ref) {
     return m;
   }
   const size_t j = ref.times.size() - 1;
-  return variance_error(a.x[j], ref.x[j], idx, true);
+  m = variance_error(a.x[j], ref.x[j], idx, true);
+  m.note = std::to_string(idx.size()) + " landed in both";
+  return m;
 }
 
 double fit_slope(const std::vector<double>& dt, const std::vector<double>& err) {

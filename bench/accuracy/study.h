@@ -4,6 +4,7 @@
 // reduced study in tests/accuracy/.
 #pragma once
 #include <cstdint>
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -51,7 +52,9 @@ struct Metric {
 // Relative pathwise error: max over output times t > 0 of RMS_i |x_a - x_r| / L(t), with L(t)
 // the RMS displacement of the reference bodies from their start. Used for deterministic runs
 // (trajectory error) and for runs on the same Brownian path (strong error).
-Metric pathwise_error(const RunResult& a, const RunResult& ref);
+// With `last` given: only the output times 1..last (last = 1: the first compared time, before
+// the chaos of tumbling plates amplifies a step's error).
+Metric pathwise_error(const RunResult& a, const RunResult& ref, size_t last = SIZE_MAX);
 // Weak error in the mean position at the last output, |mean x_a - mean x_r| / L(T), and its
 // standard error from the paired differences (common random numbers).
 Metric weak_mean_error(const RunResult& a, const RunResult& ref);

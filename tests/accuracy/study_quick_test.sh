@@ -16,7 +16,11 @@ mkdir -p "$work"
 /usr/bin/python3 - "$work/accuracy.csv" <<'PY' || fail "csv checks"
 import csv, math, sys
 rows = list(csv.DictReader(open(sys.argv[1])))
-det = [r for r in rows if r["sweep"] == "dt_det"]
+det = [r for r in rows if r["sweep"] == "dt_det" and r["metric"] == "trajectory"]
+det1 = [r for r in rows if r["sweep"] == "dt_det" and r["metric"] == "trajectory_t1"]
+assert len(det1) == 9, len(det1)
+for a, b in zip(det, det1):             # the first compared time is one of the times
+    assert float(b["error"]) <= float(a["error"]), (a, b)
 sto = [r for r in rows if r["sweep"] == "dt_stoch" and r["metric"] == "strong"]
 assert len(det) == 9, len(det)          # 3 integrators x 3 dt
 assert len(sto) == 9, len(sto)
