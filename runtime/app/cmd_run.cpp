@@ -1,11 +1,13 @@
-// lrigid run SCENE.json [-o DIR] [--seed S] [--threads T] [--quiet]
+// lrigid run SCENE.json [-o DIR] [--seed S] [--threads T] [--stream-field M] [--quiet]
 #include <unistd.h>
 
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <memory>
 
 #include "commands.h"
+#include "ranks.h"
 #include "integrate/simulation.h"
 #include "io/added_mass_cache.h"
 #include "io/grid_reader.h"
@@ -29,6 +31,7 @@ struct RunArgs {
   bool quiet = false;
   double tolerance = 0;            // relative error; > 0: choose scheme and dt (docs/accuracy.md)
   std::string tolerance_table;     // empty: default_tolerance_table_path()
+  std::string stream = "auto";     // --stream-field: auto, on, off
 };
 
 // --tolerance E: the cheapest measured integrator and dt reaching E for this kind of scene
@@ -47,18 +50,39 @@ void apply_tolerance(const RunArgs& a, Scene* scene) {
 // bytes of state per body (State arrays plus the writer's per-frame buffers)
 constexpr double kBytesPerBody = 4 * sizeof(Vec3) + sizeof(Quat) + sizeof(Vec3) + 64;
 
-FluidField load_field(const Scene& scene, bool quiet) {
+double physical_memory() {
+  return double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGE_SIZE));
+}
+
+// a .pvd series is streamed (only the frames bracketing the current time in memory) with
+// --stream-field on, or with auto when all its frames would take more than half the memory
+FluidField load_field(const Scene& scene, const std::string& stream, bool quiet) {
   if (scene.uniform_field)
     return FluidField::uniform(scene.uniform_U, scene.uniform_k, scene.uniform_epsilon,
                                scene.kinematic_viscosity, scene.drift);
-  GridFile g = read_grid(scene.field_path);
+  RawGridFrame first;
+  auto series = std::make_shared<GridSeries>(open_grid_series(scene.field_path, &first));
+  const GridSeries& g = *series;
   if (g.kinematic_viscosity > 0 &&
       std::abs(g.kinematic_viscosity - scene.kinematic_viscosity) > 0.01 * g.kinematic_viscosity &&
       !quiet)
     std::cerr << "lrigid: warning: " << scene.file << ": fluid.kinematic_viscosity = "
               << scene.kinematic_viscosity << " m^2/s differs from the grid's "
               << g.kinematic_viscosity << " m^2/s (" << scene.field_path << ")\n";
-  return FluidField::grid(g.geometry, g.frames, scene.kinematic_viscosity, scene.drift,
+  const double all_bytes = double(g.times.size()) * double(g.geometry.points()) * sizeof(GridRecord);
+  const bool streamed = g.times.size() > 2 &&
+                        (stream == "on" || (stream == "auto" && all_bytes > 0.5 * physical_memory()));
+  if (streamed) {
+    if (!quiet)
+      std::fprintf(stderr, "lrigid: streaming %s: %zu frames of %.3g MB, 2 or 3 in memory at once\n",
+                   scene.field_path.c_str(), g.times.size(), all_bytes / g.times.size() / 1e6);
+    return FluidField::streamed(g.geometry, g.times, [series](size_t i) { return series->load(i); },
+                                scene.kinematic_viscosity, scene.drift, scene.time_mode);
+  }
+  std::vector<RawGridFrame> frames;
+  frames.push_back(std::move(first));
+  for (size_t i = 1; i < g.times.size(); ++i) frames.push_back(g.load(i));
+  return FluidField::grid(g.geometry, frames, scene.kinematic_viscosity, scene.drift,
                           scene.time_mode);
 }
 
@@ -66,7 +90,7 @@ void check_memory(const Scene& scene) {
   size_t n = 0;
   for (const auto& b : scene.bodies) n += size_t(b.count);
   const double need = double(n) * kBytesPerBody;
-  const double have = double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGE_SIZE));
+  const double have = physical_memory();
   if (need > 0.8 * have) {
     char buf[200];
     std::snprintf(buf, sizeof buf, "%zu bodies need about %.1f GiB of memory; this machine has %.1f GiB",
@@ -75,23 +99,28 @@ void check_memory(const Scene& scene) {
   }
 }
 
-void run(const RunArgs& a) {
+void run(const RunArgs& a, const Ranks& ranks) {
   Scene scene = read_scene(a.scene);
   if (a.tolerance > 0) apply_tolerance(a, &scene);
   if (a.seed >= 0) scene.seed = static_cast<uint64_t>(a.seed);
   if (!a.out.empty()) scene.output.dir = a.out;
   check_memory(scene);
-  FluidField field = load_field(scene, a.quiet);
+  FluidField field = load_field(scene, a.stream, a.quiet);
   const Model model = compile_model(scene, std::move(field), cached_added_mass);
   State state = initial_state(model, scene);
-  ResultWriter writer(scene.output.dir, model, scene.output);
+  // with several MPI ranks, rank 0 alone writes, after gathering every rank's bodies
+  std::unique_ptr<ResultWriter> writer;
+  if (ranks.root()) writer = std::make_unique<ResultWriter>(scene.output.dir, model, scene.output);
 
   RunOptions opt;
   opt.every = scene.output.every;
   opt.threads = a.threads;
-  opt.on_output = [&](const State& s) { writer.write_frame(s); };
-  Progress progress("lrigid", a.quiet ? Progress::Mode::Quiet : Progress::Mode::Auto);
-  if (!a.quiet)
+  ranks.share(state.size(), &opt.body_begin, &opt.body_end);
+  if (ranks.size() > 1) opt.on_sync = [&](State& s, bool last) { ranks.gather(&s, last); };
+  if (writer) opt.on_output = [&](const State& s) { writer->write_frame(s); };
+  const bool quiet = a.quiet || !ranks.root();
+  Progress progress("lrigid", quiet ? Progress::Mode::Quiet : Progress::Mode::Auto);
+  if (!quiet)
     opt.on_progress = [&](const State& s, double f) {
       size_t moving = 0, landed = 0, exited = 0;
       for (const BodyStatus b : s.status) {
@@ -104,19 +133,29 @@ void run(const RunArgs& a) {
                     model.duration, moving, landed, exited);
       progress.update(f, buf);
     };
-  const RunStats stats = simulate(model, &state, opt);
+  RunStats stats = simulate(model, &state, opt);
   progress.finish();
+  stats.body_steps = ranks.sum(stats.body_steps);
+  stats.wall_seconds = ranks.max(stats.wall_seconds);
+  if (!writer) return;
   nlohmann::json extra;
   extra["threads"] = a.threads;
+  if (ranks.size() > 1) extra["ranks"] = ranks.size();
   if (!scene.uniform_field) extra["field"] = scene.field_path;  // for render and ParaView
-  writer.finish(state, stats, extra);
+  if (model.field.is_streamed()) {
+    const StreamStats ss = model.field.stream_stats();
+    extra["field_stream"] = {{"frames_read", ss.loads},
+                             {"max_resident_frames", ss.max_resident},
+                             {"read_seconds", ss.load_seconds}};
+  }
+  writer->finish(state, stats, extra);
   if (!a.quiet) {
     std::fprintf(stderr,
                  "lrigid: %zu bodies, %llu body-steps in %.3f s (%.3g body-steps/s); landed %zu, "
                  "exited %zu, failed %zu\nlrigid: results in %s\n",
                  state.size(), static_cast<unsigned long long>(stats.body_steps), stats.wall_seconds,
                  stats.wall_seconds > 0 ? stats.body_steps / stats.wall_seconds : 0.0,
-                 stats.landed, stats.exited, stats.failed, writer.dir().c_str());
+                 stats.landed, stats.exited, stats.failed, writer->dir().c_str());
   }
 }
 
@@ -140,7 +179,25 @@ void add_run_command(CLI::App& app) {
   cmd->add_option("--tolerance-table", args->tolerance_table,
                   "Measured table for --tolerance (default: next to the binary, else "
                   "docs/accuracy/tolerance_table.json)");
-  cmd->callback([args] { run(*args); });
+  cmd->add_option("--stream-field", args->stream,
+                  "Read a .pvd series frame by frame, keeping only the frames around the current "
+                  "time in memory: on, off, or auto (when all frames would take more than half "
+                  "the memory)")
+      ->check(CLI::IsMember({"auto", "on", "off"}));
+  cmd->callback([args] {
+    const Ranks ranks;
+    try {
+      run(*args, ranks);
+    } catch (const std::exception& e) {
+      // one failing rank ends all of them (the others would wait for it forever)
+      if (ranks.size() > 1) {
+        const auto* err = dynamic_cast<const Error*>(&e);
+        std::cerr << "lrigid: error (rank " << ranks.rank() << "): " << e.what() << "\n";
+        ranks.abort(static_cast<int>(err ? err->code() : ExitCode::Runtime));
+      }
+      throw;
+    }
+  });
 }
 
 }  // namespace lrigid::app

@@ -1,6 +1,7 @@
 #include "fluid/field.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 
 namespace lrigid {
@@ -20,36 +21,139 @@ FluidField FluidField::uniform(const Vec3& U, double k, double epsilon, double n
   return f;
 }
 
+std::vector<GridRecord> FluidField::records(const GridGeometry& geometry, const RawGridFrame& raw,
+                                            double nu, Drift drift,
+                                            const TurbulenceLimits& limits) {
+  const size_t np = geometry.points();
+  std::vector<GridRecord> recs(np);
+  for (size_t p = 0; p < np; ++p) {
+    GridRecord& r = recs[p];
+    const bool valid = raw.valid.empty() || raw.valid[p] != 0;
+    r.valid = valid ? 1.f : 0.f;
+    r.pad = 0.f;
+    for (int a = 0; a < 3; ++a) r.u[a] = valid && !raw.U.empty() ? raw.U[3 * p + a] : 0.f;
+    if (valid && !raw.k.empty()) {
+      const LangevinCoefficients c = langevin_coefficients(raw.k[p], raw.epsilon[p], nu, drift,
+                                                           limits);
+      r.alpha = float(c.alpha);
+      r.beta = float(c.beta);
+      r.sigma2 = float(c.sigma2);
+    } else {
+      r.alpha = r.beta = r.sigma2 = 0.f;
+    }
+  }
+  return recs;
+}
+
 FluidField FluidField::grid(const GridGeometry& geometry, const std::vector<RawGridFrame>& frames,
                             double nu, Drift drift, TimeMode mode,
                             const TurbulenceLimits& limits) {
   FluidField f;
   f.geometry_ = geometry;
   f.mode_ = mode;
-  const size_t np = geometry.points();
   for (const RawGridFrame& raw : frames) {
-    std::vector<GridRecord> recs(np);
-    for (size_t p = 0; p < np; ++p) {
-      GridRecord& r = recs[p];
-      const bool valid = raw.valid.empty() || raw.valid[p] != 0;
-      r.valid = valid ? 1.f : 0.f;
-      r.pad = 0.f;
-      for (int a = 0; a < 3; ++a) r.u[a] = valid && !raw.U.empty() ? raw.U[3 * p + a] : 0.f;
-      if (valid && !raw.k.empty()) {
-        const LangevinCoefficients c = langevin_coefficients(raw.k[p], raw.epsilon[p], nu, drift,
-                                                             limits);
-        r.alpha = float(c.alpha);
-        r.beta = float(c.beta);
-        r.sigma2 = float(c.sigma2);
-      } else {
-        r.alpha = r.beta = r.sigma2 = 0.f;
-      }
-    }
-    f.frames_.push_back(std::move(recs));
+    f.frames_.push_back(records(geometry, raw, nu, drift, limits));
     f.times_.push_back(raw.time);
   }
   return f;
 }
+
+struct FluidField::Stream {
+  FrameLoader load;
+  double nu = 0;
+  Drift drift = Drift::Stationary;
+  TurbulenceLimits limits;
+  StreamStats stats;
+};
+
+FluidField FluidField::streamed(const GridGeometry& geometry, const std::vector<double>& times,
+                                FrameLoader load, double nu, Drift drift, TimeMode mode,
+                                const TurbulenceLimits& limits) {
+  FluidField f;
+  f.geometry_ = geometry;
+  f.mode_ = mode;
+  f.times_ = times;
+  f.frames_.resize(times.size());
+  f.stream_ = std::make_shared<Stream>();
+  f.stream_->load = std::move(load);
+  f.stream_->nu = nu;
+  f.stream_->drift = drift;
+  f.stream_->limits = limits;
+  // the first frame is what model compilation and the initial state sample
+  if (!times.empty()) f.prepare(times.front(), times.front());
+  return f;
+}
+
+void FluidField::bracket(double t, size_t* i, size_t* j, double* lam) const {
+  *lam = 0;
+  if (frames_.size() == 1 || !(t > times_.front())) {
+    *i = *j = 0;
+    return;
+  }
+  const double t0 = times_.front(), t1 = times_.back();
+  double tt = t;
+  if (mode_ == TimeMode::Loop && t1 > t0) tt = t0 + std::fmod(t - t0, t1 - t0);
+  if (tt >= t1) {
+    *i = *j = frames_.size() - 1;
+    return;
+  }
+  *j = size_t(std::upper_bound(times_.begin(), times_.end(), tt) - times_.begin());
+  *i = *j - 1;
+  *lam = (tt - times_[*i]) / (times_[*j] - times_[*i]);
+}
+
+double FluidField::next_frame_time(double t) const {
+  if (times_.size() < 2) return HUGE_VAL;
+  const double t0 = times_.front(), t1 = times_.back();
+  if (!(t >= t0)) return t0;
+  if (mode_ == TimeMode::Loop && t1 > t0) {
+    const double tt = t0 + std::fmod(t - t0, t1 - t0);
+    const size_t j = size_t(std::upper_bound(times_.begin(), times_.end(), tt) - times_.begin());
+    const double next = t + ((j < times_.size() ? times_[j] : t1) - tt);
+    return next > t ? next : std::nextafter(t, HUGE_VAL);  // always ahead, even after rounding
+  }
+  if (t >= t1) return HUGE_VAL;
+  return *std::upper_bound(times_.begin(), times_.end(), t);
+}
+
+void FluidField::prepare(double t_lo, double t_hi) const {
+  if (!stream_) return;
+  // the frames of every bracket met on [t_lo, t_hi]: brackets change only at frame times
+  std::vector<char> need(frames_.size(), 0);
+  auto add = [&](double t) {
+    size_t i, j;
+    double lam;
+    bracket(t, &i, &j, &lam);
+    need[i] = need[j] = 1;
+  };
+  add(t_lo);
+  for (double t = next_frame_time(t_lo); t <= t_hi; t = next_frame_time(t)) add(t);
+  add(t_hi);
+  // drop first, then read: the peak is the frames needed, not old plus new
+  for (size_t k = 0; k < frames_.size(); ++k)
+    if (!need[k] && !frames_[k].empty()) std::vector<GridRecord>().swap(frames_[k]);
+  size_t resident = 0;
+  for (size_t k = 0; k < frames_.size(); ++k) {
+    if (need[k] && frames_[k].empty()) {
+      const auto start = std::chrono::steady_clock::now();
+      frames_[k] = records(geometry_, stream_->load(k), stream_->nu, stream_->drift,
+                           stream_->limits);
+      stream_->stats.load_seconds +=
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      ++stream_->stats.loads;
+    }
+    resident += need[k];
+  }
+  stream_->stats.max_resident = std::max(stream_->stats.max_resident, resident);
+}
+
+size_t FluidField::resident_frames() const {
+  size_t r = 0;
+  for (const auto& fr : frames_) r += !fr.empty();
+  return r;
+}
+
+StreamStats FluidField::stream_stats() const { return stream_ ? stream_->stats : StreamStats{}; }
 
 bool FluidField::in_box(const Vec3& x) const {
   if (frames_.empty()) return true;
@@ -130,18 +234,14 @@ bool FluidField::sample(const Vec3& x, double t, bool gradients, FluidSample* ou
     return std::isfinite(x.x()) && std::isfinite(x.y()) && std::isfinite(x.z());
   }
   out->dU_dt.setZero();
-  if (frames_.size() == 1 || !(t > times_.front())) return sample_frame(frames_[0], x, gradients, out);
-  const double t0 = times_.front(), t1 = times_.back();
-  double tt = t;
-  if (mode_ == TimeMode::Loop && t1 > t0) tt = t0 + std::fmod(t - t0, t1 - t0);
-  if (tt >= t1) return sample_frame(frames_.back(), x, gradients, out);
-  const size_t j = size_t(std::upper_bound(times_.begin(), times_.end(), tt) - times_.begin());
-  const size_t i = j - 1;
+  size_t i, j;
+  double lam;
+  bracket(t, &i, &j, &lam);
+  if (i == j) return sample_frame(frames_[i], x, gradients, out);
   FluidSample a, b;
   if (!sample_frame(frames_[i], x, gradients, &a) || !sample_frame(frames_[j], x, gradients, &b))
     return false;
   const double dt = times_[j] - times_[i];
-  const double lam = (tt - times_[i]) / dt;
   out->U = (1 - lam) * a.U + lam * b.U;
   out->alpha = (1 - lam) * a.alpha + lam * b.alpha;
   out->beta = (1 - lam) * a.beta + lam * b.beta;

@@ -8,8 +8,16 @@
 // trilinear blend over the valid corners, renormalized. x is "outside" when it lies outside the
 // grid box or when the valid corners carry less than half of the trilinear weight: the wall is
 // taken halfway between a valid and an invalid grid point.
+//
+// Streamed series (FluidField::streamed): frames are read on demand through a loader and only
+// those bracketing the times about to be sampled are resident. simulate() calls prepare() for
+// each stretch of steps between parallel regions; the stretches end at frame times, so at most 2
+// frames are resident, 3 during the one step that crosses a frame time (4 when it wraps a
+// looping series; docs/scaling.md).
 #pragma once
 #include <cstdint>
+#include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -57,6 +65,17 @@ struct FluidSample {
 
 enum class TimeMode { Clamp, Loop };
 
+// Reads frame `index` (0-based, in time order) of a streamed series; throws lrigid::Error on bad
+// input. Called from one thread at a time.
+using FrameLoader = std::function<RawGridFrame(size_t index)>;
+
+// What streaming did so far (all zero for a field held in memory).
+struct StreamStats {
+  size_t loads = 0;            // frames read
+  size_t max_resident = 0;     // most frames resident at once
+  double load_seconds = 0;     // wall time spent reading and converting frames, s
+};
+
 class FluidField {
  public:
   static FluidField uniform(const Vec3& U, double k, double epsilon, double nu, Drift drift,
@@ -64,6 +83,22 @@ class FluidField {
   static FluidField grid(const GridGeometry& geometry, const std::vector<RawGridFrame>& frames,
                          double nu, Drift drift, TimeMode mode,
                          const TurbulenceLimits& limits = {});
+  // A series read on demand: `times` (s, increasing) of the frames `load` returns. The first
+  // frame is resident from the start (for the initial state).
+  static FluidField streamed(const GridGeometry& geometry, const std::vector<double>& times,
+                             FrameLoader load, double nu, Drift drift, TimeMode mode,
+                             const TurbulenceLimits& limits = {});
+
+  // Streamed fields: makes resident exactly the frames sample() uses for times in
+  // [t_lo, t_hi] (s), reading missing ones and dropping the rest. Not thread-safe: call it
+  // between parallel regions, never while another thread samples. No-op when not streamed.
+  void prepare(double t_lo, double t_hi) const;
+  // The first time after t (s) at which sample() switches to another pair of frames
+  // (+infinity when it never does): a stretch of steps that stays below it needs 2 frames.
+  double next_frame_time(double t) const;
+  bool is_streamed() const { return stream_ != nullptr; }
+  size_t resident_frames() const;
+  StreamStats stream_stats() const;
 
   // false when x is outside the fluid (outside the grid box or no valid corner)
   bool sample(const Vec3& x, double t, bool gradients, FluidSample* out) const;
@@ -74,17 +109,25 @@ class FluidField {
   const GridGeometry& geometry() const { return geometry_; }
   size_t frame_count() const { return frames_.size(); }
   const std::vector<double>& times() const { return times_; }
-  size_t bytes() const;
+  size_t bytes() const;  // of the resident frames
 
  private:
+  struct Stream;
+  // the frames sample() blends at time t: i and j (equal when one frame serves), lam in [0, 1]
+  void bracket(double t, size_t* i, size_t* j, double* lam) const;
+  static std::vector<GridRecord> records(const GridGeometry& geometry, const RawGridFrame& raw,
+                                         double nu, Drift drift, const TurbulenceLimits& limits);
+
   bool sample_frame(const std::vector<GridRecord>& frame, const Vec3& x, bool gradients,
                     FluidSample* out) const;
 
   FluidSample uniform_;
   GridGeometry geometry_;
-  std::vector<std::vector<GridRecord>> frames_;
+  // one entry per time; a streamed field keeps non-resident frames empty (prepare() fills them)
+  mutable std::vector<std::vector<GridRecord>> frames_;
   std::vector<double> times_;
   TimeMode mode_ = TimeMode::Clamp;
+  std::shared_ptr<Stream> stream_;  // null unless streamed
 };
 
 }  // namespace lrigid

@@ -36,12 +36,28 @@ Vec3 predicted_position(const Model& m, const BodyType& type, const BodyState& b
   return b.x + m.dt * velocity;
 }
 
+// the last time a stretch of steps ending at step `last` samples: an RK4 stage at t + dt may
+// round a little beyond last * dt
+double stream_window_end(const Model& m, uint64_t last) {
+  return static_cast<double>(last) * m.dt * (1 + 1e-12) + 1e-9 * m.dt;
+}
+
 // where a body that could not be sampled went: where one more step would take it
 std::string exit_reason(const Model& m, const BodyType& type, const BodyState& b) {
   const Vec3 next = predicted_position(m, type, b);
   if (m.field.in_box(next) && m.field.in_box(b.x))
     return "hit a solid: no valid grid point around it (a wall, a building, an obstacle)";
   return "left the grid";
+}
+
+// a streamed field's frames change at frame times: a stretch of steps ends before the next one
+// (or is the single step crossing it), so at most 3 frames are resident
+uint64_t stream_stretch_end(const Model& m, uint64_t first, uint64_t last) {
+  if (!m.field.is_streamed()) return last;
+  const double t_next = m.field.next_frame_time(static_cast<double>(first) * m.dt);
+  uint64_t end = first + 1;
+  while (end < last && stream_window_end(m, end + 1) < t_next) ++end;
+  return end;
 }
 
 }  // namespace
@@ -54,16 +70,19 @@ RunStats simulate(const Model& model, State* state, const RunOptions& options) {
   const uint64_t stride = output_stride(model, options.every);
   if (options.on_output) options.on_output(st);
   const int threads = options.threads > 0 ? options.threads : omp_get_max_threads();
-  const auto n = static_cast<int64_t>(st.size());
+  const auto n = static_cast<int64_t>(std::min(st.size(), options.body_end));
+  const auto n0 = static_cast<int64_t>(std::min(st.size(), options.body_begin));
   double wall = 0;
 
   while (st.step < total_steps) {
     const uint64_t first = st.step;
-    const uint64_t last = std::min(total_steps, first + stride);
+    const uint64_t next_output = (first / stride + 1) * stride;
+    const uint64_t last = stream_stretch_end(model, first, std::min(total_steps, next_output));
+    model.field.prepare(static_cast<double>(first) * model.dt, stream_window_end(model, last));
     uint64_t body_steps = 0;
     const auto t0 = std::chrono::steady_clock::now();
 #pragma omp parallel for schedule(static) num_threads(threads) reduction(+ : body_steps)
-    for (int64_t i = 0; i < n; ++i) {
+    for (int64_t i = n0; i < n; ++i) {
       if (st.status[i] != BodyStatus::Moving) continue;
       const BodyType& type = model.types[st.type[i]];
       BodyState b{st.x[i], st.q[i], st.v[i], st.w[i], st.u_seen[i], st.history_of(size_t(i))};
@@ -109,7 +128,10 @@ RunStats simulate(const Model& model, State* state, const RunOptions& options) {
     stats.body_steps += body_steps;
     st.step = last;
     st.t = static_cast<double>(last) * model.dt;
-    if (options.on_output && (last % stride == 0 || last == total_steps)) options.on_output(st);
+    if (last % stride == 0 || last == total_steps) {
+      if (options.on_sync) options.on_sync(st, last == total_steps);
+      if (options.on_output) options.on_output(st);
+    }
     if (options.on_progress) options.on_progress(st, double(last) / double(total_steps));
   }
   stats.steps = st.step;

@@ -21,6 +21,12 @@ struct RunOptions {
   int threads = 0;             // 0 = OpenMP default
   std::function<void(const State&)> on_output;        // may be empty
   std::function<void(const State&, double fraction)> on_progress;  // may be empty
+  // bodies this process advances, [body_begin, min(body_end, size)); the others stay as they
+  // are unless on_sync brings them up to date (several MPI ranks, app/ranks.h)
+  size_t body_begin = 0;
+  size_t body_end = ~size_t(0);
+  // called before each output (also where on_output is empty); `last` on the final one
+  std::function<void(State&, bool last)> on_sync;  // may be empty
 };
 
 RunStats simulate(const Model& model, State* state, const RunOptions& options);

@@ -110,15 +110,13 @@ void read_vti(const std::string& path, GridGeometry* geom, RawGridFrame* frame, 
 
 }  // namespace
 
-GridFile read_grid(const std::string& path) {
-  GridFile g;
+namespace {
+
+// the .pvd's entries (time, file path), sorted by time and checked for distinct times; a .vti is
+// one entry at the time it records
+std::vector<std::pair<double, std::string>> series_entries(const std::string& path) {
   const std::string ext = fs::path(path).extension().string();
-  if (ext == ".vti") {
-    RawGridFrame f;
-    read_vti(path, &g.geometry, &f, &g.kinematic_viscosity);
-    g.frames.push_back(std::move(f));
-    return g;
-  }
+  if (ext == ".vti") return {{0.0, path}};
   if (ext != ".pvd") fail_input(path, "", "grid must be a .vti or .pvd file");
   std::ifstream in(path);
   if (!in) fail_input(path, "", "cannot be read");
@@ -147,29 +145,65 @@ GridFile read_grid(const std::string& path) {
   if (entries.empty()) fail_input(path, "", "no <DataSet> entries: the series is empty");
   std::stable_sort(entries.begin(), entries.end(),
                    [](const auto& a, const auto& b) { return a.first < b.first; });
-  for (size_t i = 0; i < entries.size(); ++i) {
-    if (i > 0 && !(entries[i].first > entries[i - 1].first))
+  for (size_t i = 1; i < entries.size(); ++i)
+    if (!(entries[i].first > entries[i - 1].first))
       fail_input(path, "DataSet.timestep", "times must be distinct, " + fmt(entries[i].first) + " repeats");
-    GridGeometry geom;
-    RawGridFrame f;
-    double nu = 0;
-    try {
-      read_vti(entries[i].second, &geom, &f, &nu);
-    } catch (const Error& e) {
-      // name the series and the entry as well as the frame file
-      fail_input(path, "DataSet[" + std::to_string(i) + "]", e.what());
-    }
-    f.time = entries[i].first;
-    if (i == 0) {
-      g.geometry = geom;
-      g.kinematic_viscosity = nu;
-    } else if (geom.n[0] != g.geometry.n[0] || geom.n[1] != g.geometry.n[1] ||
-               geom.n[2] != g.geometry.n[2] || (geom.origin - g.geometry.origin).norm() > 1e-9 ||
-               (geom.spacing - g.geometry.spacing).norm() > 1e-9) {
-      fail_input(entries[i].second, "", "grid differs from the series' first grid " + entries[0].second);
-    }
-    g.frames.push_back(std::move(f));
+  return entries;
+}
+
+// entry i of a series with its geometry and the viscosity it records
+RawGridFrame read_entry(const GridSeries& s, size_t i, GridGeometry* geom, double* nu) {
+  RawGridFrame f;
+  if (!s.is_series) {
+    read_vti(s.files[i], geom, &f, nu);
+    return f;
   }
+  try {
+    read_vti(s.files[i], geom, &f, nu);
+  } catch (const Error& e) {
+    // name the series and the entry as well as the frame file
+    fail_input(s.path, "DataSet[" + std::to_string(i) + "]", e.what());
+  }
+  f.time = s.times[i];
+  return f;
+}
+
+}  // namespace
+
+RawGridFrame GridSeries::load(size_t i) const {
+  GridGeometry geom;
+  double nu = 0;
+  RawGridFrame f = read_entry(*this, i, &geom, &nu);
+  if (geom.n[0] != geometry.n[0] || geom.n[1] != geometry.n[1] || geom.n[2] != geometry.n[2] ||
+      (geom.origin - geometry.origin).norm() > 1e-9 ||
+      (geom.spacing - geometry.spacing).norm() > 1e-9)
+    fail_input(files[i], "", "grid differs from the series' first grid " + files[0]);
+  return f;
+}
+
+GridSeries open_grid_series(const std::string& path, RawGridFrame* first) {
+  GridSeries s;
+  s.path = path;
+  s.is_series = fs::path(path).extension().string() == ".pvd";
+  for (auto& [t, file] : series_entries(path)) {
+    s.times.push_back(t);
+    s.files.push_back(std::move(file));
+  }
+  // the first frame gives the geometry the others must match
+  RawGridFrame f0 = read_entry(s, 0, &s.geometry, &s.kinematic_viscosity);
+  if (!s.is_series) s.times[0] = f0.time;
+  if (first) *first = std::move(f0);
+  return s;
+}
+
+GridFile read_grid(const std::string& path) {
+  GridFile g;
+  RawGridFrame f0;
+  const GridSeries s = open_grid_series(path, &f0);
+  g.geometry = s.geometry;
+  g.kinematic_viscosity = s.kinematic_viscosity;
+  g.frames.push_back(std::move(f0));
+  for (size_t i = 1; i < s.times.size(); ++i) g.frames.push_back(s.load(i));
   return g;
 }
 

@@ -18,4 +18,20 @@ struct GridFile {
 
 GridFile read_grid(const std::string& path);
 
+// A grid opened for reading frame by frame (streamed fields): the .pvd's entries and the first
+// frame's geometry; load(i) reads entry i, with the checks above plus the same geometry as the
+// first frame. Throws lrigid::Error (BadInput) naming the series, entry and file.
+struct GridSeries {
+  std::string path;                   // the .pvd (or .vti)
+  bool is_series = false;             // a .pvd
+  std::vector<double> times;          // s, increasing
+  std::vector<std::string> files;     // one .vti per time
+  GridGeometry geometry;
+  double kinematic_viscosity = 0;     // from the first frame's field data (0 if absent), m^2/s
+  RawGridFrame load(size_t i) const;
+};
+
+// Reads the entries and the first frame (returned in *first when given).
+GridSeries open_grid_series(const std::string& path, RawGridFrame* first = nullptr);
+
 }  // namespace lrigid
