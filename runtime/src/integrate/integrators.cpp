@@ -100,7 +100,15 @@ StepOutcome impulse_step(const Model& model, const BodyType& type, double t, boo
       A.block<3, 3>(0, 0) += b * Mat3::Identity();
       dPi.head<3>() += b * (k.R.transpose() * (h * r.a_fluid));
     }
-    dPi = type.M * A.ldlt().solve(dPi);
+    if (type.M_block_diagonal) {
+      // A is block diagonal too: two closed-form 3x3 inverses
+      dPi.head<3>() = type.M.topLeftCorner<3, 3>() *
+                      (A.topLeftCorner<3, 3>().inverse() * dPi.head<3>());
+      dPi.tail<3>() = type.M.bottomRightCorner<3, 3>() *
+                      (A.bottomRightCorner<3, 3>().inverse() * dPi.tail<3>());
+    } else {
+      dPi = type.M * A.ldlt().solve(dPi);
+    }
   }
   const Vec6 Pi_world = rotate6(k.R, r.impulse + dPi);
   const Vec3 u_fluid_new = r.u_fluid + h * r.a_fluid;  // world frame
