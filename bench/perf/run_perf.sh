@@ -3,6 +3,7 @@
 # (issue 11). Run from the repository root after a Release build:
 #   bench/perf/run_perf.sh [--quick] [--peers PEERS.json] [--build DIR] [--out DIR]
 #   --quick   N up to 10^5 and shorter runs (a check of the script, not for the docs)
+#   --no-flops skip the lackey flop count (slow: minutes)
 #   --peers   bench/peers/run_peers.sh's OUTDIR/peers.json: ratios against the peers
 # Needs results/grids/windCourtyard.vti (./Allrun) and valgrind (instruction and flop counts).
 set -euo pipefail
@@ -11,9 +12,11 @@ build=build
 out=build/perf
 peers=""
 quick=0
+flops=1
 while [ $# -gt 0 ]; do
   case "$1" in
     --quick) quick=1 ;;
+    --no-flops) flops=0 ;;
     --peers) peers="$2"; shift ;;
     --build) build="$2"; shift ;;
     --out) out="$2"; shift ;;
@@ -72,14 +75,17 @@ for integ in euler rk4 splitting; do
   sep=", "
 done
 top=$(callgrind_annotate --inclusive=no "$out/callgrind.splitting.out" 2>/dev/null |
-  awk '/PROGRAM TOTALS/ {gsub(",", "", $1); tot = $1} /^ *[0-9,]+ .*:/ && tot > 0 && n < 12 {
-    v = $1; gsub(",", "", v); $1 = ""; $2 = ""; sub(/^ +/, ""); gsub(/"/, "", $0);
-    printf "%s[\"%s\", %.4f]", (n ? ", " : ""), $0, v / tot; n++}')
+  awk '/PROGRAM TOTALS/ {gsub(",", "", $1); tot = $1; next}
+       /^ *[0-9,]+ +\( *[0-9.]+%\) +.*:/ && tot > 0 && n < 12 {
+    v = $1; gsub(",", "", v); line = $0; sub(/^ *[0-9,]+ +\( *[0-9.]+%\) +/, "", line);
+    sub(/^\?\?\?:/, "", line); gsub(/\(anonymous namespace\)/, "{anon}", line); sub(/\(.*/, "", line); gsub(/"/, "", line);
+    printf "%s[\"%s\", %.4f]", (n ? ", " : ""), line, v / tot; n++}')
 cgjson+="}, \"top\": [$top]}"
 echo "$cgjson" > "$out/callgrind.json"
 
 # floating-point operations per body-step: valgrind lackey's counts of F64/F32 operations of two
 # runs that differ only in the number of steps (set-up cancels)
+if [ $flops = 1 ]; then
 echo "run_perf.sh: flop counts (lackey)" >&2
 flops() {  # integrator steps -> F64 and V128 operations (lackey's AluOps column)
   valgrind --tool=lackey --detailed-counts=yes "$bin/lrigid" bench $scene --n 200 \
@@ -100,6 +106,7 @@ for integ in euler rk4 splitting; do
 done
 fjson+=", \"samples_per_step\": {\"euler\": 3, \"rk4\": 6, \"splitting\": 4}}"
 echo "$fjson" > "$out/flops.json"
+fi
 
 /usr/bin/python3 - "$out/machine.json" <<'EOF'
 import json, sys
