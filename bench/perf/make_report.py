@@ -113,6 +113,21 @@ def main():
                 cells.append(si(r["body_steps_per_s"]) if r else "-")
         w("| %d | %s |" % (n, " | ".join(cells)))
     w("")
+    if all("body_steps_per_cpu_s" in r for r in runs):
+        w("The same runs per second of CPU time (all threads): the rate per core that the other "
+          "jobs on this shared machine do not take away. 2 threads: per core, so the parallel "
+          "efficiency is the ratio to the 1-thread column.")
+        w("")
+        w(head.replace(" thr", " thr, per CPU s"))
+        w("|---|" + "---|" * (len(integs) * len(threads)))
+        for n in ns:
+            cells = []
+            for i in integs:
+                for t in threads:
+                    r = by.get((n, i, t))
+                    cells.append(si(r["body_steps_per_cpu_s"]) if r else "-")
+            w("| %d | %s |" % (n, " | ".join(cells)))
+        w("")
     # linearity: per-body-step cost at each N relative to the smallest N
     w("Cost per body-step relative to N = %d (1.00 = linear cost in N), 1 thread:" % ns[0])
     w("")

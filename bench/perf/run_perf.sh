@@ -49,10 +49,10 @@ EOF
 if [ $quick = 1 ]; then
   ns=1000,10000,100000; bsteps=3e5
 else
-  ns=1000,10000,100000,1000000; bsteps=3e6
+  ns=1000,10000,100000,1000000; bsteps=1e6
 fi
 echo "run_perf.sh: lrigid bench (N = $ns)" >&2
-"$bin/lrigid" bench $scene --n $ns --threads 1,2 --body-steps $bsteps --json "$out/bench.json"
+"$bin/lrigid" bench $scene --n $ns --threads 1,2 --body-steps $bsteps --min-steps 2 --json "$out/bench.json"
 echo "run_perf.sh: kernels" >&2
 "$bin/step_bench" --benchmark_min_time=0.3 --benchmark_format=json \
   --benchmark_out="$out/step_bench.json" --benchmark_out_format=json > /dev/null

@@ -4,6 +4,7 @@
 // body-steps per second (warm-up steps excluded, setup and writes never timed) and the memory
 // per body. docs/performance.md is generated from its JSON (bench/perf/run_perf.sh).
 #include <omp.h>
+#include <time.h>
 
 #include <algorithm>
 #include <cmath>
@@ -65,6 +66,14 @@ EffectSet effects_from(const std::string& s, bool* is_auto) {
   return e;
 }
 
+// CPU time of the process (all threads), s: unlike wall time it does not count the time other
+// jobs on a shared machine take the cores away
+double cpu_seconds() {
+  timespec ts;
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
+}
+
 // bytes of State per body: the per-body arrays plus the Basset histories
 double state_bytes_per_body(const State& s) {
   const size_t n = s.size();
@@ -110,8 +119,8 @@ void bench(const BenchArgs& a) {
   out["max_threads"] = omp_get_max_threads();
   out["runs"] = nlohmann::json::array();
   if (!a.quiet)
-    std::printf("%9s %-10s %7s %6s %9s %14s %12s %10s\n", "bodies", "integrator", "threads",
-                "steps", "wall_s", "body_steps_s", "per_thread", "B/body");
+    std::printf("%9s %-10s %7s %6s %9s %14s %12s %14s %10s\n", "bodies", "integrator", "threads",
+                "steps", "wall_s", "body_steps_s", "per_thread", "per_cpu_s", "B/body");
   for (const long long n : a.n) {
     for (const std::string& iname : a.integrators) {
       Scene s = base;
@@ -130,12 +139,15 @@ void bench(const BenchArgs& a) {
         m.duration = double(a.warmup) * s.dt;
         if (a.warmup > 0) simulate(m, &st, opt);
         m.duration = double(a.warmup + steps) * s.dt;
+        const double cpu0 = cpu_seconds();
         const RunStats r = simulate(m, &st, opt);
+        const double cpu = cpu_seconds() - cpu0;
+        const double cpu_rate = cpu > 0 ? double(r.body_steps) / cpu : 0.0;
         const double rate = r.wall_seconds > 0 ? double(r.body_steps) / r.wall_seconds : 0.0;
         const double bpb = state_bytes_per_body(st);
         if (!a.quiet)
-          std::printf("%9lld %-10s %7d %6d %9.3f %14.4g %12.4g %10.0f\n", n, iname.c_str(), th,
-                      steps, r.wall_seconds, rate, rate / th, bpb);
+          std::printf("%9lld %-10s %7d %6d %9.3f %14.4g %12.4g %14.4g %10.0f\n", n, iname.c_str(),
+                      th, steps, r.wall_seconds, rate, rate / th, cpu_rate, bpb);
         std::fflush(stdout);
         nlohmann::json j;
         j["n"] = n;
@@ -145,6 +157,8 @@ void bench(const BenchArgs& a) {
         j["body_steps"] = r.body_steps;
         j["wall_seconds"] = r.wall_seconds;
         j["body_steps_per_s"] = rate;
+        j["cpu_seconds"] = cpu;
+        j["body_steps_per_cpu_s"] = cpu_rate;  // per core-second of CPU time
         j["state_bytes_per_body"] = bpb;
         j["exited"] = r.exited + r.failed;
         j["landed"] = r.landed;
