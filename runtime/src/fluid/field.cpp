@@ -1,10 +1,16 @@
 #include "fluid/field.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 
 namespace lrigid {
+
+namespace {
+// ids of grid fields' contents (FluidField::id_)
+std::atomic<uint64_t> next_field_id{1};
+}  // namespace
 
 Vec3 GridGeometry::upper() const {
   return origin + Vec3(spacing.x() * (n[0] - 1), spacing.y() * (n[1] - 1), spacing.z() * (n[2] - 1));
@@ -49,6 +55,7 @@ FluidField FluidField::grid(const GridGeometry& geometry, const std::vector<RawG
                             double nu, Drift drift, TimeMode mode,
                             const TurbulenceLimits& limits) {
   FluidField f;
+  f.id_ = next_field_id++;
   f.geometry_ = geometry;
   f.mode_ = mode;
   for (const RawGridFrame& raw : frames) {
@@ -183,27 +190,39 @@ bool FluidField::sample_frame(const std::vector<GridRecord>& frame, const Vec3& 
     f[a] = s - i;
   }
   const size_t sx = 1, sy = size_t(g.n[0]), sz = size_t(g.n[0]) * g.n[1];
-  const size_t base = i0[0] * sx + i0[1] * sy + i0[2] * sz;
-  // accumulate value sums v[0..5] = (u0,u1,u2,alpha,beta,sigma2) and their weight
-  double W = 0, v[6] = {0, 0, 0, 0, 0, 0};
-  double dv[4][3] = {{0}};  // gradients (per unit index) of u0,u1,u2,sigma2; all corners valid
+  const GridRecord* r0 = frame.data() + i0[0] * sx + i0[1] * sy + i0[2] * sz;
+  const GridRecord* rec[8] = {r0,           r0 + sx,           r0 + sy,      r0 + sx + sy,
+                              r0 + sz,      r0 + sx + sz,      r0 + sy + sz, r0 + sx + sy + sz};
+  // trilinear weights of the 8 corners (c = cx + 2 cy + 4 cz), zero for invalid corners, and
+  // their derivatives per unit index; branch-free so the loops below vectorize
+  const double gx[2] = {1 - f[0], f[0]}, gy[2] = {1 - f[1], f[1]}, gz[2] = {1 - f[2], f[2]};
+  double w[8], dw[3][8];
   int nvalid = 0;
   for (int c = 0; c < 8; ++c) {
     const int cx = c & 1, cy = (c >> 1) & 1, cz = c >> 2;
-    const GridRecord& r = frame[base + cx * sx + cy * sy + cz * sz];
-    if (r.valid == 0.f) continue;
-    ++nvalid;
-    const double wx = cx ? f[0] : 1 - f[0], wy = cy ? f[1] : 1 - f[1], wz = cz ? f[2] : 1 - f[2];
-    const double w = wx * wy * wz;
-    W += w;
-    const double vals[6] = {r.u[0], r.u[1], r.u[2], r.alpha, r.beta, r.sigma2};
-    for (int q = 0; q < 6; ++q) v[q] += w * vals[q];
-    if (gradients) {
-      const double dw[3] = {(cx ? 1 : -1) * wy * wz, wx * (cy ? 1 : -1) * wz,
-                            wx * wy * (cz ? 1 : -1)};
+    const double valid = rec[c]->valid;
+    nvalid += valid != 0.0;
+    w[c] = valid * (gx[cx] * gy[cy] * gz[cz]);
+    dw[0][c] = (cx ? 1 : -1) * gy[cy] * gz[cz];
+    dw[1][c] = gx[cx] * (cy ? 1 : -1) * gz[cz];
+    dw[2][c] = gx[cx] * gy[cy] * (cz ? 1 : -1);
+  }
+  // value sums v[0..5] = (u0,u1,u2,alpha,beta,sigma2) and the weight W; invalid records hold 0
+  double W = 0, v[6] = {0, 0, 0, 0, 0, 0};
+  for (int c = 0; c < 8; ++c) {
+    const GridRecord& r = *rec[c];
+    W += w[c];
+    v[0] += w[c] * r.u[0], v[1] += w[c] * r.u[1], v[2] += w[c] * r.u[2];
+    v[3] += w[c] * r.alpha, v[4] += w[c] * r.beta, v[5] += w[c] * r.sigma2;
+  }
+  // gradients (per unit index) of u0,u1,u2,sigma2, used only when all corners are valid
+  double dv[4][3] = {{0}};
+  if (gradients && nvalid == 8) {
+    for (int c = 0; c < 8; ++c) {
+      const GridRecord& r = *rec[c];
       const double gv[4] = {r.u[0], r.u[1], r.u[2], r.sigma2};
       for (int q = 0; q < 4; ++q)
-        for (int a = 0; a < 3; ++a) dv[q][a] += dw[a] * gv[q];
+        for (int a = 0; a < 3; ++a) dv[q][a] += dw[a][c] * gv[q];
     }
   }
   // the wall lies between a valid and an invalid grid point: x is in the fluid when the valid
@@ -228,11 +247,50 @@ bool FluidField::sample_frame(const std::vector<GridRecord>& frame, const Vec3& 
   return true;
 }
 
+namespace {
+
+// The last grid sample of this thread. A sample is a pure function of (field content, x, t) and
+// a step asks for the same one more than once (splitting: the turbulence half step and the
+// impulse step at the start of the step; the end of a step and the second half step in a steady
+// field), so a repeat is answered from here. The field's id names its content (copies share it).
+struct LastSample {
+  uint64_t field = 0;
+  Vec3 x = Vec3::Constant(std::nan(""));
+  double t = 0;
+  bool gradients = false, inside = false;
+  FluidSample s;
+};
+thread_local LastSample last_sample;
+
+}  // namespace
+
 bool FluidField::sample(const Vec3& x, double t, bool gradients, FluidSample* out) const {
   if (frames_.empty()) {
     *out = uniform_;
     return std::isfinite(x.x()) && std::isfinite(x.y()) && std::isfinite(x.z());
   }
+  LastSample& last = last_sample;
+  const bool steady = frames_.size() == 1;
+  if (last.field == id_ && last.x == x && (steady || last.t == t) &&
+      (last.gradients || !gradients)) {
+    *out = last.s;
+    if (!gradients) {
+      out->grad_U.setZero();
+      out->grad_sigma2.setZero();
+    }
+    return last.inside;
+  }
+  last.inside = sample_uncached(x, t, gradients, out);
+  last.field = id_;
+  last.x = x;
+  last.t = t;
+  last.gradients = gradients;
+  last.s = *out;
+  return last.inside;
+}
+
+bool FluidField::sample_uncached(const Vec3& x, double t, bool gradients,
+                                 FluidSample* out) const {
   out->dU_dt.setZero();
   size_t i, j;
   double lam;

@@ -100,7 +100,8 @@ class FluidField {
   size_t resident_frames() const;
   StreamStats stream_stats() const;
 
-  // false when x is outside the fluid (outside the grid box or no valid corner)
+  // false when x is outside the fluid (outside the grid box or no valid corner). A repeat of
+  // the calling thread's previous grid sample (same field, x, t) is answered from a cache.
   bool sample(const Vec3& x, double t, bool gradients, FluidSample* out) const;
 
   bool is_uniform() const { return frames_.empty(); }
@@ -120,8 +121,10 @@ class FluidField {
 
   bool sample_frame(const std::vector<GridRecord>& frame, const Vec3& x, bool gradients,
                     FluidSample* out) const;
+  bool sample_uncached(const Vec3& x, double t, bool gradients, FluidSample* out) const;
 
   FluidSample uniform_;
+  uint64_t id_ = 0;  // names the content for the per-thread last-sample cache (field.cpp)
   GridGeometry geometry_;
   // one entry per time; a streamed field keeps non-resident frames empty (prepare() fills them)
   mutable std::vector<std::vector<GridRecord>> frames_;

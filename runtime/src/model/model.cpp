@@ -316,6 +316,8 @@ BodyType make_body_type(const Scene& scene, const BodySpec& b, const Shape& shap
     fail_input(scene.file, key, "generalized mass matrix is not positive definite");
   }
   t.M_inv = ldlt.solve(Mat6::Identity());
+  t.M_block_diagonal =
+      t.M.topRightCorner<3, 3>().isZero(0.0) && t.M.bottomLeftCorner<3, 3>().isZero(0.0);
   if (t.effects.has(Effect::Basset)) {
     const double coef = 6.0 * t.r_eq * t.r_eq * scene.fluid_density *
                         std::sqrt(M_PI * scene.kinematic_viscosity);

@@ -55,6 +55,9 @@ struct BodyType {
   Mat6 K_fluid = Mat6::Zero();   // fluid Kirchhoff tensor about the COM
   Mat6 M = Mat6::Zero();         // what the step inverts: M_body (+ K_fluid with added_mass)
   Mat6 M_inv = Mat6::Zero();
+  // M has no linear-angular coupling (centre of mass at the centroid of a symmetric shape): the
+  // implicit impulse step then solves two 3x3 systems instead of one 6x6
+  bool M_block_diagonal = false;
   std::string added_mass_method;  // "analytic", "bem" or "" (not computed)
   int added_mass_panels = 0;
   // drag: the body's equivalent ellipsoid (semi-axes ell) gives its projected areas

@@ -2,12 +2,14 @@
 // so results do not depend on thread count or on the order in which bodies are processed.
 // Philox4x32-10 (Salmon et al., SC'11, Random123) turns a 128-bit counter into 4 random words;
 // Box-Muller turns pairs of words into pairs of standard normals. The normal transform is our own
-// so results are identical across standard libraries.
+// (util/fast_math.h: polynomial log and sin/cos, no library calls, vectorizable), so results are
+// identical across standard libraries.
 #pragma once
 #include <Random123/philox.h>
 
-#include <cmath>
 #include <cstdint>
+
+#include "util/fast_math.h"
 
 namespace lrigid {
 
@@ -23,27 +25,32 @@ class NormalStream {
   // Fills out[0..n) with independent N(0,1) draws; slots never repeat within one stream.
   template <int N>
   void normals(double (&out)[N]) {
-    for (int i = 0; i < N; i += 4) {
+    constexpr int kBlocks = (N + 3) / 4;
+    uint32_t w[4 * kBlocks];
+    for (int k = 0; k < kBlocks; ++k) {
       r123::Philox4x32::ctr_type ctr = {{body_, step_lo_, step_hi_, 0x6c720000u | block_++}};
       const auto r = gen_(ctr, key_);
-      double z[4];
-      box_muller(r[0], r[1], z[0], z[1]);
-      box_muller(r[2], r[3], z[2], z[3]);
-      for (int j = 0; j < 4 && i + j < N; ++j) out[i + j] = z[j];
+      for (int j = 0; j < 4; ++j) w[4 * k + j] = r[j];
     }
+    // pairs (w[4k], w[4k+1]) and (w[4k+2], w[4k+3]) as before; radii and angles in two passes
+    // so the compiler can vectorize each
+    double z[4 * kBlocks];
+    for (int p = 0; p < 2 * kBlocks; ++p) {
+      double c, s;
+      const double r = box_muller_radius(w[2 * p]);
+      sincos_of_turn(w[2 * p + 1], &c, &s);
+      z[2 * p] = r * c;
+      z[2 * p + 1] = r * s;
+    }
+    for (int i = 0; i < N; ++i) out[i] = z[i];
+  }
+
+  // sqrt(-2 ln u), u = (a + 1) 2^-32 in (0, 1]
+  static double box_muller_radius(uint32_t a) {
+    return std::sqrt(-2.0 * log_fast((static_cast<double>(a) + 1.0) * 0x1p-32));
   }
 
  private:
-  // uniform in (0, 1], never 0 so log() is finite
-  static double open_uniform(uint32_t w) { return (static_cast<double>(w) + 1.0) * 0x1p-32; }
-
-  static void box_muller(uint32_t a, uint32_t b, double& z0, double& z1) {
-    const double r = std::sqrt(-2.0 * std::log(open_uniform(a)));
-    const double phi = 2.0 * M_PI * (static_cast<double>(b) * 0x1p-32);
-    z0 = r * std::cos(phi);
-    z1 = r * std::sin(phi);
-  }
-
   r123::Philox4x32 gen_;
   r123::Philox4x32::key_type key_;
   uint32_t body_, step_lo_, step_hi_, block_ = 0;

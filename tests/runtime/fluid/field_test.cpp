@@ -105,5 +105,37 @@ TEST(FluidField, TimeSeriesInterpolatesLinearlyAndLoopsOrClamps) {
   EXPECT_NEAR(s.U.x(), u0 * 1.5, 1e-5);
 }
 
+// the per-thread last-sample cache answers repeats with what a fresh sample gives, never with
+// another field's values, and drops the gradients when they are not asked for
+TEST(FluidField, RepeatedSamplesAreServedCorrectly) {
+  const GridGeometry g = geometry();
+  const Vec3 x(0.3, 0.4, 2.7);
+  FluidSample a, b, c, d;
+  {
+    const FluidField f1 =
+        FluidField::grid(g, {linear_frame(g, 0, 1)}, 1e-6, Drift::Stationary, TimeMode::Clamp);
+    ASSERT_TRUE(f1.sample(x, 0.0, true, &a));
+    ASSERT_TRUE(f1.sample(x, 0.0, true, &b));  // repeat
+    EXPECT_EQ(a.U, b.U);
+    EXPECT_EQ(a.grad_U, b.grad_U);
+    EXPECT_NEAR(b.U.x(), 1 + 2 * x.x(), 1e-6);
+    ASSERT_TRUE(f1.sample(x, 5.0, false, &c));  // steady field: any time, no gradients
+    EXPECT_EQ(c.U, a.U);
+    EXPECT_EQ(c.grad_U, Mat3::Zero());
+  }
+  // a second field (possibly at the same address) with twice the velocity, same point
+  const FluidField f2 =
+      FluidField::grid(g, {linear_frame(g, 0, 2)}, 1e-6, Drift::Stationary, TimeMode::Clamp);
+  ASSERT_TRUE(f2.sample(x, 0.0, true, &d));
+  EXPECT_NEAR(d.U.x(), 2 * a.U.x(), 1e-6);
+  // a time series: the same x at another time is sampled afresh
+  const FluidField ts = FluidField::grid(g, {linear_frame(g, 0, 1), linear_frame(g, 1, 3)}, 1e-6,
+                                         Drift::Stationary, TimeMode::Clamp);
+  FluidSample e, h;
+  ASSERT_TRUE(ts.sample(x, 0.0, false, &e));
+  ASSERT_TRUE(ts.sample(x, 0.5, false, &h));
+  EXPECT_NEAR(h.U.x(), 2 * e.U.x(), 1e-5);
+}
+
 }  // namespace
 }  // namespace lrigid

@@ -1,0 +1,198 @@
+// lrigid bench [SCENE.json] [--n 1000,...] [--integrators euler,...] [--threads 1,2] [--json F]
+// Scene-level throughput: the scene's field and body types, scaled to N bodies, stepped for a
+// fixed number of steps per (N, integrator, threads) with no output. Reports steady-state
+// body-steps per second (warm-up steps excluded, setup and writes never timed) and the memory
+// per body. docs/performance.md is generated from its JSON (bench/perf/run_perf.sh).
+#include <omp.h>
+#include <time.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "commands.h"
+#include "integrate/simulation.h"
+#include "io/added_mass_cache.h"
+#include "io/atomic_file.h"
+#include "io/grid_reader.h"
+#include "io/scene_json.h"
+#include "model/state.h"
+#include "util/error.h"
+
+namespace lrigid::app {
+
+namespace {
+
+struct BenchArgs {
+  std::string scene = "scenes/leaves_wind.json";
+  std::vector<long long> n = {1000, 10000, 100000, 1000000};
+  std::vector<std::string> integrators = {"euler", "rk4", "splitting"};
+  std::vector<int> threads = {1, 2};
+  std::string effects = "all";
+  double body_steps = 3e6;  // measured body-steps per point (at least min_steps steps)
+  int min_steps = 3;
+  int warmup = 1;
+  std::string json;
+  bool quiet = false;
+};
+
+Integrator integrator_from(const std::string& s) {
+  if (s == "euler") return Integrator::Euler;
+  if (s == "rk4") return Integrator::RK4;
+  if (s == "splitting") return Integrator::Splitting;
+  throw Error(ExitCode::Usage, "--integrators: unknown integrator \"" + s +
+                                   "\" (euler, rk4, splitting)");
+}
+
+EffectSet effects_from(const std::string& s, bool* is_auto) {
+  EffectSet e;
+  *is_auto = s == "auto";
+  if (*is_auto) return e;
+  if (s == "all") {
+    for (const EffectInfo& i : all_effects()) e.add(i.effect);
+    return e;
+  }
+  std::stringstream ss(s);
+  std::string name;
+  while (std::getline(ss, name, ',')) {
+    Effect x;
+    if (!effect_from_name(name, &x))
+      throw Error(ExitCode::Usage, "--effects: unknown effect \"" + name + "\"");
+    e.add(x);
+  }
+  return e;
+}
+
+// CPU time of the process (all threads), s: unlike wall time it does not count the time other
+// jobs on a shared machine take the cores away
+double cpu_seconds() {
+  timespec ts;
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
+}
+
+// bytes of State per body: the per-body arrays plus the Basset histories
+double state_bytes_per_body(const State& s) {
+  const size_t n = s.size();
+  size_t b = n * (sizeof(Vec3) * 4 + sizeof(Quat) + sizeof(uint16_t) + sizeof(BodyStatus) +
+                  sizeof(double) + sizeof(std::string) + sizeof(size_t));
+  b += s.history.size() * sizeof(double);
+  return n ? double(b) / double(n) : 0.0;
+}
+
+// the scene's body entries scaled to n bodies in total (same proportions)
+void scale_bodies(Scene* scene, long long n) {
+  long long total = 0;
+  for (const BodySpec& b : scene->bodies) total += b.count;
+  long long left = n;
+  for (size_t i = 0; i < scene->bodies.size(); ++i) {
+    BodySpec& b = scene->bodies[i];
+    const long long c = i + 1 == scene->bodies.size()
+                            ? left
+                            : std::llround(double(n) * double(b.count) / double(total));
+    b.count = int(std::max(0LL, std::min(c, left)));
+    left -= b.count;
+  }
+}
+
+void bench(const BenchArgs& a) {
+  const Scene base = read_scene(a.scene);
+  FluidField field;
+  if (base.uniform_field) {
+    field = FluidField::uniform(base.uniform_U, base.uniform_k, base.uniform_epsilon,
+                                base.kinematic_viscosity, base.drift);
+  } else {
+    const GridFile g = read_grid(base.field_path);
+    field = FluidField::grid(g.geometry, g.frames, base.kinematic_viscosity, base.drift,
+                             base.time_mode);
+  }
+  bool eff_auto = false;
+  const EffectSet effects = effects_from(a.effects, &eff_auto);
+  nlohmann::json out;
+  out["scene"] = a.scene;
+  out["effects"] = a.effects;
+  out["field_bytes"] = field.bytes();
+  if (!base.uniform_field) out["field"] = base.field_path;
+  out["max_threads"] = omp_get_max_threads();
+  out["runs"] = nlohmann::json::array();
+  if (!a.quiet)
+    std::printf("%9s %-10s %7s %6s %9s %14s %12s %14s %10s\n", "bodies", "integrator", "threads",
+                "steps", "wall_s", "body_steps_s", "per_thread", "per_cpu_s", "B/body");
+  for (const long long n : a.n) {
+    for (const std::string& iname : a.integrators) {
+      Scene s = base;
+      scale_bodies(&s, n);
+      s.integrator = integrator_from(iname);
+      s.effects_auto = eff_auto;
+      if (!eff_auto) s.effects = effects;
+      const int steps = std::max(a.min_steps, int(std::ceil(a.body_steps / double(n))));
+      Model m = compile_model(s, field, cached_added_mass);
+      const State initial = initial_state(m, s);
+      for (const int th : a.threads) {
+        State st = initial;
+        RunOptions opt;
+        opt.threads = th;
+        opt.every = 1e9;  // no outputs; one parallel region per call
+        m.duration = double(a.warmup) * s.dt;
+        if (a.warmup > 0) simulate(m, &st, opt);
+        m.duration = double(a.warmup + steps) * s.dt;
+        const double cpu0 = cpu_seconds();
+        const RunStats r = simulate(m, &st, opt);
+        const double cpu = cpu_seconds() - cpu0;
+        const double cpu_rate = cpu > 0 ? double(r.body_steps) / cpu : 0.0;
+        const double rate = r.wall_seconds > 0 ? double(r.body_steps) / r.wall_seconds : 0.0;
+        const double bpb = state_bytes_per_body(st);
+        if (!a.quiet)
+          std::printf("%9lld %-10s %7d %6d %9.3f %14.4g %12.4g %14.4g %10.0f\n", n, iname.c_str(),
+                      th, steps, r.wall_seconds, rate, rate / th, cpu_rate, bpb);
+        std::fflush(stdout);
+        nlohmann::json j;
+        j["n"] = n;
+        j["integrator"] = iname;
+        j["threads"] = th;
+        j["steps"] = steps;
+        j["body_steps"] = r.body_steps;
+        j["wall_seconds"] = r.wall_seconds;
+        j["body_steps_per_s"] = rate;
+        j["cpu_seconds"] = cpu;
+        j["body_steps_per_cpu_s"] = cpu_rate;  // per core-second of CPU time
+        j["state_bytes_per_body"] = bpb;
+        j["exited"] = r.exited + r.failed;
+        j["landed"] = r.landed;
+        out["runs"].push_back(j);
+      }
+    }
+  }
+  if (!a.json.empty())
+    write_file_atomically(a.json, [&](std::ostream& os) { os << out.dump(1) << "\n"; });
+}
+
+}  // namespace
+
+void add_bench_command(CLI::App& app) {
+  auto args = std::make_shared<BenchArgs>();
+  auto* cmd = app.add_subcommand(
+      "bench", "Throughput of a scene's step (body-steps/s) for several body counts, "
+               "integrators and thread counts; no outputs written (docs/performance.md)");
+  cmd->add_option("scene", args->scene, "Scene file (default scenes/leaves_wind.json)");
+  cmd->add_option("--n", args->n, "Body counts")->delimiter(',')->check(CLI::PositiveNumber);
+  cmd->add_option("--integrators", args->integrators, "euler, rk4, splitting")->delimiter(',');
+  cmd->add_option("--threads", args->threads, "Thread counts")
+      ->delimiter(',')
+      ->check(CLI::Range(1, 1024));
+  cmd->add_option("--effects", args->effects,
+                  "\"all\" (default), \"auto\" (as the scene chooses) or a comma list");
+  cmd->add_option("--body-steps", args->body_steps,
+                  "Body-steps timed per point (at least --min-steps steps)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--min-steps", args->min_steps, "Fewest timed steps")->check(CLI::Range(1, 1 << 20));
+  cmd->add_option("--warmup", args->warmup, "Untimed steps first")->check(CLI::Range(0, 1 << 20));
+  cmd->add_option("--json", args->json, "Also write the results as JSON");
+  cmd->add_flag("--quiet", args->quiet, "Print nothing but errors");
+  cmd->callback([args] { bench(*args); });
+}
+
+}  // namespace lrigid::app

@@ -1,0 +1,72 @@
+// Elementary functions for the normal generator (util/rng.h) as straight-line polynomials:
+// no table, no library call, no branch, so a loop over them vectorizes, and the results do not
+// depend on the C library. Accurate to a few ulp over the ranges they are used on (tested in
+// tests/runtime/util/rng_test.cpp against std::log, std::sin, std::cos).
+#pragma once
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+
+namespace lrigid {
+
+constexpr double kLn2 = 0.6931471805599453094;
+
+// ln x for finite x > 0 (normal numbers): x = 2^e m, m in [sqrt(1/2), sqrt(2)),
+// ln m = 2 atanh(s), s = (m - 1)/(m + 1), |s| < 0.1716, series to s^21 (error < 1e-17)
+inline double log_fast(double x) {
+  uint64_t bits;
+  std::memcpy(&bits, &x, sizeof bits);
+  // shift the mantissa range to [sqrt(1/2), sqrt(2)) by biasing before extracting the exponent
+  const uint64_t shifted = bits - 0x3fe6a09e667f3bcdULL;  // bits of sqrt(1/2)
+  const int64_t e = static_cast<int64_t>(shifted) >> 52;
+  const uint64_t mbits = bits - (static_cast<uint64_t>(e) << 52);
+  double m;
+  std::memcpy(&m, &mbits, sizeof m);
+  const double s = (m - 1.0) / (m + 1.0);
+  const double s2 = s * s;
+  double p = 1.0 / 21;
+  p = p * s2 + 1.0 / 19;
+  p = p * s2 + 1.0 / 17;
+  p = p * s2 + 1.0 / 15;
+  p = p * s2 + 1.0 / 13;
+  p = p * s2 + 1.0 / 11;
+  p = p * s2 + 1.0 / 9;
+  p = p * s2 + 1.0 / 7;
+  p = p * s2 + 1.0 / 5;
+  p = p * s2 + 1.0 / 3;
+  p = p * s2;
+  return static_cast<double>(e) * kLn2 + (2.0 * s + 2.0 * s * p);
+}
+
+// cos and sin of the angle 2 pi b / 2^32 - pi/4, uniform over the circle for uniform b:
+// the top 2 bits of b pick the quadrant, the low 30 bits an angle x in [-pi/4, pi/4) for
+// Taylor polynomials to x^15 (sin) and x^16 (cos), errors below 1e-16.
+inline void sincos_of_turn(uint32_t b, double* c, double* s) {
+  const uint32_t quadrant = b >> 30;
+  const double x = (static_cast<double>(b & 0x3fffffffu) * 0x1p-30 - 0.5) * (M_PI / 2);
+  const double x2 = x * x;
+  double sp = -1.0 / 1307674368000.0;  // -1/15!
+  sp = sp * x2 + 1.0 / 6227020800.0;
+  sp = sp * x2 - 1.0 / 39916800.0;
+  sp = sp * x2 + 1.0 / 362880.0;
+  sp = sp * x2 - 1.0 / 5040.0;
+  sp = sp * x2 + 1.0 / 120.0;
+  sp = sp * x2 - 1.0 / 6.0;
+  const double sn = x + x * x2 * sp;
+  double cp = 1.0 / 20922789888000.0;  // 1/16!
+  cp = cp * x2 - 1.0 / 87178291200.0;
+  cp = cp * x2 + 1.0 / 479001600.0;
+  cp = cp * x2 - 1.0 / 3628800.0;
+  cp = cp * x2 + 1.0 / 40320.0;
+  cp = cp * x2 - 1.0 / 720.0;
+  cp = cp * x2 + 1.0 / 24.0;
+  cp = cp * x2 - 0.5;
+  const double cs = 1.0 + x2 * cp;
+  // rotate by quadrant * pi/2: (c, s) -> (-s, c) per quarter turn
+  const bool odd = quadrant & 1u, neg_c = quadrant == 1 || quadrant == 2, neg_s = quadrant >= 2;
+  const double cc = odd ? sn : cs, ss = odd ? cs : sn;
+  *c = neg_c ? -cc : cc;
+  *s = neg_s ? -ss : ss;
+}
+
+}  // namespace lrigid
