@@ -105,14 +105,15 @@ def main():
     w(head)
     w("|---|" + "---|" * (len(integs) * len(threads)))
     by = {(r["n"], r["integrator"], r["threads"]): r for r in runs}
-    for n in ns:
-        cells = []
-        for i in integs:
-            for t in threads:
-                r = by.get((n, i, t))
-                cells.append(si(r["body_steps_per_s"]) if r else "-")
-        w("| %d | %s |" % (n, " | ".join(cells)))
-    w("")
+
+    def rate_rows(key):  # one table row per N: the rate `key` per integrator and thread count
+        for n in ns:
+            cells = [si(by[(n, i, t)][key]) if (n, i, t) in by else "-"
+                     for i in integs for t in threads]
+            w("| %d | %s |" % (n, " | ".join(cells)))
+        w("")
+
+    rate_rows("body_steps_per_s")
     if all("body_steps_per_cpu_s" in r for r in runs):
         w("The same runs per second of CPU time (all threads): the rate per core that the other "
           "jobs on this shared machine do not take away. 2 threads: per core, so the parallel "
@@ -120,14 +121,7 @@ def main():
         w("")
         w(head.replace(" thr", " thr, per CPU s"))
         w("|---|" + "---|" * (len(integs) * len(threads)))
-        for n in ns:
-            cells = []
-            for i in integs:
-                for t in threads:
-                    r = by.get((n, i, t))
-                    cells.append(si(r["body_steps_per_cpu_s"]) if r else "-")
-            w("| %d | %s |" % (n, " | ".join(cells)))
-        w("")
+        rate_rows("body_steps_per_cpu_s")
     # linearity: per-body-step cost at each N relative to the smallest N
     w("Cost per body-step relative to N = %d (1.00 = linear cost in N), 1 thread, from the "
       "CPU-time rates:" % ns[0])
