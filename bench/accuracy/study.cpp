@@ -232,7 +232,11 @@ Metric weak_variance_error(const RunResult& a, const RunResult& ref) {
   return variance_error(a.x[j], ref.x[j], all_bodies(ref), false);
 }
 
-Metric landing_mean_error(const RunResult& a, const RunResult& ref) {
+namespace {
+
+// a metric of the final positions of the bodies that landed in both runs (at least 30)
+template <class Fn>
+Metric landing_metric(const RunResult& a, const RunResult& ref, Fn metric) {
   Metric m;
   if (!comparable(a, ref, &m)) return m;
   const auto idx = landed_in_both(a, ref);
@@ -240,24 +244,23 @@ Metric landing_mean_error(const RunResult& a, const RunResult& ref) {
     m.note = std::to_string(idx.size()) + " bodies landed in both runs";
     return m;
   }
-  const size_t j = ref.times.size() - 1;
-  m = mean_error(a.x[j], ref.x[j], idx, scale(ref, j), true);
+  m = metric(ref.times.size() - 1, idx);
   m.note = std::to_string(idx.size()) + " landed in both";
   return m;
 }
 
+}  // namespace
+
+Metric landing_mean_error(const RunResult& a, const RunResult& ref) {
+  return landing_metric(a, ref, [&](size_t j, const auto& idx) {
+    return mean_error(a.x[j], ref.x[j], idx, scale(ref, j), true);
+  });
+}
+
 Metric landing_variance_error(const RunResult& a, const RunResult& ref) {
-  Metric m;
-  if (!comparable(a, ref, &m)) return m;
-  const auto idx = landed_in_both(a, ref);
-  if (idx.size() < 30) {
-    m.note = std::to_string(idx.size()) + " bodies landed in both runs";
-    return m;
-  }
-  const size_t j = ref.times.size() - 1;
-  m = variance_error(a.x[j], ref.x[j], idx, true);
-  m.note = std::to_string(idx.size()) + " landed in both";
-  return m;
+  return landing_metric(a, ref, [&](size_t j, const auto& idx) {
+    return variance_error(a.x[j], ref.x[j], idx, true);
+  });
 }
 
 double fit_slope(const std::vector<double>& dt, const std::vector<double>& err) {
