@@ -1,14 +1,17 @@
 #!/usr/bin/env bash
-# Benchmark of foam2grid (not a test): resampling a mesh of about a million cells to 128^3.
+# Benchmark of foam2grid (not a test): resampling a mesh of about a million cells.
 # Builds the case from foam_cases/tiny refined 6x per direction (240 x 72 x 60 = 1.04M cells
-# minus the cube), runs a few simpleFoam iterations for non-trivial fields, then times
-# foam2grid (ascii and binary copies of the case) with /usr/bin/time -v and writes the figures,
-# with machine and date, into docs/converter.md between the bench markers.
+# minus the cube), runs a few simpleFoam iterations for non-trivial (nonuniform) fields, then
+# times foam2grid (ascii and binary copies of the case) with /usr/bin/time -v at foam2grid's
+# default grid (spacing = mean cell size, about as many points as mesh points) and at 128^3, and
+# writes the figures, with machine, date and load, into docs/converter.md between the bench
+# markers and, with JSON set, as JSON (read by bench/perf/make_report.py for docs/performance.md).
 #   bench/converter/run_benchmark.sh [BUILD_DIR] [WORK_DIR]
 #     BUILD_DIR  holds bin/foam2grid (default: build)
 #     WORK_DIR   where the case goes (default: /tmp/foam2grid-bench); reused when present
 # Environment: OMP_NUM_THREADS (default 2), REPEAT (runs per variant, default 3),
-#              ITERATIONS (simpleFoam iterations, default 3).
+#              ITERATIONS (simpleFoam iterations, default 3), RESOLUTIONS (default "default 128":
+#              foam2grid's default spacing, and 128^3), JSON (also write the figures there).
 set -euo pipefail
 here=$(cd "${0%/*}" && pwd)
 src=$(cd "$here/../.." && pwd)
@@ -18,6 +21,9 @@ bin=$build/bin/foam2grid
 export OMP_NUM_THREADS=${OMP_NUM_THREADS:-2}
 repeat=${REPEAT:-3}
 iterations=${ITERATIONS:-3}
+resolutions=${RESOLUTIONS:-default 128}
+json=${JSON:-}
+[ -z "$json" ] || [ "${json#/}" != "$json" ] || json=$PWD/$json
 [ -x "$bin" ] || { echo "run_benchmark: $bin not found: build the foam2grid target" >&2; exit 1; }
 [ -x /usr/bin/time ] || { echo "run_benchmark: no /usr/bin/time (scripts/install-deps)" >&2; exit 1; }
 
@@ -55,40 +61,52 @@ ncells=$(sed -n 's/.*nCells:\([0-9]*\).*/\1/p' "$case_dir/constant/polyMesh/owne
 
 load_before=$(cut -d' ' -f1-3 /proc/loadavg)
 results=()
-for variant in cube1M cube1M_binary; do
-  best_wall=""; worst_rss=0
-  for i in $(seq "$repeat"); do
-    /usr/bin/time -v "$bin" "$work/$variant" -o "$work/$variant.vti" --resolution 128 128 128 \
-      > "$work/log.$variant.$i" 2>&1 || { cat "$work/log.$variant.$i" >&2; exit 1; }
-    wall=$(sed -n 's/.*Elapsed (wall clock) time (h:mm:ss or m:ss): //p' "$work/log.$variant.$i" |
-           awk -F: '{ if (NF == 3) print $1*3600 + $2*60 + $3; else print $1*60 + $2 }')
-    rss=$(sed -n 's/.*Maximum resident set size (kbytes): //p' "$work/log.$variant.$i")
-    cpu=$(awk -F': ' '/User time|System time/ { t += $2 } END { print t }' "$work/log.$variant.$i")
-    echo "run_benchmark: $variant run $i: wall $wall s, cpu $cpu s, peak RSS $((rss / 1024)) MB"
-    if [ -z "$best_wall" ] || awk "BEGIN{exit !($wall < $best_wall)}"; then
-      best_wall=$wall
-      best_cpu=$cpu
-    fi
-    [ "$rss" -gt "$worst_rss" ] && worst_rss=$rss
+jrows=()
+for res in $resolutions; do
+  if [ "$res" = default ]; then resargs=(); else resargs=(--resolution "$res" "$res" "$res"); fi
+  for variant in cube1M cube1M_binary; do
+    best_wall=""; worst_rss=0
+    for i in $(seq "$repeat"); do
+      log=$work/log.$variant.$res.$i
+      /usr/bin/time -v "$bin" "$work/$variant" -o "$work/$variant.$res.vti" "${resargs[@]}" \
+        > "$log" 2>&1 || { cat "$log" >&2; exit 1; }
+      wall=$(sed -n 's/.*Elapsed (wall clock) time (h:mm:ss or m:ss): //p' "$log" |
+             awk -F: '{ if (NF == 3) print $1*3600 + $2*60 + $3; else print $1*60 + $2 }')
+      rss=$(sed -n 's/.*Maximum resident set size (kbytes): //p' "$log")
+      cpu=$(awk -F': ' '/User time|System time/ { t += $2 } END { print t }' "$log")
+      echo "run_benchmark: $variant grid $res run $i: wall $wall s, cpu $cpu s, peak RSS $((rss / 1024)) MB"
+      if [ -z "$best_wall" ] || awk "BEGIN{exit !($wall < $best_wall)}"; then
+        best_wall=$wall
+        best_cpu=$cpu
+        best_log=$log
+      fi
+      [ "$rss" -gt "$worst_rss" ] && worst_rss=$rss
+    done
+    phases=$(grep -E 'mesh:|fields read|resampled|written' "$best_log" |
+             sed 's/^foam2grid //' | tr '\n' ';' | sed 's/;$//')
+    dims=$("$bin" --info "$work/$variant.$res.vti" 2>&1 | sed -n 's/.*dimensions[: ]*\([0-9]* x [0-9]* x [0-9]*\).*/\1/p' | head -1)
+    points=$(echo "$dims" | awk -F' x ' 'NF == 3 { print $1 * $2 * $3 }')
+    size=$(stat -c %s "$work/$variant.$res.vti")
+    results+=("| $variant | $dims | $best_wall | $best_cpu | $((worst_rss / 1024)) | $((size / 1048576)) | $phases |")
+    jrows+=("{\"case\": \"$variant\", \"grid\": \"$res\", \"dimensions\": \"$dims\", \"points\": ${points:-null}, \"wall_s\": $best_wall, \"cpu_s\": $best_cpu, \"peak_rss_mb\": $((worst_rss / 1024)), \"vti_bytes\": $size}")
   done
-  phases=$(grep -E 'mesh:|fields read|resampled|written' "$work/log.$variant.$repeat" |
-           sed 's/^foam2grid //' | tr '\n' ';' | sed 's/;$//')
-  results+=("| $variant | $best_wall | $best_cpu | $((worst_rss / 1024)) | $phases |")
 done
+load_after=$(cut -d' ' -f1-3 /proc/loadavg)
 
 cpu=$(sed -n 's/^model name[[:space:]]*: //p' /proc/cpuinfo | head -1)
 mem=$(awk '/MemTotal/ { printf "%.1f GB", $2 / 1048576 }' /proc/meminfo)
 block="<!-- bench:begin (written by bench/converter/run_benchmark.sh) -->
 Measured $(date -u '+%Y-%m-%d %H:%M UTC') on $(hostname): $cpu, $(nproc) cores visible,
 $mem RAM, OMP_NUM_THREADS=$OMP_NUM_THREADS, load average before / after the runs
-$load_before / $(cut -d' ' -f1-3 /proc/loadavg) (other jobs share the cores).
+$load_before / $load_after (other jobs share the cores).
 Case: foam_cases/tiny refined to 240 x 72 x 60
-($ncells cells after cutting out the cube), $iterations simpleFoam iterations; grid 128^3
-(2 097 152 points, U k epsilon nut valid). Best wall time of $repeat runs, largest peak RSS
-(\`/usr/bin/time -v\`); the phases are the cumulative times foam2grid logs in its last run.
+($ncells cells after cutting out the cube), $iterations simpleFoam iterations (nonuniform fields);
+grids: foam2grid's default spacing (the mean cell size) and 128^3, U k epsilon nut valid.
+Best wall time of $repeat runs, largest peak RSS (\`/usr/bin/time -v\`); the phases are the
+cumulative times foam2grid logs in the best run.
 
-| case files | wall time (s) | CPU user+sys (s) | peak RSS (MB) | phases (cumulative wall, cpu) |
-|---|---|---|---|---|
+| case files | grid points | wall time (s) | CPU user+sys (s) | peak RSS (MB) | .vti (MB) | phases (cumulative wall, cpu) |
+|---|---|---|---|---|---|---|
 $(printf '%s\n' "${results[@]}")
 <!-- bench:end -->"
 
@@ -106,3 +124,13 @@ else
   echo "run_benchmark: no bench markers in $doc; figures:"
 fi
 echo "$block"
+if [ -n "$json" ]; then
+  {
+    echo "{\"date\": \"$(date -u '+%Y-%m-%d %H:%M')\", \"machine\": \"$cpu, $(nproc) cores, $mem\","
+    echo " \"cells\": $ncells, \"simplefoam_iterations\": $iterations, \"omp_threads\": $OMP_NUM_THREADS,"
+    echo " \"repeat\": $repeat, \"load_before\": \"$load_before\", \"load_after\": \"$load_after\","
+    echo " \"runs\": [$(IFS=,; echo "${jrows[*]}")]}"
+  } > "$json.tmp"
+  mv "$json.tmp" "$json"
+  echo "run_benchmark: figures written to $json"
+fi

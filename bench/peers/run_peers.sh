@@ -198,8 +198,10 @@ if [ "$DO_MUJOCO" = 1 ]; then
   H="$BUILD/bin/mujoco_harness"
   [ -x "$H" ] || { echo "run_peers.sh: $H missing (install libmujoco-dev, build mujoco_harness)" >&2; exit 1; }
   MJ=$("$H" --n "$N" --dt "$DT" --steps "$STEPS")
-  MJ_RK4=$(echo "$MJ" | sed 's/.*"one_body_per_model": {"rk4": \([^,]*\),.*/\1/')
-  MJ_EULER=$(echo "$MJ" | sed 's/.*"one_body_per_model": {[^}]*"euler": \([^}]*\)}.*/\1/')
+  read -r MJ_RK4 MJ_EULER < <(echo "$MJ" | /usr/bin/python3 -c '
+import json, sys
+d = json.load(sys.stdin)["one_body_per_model"]
+print(d["rk4"], d["euler"])')
   MJ_NOTE="\"mujoco_detail\": $MJ,"
 fi
 

@@ -1,6 +1,7 @@
 // lrigid run SCENE.json [-o DIR] [--seed S] [--threads T] [--stream-field M] [--quiet]
 #include <unistd.h>
 
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -105,7 +106,11 @@ void run(const RunArgs& a, const Ranks& ranks) {
   if (a.seed >= 0) scene.seed = static_cast<uint64_t>(a.seed);
   if (!a.out.empty()) scene.output.dir = a.out;
   check_memory(scene);
+  const auto load0 = std::chrono::steady_clock::now();
   FluidField field = load_field(scene, a.stream, a.quiet);
+  // s: reading the grid (all frames, or the header and first frame when streamed)
+  const double load_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - load0).count();
   const Model model = compile_model(scene, std::move(field), cached_added_mass);
   State state = initial_state(model, scene);
   // with several MPI ranks, rank 0 alone writes, after gathering every rank's bodies
@@ -141,7 +146,10 @@ void run(const RunArgs& a, const Ranks& ranks) {
   nlohmann::json extra;
   extra["threads"] = a.threads;
   if (ranks.size() > 1) extra["ranks"] = ranks.size();
-  if (!scene.uniform_field) extra["field"] = scene.field_path;  // for render and ParaView
+  if (!scene.uniform_field) {
+    extra["field"] = scene.field_path;  // for render and ParaView
+    extra["field_load_seconds"] = load_seconds;
+  }
   if (model.field.is_streamed()) {
     const StreamStats ss = model.field.stream_stats();
     extra["field_stream"] = {{"frames_read", ss.loads},
