@@ -1,12 +1,17 @@
 #!/usr/bin/python3
 """Writes docs/performance.md from the measurements bench/perf/run_perf.sh collected (issue 11).
 
-  make_report.py DIR [--peers FILE] [--out docs/performance.md] [--note TEXT]
+  make_report.py DIR [--peers FILE]... [--converter FILE] [--stream FILE] [--scaling FILE]
+                 [--out docs/performance.md] [--scaling-doc docs/scaling.md] [--note TEXT]
 
 DIR holds: bench.json (lrigid bench), step_bench.json and roofline.json (Google Benchmark JSON),
 callgrind.json (instructions per body-step per integrator), flops.json (floating-point
 operations per body-step, valgrind lackey), machine.json (CPU, load, date, commit). --peers
-reads bench/peers/run_peers.sh's peers.json; without it the report says the peers were not run.
+reads bench/peers/run_peers.sh's peers.json (once per body count); without it the report says the
+peers were not run. --converter: bench/converter/run_benchmark.sh's JSON (foam2grid, 1 M cells);
+--stream and --scaling: bench/perf/stream_bench.sh's and scaling_bench.sh's JSON. The peers' raw
+figures, the ranks x threads table and the streaming table go into --scaling-doc, between its
+`<!-- generated:NAME:begin ... -->` and `<!-- generated:NAME:end -->` markers.
 """
 import argparse
 import json
@@ -20,6 +25,25 @@ def load(path, default=None):
         return default
     with open(path) as f:
         return json.load(f)
+
+
+def must_load(path, flag):
+    doc = load(path)
+    if doc is None:
+        sys.exit("make_report.py: %s %s: no such file" % (flag, path))
+    return doc
+
+
+def write_atomically(path, text, prefix):
+    fd, tmp = tempfile.mkstemp(dir=os.path.dirname(os.path.abspath(path)), prefix=prefix,
+                               suffix=".md")
+    with os.fdopen(fd, "w") as f:
+        f.write(text)
+    os.replace(tmp, path)
+
+
+def mb(x):
+    return "%.0f" % (x / 1048576.0)
 
 
 def gbench(doc, name):
@@ -40,7 +64,11 @@ def si(x, unit=""):
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("dir")
-    ap.add_argument("--peers")
+    ap.add_argument("--peers", action="append", default=[])
+    ap.add_argument("--converter")
+    ap.add_argument("--stream")
+    ap.add_argument("--scaling")
+    ap.add_argument("--scaling-doc", default="docs/scaling.md")
     ap.add_argument("--out", default="docs/performance.md")
     ap.add_argument("--note", default="")
     a = ap.parse_args()
@@ -53,11 +81,11 @@ def main():
     cg = load(os.path.join(d, "callgrind.json"), {})
     flops = load(os.path.join(d, "flops.json"), {})
     mach = load(os.path.join(d, "machine.json"), {})
-    peers = None
-    if a.peers:
-        peers = load(a.peers)
-        if peers is None:
-            sys.exit("make_report.py: --peers %s: no such file" % a.peers)
+    peer_docs = sorted((must_load(p, "--peers") for p in a.peers), key=lambda x: x.get("n", 0))
+    peers = peer_docs[-1] if peer_docs else None  # the largest N: the targets
+    conv = must_load(a.converter, "--converter") if a.converter else None
+    stream = must_load(a.stream, "--stream") if a.stream else None
+    scal = must_load(a.scaling, "--scaling") if a.scaling else None
 
     runs = bench["runs"]
     L = []
@@ -275,30 +303,44 @@ def main():
     # peers and targets
     w("## Peers and targets")
     w("")
-    split1 = by.get((ns[-1], "splitting", 1)) or by.get((ns[0], "splitting", 1))
-    split2 = by.get((ns[-1], "splitting", 2))
-    rk41 = by.get((ns[-1], "rk4", 1))
-    if peers:
-        of = peers.get("openfoam", {})
-        mj = peers.get("mujoco", {})
-        w("Peers measured by `bench/peers/run_peers.sh` (docs/scaling.md), N = %s, dt = %s s, "
-          "one core each; the runtime's figures are per core (1 thread, N = %d)." %
-          (peers.get("n"), peers.get("dt"), ns[-1]))
+    # lrigid's per-core rate (1 thread, per CPU second when measured) at n, integrator i
+    def lrate(n, i):
+        r = by.get((n, i, 1))
+        if not r:
+            return None
+        return r.get("body_steps_per_cpu_s", r["body_steps_per_s"])
+
+    if peer_docs:
+        w("Peers measured by `bench/peers/run_peers.sh` on this machine in this run (set-up and "
+          "raw figures: [scaling.md](scaling.md)), one core each, per CPU second; lrigid at the "
+          "same N, 1 thread, per CPU second (`lrigid bench`, all effects, wind field). Ratio = "
+          "lrigid / peer.")
         w("")
-        w("| peer | peer rate (per core) | lrigid splitting | ratio | lrigid rk4 | ratio |")
-        w("|---|---|---|---|---|---|")
-        for label, val in (("OpenFOAM parcels, dispersion off", of.get("dispersion_off")),
-                           ("OpenFOAM parcels, dispersion on", of.get("dispersion_on")),
-                           ("MuJoCo ellipsoid fluid, RK4", mj.get("rk4")),
-                           ("MuJoCo ellipsoid fluid, Euler", mj.get("euler"))):
-            if not val:
-                continue
-            k = "body_steps_per_cpu_s" if split1 and "body_steps_per_cpu_s" in split1 \
-                else "body_steps_per_s"
-            s1 = split1[k] if split1 else 0
-            r1 = rk41[k] if rk41 else 0
-            w("| %s | %s | %s | %.2f | %s | %.2f |" %
-              (label, si(val), si(s1), s1 / val, si(r1), r1 / val))
+        w("| N | peer | peer rate | lrigid splitting | ratio | lrigid rk4 | ratio | "
+          "lrigid euler | ratio |")
+        w("|---|---|---|---|---|---|---|---|---|")
+        for pd in peer_docs:
+            n = pd.get("n")
+            of = pd.get("openfoam") or {}
+            mj = pd.get("mujoco") or {}
+            rates = {i: lrate(n, i) for i in ("splitting", "rk4", "euler")}
+            for label, val in (("OpenFOAM parcels, dispersion off", of.get("dispersion_off")),
+                               ("OpenFOAM parcels, stochasticDispersionRAS",
+                                of.get("dispersion_on")),
+                               ("MuJoCo ellipsoid fluid, RK4", mj.get("rk4")),
+                               ("MuJoCo ellipsoid fluid, Euler", mj.get("euler"))):
+                if not val:
+                    continue
+                cells = []
+                for i in ("splitting", "rk4", "euler"):
+                    v = rates[i]
+                    cells += [si(v), "%.1f" % (v / val)] if v else ["-", "-"]
+                w("| %s | %s | %s | %s |" % (n, label, si(val), " | ".join(cells)))
+        w("")
+        w("MuJoCo's figures are its best case, one body per model (`mujoco_harness`: 64 mjData "
+          "copies of a one-body model stepped in turn); all bodies in one model costs MuJoCo "
+          "O(N^2) per step (scaling.md). Load during the peers: %s." %
+          "; ".join("N = %s: %s" % (pd.get("n"), pd.get("load")) for pd in peer_docs))
         w("")
     else:
         w("The peers were not run for this report (no `--peers FILE`): `bench/peers/run_peers.sh "
@@ -307,6 +349,10 @@ def main():
           "reference figures on this kind of machine: OpenFOAM ~1.0 M parcel-steps/s (0.9 M with "
           "dispersion), MuJoCo ~0.3 M body-steps/s (RK4), ~1 M (Euler), one core each.")
         w("")
+    split1 = by.get((ns[-1], "splitting", 1)) or by.get((ns[0], "splitting", 1))
+    if peers and by.get((peers.get("n"), "splitting", 1)):
+        split1 = by[(peers.get("n"), "splitting", 1)]  # the targets at the peers' N
+    split2 = by.get((ns[-1], "splitting", 2))
     w("Multi-process scaling (MPI) and the peers' set-up: [scaling.md](scaling.md).")
     w("")
     key = "body_steps_per_cpu_s" if split1 and "body_steps_per_cpu_s" in split1 \
@@ -320,11 +366,12 @@ def main():
         s = split1[key]
         of_on = (peers or {}).get("openfoam", {}).get("dispersion_on") or 0.9e6
         mj_rk4 = (peers or {}).get("mujoco", {}).get("rk4") or 0.3e6
-        src = "measured" if peers else "issue's figure"
-        w("| splitting >= 10 x OpenFOAM parcel rate per core (%s: %s) | %s (%.1f x) | %s |" %
-          (src, si(of_on), si(s), s / of_on, "yes" if s >= 10 * of_on else "no"))
-        w("| splitting >= 10 x MuJoCo RK4 per core (%s: %s) | %s (%.1f x) | %s |" %
-          (src, si(mj_rk4), si(s), s / mj_rk4, "yes" if s >= 10 * mj_rk4 else "no"))
+        src = "measured at N = %s" % peers.get("n") if peers else "issue's figure"
+        w("| splitting >= 10 x OpenFOAM parcel rate per core (%s: %s, dispersion on) | %s at "
+          "N = %d (%.1f x) | %s |" % (src, si(of_on), si(s), split1["n"], s / of_on,
+                                      "yes" if s >= 10 * of_on else "no"))
+        w("| splitting >= 10 x MuJoCo RK4 per core (%s: %s) | %s at N = %d (%.1f x) | %s |" %
+          (src, si(mj_rk4), si(s), split1["n"], s / mj_rk4, "yes" if s >= 10 * mj_rk4 else "no"))
     if split2:
         s = split2["body_steps_per_s"]
         s2 = 2 * split2.get("body_steps_per_cpu_s", 0)
@@ -336,13 +383,163 @@ def main():
         ratio = r0[key] / r1[key]
         w("| cost linear in N from %d to %d | cost per body-step x %.2f | %s |" %
           (ns[0], ns[-1], ratio, "yes" if ratio < 1.3 else "no"))
+    dflt = [r for r in (conv or {}).get("runs", []) if r["grid"] == "default"]
+    if dflt:
+        wall = min(r["wall_s"] for r in dflt)
+        cpu = min(r["cpu_s"] for r in dflt)
+        met = "yes" if wall < 10 else ("on CPU time (wall under load %s)" % conv["load_after"]
+                                       if cpu < 10 else "no")
+        w("| converter under 10 s for a million cells (%d cells, default grid) | %.1f s wall, "
+          "%.1f s CPU | %s |" % (conv["cells"], wall, cpu, met))
     w("")
-    text = "\n".join(L) + "\n"
-    out_dir = os.path.dirname(os.path.abspath(a.out))
-    fd, tmp = tempfile.mkstemp(dir=out_dir, prefix=".performance.", suffix=".md")
-    with os.fdopen(fd, "w") as f:
-        f.write(text)
-    os.replace(tmp, a.out)
+    if conv:
+        converter_section(w, conv)
+    write_atomically(a.out, "\n".join(L) + "\n", ".performance.")
+    blocks = {}
+    if peer_docs:
+        blocks["peers"] = peers_block(peer_docs)
+    if scal:
+        blocks["ranks"] = ranks_block(scal)
+    if stream:
+        blocks["stream"] = stream_block(stream)
+    if blocks:
+        fill_blocks(a.scaling_doc, blocks)
+
+
+def converter_section(w, conv):
+    w("## Converter: foam2grid on a million cells")
+    w("")
+    w("`bench/converter/run_benchmark.sh` (also written to [converter.md](converter.md)): "
+      "foam_cases/tiny refined to %d cells, %d simpleFoam iterations (nonuniform U, k, epsilon, "
+      "nut), foam2grid with OMP_NUM_THREADS=%s; best of %s runs, `/usr/bin/time -v`. %s, "
+      "%s, load %s before / %s after." %
+      (conv["cells"], conv["simplefoam_iterations"], conv["omp_threads"], conv["repeat"],
+       conv["date"], conv["machine"], conv["load_before"], conv["load_after"]))
+    w("")
+    w("| case files | grid | points | wall (s) | CPU user+sys (s) | peak RSS (MB) | .vti (MB) |")
+    w("|---|---|---|---|---|---|---|")
+    for r in conv["runs"]:
+        w("| %s | %s | %s | %.2f | %.2f | %d | %s |" %
+          (r["case"].replace("cube1M_binary", "binary").replace("cube1M", "ascii"),
+           "default (mean cell size)" if r["grid"] == "default" else "%s^3" % r["grid"],
+           r["dimensions"] or "-", r["wall_s"], r["cpu_s"], r["peak_rss_mb"], mb(r["vti_bytes"])))
+    w("")
+    w("CPU time (both threads) bounds the wall time on two idle cores from above; the wall "
+      "time includes the waits for the cores other jobs hold.")
+    w("")
+
+
+def peers_block(peer_docs):
+    L = []
+    w = L.append
+    w("| N | steps x dt | OpenFOAM off | OpenFOAM on | parcel-steps timed (off / on) | "
+      "CPU s (off / on) | MuJoCo RK4 | MuJoCo Euler | MuJoCo one model RK4 / Euler (bodies) | "
+      "date, load |")
+    w("|---|---|---|---|---|---|---|---|---|---|")
+    for pd in peer_docs:
+        of = pd.get("openfoam") or {}
+        od = pd.get("openfoam_detail") or {}
+        mj = pd.get("mujoco") or {}
+        md = (pd.get("mujoco_detail") or {}).get("one_model") or {}
+        w("| %s | %s x %s s | %s | %s | %s / %s | %s / %s | %s | %s | %s / %s (%s) | %s, %s |" %
+          (pd.get("n"), pd.get("steps"), pd.get("dt"),
+           si(of["dispersion_off"]) if of.get("dispersion_off") else "-",
+           si(of["dispersion_on"]) if of.get("dispersion_on") else "-",
+           od.get("parcel_steps_off", "-"), od.get("parcel_steps_on", "-"),
+           od.get("cpu_s_off", "-"), od.get("cpu_s_on", "-"),
+           si(mj["rk4"]) if mj.get("rk4") else "-", si(mj["euler"]) if mj.get("euler") else "-",
+           si(md["rk4"]) if md.get("rk4") else "-", si(md["euler"]) if md.get("euler") else "-",
+           md.get("bodies", "-"), pd.get("date"), pd.get("load")))
+    cells = [(pd.get("openfoam_detail") or {}).get("cells") for pd in peer_docs]
+    w("")
+    w("Rates in parcel- or body-steps per CPU second of one process (one core). OpenFOAM field: "
+      "%s cells. Machine: %s." % (", ".join(str(c) for c in sorted(set(cells), key=str)),
+                                 peer_docs[-1].get("machine")))
+    return "\n".join(L)
+
+
+def ranks_block(sc):
+    L = []
+    w = L.append
+    w("`bench/perf/scaling_bench.sh`: %s; N = %d bodies, %d steps; %s; %s, load %s before / "
+      "%s after, nice %s. Best of the runs of each configuration; the rate and speedup come "
+      "from the integration wall (the slowest rank's step time, no set-up, gathers or writes)."
+      % (sc["scene"], sc["n"], sc["steps"], sc["machine"], sc["date"], sc["load_before"],
+         sc["load_after"], sc.get("nice", "?")))
+    w("")
+    w("| ranks R | threads T | cores R x T | integration wall (s) | body-steps/s | speedup | "
+      "efficiency | process wall (s) | CPU, all ranks (s) | peak RSS of a rank (MB) |")
+    w("|---|---|---|---|---|---|---|---|---|---|")
+    for r in sc["runs"]:
+        w("| %d | %d | %d | %.2f | %s | %.2f | %.0f %% | %.1f | %.1f | %s |" %
+          (r["ranks"], r["threads"], r["ranks"] * r["threads"], r["integration_wall_s"],
+           si(r["body_steps_per_s"]), r.get("speedup", 0), 100 * r.get("efficiency", 0),
+           r["process_wall_s"], r["cpu_s"], mb(r["peak_rss_bytes"])))
+    w("")
+    w("Only R x T <= %d (this machine's cores) is measured: beyond, ranks and threads share "
+      "cores and the figures measure the scheduler (and MPI's busy-waiting ranks), not the "
+      "code." % sc["max_cores"])
+    return "\n".join(L)
+
+
+def stream_block(st):
+    L = []
+    w = L.append
+    fr = st["bytes_per_frame"]
+    w("`bench/perf/stream_bench.sh`: `lrigid run scenes/debris_tank.json --stream-field off|on "
+      "--threads %d` on the tank series (%d frames of %d points: %.2f MB per frame in memory "
+      "as 32-byte records, %.2f MB per .vti file on disk, zlib; all frames %.0f MB); %s, %s, "
+      "load %s before / %s after. Best of the runs of each mode; `/usr/bin/time -v`." %
+      (st["threads"], st["frames"], st["points_per_frame"], fr / 1e6,
+       st["disk_bytes_per_frame"] / 1e6, st["frames"] * fr / 1e6, st["date"], st["machine"],
+       st["load_before"], st["load_after"]))
+    w("")
+    w("| --stream-field | process wall (s) | CPU (s) | integration wall (s) | frames read | "
+      "reading frames (s) | per frame (ms) | most frames resident | peak RSS (MB) |")
+    w("|---|---|---|---|---|---|---|---|---|")
+    by = {}
+    for r in st["runs"]:
+        by[r["mode"]] = r
+        # per frame: the frames read while stepping, or all frames at set-up
+        streamed = r["frames_read"] is not None
+        nread = r["frames_read"] if streamed else st["frames"]
+        per = r["stream_read_s"] if streamed else r["field_load_s"]
+        w("| %s | %.2f | %.2f | %.2f | %d%s | %.2f | %.1f | %s | %s |" %
+          (r["mode"], r["process_wall_s"], r["cpu_s"], r["integration_wall_s"], nread,
+           " + 1 at set-up" if streamed else "", r["read_s"], 1e3 * per / max(nread, 1),
+           r["max_resident_frames"] if r["max_resident_frames"] is not None else st["frames"],
+           mb(r["peak_rss_bytes"])))
+    w("")
+    if "on" in by and "off" in by:
+        on, off = by["on"], by["off"]
+        w("Reading frames took %.2f s streamed and %.2f s in memory (%+.2f s, %+.1f %% of the "
+          "in-memory run's process wall); process wall %.2f s against %.2f s. Streaming saved "
+          "%.0f MB of peak memory (%.0f %% of the in-memory run's). Reading time is "
+          "`field_load_seconds` (set-up: all frames, or the header and first frame when "
+          "streamed) plus `field_stream.read_seconds` of summary.json; per frame: the frames read "
+          "while stepping (streamed) or at set-up (in memory). The files come from the page "
+          "cache after the first run, so this is decompression and parsing, not disk." %
+          (on["read_s"], off["read_s"], on["read_s"] - off["read_s"],
+           100 * (on["read_s"] - off["read_s"]) / off["process_wall_s"], on["process_wall_s"],
+           off["process_wall_s"], (off["peak_rss_bytes"] - on["peak_rss_bytes"]) / 1048576.0,
+           100 * (off["peak_rss_bytes"] - on["peak_rss_bytes"]) / off["peak_rss_bytes"]))
+    return "\n".join(L)
+
+
+def fill_blocks(path, blocks):
+    """replaces each <!-- generated:NAME:begin ... --> ... <!-- generated:NAME:end --> of path"""
+    if not os.path.exists(path):
+        sys.exit("make_report.py: --scaling-doc %s: no such file" % path)
+    text = open(path).read()
+    for name, body in blocks.items():
+        begin = "<!-- generated:%s:begin" % name
+        end = "<!-- generated:%s:end -->" % name
+        i, j = text.find(begin), text.find(end)
+        if i < 0 or j < i:
+            sys.exit("make_report.py: %s: no %s ... %s markers" % (path, begin, end))
+        text = (text[:i] + begin + " (bench/perf/make_report.py; do not edit) -->\n" + body +
+                "\n" + text[j:])
+    write_atomically(path, text, ".scaling.")
 
 
 if __name__ == "__main__":

@@ -1,23 +1,43 @@
 #!/bin/bash
-# Measures the runtime's throughput and this machine's limits and writes docs/performance.md
-# (issue 11). Run from the repository root after a Release build:
-#   bench/perf/run_perf.sh [--quick] [--peers PEERS.json] [--build DIR] [--out DIR]
-#   --quick   N up to 10^5 and shorter runs (a check of the script, not for the docs)
-#   --no-flops skip the lackey flop count (slow: minutes)
-#   --peers   bench/peers/run_peers.sh's OUTDIR/peers.json: ratios against the peers
-# Needs results/grids/windCourtyard.vti (./Allrun) and valgrind (instruction and flop counts).
+# Measures the runtime's throughput, this machine's limits, the peers, the converter, streaming
+# and ranks x threads scaling, and writes docs/performance.md and the generated tables of
+# docs/scaling.md (issue 11). Run from anywhere after a Release build, niced on a shared machine:
+#   nice -n 19 bench/perf/run_perf.sh [--quick] [--no-flops] [--peers FILE]... [--no-peers]
+#       [--wind-case DIR] [--no-converter] [--no-stream] [--no-scaling] [--build DIR] [--out DIR]
+#   --quick       N up to 10^5, shorter runs, one repeat, peers at N = 10^3 only (a check of the
+#                 script, not for the docs: about 8 min)
+#   --no-flops    skip the lackey flop count (slow: minutes)
+#   --peers FILE  use bench/peers/run_peers.sh's peers.json (repeatable) instead of running the
+#                 peers; --no-peers: neither
+#   --wind-case   a solved windCourtyard case for the peers (else solved once, in OUT/peers_1000)
+#   --no-converter, --no-stream, --no-scaling: skip bench/converter/run_benchmark.sh (1 M cells,
+#                 its case cached in /tmp/foam2grid-bench), bench/perf/stream_bench.sh,
+#                 bench/perf/scaling_bench.sh
+# Needs results/grids/windCourtyard.vti (./Allrun), results/grids/tankJet.pvd (./Allrun -all;
+# for the streaming table), valgrind, mpirun, /usr/bin/time, OpenFOAM and mujoco_harness.
+# The full run takes about 25 min on 2 cores.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 build=build
 out=build/perf
-peers=""
+peers=()
+run_peers=1
+wind=""
 quick=0
 flops=1
+converter=1
+stream=1
+scaling=1
 while [ $# -gt 0 ]; do
   case "$1" in
     --quick) quick=1 ;;
     --no-flops) flops=0 ;;
-    --peers) peers="$2"; shift ;;
+    --peers) peers+=("$2"); run_peers=0; shift ;;
+    --no-peers) run_peers=0 ;;
+    --wind-case) wind="$2"; shift ;;
+    --no-converter) converter=0 ;;
+    --no-stream) stream=0 ;;
+    --no-scaling) scaling=0 ;;
     --build) build="$2"; shift ;;
     --out) out="$2"; shift ;;
     *) echo "run_perf.sh: unknown argument $1" >&2; exit 2 ;;
@@ -115,6 +135,48 @@ m["load_after"] = " ".join(open("/proc/loadavg").read().split()[:3])
 json.dump(m, open(sys.argv[1], "w"))
 EOF
 args=("$out")
-[ -n "$peers" ] && args+=(--peers "$peers")
-/usr/bin/python3 bench/perf/make_report.py "${args[@]}" --out docs/performance.md
-echo "run_perf.sh: wrote docs/performance.md (data in $out)" >&2
+
+# the peers at the same N as the bench (bench/peers/run_peers.sh): at least 10^6 parcel-steps
+# each, since OpenFOAM's ExecutionTime has 0.01 s resolution; the wind case is solved once
+if [ $run_peers = 1 ]; then
+  if [ $quick = 1 ]; then pns="1000"; else pns="1000 10000"; fi
+  for pn in $pns; do
+    echo "run_perf.sh: peers, N = $pn" >&2
+    psteps=$(( 1000000 / pn > 100 ? 1000000 / pn : 100 ))
+    pargs=(--n "$pn" --steps "$psteps" --build "$build")
+    # the first N solves the wind case into its directory (kept for reruns), the others use it
+    [ -n "$wind" ] && pargs+=(--wind-case "$wind")
+    bench/peers/run_peers.sh "$out/peers_$pn" "${pargs[@]}" > "$out/peers_$pn.log"
+    [ -n "$wind" ] || wind=$out/peers_$pn/windCourtyard
+    peers+=("$out/peers_$pn/peers.json")
+  done
+fi
+for f in ${peers[@]+"${peers[@]}"}; do args+=(--peers "$f"); done
+
+if [ $converter = 1 ]; then
+  echo "run_perf.sh: converter (foam2grid, 1 M cells)" >&2
+  if [ $quick = 1 ]; then rep=1; res=default; else rep=3; res="default 128"; fi
+  REPEAT=$rep RESOLUTIONS=$res JSON="$out/converter.json" \
+    bench/converter/run_benchmark.sh "$build" > "$out/converter.log"
+  args+=(--converter "$out/converter.json")
+fi
+if [ $stream = 1 ]; then
+  echo "run_perf.sh: streaming on/off (tank series)" >&2
+  if [ $quick = 1 ]; then sargs=(--duration 5 --repeat 1); else sargs=(--repeat 2); fi
+  bench/perf/stream_bench.sh "$out/stream" --build "$build" "${sargs[@]}"
+  args+=(--stream "$out/stream/stream.json")
+fi
+if [ $scaling = 1 ]; then
+  echo "run_perf.sh: ranks x threads" >&2
+  if [ $quick = 1 ]; then
+    cargs=(--n 20000 --steps 20 --repeat 1)
+  else
+    cargs=(--n 100000 --steps 50 --repeat 2)
+  fi
+  bench/perf/scaling_bench.sh "$out/scaling" --build "$build" "${cargs[@]}"
+  args+=(--scaling "$out/scaling/scaling.json")
+fi
+
+/usr/bin/python3 bench/perf/make_report.py "${args[@]}" --out docs/performance.md \
+  --scaling-doc docs/scaling.md
+echo "run_perf.sh: wrote docs/performance.md and docs/scaling.md (data in $out)" >&2
