@@ -82,13 +82,13 @@ for res in $resolutions; do
       fi
       [ "$rss" -gt "$worst_rss" ] && worst_rss=$rss
     done
-    phases=$(grep -E 'mesh:|fields read|resampled|written' "$best_log" |
+    phases=$(grep -E '^foam2grid \[' "$best_log" | grep -E 'mesh:|fields read|resampled|written' |
              sed 's/^foam2grid //' | tr '\n' ';' | sed 's/;$//')
     dims=$("$bin" --info "$work/$variant.$res.vti" 2>&1 | sed -n 's/.*dimensions[: ]*\([0-9]* x [0-9]* x [0-9]*\).*/\1/p' | head -1)
     points=$(echo "$dims" | awk -F' x ' 'NF == 3 { print $1 * $2 * $3 }')
     size=$(stat -c %s "$work/$variant.$res.vti")
     results+=("| $variant | $dims | $best_wall | $best_cpu | $((worst_rss / 1024)) | $((size / 1048576)) | $phases |")
-    jrows+=("{\"case\": \"$variant\", \"grid\": \"$res\", \"dimensions\": \"$dims\", \"points\": ${points:-null}, \"wall_s\": $best_wall, \"cpu_s\": $best_cpu, \"peak_rss_mb\": $((worst_rss / 1024)), \"vti_bytes\": $size}")
+    jrows+=("{\"case\": \"$variant\", \"grid\": \"$res\", \"dimensions\": \"$dims\", \"points\": ${points:-null}, \"wall_s\": $best_wall, \"cpu_s\": $best_cpu, \"peak_rss_mb\": $((worst_rss / 1024)), \"vti_bytes\": $size, \"phases\": \"$phases\"}")
   done
 done
 load_after=$(cut -d' ' -f1-3 /proc/loadavg)

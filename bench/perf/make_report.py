@@ -416,13 +416,22 @@ def converter_section(w, conv):
       (conv["cells"], conv["simplefoam_iterations"], conv["omp_threads"], conv["repeat"],
        conv["date"], conv["machine"], conv["load_before"], conv["load_after"]))
     w("")
-    w("| case files | grid | points | wall (s) | CPU user+sys (s) | peak RSS (MB) | .vti (MB) |")
-    w("|---|---|---|---|---|---|---|")
+    w("| case files | grid | points | wall (s) | CPU user+sys (s) | peak RSS (MB) | .vti (MB) | "
+      "phases: cumulative wall/CPU s |")
+    w("|---|---|---|---|---|---|---|---|")
     for r in conv["runs"]:
-        w("| %s | %s | %s | %.2f | %.2f | %d | %s |" %
+        # "[2.32 s, cpu 2.31 s] mesh: 1017000 cells, ...;[3.09 s, ...] time 3: fields read;..."
+        ph = []
+        for p in r.get("phases", "").split(";"):
+            if "]" in p:
+                t, what = p.split("]", 1)
+                what = what.split(":")[-1 if "time" in what else 0].split(",")[0].strip()
+                ph.append("%s %s]" % (what, t.replace(" s, cpu ", "/").replace(" s", "")))
+        w("| %s | %s | %s | %.2f | %.2f | %d | %s | %s |" %
           (r["case"].replace("cube1M_binary", "binary").replace("cube1M", "ascii"),
            "default (mean cell size)" if r["grid"] == "default" else "%s^3" % r["grid"],
-           r["dimensions"] or "-", r["wall_s"], r["cpu_s"], r["peak_rss_mb"], mb(r["vti_bytes"])))
+           r["dimensions"] or "-", r["wall_s"], r["cpu_s"], r["peak_rss_mb"], mb(r["vti_bytes"]),
+           ", ".join(ph) or "-"))
     w("")
     w("CPU time (both threads) bounds the wall time on two idle cores from above; the wall "
       "time includes the waits for the cores other jobs hold.")
