@@ -136,13 +136,13 @@ json.dump(m, open(sys.argv[1], "w"))
 EOF
 args=("$out")
 
-# the peers at the same N as the bench (bench/peers/run_peers.sh): at least 10^6 parcel-steps
+# the peers at the same N as the bench (bench/peers/run_peers.sh): 2 x 10^6 parcel-steps
 # each, since OpenFOAM's ExecutionTime has 0.01 s resolution; the wind case is solved once
 if [ $run_peers = 1 ]; then
   if [ $quick = 1 ]; then pns="1000"; else pns="1000 10000"; fi
   for pn in $pns; do
     echo "run_perf.sh: peers, N = $pn" >&2
-    psteps=$(( 1000000 / pn > 100 ? 1000000 / pn : 100 ))
+    psteps=$(( 2000000 / pn > 100 ? 2000000 / pn : 100 ))
     pargs=(--n "$pn" --steps "$psteps" --build "$build")
     # the first N solves the wind case into its directory (kept for reruns), the others use it
     [ -n "$wind" ] && pargs+=(--wind-case "$wind")
