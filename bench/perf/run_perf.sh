@@ -3,7 +3,8 @@
 # and ranks x threads scaling, and writes docs/performance.md and the generated tables of
 # docs/scaling.md (issue 11). Run from anywhere after a Release build, niced on a shared machine:
 #   nice -n 19 bench/perf/run_perf.sh [--quick] [--no-flops] [--peers FILE]... [--no-peers]
-#       [--wind-case DIR] [--no-converter] [--no-stream] [--no-scaling] [--build DIR] [--out DIR]
+#       [--wind-case DIR] [--no-converter] [--no-stream] [--no-scaling] [--tank-series FILE.pvd]
+#       [--build DIR] [--out DIR]
 #   --quick       N up to 10^5, shorter runs, one repeat, peers at N = 10^3 only (a check of the
 #                 script, not for the docs: about 8 min)
 #   --no-flops    skip the lackey flop count (slow: minutes)
@@ -13,6 +14,7 @@
 #   --no-converter, --no-stream, --no-scaling: skip bench/converter/run_benchmark.sh (1 M cells,
 #                 its case cached in /tmp/foam2grid-bench), bench/perf/stream_bench.sh,
 #                 bench/perf/scaling_bench.sh
+#   --tank-series the tank .pvd series for the streaming table (default results/grids/tankJet.pvd)
 # Needs results/grids/windCourtyard.vti (./Allrun), results/grids/tankJet.pvd (./Allrun -all;
 # for the streaming table), valgrind, mpirun, /usr/bin/time, OpenFOAM and mujoco_harness.
 # The full run takes about 25 min on 2 cores.
@@ -28,6 +30,7 @@ flops=1
 converter=1
 stream=1
 scaling=1
+series=results/grids/tankJet.pvd
 while [ $# -gt 0 ]; do
   case "$1" in
     --quick) quick=1 ;;
@@ -38,6 +41,7 @@ while [ $# -gt 0 ]; do
     --no-converter) converter=0 ;;
     --no-stream) stream=0 ;;
     --no-scaling) scaling=0 ;;
+    --tank-series) series="$2"; shift ;;
     --build) build="$2"; shift ;;
     --out) out="$2"; shift ;;
     *) echo "run_perf.sh: unknown argument $1" >&2; exit 2 ;;
@@ -49,6 +53,14 @@ for x in lrigid step_bench roofline_bench; do
   [ -x "$bin/$x" ] || { echo "run_perf.sh: $bin/$x missing: build the Release tree first" >&2; exit 1; }
 done
 [ -f results/grids/windCourtyard.vti ] || { echo "run_perf.sh: results/grids/windCourtyard.vti missing (./Allrun)" >&2; exit 1; }
+# what the later parts need, checked before the first half hour is spent
+need() { [ "$1" = 0 ] || [ -e "$2" ] || { echo "run_perf.sh: $2 missing ($3)" >&2; exit 1; }; }
+need $stream "$series" "./Allrun -all, or --tank-series FILE.pvd, or --no-stream"
+need $converter "$bin/foam2grid" "build foam2grid, or --no-converter"
+need $run_peers "$bin/mujoco_harness" "install libmujoco-dev and build, or --no-peers"
+need $run_peers /usr/bin/icoUncoupledKinematicParcelFoam "OpenFOAM (scripts/install-deps), or --no-peers"
+need $scaling "$(command -v mpirun || echo mpirun)" "openmpi-bin, or --no-scaling"
+need 1 /usr/bin/time "the time package (scripts/install-deps)"
 mkdir -p "$out"
 scene=scenes/leaves_wind.json
 
@@ -163,7 +175,7 @@ fi
 if [ $stream = 1 ]; then
   echo "run_perf.sh: streaming on/off (tank series)" >&2
   if [ $quick = 1 ]; then sargs=(--duration 5 --repeat 1); else sargs=(--repeat 2); fi
-  bench/perf/stream_bench.sh "$out/stream" --build "$build" "${sargs[@]}"
+  bench/perf/stream_bench.sh "$out/stream" --build "$build" --series "$series" "${sargs[@]}"
   args+=(--stream "$out/stream/stream.json")
 fi
 if [ $scaling = 1 ]; then
