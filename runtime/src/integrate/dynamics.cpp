@@ -2,6 +2,7 @@
 
 #include "effects/mean_flow.h"
 #include "effects/wrench.h"
+#include "util/small_lu.h"
 
 namespace lrigid {
 
@@ -61,7 +62,7 @@ EvalResult impulse_rates(const Model& model, const BodyType& type, const Kinemat
   Vec6 xi;
   xi << k.v, k.w;
   out->fluid_inertia = type.effects.has(Effect::AddedMass);
-  out->impulse = type.M * xi;
+  out->impulse = type.M_times(xi);
   out->u_fluid = uf;
   out->a_fluid.setZero();
   if (out->fluid_inertia) {
@@ -78,23 +79,24 @@ namespace {
 
 constexpr int kKirchhoffMaxFixedPoint = 10;
 constexpr double kKirchhoffSlowContraction = 0.01;  // squared: contraction factor above 0.1
-constexpr int kKirchhoffMaxNewton = 12;
+constexpr int kKirchhoffMaxNewton = 16;
+constexpr double kKirchhoffRefactor = 0.25;  // contraction per Newton step that keeps J
 constexpr double kKirchhoffTol = 1e-13;  // Newton update / |Y|, energy norm
 
 // One implicit-midpoint step of the free Kirchhoff flow from Y0 (see kirchhoff_flow): false
 // when Newton did not converge. w_mid: the angular velocity at the midpoint.
 bool kirchhoff_midpoint(const BodyType& type, double h, const Vec6& Y0, Vec6* Y1, Vec3* w_mid,
                         int* iterations) {
-  const Mat6& Mi = type.M_inv;
-  const double norm0 = Y0.dot(Mi * Y0);  // twice the relative kinetic energy
+  auto Mi = [&type](const Vec6& y) { return type.M_inv_times(y); };
+  const double norm0 = Y0.dot(Mi(Y0));  // twice the relative kinetic energy
   const double tol2 = kKirchhoffTol * kKirchhoffTol * norm0;
   auto gyro = [&](const Vec6& Ym) {
-    const Vec6 xm = Mi * Ym;
+    const Vec6 xm = Mi(Ym);
     return kirchhoff_gyro(xm.head<3>(), xm.tail<3>(), Ym);
   };
   auto finish = [&](const Vec6& Y) {
     *Y1 = Y;
-    *w_mid = (Mi * (0.5 * (Y0 + Y))).tail<3>();
+    *w_mid = Mi(0.5 * (Y0 + Y)).tail<3>();
     return true;
   };
   // fixed-point iteration first (cheap; contracts by about h |dg/dY| / 2 per iteration, fast
@@ -105,33 +107,46 @@ bool kirchhoff_midpoint(const BodyType& type, double h, const Vec6& Y0, Vec6* Y1
     ++*iterations;
     const Vec6 next = Y0 - h * gyro(0.5 * (Y0 + Y));
     const Vec6 d = next - Y;
-    const double step = d.dot(Mi * d);
+    const double step = d.dot(Mi(d));
     if (!next.allFinite()) break;
     Y = next;
     if (step <= tol2) return finish(Y);
     if (it > 0 && step > kKirchhoffSlowContraction * last) break;
     last = step;
   }
-  if (!Y.allFinite() || (Y - Y0).dot(Mi * (Y - Y0)) > 4 * norm0) Y = Y0;
+  if (!Y.allFinite() || (Y - Y0).dot(Mi(Y - Y0)) > 4 * norm0) Y = Y0;
+  // Newton, simplified: the Jacobian is factored once and kept while the iteration contracts
+  // by at least kKirchhoffRefactor per step; otherwise it is refactored at the current iterate
+  // (a full Newton step)
+  SmallLU<6> lu;
+  bool refactor = true;
+  double last_step = 0;
   for (int it = 0; it < kKirchhoffMaxNewton; ++it) {
     ++*iterations;
     const Vec6 Ym = 0.5 * (Y0 + Y);
-    const Vec6 xm = Mi * Ym;
+    const Vec6 xm = Mi(Ym);
     const Vec3 v = xm.head<3>(), w = xm.tail<3>(), P = Ym.head<3>(), L = Ym.tail<3>();
     const Vec6 r = Y - Y0 + h * kirchhoff_gyro(v, w, Ym);
-    // d(gyro)/dY = [w^ 0; v^ w^] + [0 -P^; -P^ -L^] M^-1
-    Mat6 D = Mat6::Zero(), E = Mat6::Zero();
-    D.block<3, 3>(0, 0) = skew(w);
-    D.block<3, 3>(3, 0) = skew(v);
-    D.block<3, 3>(3, 3) = skew(w);
-    E.block<3, 3>(0, 3) = -skew(P);
-    E.block<3, 3>(3, 0) = -skew(P);
-    E.block<3, 3>(3, 3) = -skew(L);
-    const Mat6 J = Mat6::Identity() + 0.5 * h * (D + E * Mi);
-    const Vec6 d = J.partialPivLu().solve(-r);
+    if (refactor) {
+      // d(gyro)/dY = [w^ 0; v^ w^] + [0 -P^; -P^ -L^] M^-1
+      Mat6 D = Mat6::Zero(), E = Mat6::Zero();
+      D.block<3, 3>(0, 0) = skew(w);
+      D.block<3, 3>(3, 0) = skew(v);
+      D.block<3, 3>(3, 3) = skew(w);
+      E.block<3, 3>(0, 3) = -skew(P);
+      E.block<3, 3>(3, 0) = -skew(P);
+      E.block<3, 3>(3, 3) = -skew(L);
+      const Mat6 EMi = type.M_diagonal ? Mat6(E * type.M_inv_diagonal.asDiagonal())
+                                       : Mat6(E * type.M_inv);
+      if (!lu.factor(Mat6::Identity() + 0.5 * h * (D + EMi))) return false;
+    }
+    const Vec6 d = lu.solve(-r);
     Y += d;
     if (!Y.allFinite()) return false;
-    if (d.dot(Mi * d) <= tol2) return finish(Y);
+    const double step = d.dot(Mi(d));
+    if (step <= tol2) return finish(Y);
+    refactor = it > 0 && step > kKirchhoffRefactor * kKirchhoffRefactor * last_step;
+    last_step = step;
   }
   return false;
 }
@@ -166,14 +181,14 @@ int kirchhoff_flow(const BodyType& type, const Vec3& u_fluid, double h, Quat* q,
   const Vec3 uf_b = q->toRotationMatrix().transpose() * u_fluid;
   Vec6 xi_r;
   xi_r << *v - uf_b, *w;
-  Vec6 Y = type.M * xi_r;
+  Vec6 Y = type.M_times(xi_r);
   int iterations = 0;
   int n = 1;
   while (!kirchhoff_substeps(type, h, n, q, &Y, &iterations) && n < kKirchhoffMaxSubsteps)
     n *= 2;
   // (after the last substep count the state is left unchanged if Newton still failed: the
   // step keeps the start orientation and velocity, which is finite and conserves the energy)
-  xi_r = type.M_inv * Y;
+  xi_r = type.M_inv_times(Y);
   *v = xi_r.head<3>() + q->toRotationMatrix().transpose() * u_fluid;
   *w = xi_r.tail<3>();
   return iterations;
@@ -181,10 +196,10 @@ int kirchhoff_flow(const BodyType& type, const Vec3& u_fluid, double h, Quat* q,
 
 Vec6 velocity_from_impulse(const BodyType& type, const Vec6& impulse, const Vec3& u_fluid_body,
                            bool fluid_inertia) {
-  if (!fluid_inertia) return type.M_inv * impulse;
+  if (!fluid_inertia) return type.M_inv_times(impulse);
   Vec6 uf;
   uf << u_fluid_body, Vec3::Zero();
-  return type.M_inv * (impulse + type.K_fluid * uf);
+  return type.M_inv_times(impulse + type.K_fluid * uf);
 }
 
 EvalResult velocity_derivative(const Model& model, const BodyType& type, const Kinematics& k,
@@ -197,7 +212,7 @@ EvalResult velocity_derivative(const Model& model, const BodyType& type, const K
   Vec6 xi;
   xi << k.v, k.w;
   f -= kirchhoff_gyro(k.v, k.w, type.M_body * xi);
-  *xi_dot = type.M_inv * f;
+  *xi_dot = type.M_inv_times(f);
   return EvalResult::Ok;
 }
 

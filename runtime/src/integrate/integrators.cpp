@@ -7,6 +7,7 @@
 #include "effects/turbulence.h"
 #include "integrate/dynamics.h"
 #include "util/rng.h"
+#include "util/small_lu.h"
 
 namespace lrigid {
 
@@ -72,6 +73,32 @@ Vec6 rotate6(const Mat3& R, const Vec6& a) {
   return r;
 }
 
+// Solves A x = b for the implicit force step's symmetric positive definite 6x6 matrix, as two
+// 3x3 systems when A has no linear-angular coupling (the drag stiffness never couples them, so
+// A is block diagonal whenever M is)
+class ImpulseSolver {
+ public:
+  ImpulseSolver(const Mat6& A, bool block_diagonal) : block_(block_diagonal) {
+    if (block_) {
+      lin_.factor(A.topLeftCorner<3, 3>());
+      ang_.factor(A.bottomRightCorner<3, 3>());
+    } else {
+      full_.factor(A);
+    }
+  }
+  Vec6 solve(const Vec6& b) const {
+    if (!block_) return full_.solve(b);
+    Vec6 x;
+    x << lin_.solve(b.head<3>()), ang_.solve(b.tail<3>());
+    return x;
+  }
+
+ private:
+  bool block_;
+  SmallLU<6> full_;
+  SmallLU<3> lin_, ang_;
+};
+
 // One explicit Euler step in world-frame impulse form (see dynamics.h): forces, Munk moment
 // and rotation from the start of the step (euler). The Basset history's current interval is
 // implicit (a mass on the left-hand side).
@@ -88,7 +115,7 @@ StepOutcome impulse_step(const Model& model, const BodyType& type, double t, Bod
     Mat6 A = type.M;
     A.block<3, 3>(0, 0) += b * Mat3::Identity();
     dPi.head<3>() += b * (k.R.transpose() * (h * r.a_fluid));
-    dPi = type.M * A.ldlt().solve(dPi);
+    dPi = type.M_times(ImpulseSolver(A, type.M_block_diagonal).solve(dPi));
   }
   const Vec6 Pi_world = rotate6(k.R, r.impulse + dPi);
   const Vec3 u_fluid_new = r.u_fluid + h * r.a_fluid;  // world frame
@@ -153,11 +180,12 @@ StepOutcome split_deterministic_step(const Model& model, const BodyType& type, d
   const Vec3 uf_b_new = c.Rt * (uf + h * a_fluid);
   Vec6 xi;
   xi << s->v, s->w;
-  Vec6 Pi = type.M * xi;
+  Vec6 Pi = type.M_times(xi);
   if (fluid_inertia) Pi -= type.K_fluid.leftCols<3>() * uf_b;
   // (M + h J + b P) M^-1 dPi = h G + b h a: drag stiffness J, Basset's current interval b
   const double b = plan.basset && s->history ? type.basset.implicit_mass : 0.0;
   const Vec3 basset_rhs = b * (h * (c.Rt * a_fluid));
+  // the drag stiffness ds is re-evaluated by each drag evaluation below (Newton)
   auto lhs = [&]() {
     Mat6 A = type.M;
     if (drag_term) {
@@ -166,18 +194,18 @@ StepOutcome split_deterministic_step(const Model& model, const BodyType& type, d
       A.block<3, 3>(3, 3) += h * ds.c_ang * Mat3::Identity();
     }
     A.block<3, 3>(0, 0) += b * Mat3::Identity();
-    return A;
+    return ImpulseSolver(A, type.M_block_diagonal);
   };
   Vec6 rhs = h * rate;
   rhs.head<3>() += basset_rhs;
-  Vec6 dPi = type.M * lhs().ldlt().solve(rhs);
+  Vec6 dPi = type.M_times(lhs().solve(rhs));
   Vec6 xi_new = velocity_from_impulse(type, Pi + dPi, uf_b_new, fluid_inertia);
   if (drag_term) {
     Vec6 xi_r;
     xi_r << s->v - uf_b, s->w;
-    const double norm_r = xi_r.dot(type.M * xi_r);
-    const Vec6 dxi = type.M_inv * dPi;
-    if (dxi.dot(type.M * dxi) > kStiffChange * kStiffChange * norm_r) {
+    const double norm_r = xi_r.dot(type.M_times(xi_r));
+    const Vec6 dxi = type.M_inv_times(dPi);
+    if (dxi.dot(type.M_times(dxi)) > kStiffChange * kStiffChange * norm_r) {
       // stiff drag: Newton on R(dPi) = dPi - h (G_other + F_drag(xi(dPi))) - b (h a - dv)
       const Vec6 other = rate - drag;
       EffectContext cd = c;
@@ -185,12 +213,12 @@ StepOutcome split_deterministic_step(const Model& model, const BodyType& type, d
         cd.v_rel = xi_new.head<3>() - uf_b;
         cd.w = xi_new.tail<3>();
         Vec6 res = dPi - h * (other + drag_term(cd));
-        res.head<3>() -= basset_rhs - b * (type.M_inv * dPi).head<3>();
-        const Vec6 d = -(type.M * lhs().ldlt().solve(res));
+        res.head<3>() -= basset_rhs - b * type.M_inv_times(dPi).head<3>();
+        const Vec6 d = -type.M_times(lhs().solve(res));
         dPi += d;
         xi_new = velocity_from_impulse(type, Pi + dPi, uf_b_new, fluid_inertia);
-        const Vec6 dv = type.M_inv * d;
-        if (dv.dot(type.M * dv) <= kDragTol * kDragTol * norm_r) break;
+        const Vec6 dv = type.M_inv_times(d);
+        if (dv.dot(type.M_times(dv)) <= kDragTol * kDragTol * norm_r) break;
       }
     }
   }

@@ -318,6 +318,8 @@ BodyType make_body_type(const Scene& scene, const BodySpec& b, const Shape& shap
   t.M_inv = ldlt.solve(Mat6::Identity());
   t.M_block_diagonal =
       t.M.topRightCorner<3, 3>().isZero(0.0) && t.M.bottomLeftCorner<3, 3>().isZero(0.0);
+  t.M_diagonal = Mat6(t.M.diagonal().asDiagonal()) == t.M;
+  if (t.M_diagonal) t.M_inv_diagonal = t.M.diagonal().cwiseInverse();
   if (t.effects.has(Effect::Basset)) {
     const double coef = 6.0 * t.r_eq * t.r_eq * scene.fluid_density *
                         std::sqrt(M_PI * scene.kinematic_viscosity);

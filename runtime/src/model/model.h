@@ -58,6 +58,17 @@ struct BodyType {
   // M has no linear-angular coupling (centre of mass at the centroid of a symmetric shape): the
   // implicit impulse step then solves two 3x3 systems instead of one 6x6
   bool M_block_diagonal = false;
+  // M is diagonal (boxes, ellipsoids, spheres with the centre of mass at the centroid): M^-1 is
+  // applied as the element-wise product with M_inv_diagonal
+  bool M_diagonal = false;
+  Vec6 M_inv_diagonal = Vec6::Zero();
+  // M^-1 y and M y, element-wise when M is diagonal
+  Vec6 M_inv_times(const Vec6& y) const {
+    return M_diagonal ? Vec6(M_inv_diagonal.cwiseProduct(y)) : Vec6(M_inv * y);
+  }
+  Vec6 M_times(const Vec6& y) const {
+    return M_diagonal ? Vec6(M.diagonal().cwiseProduct(y)) : Vec6(M * y);
+  }
   std::string added_mass_method;  // "analytic", "bem" or "" (not computed)
   int added_mass_panels = 0;
   // drag: the body's equivalent ellipsoid (semi-axes ell) gives its projected areas

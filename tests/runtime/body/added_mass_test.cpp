@@ -104,6 +104,22 @@ TEST(AddedMassAnalytic, TriaxialIsSymmetricPositiveAndScalesWithDensity) {
   EXPECT_EQ(added_mass(s, 0.0).tensor, Mat6::Zero());
 }
 
+TEST(AddedMassBox, IsTheDiagonalOfThePanelSolution) {
+  // a box's three mirror planes make its tensor diagonal: added_mass keeps the panel method's
+  // diagonal and drops its off-diagonal round-off, which must be negligible against it
+  const Shape s = Shape::box(0.148, 0.105, 0.0001);  // a sheet of paper, 1000:1
+  const AddedMass am = added_mass(s, 1.2, 200), bem = added_mass_bem(s, 1.2, 200);
+  EXPECT_EQ(am.method, "bem");
+  EXPECT_EQ(am.tensor, Mat6(am.tensor.diagonal().asDiagonal()));
+  EXPECT_EQ(am.tensor.diagonal(), bem.tensor.diagonal());
+  for (int i = 0; i < 6; ++i)
+    for (int j = 0; j < 6; ++j) {
+      if (i == j) continue;
+      EXPECT_LE(std::abs(bem.tensor(i, j)), 1e-6 * std::sqrt(bem.tensor(i, i) * bem.tensor(j, j)))
+          << i << "," << j;
+    }
+}
+
 TEST(AddedMass, RejectsBadArguments) {
   EXPECT_THROW(added_mass(Shape::sphere(1), -1.0), Error);
   EXPECT_THROW(added_mass(Shape::sphere(1), NAN), Error);
