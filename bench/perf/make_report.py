@@ -273,39 +273,13 @@ def main():
             w(txt)
         w("")
 
-    # what each change bought (measured once, by hand, with the callgrind command above)
-    w("## What each optimisation bought")
-    w("")
-    w("Instructions per body-step in `step_body`, splitting, wind scene, all effects, N = 1000 "
-      "(callgrind as above; measured before and after on this branch):")
-    w("")
-    w("| state of the step | instructions / body-step |")
-    w("|---|---|")
-    w("| before (main 560699e): euler 10 883, rk4 19 000 | splitting 12 853 |")
-    w("| + branch-free trilinear sample, per-thread last-sample cache (splitting samples the "
-      "grid 2 instead of 4 times per step; steady fields), two 3x3 solves where M has no "
-      "linear-angular coupling, library-free polynomial Box-Muller | 9 108 (-29 %) |")
-    w("")
-    w("Where the splitting step's instructions go now (callgrind self cost): the grid sample "
-      "~17 %, the Basset history update ~14 %, the 12 normals per step ~12 %, the impulse step "
-      "and its 6x6 LDLT for the box-shaped bodies (their BEM added mass couples translation and "
-      "rotation at round-off level, so the block-diagonal path does not apply) ~19 %, the effect "
-      "terms (called through function pointers) ~10 %.")
-    w("")
-    w("### Left (not done in this session)")
-    w("")
-    w("- A batched structure-of-arrays kernel across bodies: the step is still one body at a time "
-      "through Eigen fixed-size types, scalar SSE2 code; this is the change that could give the "
-      "factor 4-8 the targets need (AVX2/AVX-512 are on this CPU; the build uses the baseline "
-      "ISA).")
-    w("- The effect plan is still a list of function pointers per body type (no allocation in "
-      "the loop, but no compile-time specialisation).")
-    w("- Basset history: a ring buffer and fused mode/cache loops would halve its cost.")
-    w("- A float build (Real type) and its accuracy cost: not started.")
-    w("- Treating round-off coupling in M (BEM boxes) as zero would take the 3x3 path for "
-      "them too; not done because it changes the physics at the 1e-16 level and needs the "
-      "stability helper's agreement.")
-    w("")
+    # what each change bought: hand-written next to this script (measured by hand with the
+    # callgrind command above), copied as it is
+    hist = os.path.join(os.path.dirname(os.path.abspath(__file__)), "optimisations.md")
+    if os.path.exists(hist):
+        for line in open(hist).read().rstrip("\n").split("\n"):
+            w(line)
+        w("")
 
     # peers and targets
     w("## Peers and targets")
