@@ -101,7 +101,7 @@ bool kirchhoff_midpoint(const BodyType& type, double h, const Vec6& Y0, Vec6* Y1
   };
   // fixed-point iteration first (cheap; contracts by about h |dg/dY| / 2 per iteration, fast
   // for most bodies); Newton from where it stopped when it contracts slowly or diverges
-  Vec6 Y = Y0 - h * gyro(Y0);
+  Vec6 Y = Y0 - h * gyro(Y0 - 0.5 * h * gyro(Y0));  // explicit midpoint: error O(h^3)
   double last = 0;
   for (int it = 0; it < kKirchhoffMaxFixedPoint; ++it) {
     ++*iterations;
