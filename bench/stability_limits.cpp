@@ -178,14 +178,16 @@ int main(int argc, char** argv) {
                                0.2 / lambda, 10 / lambda);
       const double theory = sch == Integrator::Euler ? 2.0 : 2.785;
       char row[400];
-      std::snprintf(row, sizeof row, "| %s, u_T = %.4g m/s | lambda = %.4g | %s | %.4g | %.4f | %.3f |\n",
-                    c.name, uT, lambda, integrator_name(sch), dt, lambda * dt, theory);
+      std::snprintf(row, sizeof row,
+                    "| %s, u_T = %.4g m/s | lambda = %.4g | %s | %.4g | %.4f | %.3f |\n", c.name,
+                    uT, lambda, integrator_name(sch), dt, lambda * dt, theory);
       t << row;
       std::fprintf(stderr, "%s", row);
     }
     const double big = 100 / lambda;
     char row[400];
-    std::snprintf(row, sizeof row, "| %s | lambda = %.4g | splitting | stable at %.4g (%.0f/lambda) | - | none |\n",
+    std::snprintf(row, sizeof row,
+                  "| %s | lambda = %.4g | splitting | stable at %.4g (%.0f/lambda) | - | none |\n",
                   c.name, lambda, big, big * lambda);
     if (drag_stable(c, Integrator::Splitting, big, uT)) t << row;
     else t << "| " << c.name << " | | splitting | **unstable at " << big << "** | | none |\n";
@@ -196,9 +198,10 @@ int main(int argc, char** argv) {
     const double dt = bisect([&](double h) { return ou_stable(sch, h, &alpha); },
                              0.2 / alpha, 10 / alpha);
     char row[400];
-    std::snprintf(row, sizeof row,
-                  "| seen turbulence, k = 1, eps = 1000 (water) | alpha = %.4g | %s | %.4g | %.4f | 2 |\n",
-                  alpha, integrator_name(sch), dt, alpha * dt);
+    std::snprintf(
+        row, sizeof row,
+        "| seen turbulence, k = 1, eps = 1000 (water) | alpha = %.4g | %s | %.4g | %.4f | 2 |\n",
+        alpha, integrator_name(sch), dt, alpha * dt);
     t << row;
     std::fprintf(stderr, "%s", row);
   }
@@ -206,7 +209,8 @@ int main(int argc, char** argv) {
     const double big = 100 / alpha;
     const bool ok = ou_stable(Integrator::Splitting, big, &alpha);
     t << "| seen turbulence, k = 1, eps = 1000 (water) | | splitting | "
-      << (ok ? "stable at " : "**unstable at ") << big << (ok ? "" : "**") << " (100/alpha) | - | none |\n";
+      << (ok ? "stable at " : "**unstable at ") << big << (ok ? "" : "**")
+      << " (100/alpha) | - | none |\n";
   }
   std::cout << t.str();
   if (argc > 1) {

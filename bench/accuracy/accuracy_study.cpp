@@ -130,16 +130,22 @@ const std::vector<NamedMetric> kStochMetrics = {
     {"weak_var", weak_variance_error},  {"landing_mean", landing_mean_error},
     {"landing_var", landing_variance_error}};
 
+// a run of `scheme` at time step dt (s), with or without the turbulence model
+RunSpec make_spec(Integrator scheme, double dt, bool turbulence, int threads) {
+  RunSpec s;
+  s.integrator = scheme;
+  s.dt = dt;
+  s.turbulence = turbulence;
+  s.threads = threads;
+  return s;
+}
+
 // integrator x dt, turbulence off, against rk4 at h (checked against rk4 at 2h)
 void sweep_deterministic(const Case& c, const Scene& base, const FluidField& field, int threads,
                          const std::vector<std::string>& schemes) {
   Scene scene = base;
   scale_bodies(&scene, c.bodies_det);
-  RunSpec ref_spec;
-  ref_spec.integrator = Integrator::RK4;
-  ref_spec.turbulence = false;
-  ref_spec.threads = threads;
-  ref_spec.dt = c.h;
+  const RunSpec ref_spec = make_spec(Integrator::RK4, c.h, false, threads);
   log(c.name + ": deterministic reference (rk4, dt " + std::to_string(ref_spec.dt) + " s)");
   const RunResult ref = run(scene, field, ref_spec, c.every);
   RunSpec chk_spec = ref_spec;
@@ -168,10 +174,7 @@ void sweep_stochastic(const Case& c, const Scene& base, const FluidField& field,
                       const std::vector<std::string>& schemes) {
   Scene scene = base;
   scale_bodies(&scene, c.bodies_stoch);
-  RunSpec ref_spec;
-  ref_spec.integrator = Integrator::Splitting;
-  ref_spec.threads = threads;
-  ref_spec.dt = c.h;
+  RunSpec ref_spec = make_spec(Integrator::Splitting, c.h, true, threads);
   ref_spec.substeps = 1;
   log(c.name + ": stochastic reference (splitting, dt " + std::to_string(c.h) + " s)");
   const RunResult ref = run(scene, field, ref_spec, c.every);
@@ -207,11 +210,7 @@ void sweep_effects(const Case& c, const Scene& base, const FluidField& field, in
   for (bool turbulence : {false, true}) {
     Scene scene = base;
     scale_bodies(&scene, turbulence ? c.bodies_stoch : c.bodies_det);
-    RunSpec s;
-    s.integrator = base.integrator;
-    s.dt = base.dt;
-    s.turbulence = turbulence;
-    s.threads = threads;
+    RunSpec s = make_spec(base.integrator, base.dt, turbulence, threads);
     s.effects = EffectMode::Full;
     const RunResult full = run(scene, field, s, c.every);
     for (EffectMode mode : {EffectMode::Full, EffectMode::Auto, EffectMode::Minimal}) {
@@ -242,11 +241,7 @@ void sweep_grids(const Case& c, const Scene& base, const std::vector<std::string
   for (bool turbulence : {false, true}) {
     Scene scene = base;
     scale_bodies(&scene, turbulence ? c.bodies_stoch : c.bodies_det);
-    RunSpec s;
-    s.integrator = base.integrator;
-    s.dt = base.dt;
-    s.turbulence = turbulence;
-    s.threads = threads;
+    RunSpec s = make_spec(base.integrator, base.dt, turbulence, threads);
     const RunResult fine = run(scene, fields.back(), s, c.every);
     for (size_t g = 0; g + 1 < grids.size(); ++g) {
       const RunResult r = run(scene, fields[g], s, c.every);

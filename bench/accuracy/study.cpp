@@ -8,6 +8,7 @@
 #include "io/added_mass_cache.h"
 #include "io/grid_reader.h"
 #include "util/error.h"
+#include "util/log_slope.h"
 
 namespace lrigid::accuracy {
 
@@ -264,17 +265,7 @@ Metric landing_variance_error(const RunResult& a, const RunResult& ref) {
 }
 
 double fit_slope(const std::vector<double>& dt, const std::vector<double>& err) {
-  const size_t n = dt.size();
-  if (n < 2) return std::nan("");
-  double sx = 0, sy = 0, sxx = 0, sxy = 0;
-  for (size_t i = 0; i < n; ++i) {
-    const double x = std::log(dt[i]), y = std::log(err[i]);
-    sx += x;
-    sy += y;
-    sxx += x * x;
-    sxy += x * y;
-  }
-  return (n * sxy - sx * sy) / (n * sxx - sx * sx);
+  return log_log_slope(dt, err);
 }
 
 }  // namespace lrigid::accuracy

@@ -84,7 +84,8 @@ void require_display() {
     if (dpy) close(dpy);
   }
   dlclose(x11);
-  if (!ok) throw Error(ExitCode::Runtime, std::string("cannot open X display \"") + d + "\". " + hint);
+  if (!ok)
+    throw Error(ExitCode::Runtime, std::string("cannot open X display \"") + d + "\". " + hint);
 }
 
 void type_colour(size_t i, unsigned char rgb[3]) {
@@ -225,7 +226,8 @@ class Renderer {
       throw Error(ExitCode::Output, where(png, "", "cannot write the image"));
     }
     fs::rename(tmp, png, ec);
-    if (ec) throw Error(ExitCode::Output, where(png, "", "cannot move into place: " + ec.message()));
+    if (ec)
+      throw Error(ExitCode::Output, where(png, "", "cannot move into place: " + ec.message()));
   }
 
  private:
@@ -235,8 +237,9 @@ class Renderer {
     std::string mode = args_.context;
     if (mode == "auto") mode = has_field ? "k" : "ground";
     if ((mode == "k" || mode == "streamlines") && !has_field)
-      throw Error(ExitCode::Usage, where((fs::path(args_.dir) / "summary.json").string(), "field",
-                                         "--context " + mode + " needs a grid run (uniform flow has none)"));
+      throw Error(ExitCode::Usage,
+                  where((fs::path(args_.dir) / "summary.json").string(), "field",
+                        "--context " + mode + " needs a grid run (uniform flow has none)"));
     if (mode == "k" || mode == "streamlines") {
       const std::string vti = first_vti(s["field"].get<std::string>());
       if (!fs::exists(vti)) fail_input(vti, "", "grid file not found (summary.json \"field\")");
@@ -273,8 +276,9 @@ class Renderer {
       box_.add(Vec3(box_.lo.x() - m, box_.lo.y() - m, z));
       box_.add(Vec3(box_.hi.x() + m, box_.hi.y() + m, z));
     } else if (mode != "ground" && mode != "none") {
-      throw Error(ExitCode::Usage, "--context must be auto, k, streamlines, ground or none, got \"" +
-                                       args_.context + "\"");
+      throw Error(
+          ExitCode::Usage,
+          "--context must be auto, k, streamlines, ground or none, got \"" + args_.context + "\"");
     }
   }
 
@@ -445,7 +449,8 @@ void render(RenderArgs a) {
       throw Error(ExitCode::Output, where(a.gif, "", "ImageMagick could not assemble the GIF"));
     }
     fs::rename(tmp_gif, a.gif, ec);
-    if (ec) throw Error(ExitCode::Output, where(a.gif, "", "cannot move into place: " + ec.message()));
+    if (ec)
+      throw Error(ExitCode::Output, where(a.gif, "", "cannot move into place: " + ec.message()));
     if (!a.quiet) std::fprintf(stderr, "lrigid: wrote %s (%d frames)\n", a.gif.c_str(), n);
   }
 }

@@ -70,12 +70,15 @@ FluidField load_field(const Scene& scene, const std::string& stream, bool quiet)
     std::cerr << "lrigid: warning: " << scene.file << ": fluid.kinematic_viscosity = "
               << scene.kinematic_viscosity << " m^2/s differs from the grid's "
               << g.kinematic_viscosity << " m^2/s (" << scene.field_path << ")\n";
-  const double all_bytes = double(g.times.size()) * double(g.geometry.points()) * sizeof(GridRecord);
-  const bool streamed = g.times.size() > 2 &&
-                        (stream == "on" || (stream == "auto" && all_bytes > 0.5 * physical_memory()));
+  const double all_bytes =
+      double(g.times.size()) * double(g.geometry.points()) * sizeof(GridRecord);
+  const bool streamed =
+      g.times.size() > 2 &&
+      (stream == "on" || (stream == "auto" && all_bytes > 0.5 * physical_memory()));
   if (streamed) {
     if (!quiet)
-      std::fprintf(stderr, "lrigid: streaming %s: %zu frames of %.3g MB, 2 or 3 in memory at once\n",
+      std::fprintf(stderr,
+                   "lrigid: streaming %s: %zu frames of %.3g MB, 2 or 3 in memory at once\n",
                    scene.field_path.c_str(), g.times.size(), all_bytes / g.times.size() / 1e6);
     return FluidField::streamed(g.geometry, g.times, [series](size_t i) { return series->load(i); },
                                 scene.kinematic_viscosity, scene.drift, scene.time_mode);
@@ -94,8 +97,9 @@ void check_memory(const Scene& scene) {
   const double have = physical_memory();
   if (need > 0.8 * have) {
     char buf[200];
-    std::snprintf(buf, sizeof buf, "%zu bodies need about %.1f GiB of memory; this machine has %.1f GiB",
-                  n, need / (1 << 30), have / (1 << 30));
+    std::snprintf(buf, sizeof buf,
+                  "%zu bodies need about %.1f GiB of memory; this machine has %.1f GiB", n,
+                  need / (1 << 30), have / (1 << 30));
     throw Error(ExitCode::Resource, where(scene.file, "bodies", buf));
   }
 }
@@ -161,9 +165,10 @@ void run(const RunArgs& a, const Ranks& ranks) {
     std::fprintf(stderr,
                  "lrigid: %zu bodies, %llu body-steps in %.3f s (%.3g body-steps/s); landed %zu, "
                  "exited %zu, failed %zu\nlrigid: results in %s\n",
-                 state.size(), static_cast<unsigned long long>(stats.body_steps), stats.wall_seconds,
-                 stats.wall_seconds > 0 ? stats.body_steps / stats.wall_seconds : 0.0,
-                 stats.landed, stats.exited, stats.failed, writer->dir().c_str());
+                 state.size(), static_cast<unsigned long long>(stats.body_steps),
+                 stats.wall_seconds,
+                 stats.wall_seconds > 0 ? stats.body_steps / stats.wall_seconds : 0.0, stats.landed,
+                 stats.exited, stats.failed, writer->dir().c_str());
   }
 }
 

@@ -15,6 +15,7 @@
 
 #include "integrate/simulation.h"
 #include "support/fixture.h"
+#include "util/log_slope.h"
 
 namespace lrigid {
 namespace {
@@ -47,19 +48,6 @@ double rms_diff(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
   return std::sqrt(s / double(a.size()));
 }
 
-double slope(const std::vector<double>& dt, const std::vector<double>& err) {
-  double sx = 0, sy = 0, sxx = 0, sxy = 0;
-  const double n = double(dt.size());
-  for (size_t i = 0; i < dt.size(); ++i) {
-    const double x = std::log(dt[i]), y = std::log(err[i]);
-    sx += x;
-    sy += y;
-    sxx += x * x;
-    sxy += x * y;
-  }
-  return (n * sxy - sx * sy) / (n * sxx - sx * sx);
-}
-
 // deterministic order: errors of the final positions against rk4 at dt_ref
 double deterministic_slope(const Scene& s, Integrator integ, const std::vector<double>& dts,
                            double dt_ref, const char* label) {
@@ -69,7 +57,7 @@ double deterministic_slope(const Scene& s, Integrator integ, const std::vector<d
     err.push_back(rms_diff(run(s, integ, dt, 1).x, ref.x));
     std::printf("%s %s dt %.3g s: error %.3e m\n", label, integrator_name(integ), dt, err.back());
   }
-  const double p = slope(dts, err);
+  const double p = log_log_slope(dts, err);
   std::printf("%s %s: slope %.2f\n", label, integrator_name(integ), p);
   return p;
 }
@@ -160,7 +148,7 @@ StochasticOrders stochastic_slopes(Integrator integ) {
     std::printf("ou %s dt %.3g s: strong %.3e m, weak (variance) %.3e m^2 of %.3e\n",
                 integrator_name(integ), r * h, strong.back(), weak.back(), var_ref);
   }
-  StochasticOrders o{slope(dts, strong), slope(dts, weak)};
+  StochasticOrders o{log_log_slope(dts, strong), log_log_slope(dts, weak)};
   std::printf("ou %s: strong slope %.2f, weak slope %.2f\n", integrator_name(integ), o.strong,
               o.weak);
   return o;

@@ -172,7 +172,8 @@ TEST_F(Cli, MissingSceneFile) {
 
 TEST_F(Cli, MalformedJsonGivesLineAndColumn) {
   // line 8 is "gravity": [0, 0, -9.81] with the comma after it removed
-  const std::string s = replace(base_scene(), "\"gravity\": [0, 0, -9.81],", "\"gravity\": [0, 0, -9.81]");
+  const std::string s =
+      replace(base_scene(), "\"gravity\": [0, 0, -9.81],", "\"gravity\": [0, 0, -9.81]");
   expect_error(run_scene(s), 3, {"scene.json", "line 9", "column"});
 }
 
@@ -241,7 +242,8 @@ TEST_F(Cli, NonPositiveSizesDensitiesStepsAndDurations) {
 // ---- grids ----
 
 // A 2x2x2 ASCII .vti; `k` and `eps` are the 8 values of each, as text.
-std::string vti(const std::string& k, const std::string& eps, const std::string& extent = "0 1 0 1 0 1") {
+std::string vti(const std::string& k, const std::string& eps,
+                const std::string& extent = "0 1 0 1 0 1") {
   std::ostringstream s;
   s << R"(<?xml version="1.0"?>
 <VTKFile type="ImageData" version="1.0" byte_order="LittleEndian" header_type="UInt64">
@@ -279,7 +281,8 @@ std::string grid_scene(const std::string& file) {
 
 TEST_F(Cli, GoodAsciiGridRuns) {
   // the hand-written grid is valid, so the cases below fail for the defect they add
-  put(dir_ / "g.vti", vti("0.1 0.1 0.1 0.1 0.1 0.1 0.1 0.1", "0.05 0.05 0.05 0.05 0.05 0.05 0.05 0.05"));
+  put(dir_ / "g.vti",
+      vti("0.1 0.1 0.1 0.1 0.1 0.1 0.1 0.1", "0.05 0.05 0.05 0.05 0.05 0.05 0.05 0.05"));
   const Result r = run_scene(grid_scene("g.vti"));
   EXPECT_EQ(r.code, 0) << r.err;
   EXPECT_TRUE(fs::exists(dir_ / "out" / "summary.json"));
@@ -299,17 +302,20 @@ TEST_F(Cli, UnreadableGrid) {
 }
 
 TEST_F(Cli, GridWithNaN) {
-  put(dir_ / "nan.vti", vti("0.1 0.1 nan 0.1 0.1 0.1 0.1 0.1", "0.05 0.05 0.05 0.05 0.05 0.05 0.05 0.05"));
+  put(dir_ / "nan.vti",
+      vti("0.1 0.1 nan 0.1 0.1 0.1 0.1 0.1", "0.05 0.05 0.05 0.05 0.05 0.05 0.05 0.05"));
   expect_error(run_scene(grid_scene("nan.vti")), 3, {"nan.vti"});
 }
 
 TEST_F(Cli, GridWithNegativeK) {
-  put(dir_ / "negk.vti", vti("0.1 0.1 -0.5 0.1 0.1 0.1 0.1 0.1", "0.05 0.05 0.05 0.05 0.05 0.05 0.05 0.05"));
+  put(dir_ / "negk.vti",
+      vti("0.1 0.1 -0.5 0.1 0.1 0.1 0.1 0.1", "0.05 0.05 0.05 0.05 0.05 0.05 0.05 0.05"));
   expect_error(run_scene(grid_scene("negk.vti")), 3, {"negk.vti", "k", "-0.5", "point 2"});
 }
 
 TEST_F(Cli, GridWithNegativeEpsilon) {
-  put(dir_ / "nege.vti", vti("0.1 0.1 0.1 0.1 0.1 0.1 0.1 0.1", "0.05 0.05 0.05 0.05 -7 0.05 0.05 0.05"));
+  put(dir_ / "nege.vti",
+      vti("0.1 0.1 0.1 0.1 0.1 0.1 0.1 0.1", "0.05 0.05 0.05 0.05 -7 0.05 0.05 0.05"));
   expect_error(run_scene(grid_scene("nege.vti")), 3, {"nege.vti", "epsilon", "-7", "point 4"});
 }
 
@@ -345,7 +351,8 @@ TEST_F(Cli, OpenInvertedAndZeroVolumeMeshes) {
   fs::copy_file(data + "inverted.obj", dir_ / "inverted.obj");
   fs::copy_file(data + "tetra.obj", dir_ / "tetra.obj");
   // a tetrahedron squashed flat: closed and consistently oriented, zero volume
-  put(dir_ / "flat.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0.2 0.2 0\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\n");
+  put(dir_ / "flat.obj",
+      "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0.2 0.2 0\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\n");
   put(dir_ / "garbage.stl", "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 zz\n");
   expect_error(run_scene(mesh_scene("open.obj")), 3, {"open.obj", "bodies[0].shape"});
   expect_error(run_scene(mesh_scene("inverted.obj")), 3, {"inverted.obj", "bodies[0].shape"});

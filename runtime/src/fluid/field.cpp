@@ -13,7 +13,8 @@ std::atomic<uint64_t> next_field_id{1};
 }  // namespace
 
 Vec3 GridGeometry::upper() const {
-  return origin + Vec3(spacing.x() * (n[0] - 1), spacing.y() * (n[1] - 1), spacing.z() * (n[2] - 1));
+  return origin +
+         Vec3(spacing.x() * (n[0] - 1), spacing.y() * (n[1] - 1), spacing.z() * (n[2] - 1));
 }
 
 FluidField FluidField::uniform(const Vec3& U, double k, double epsilon, double nu, Drift drift,

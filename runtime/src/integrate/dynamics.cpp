@@ -101,7 +101,7 @@ bool kirchhoff_midpoint(const BodyType& type, double h, const Vec6& Y0, Vec6* Y1
   };
   // fixed-point iteration first (cheap; contracts by about h |dg/dY| / 2 per iteration, fast
   // for most bodies); Newton from where it stopped when it contracts slowly or diverges
-  Vec6 Y = Y0 - h * gyro(Y0);
+  Vec6 Y = Y0 - h * gyro(Y0 - 0.5 * h * gyro(Y0));  // explicit midpoint: error O(h^3)
   double last = 0;
   for (int it = 0; it < kKirchhoffMaxFixedPoint; ++it) {
     ++*iterations;
@@ -183,9 +183,19 @@ int kirchhoff_flow(const BodyType& type, const Vec3& u_fluid, double h, Quat* q,
   xi_r << *v - uf_b, *w;
   Vec6 Y = type.M_times(xi_r);
   int iterations = 0;
-  int n = 1;
-  while (!kirchhoff_substeps(type, h, n, q, &Y, &iterations) && n < kKirchhoffMaxSubsteps)
-    n *= 2;
+  if (type.M_isotropic) {
+    // M = diag(m, m, m, J, J, J) (spheres): v x P = 0 and w x L = 0, so L and w are constant
+    // and the midpoint equation is linear, P1 = (I + a^)^-1 (I - a^) P0 with a = h w / 2,
+    // solved in closed form (the Cayley transform)
+    const Vec3 a = 0.5 * h * Vec3(type.M_inv_diagonal.tail<3>().cwiseProduct(Y.tail<3>()));
+    const Vec3 P = Y.head<3>(), aP = a.cross(P);
+    Y.head<3>() = P + (2.0 / (1.0 + a.squaredNorm())) * (a.cross(aP) - aP);
+    *q = rotate_cayley(*q, 2.0 * a);
+  } else {
+    int n = 1;
+    while (!kirchhoff_substeps(type, h, n, q, &Y, &iterations) && n < kKirchhoffMaxSubsteps)
+      n *= 2;
+  }
   // (after the last substep count the state is left unchanged if Newton still failed: the
   // step keeps the start orientation and velocity, which is finite and conserves the energy)
   xi_r = type.M_inv_times(Y);

@@ -105,7 +105,8 @@ void context_from_sample(const Model& model, const BodyType& type, const Kinemat
 // midpoint rule keeps every quadratic invariant, so the relative kinetic energy 1/2 Y^T M^-1 Y,
 // |P|^2 and P.L are conserved to the solver tolerance, and the Cayley rotation makes the
 // world-frame impulse R P exactly constant. Substeps (up to kKirchhoffMaxSubsteps) when Newton
-// does not converge. Returns the number of Newton iterations (cost accounting).
+// does not converge. Returns the number of Newton iterations (cost accounting). For an isotropic
+// M (spheres) the midpoint equation is linear and solved in closed form (no iteration).
 constexpr int kKirchhoffMaxSubsteps = 64;
 int kirchhoff_flow(const BodyType& type, const Vec3& u_fluid, double h, Quat* q, Vec3* v,
                    Vec3* w);

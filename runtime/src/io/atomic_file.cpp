@@ -26,7 +26,8 @@ void write_file_atomically(const std::string& path,
     }
     std::error_code ec;
     fs::rename(tmp, path, ec);
-    if (ec) throw Error(ExitCode::Output, where(path, "", "cannot move into place: " + ec.message()));
+    if (ec)
+      throw Error(ExitCode::Output, where(path, "", "cannot move into place: " + ec.message()));
   } catch (...) {
     std::error_code ignore;
     fs::remove(tmp, ignore);

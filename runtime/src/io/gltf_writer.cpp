@@ -65,7 +65,8 @@ void write_gltf(const std::string& path, const GltfAnimation& a) {
   m.asset.version = "2.0";
   m.asset.generator = "lrigid " LRIGID_VERSION;
   std::vector<unsigned char> buf;
-  constexpr int kArray = TINYGLTF_TARGET_ARRAY_BUFFER, kIndex = TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER;
+  constexpr int kArray = TINYGLTF_TARGET_ARRAY_BUFFER,
+                kIndex = TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER;
   constexpr int kFloat = TINYGLTF_COMPONENT_TYPE_FLOAT;
 
   // meshes, one per body type

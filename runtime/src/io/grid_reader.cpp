@@ -32,7 +32,8 @@ void read_vti(const std::string& path, GridGeometry* geom, RawGridFrame* frame, 
   std::error_code ec;  // the non-throwing overload: an over-long or odd name is a bad input too
   if (!fs::is_regular_file(path, ec)) fail_input(path, "", "grid file not found");
   vtkNew<vtkXMLImageDataReader> reader;
-  if (!reader->CanReadFile(path.c_str())) fail_input(path, "", "not a VTK XML ImageData (.vti) file");
+  if (!reader->CanReadFile(path.c_str()))
+    fail_input(path, "", "not a VTK XML ImageData (.vti) file");
   reader->SetFileName(path.c_str());
   reader->Update();
   vtkImageData* img = reader->GetOutput();
@@ -90,7 +91,8 @@ void read_vti(const std::string& path, GridGeometry* geom, RawGridFrame* frame, 
     if (!std::isfinite(kk)) fail_input(path, "k", "non-finite value at point " + std::to_string(p));
     if (!std::isfinite(ee))
       fail_input(path, "epsilon", "non-finite value at point " + std::to_string(p));
-    if (ok && kk < 0) fail_input(path, "k", "negative value " + fmt(kk) + " at point " + std::to_string(p));
+    if (ok && kk < 0)
+      fail_input(path, "k", "negative value " + fmt(kk) + " at point " + std::to_string(p));
     if (ok && ee < 0)
       fail_input(path, "epsilon", "negative value " + fmt(ee) + " at point " + std::to_string(p));
     for (int a = 0; a < 3; ++a) frame->U[3 * p + a] = float(u[a]);
@@ -128,7 +130,8 @@ std::vector<std::pair<double, std::string>> series_entries(const std::string& pa
   const std::regex ts("timestep\\s*=\\s*\"([^\"]*)\"");
   const std::regex file("file\\s*=\\s*\"([^\"]*)\"");
   std::vector<std::pair<double, std::string>> entries;
-  for (auto it = std::sregex_iterator(text.begin(), text.end(), dataset); it != std::sregex_iterator(); ++it) {
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), dataset);
+       it != std::sregex_iterator(); ++it) {
     const std::string attrs = (*it)[1];
     std::smatch mt, mf;
     if (!std::regex_search(attrs, mf, file)) fail_input(path, "DataSet", "entry without file=");
@@ -147,7 +150,8 @@ std::vector<std::pair<double, std::string>> series_entries(const std::string& pa
                    [](const auto& a, const auto& b) { return a.first < b.first; });
   for (size_t i = 1; i < entries.size(); ++i)
     if (!(entries[i].first > entries[i - 1].first))
-      fail_input(path, "DataSet.timestep", "times must be distinct, " + fmt(entries[i].first) + " repeats");
+      fail_input(path, "DataSet.timestep",
+                 "times must be distinct, " + fmt(entries[i].first) + " repeats");
   return entries;
 }
 

@@ -85,7 +85,8 @@ void move_dir(const std::string& tmp, const fs::path& final_dir) {
   fs::remove_all(final_dir, ec);
   fs::rename(tmp, final_dir, ec);
   if (ec)
-    throw Error(ExitCode::Output, where(final_dir.string(), "", "cannot move into place: " + ec.message()));
+    throw Error(ExitCode::Output,
+                where(final_dir.string(), "", "cannot move into place: " + ec.message()));
 }
 
 void write_pvd(const fs::path& path, const char* stem,
@@ -161,7 +162,8 @@ void ResultWriter::write_frame(const State& st) {
                    st.x[i].z(), q.w(), q.x(), q.y(), q.z(), v.x(), v.y(), v.z(), w.x(), w.y(),
                    w.z());
     }
-    if (std::ferror(csv_)) throw Error(ExitCode::Output, where(csv_tmp_, "", "write failed (disk full?)"));
+    if (std::ferror(csv_))
+      throw Error(ExitCode::Output, where(csv_tmp_, "", "write failed (disk full?)"));
   }
   if (spec_.pvd) {
     const size_t i = frames_.size();
@@ -264,9 +266,10 @@ void ResultWriter::write_vtp(const State& st, const std::string& path) const {
   vtkNew<vtkPolyData> poly;
   poly->SetPoints(pts);
   poly->SetVerts(verts);
-  for (vtkDataArray* a : {static_cast<vtkDataArray*>(orient.Get()), static_cast<vtkDataArray*>(vel.Get()),
-                          static_cast<vtkDataArray*>(angvel.Get()), static_cast<vtkDataArray*>(id.Get()),
-                          static_cast<vtkDataArray*>(type.Get()), static_cast<vtkDataArray*>(status.Get())})
+  for (vtkDataArray* a :
+       {static_cast<vtkDataArray*>(orient.Get()), static_cast<vtkDataArray*>(vel.Get()),
+        static_cast<vtkDataArray*>(angvel.Get()), static_cast<vtkDataArray*>(id.Get()),
+        static_cast<vtkDataArray*>(type.Get()), static_cast<vtkDataArray*>(status.Get())})
     poly->GetPointData()->AddArray(a);
   write_polydata(poly, path);
 }
@@ -297,7 +300,8 @@ void ResultWriter::finish(const State& st, const RunStats& stats, const nlohmann
     move_dir(shapes_tmp_dir_, fs::path(dir_) / "shapes");
     shapes_tmp_dir_.clear();
     auto shape_frames = frames_;
-    for (size_t i = 0; i < shape_frames.size(); ++i) shape_frames[i].second = frame_name("shapes", i);
+    for (size_t i = 0; i < shape_frames.size(); ++i)
+      shape_frames[i].second = frame_name("shapes", i);
     write_pvd(fs::path(dir_) / "shapes.pvd", "shapes", shape_frames);
   }
   if (spec_.glb) write_gltf((fs::path(dir_) / "animation.glb").string(), gltf_);
@@ -311,20 +315,22 @@ void ResultWriter::finish(const State& st, const RunStats& stats, const nlohmann
   s["effects"] = effect_names(model_.union_effects());
   json types = json::array();
   for (const BodyType& t : model_.types)
-    types.push_back({{"name", t.name},
-                     {"count", t.count},
-                     {"mass", t.mass},
-                     {"volume", t.volume},
-                     {"effects", effect_names(t.effects)},
-                     {"added_mass_method", t.added_mass_method},
-                     {"added_mass_panels", t.added_mass_panels},
-                     {"first_body", t.first_body},
-                     // enough to rebuild the surface (lrigid export-gltf, lrigid render)
-                     {"shape", {{"type", shape_type_name(t.shape.type)},
-                                {"half_extents", {t.shape.half_extents.x(), t.shape.half_extents.y(),
-                                                  t.shape.half_extents.z()}},
-                                {"source", t.shape.source}}},
-                     {"com", {t.com.x(), t.com.y(), t.com.z()}}});
+    types.push_back(
+        {{"name", t.name},
+         {"count", t.count},
+         {"mass", t.mass},
+         {"volume", t.volume},
+         {"effects", effect_names(t.effects)},
+         {"added_mass_method", t.added_mass_method},
+         {"added_mass_panels", t.added_mass_panels},
+         {"first_body", t.first_body},
+         // enough to rebuild the surface (lrigid export-gltf, lrigid render)
+         {"shape",
+          {{"type", shape_type_name(t.shape.type)},
+           {"half_extents",
+            {t.shape.half_extents.x(), t.shape.half_extents.y(), t.shape.half_extents.z()}},
+           {"source", t.shape.source}}},
+         {"com", {t.com.x(), t.com.y(), t.com.z()}}});
   s["body_types"] = types;
   s["integrator"] = integrator_name(model_.integrator);
   s["dt"] = model_.dt;
@@ -408,7 +414,8 @@ Results read_results(const std::string& dir, int target_faces) {
       const std::string key = "body_types[" + std::to_string(i) + "]";
       const auto& t = types[i];
       if (!t.contains("shape"))
-        fail_input(sum_path, key + ".shape", "missing (results written before lrigid recorded shapes)");
+        fail_input(sum_path, key + ".shape",
+                   "missing (results written before lrigid recorded shapes)");
       BodyType bt;
       bt.name = t.at("name").get<std::string>();
       bt.shape = shape_from_summary(t.at("shape"), sum_path, key + ".shape");
@@ -424,7 +431,10 @@ Results read_results(const std::string& dir, int target_faces) {
   const size_t nb = a.body_type.size();
   const std::string csv = (fs::path(dir) / "trajectories.csv").string();
   std::ifstream in(csv);
-  if (!in) fail_input(csv, "", fs::exists(csv) ? "cannot be read" : "file not found (needs \"csv\" in output.formats)");
+  if (!in)
+    fail_input(
+        csv, "",
+        fs::exists(csv) ? "cannot be read" : "file not found (needs \"csv\" in output.formats)");
   std::string line;
   std::getline(in, line);
   if (line.rfind("body,type,t,x,y,z,qw,qx,qy,qz", 0) != 0)
@@ -445,7 +455,8 @@ Results read_results(const std::string& dir, int target_faces) {
     double v[8];
     for (double& x : v) {
       x = std::strtod(p + 1, &end);
-      if (end == p + 1 || (*end != ',' && *end != '\0')) fail_input(csv, at, "malformed number in \"" + line + "\"");
+      if (end == p + 1 || (*end != ',' && *end != '\0'))
+        fail_input(csv, at, "malformed number in \"" + line + "\"");
       p = end;
     }
     if (row % nb == 0) a.times.push_back(v[0]);

@@ -19,7 +19,8 @@ namespace {
 // A JSON object being read: remembers which keys were used so the rest can be reported.
 class Obj {
  public:
-  Obj(const json& j, std::string path, const std::string& file) : j_(j), path_(std::move(path)), file_(file) {
+  Obj(const json& j, std::string path, const std::string& file)
+      : j_(j), path_(std::move(path)), file_(file) {
     if (!j_.is_object()) fail("", "must be an object, got " + dump(j_));
   }
 
@@ -162,7 +163,8 @@ BodySpec read_body(Obj o) {
       b.random_orientation = true;
     } else if (q->is_array() && q->size() == 4) {
       double c[4];
-      for (int i = 0; i < 4; ++i) c[i] = o.as_number((*q)[i], "orientation[" + std::to_string(i) + "]");
+      for (int i = 0; i < 4; ++i)
+        c[i] = o.as_number((*q)[i], "orientation[" + std::to_string(i) + "]");
       const Quat qq(c[0], c[1], c[2], c[3]);
       if (!(qq.norm() > 1e-12)) o.fail("orientation", "quaternion must not be zero");
       b.orientation = qq.normalized();
@@ -275,7 +277,8 @@ Scene parse_scene_unchecked(const std::string& text, const std::string& path) {
         Effect eff;
         if (!e[i].is_string() || !effect_from_name(e[i].get<std::string>(), &eff)) {
           std::string names;
-          for (const auto& info : all_effects()) names += std::string(names.empty() ? "" : ", ") + info.name;
+          for (const auto& info : all_effects())
+            names += std::string(names.empty() ? "" : ", ") + info.name;
           top.fail("effects[" + std::to_string(i) + "]",
                    "unknown effect " + Obj::dump(e[i]) + " (known: " + names + ")");
         }

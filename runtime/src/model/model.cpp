@@ -320,9 +320,14 @@ BodyType make_body_type(const Scene& scene, const BodySpec& b, const Shape& shap
       t.M.topRightCorner<3, 3>().isZero(0.0) && t.M.bottomLeftCorner<3, 3>().isZero(0.0);
   t.M_diagonal = Mat6(t.M.diagonal().asDiagonal()) == t.M;
   if (t.M_diagonal) t.M_inv_diagonal = t.M.diagonal().cwiseInverse();
+  auto equal3 = [](const Vec3& d) {
+    return (d.array() - d.mean()).abs().maxCoeff() <= 1e-13 * d.mean();
+  };
+  t.M_isotropic =
+      t.M_diagonal && equal3(t.M.diagonal().head<3>()) && equal3(t.M.diagonal().tail<3>());
   if (t.effects.has(Effect::Basset)) {
-    const double coef = 6.0 * t.r_eq * t.r_eq * scene.fluid_density *
-                        std::sqrt(M_PI * scene.kinematic_viscosity);
+    const double coef =
+        6.0 * t.r_eq * t.r_eq * scene.fluid_density * std::sqrt(M_PI * scene.kinematic_viscosity);
     t.basset = make_basset_kernel(coef, scene.dt, kBassetWindow, scene.duration);
     Mat6 A = t.M;
     A.block<3, 3>(0, 0) += t.basset.implicit_mass * Mat3::Identity();

@@ -62,6 +62,9 @@ struct BodyType {
   // applied as the element-wise product with M_inv_diagonal
   bool M_diagonal = false;
   Vec6 M_inv_diagonal = Vec6::Zero();
+  // M = diag(m, m, m, J, J, J) to round-off (spheres): the free Kirchhoff flow is a rotation of
+  // the impulse, integrated in closed form (integrate/dynamics.cpp)
+  bool M_isotropic = false;
   // M^-1 y and M y, element-wise when M is diagonal
   Vec6 M_inv_times(const Vec6& y) const {
     return M_diagonal ? Vec6(M_inv_diagonal.cwiseProduct(y)) : Vec6(M_inv * y);

@@ -7,7 +7,14 @@
 
 namespace lrigid {
 
-enum class ExitCode : int { Ok = 0, Runtime = 1, Usage = 2, BadInput = 3, Output = 4, Resource = 5 };
+enum class ExitCode : int {
+  Ok = 0,
+  Runtime = 1,
+  Usage = 2,
+  BadInput = 3,
+  Output = 4,
+  Resource = 5
+};
 
 class Error : public std::runtime_error {
  public:

@@ -93,7 +93,8 @@ TEST(Turbulence, WellMixedDriftVanishesInHomogeneousTurbulence) {
   s.sigma2 = 0.2;
   EXPECT_EQ(well_mixed_drift(Vec3(0.1, 0.2, 0.3), s).norm(), 0.0);
   s.grad_sigma2 = Vec3(0.1, 0, 0);
-  // mean over u' ~ N(0, sigma2): <a> = 1/2 grad sigma2 + <u u^T> grad sigma2/(2 sigma2) = grad sigma2
+  // mean over u' ~ N(0, sigma2): <a> = 1/2 grad sigma2 + <u u^T> grad sigma2/(2 sigma2) = grad
+  // sigma2
   EXPECT_NEAR(well_mixed_drift(Vec3::Zero(), s).x(), 0.05, 1e-15);
 }
 

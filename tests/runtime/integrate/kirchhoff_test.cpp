@@ -135,7 +135,9 @@ TEST(Kirchhoff, MunkMomentTurnsAProlateBodyBroadside) {
     State st = initial_state(m, s);
     RunOptions opt;
     opt.every = 0.01;
-    opt.on_output = [&](const State& x) { largest[with_am] = std::max(largest[with_am], incidence(x)); };
+    opt.on_output = [&](const State& x) {
+      largest[with_am] = std::max(largest[with_am], incidence(x));
+    };
     simulate(m, &st, opt);
   }
   EXPECT_GT(largest[1], 80.0) << "with added mass the Munk moment turns it broadside";

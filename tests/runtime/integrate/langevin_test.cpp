@@ -82,7 +82,8 @@ TEST_P(OUStatistics, ExactSchemeHasTheoreticalVarianceAndCorrelation) {
   Scene s = ou_scene(c.model, c.drift, Integrator::Splitting, dt, n);
   const double lag = std::max(0.5 / lc.alpha, dt);
   const double lag_steps = std::round(lag / dt);
-  const Stats st = measure(s, 8.0 / lc.alpha + dt, lag_steps * dt, c.model == TurbulenceModel::Seen);
+  const Stats st =
+      measure(s, 8.0 / lc.alpha + dt, lag_steps * dt, c.model == TurbulenceModel::Seen);
   // Monte Carlo standard errors: var ~ sigma2 sqrt(2/(3n)); corr ~ (1 - rho^2)/sqrt(3n)
   const double se_var = lc.sigma2 * std::sqrt(2.0 / (3.0 * n));
   EXPECT_NEAR(st.var, lc.sigma2, 4 * se_var) << "alpha dt = " << c.alpha_dt;
@@ -103,7 +104,8 @@ INSTANTIATE_TEST_SUITE_P(
 TEST(OUStatistics, StationaryDriftReproducesTheFieldsK) {
   // <u_i^2> = 2k/3 with the stationary drift (what a frozen RANS field should give)
   const int n = 20000;
-  const Scene s = ou_scene(TurbulenceModel::Body, Drift::Stationary, Integrator::Splitting, 0.01, n);
+  const Scene s =
+      ou_scene(TurbulenceModel::Body, Drift::Stationary, Integrator::Splitting, 0.01, n);
   const Stats st = measure(s, 3.0, 0.1, false);
   EXPECT_NEAR(st.var, 2.0 / 3.0 * 0.06, 4 * 0.04 * std::sqrt(2.0 / (3.0 * n)));
 }

@@ -61,6 +61,30 @@ TEST(MassPaths, DiagonalAndBlockShortcutsMatchTheGeneralPath) {
   }
 }
 
+TEST(MassPaths, SphereClosedFormKirchhoffFlowMatchesTheIteration) {
+  // a light spinning sphere in a turbulent wind: M = diag(m, m, m, J, J, J), the free flow in
+  // closed form against the general midpoint iteration
+  Scene s = test::sphere_scene(0.01, 50, 1000, 1e-6);
+  s.effects = test::effects({Effect::Gravity, Effect::Buoyancy, Effect::AddedMass, Effect::Drag,
+                             Effect::MeanFlow, Effect::Turbulence, Effect::Magnus});
+  s.uniform_U = Vec3(0.3, 0.1, 0);
+  s.uniform_k = 1e-3, s.uniform_epsilon = 1e-4;
+  s.dt = 0.004;
+  const Model fast = test::compile(s);
+  ASSERT_TRUE(fast.types[0].M_isotropic);
+  Model general = fast;
+  general.types[0].M_isotropic = false;
+  BodyState a = start(), b = start();
+  run(fast, &a, 200);
+  run(general, &b, 200);
+  EXPECT_TRUE(test::near(a.x, b.x, 1e-10));
+  EXPECT_TRUE(test::near(a.v, b.v, 1e-10));
+  EXPECT_TRUE(test::near(a.w, b.w, 1e-9));
+  EXPECT_TRUE(test::near(a.q.coeffs(), b.q.coeffs(), 1e-10));
+  // and not every diagonal M is isotropic
+  EXPECT_FALSE(test::compile(sheet_scene(Integrator::Splitting)).types[0].M_isotropic);
+}
+
 TEST(MassPaths, ShortcutsApplyTheSameMatrices) {
   const Model m = test::compile(sheet_scene(Integrator::Splitting));
   const BodyType& t = m.types[0];

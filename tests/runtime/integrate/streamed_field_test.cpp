@@ -124,8 +124,9 @@ TEST(StreamedField, LoopingSeriesRereadsFramesAndStillMatches) {
 
 TEST(StreamedField, StretchesStopAtFrameTimes) {
   std::vector<double> times = {0, 0.1, 0.2};
-  const FluidField f = FluidField::streamed(geometry(), times, [](size_t i) { return frame(int(i)); },
-                                            1.5e-5, Drift::Stationary, TimeMode::Clamp);
+  const FluidField f = FluidField::streamed(
+      geometry(), times, [](size_t i) { return frame(int(i)); }, 1.5e-5, Drift::Stationary,
+      TimeMode::Clamp);
   EXPECT_EQ(f.next_frame_time(0.0), 0.1);
   EXPECT_EQ(f.next_frame_time(0.1), 0.2);
   EXPECT_EQ(f.next_frame_time(0.25), HUGE_VAL);

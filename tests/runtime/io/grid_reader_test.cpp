@@ -119,7 +119,8 @@ TEST(GridReader, ReadsAPvdSeriesInTimeOrder) {
 TEST(GridReader, RejectsNaNNegativeMissingAndEmpty) {
   const std::string d = tmpdir();
   write_grid(d + "/nan.vti", 0, 0.1f, 7, std::nanf(""), "k");
-  EXPECT_NE(error_of(d + "/nan.vti").find("nan.vti: k: non-finite value at point 7"), std::string::npos)
+  EXPECT_NE(error_of(d + "/nan.vti").find("nan.vti: k: non-finite value at point 7"),
+            std::string::npos)
       << error_of(d + "/nan.vti");
   write_grid(d + "/negk.vti", 0, 0.1f, 5, -0.3f, "k");
   EXPECT_NE(error_of(d + "/negk.vti").find("k: negative value -0.3 at point 5"), std::string::npos);
@@ -132,7 +133,8 @@ TEST(GridReader, RejectsNaNNegativeMissingAndEmpty) {
   EXPECT_NE(error_of(d + "/none.vti").find("none.vti: grid file not found"), std::string::npos);
   std::ofstream(d + "/garbage.vti") << "not xml at all";
   EXPECT_NE(error_of(d + "/garbage.vti").find("garbage.vti"), std::string::npos);
-  std::ofstream(d + "/empty.pvd") << "<VTKFile type=\"Collection\"><Collection></Collection></VTKFile>";
+  std::ofstream(d + "/empty.pvd")
+      << "<VTKFile type=\"Collection\"><Collection></Collection></VTKFile>";
   EXPECT_NE(error_of(d + "/empty.pvd").find("the series is empty"), std::string::npos);
 }
 

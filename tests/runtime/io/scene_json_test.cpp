@@ -124,22 +124,38 @@ INSTANTIATE_TEST_SUITE_P(
                 "integrator.scheme: must be euler, rk4 or splitting, got \"leapfrog\""},
         BadCase{"bad count", [](json& j) { j["bodies"][0]["count"] = 0; },
                 "bodies[0].count: must be an integer >= 1, got 0"},
-        BadCase{"both placements", [](json& j) { j["bodies"][0]["spawn_box"] = {{0, 0, 0}, {1, 1, 1}}; },
+        BadCase{"both placements",
+                [](json& j) {
+                  j["bodies"][0]["spawn_box"] = {{0, 0, 0}, {1, 1, 1}};
+                },
                 "bodies[0]: needs exactly one of \"position\" or \"spawn_box\""},
-        BadCase{"short vector", [](json& j) { j["gravity"] = {0, -9.81}; },
+        BadCase{"short vector",
+                [](json& j) {
+                  j["gravity"] = {0, -9.81};
+                },
                 "gravity: must be an array of 3 numbers"},
-        BadCase{"zero quaternion", [](json& j) { j["bodies"][0]["orientation"] = {0, 0, 0, 0}; },
+        BadCase{"zero quaternion",
+                [](json& j) {
+                  j["bodies"][0]["orientation"] = {0, 0, 0, 0};
+                },
                 "bodies[0].orientation: quaternion must not be zero"},
-        BadCase{"missing field file", [](json& j) {
+        BadCase{"missing field file",
+                [](json& j) {
                   j["fluid"].erase("uniform");
                   j["fluid"]["field"] = "nowhere.vti";
-                }, "fluid.field: file not found: /tmp/nowhere.vti"},
+                },
+                "fluid.field: file not found: /tmp/nowhere.vti"},
         BadCase{"negative k", [](json& j) { j["fluid"]["uniform"]["k"] = -1; },
                 "fluid.uniform.k: must be >= 0"},
-        BadCase{"missing mesh", [](json& j) {
+        BadCase{"missing mesh",
+                [](json& j) {
                   j["bodies"][0]["shape"] = {{"type", "mesh"}, {"file", "no.obj"}};
-                }, "no.obj"},
-        BadCase{"bad format", [](json& j) { j["output"]["formats"] = {"csv", "xls"}; },
+                },
+                "no.obj"},
+        BadCase{"bad format",
+                [](json& j) {
+                  j["output"]["formats"] = {"csv", "xls"};
+                },
                 "output.formats[1]: must be \"csv\", \"pvd\" or \"glb\", got \"xls\""},
         BadCase{"turbulence model", [](json& j) { j["turbulence"]["model"] = "les"; },
                 "turbulence.model: must be \"body\" or \"seen\", got \"les\""},

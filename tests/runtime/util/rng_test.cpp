@@ -17,10 +17,12 @@ TEST(FastMath, LogMatchesLibraryOverTheBoxMullerRange) {
   // all magnitudes the generator uses, (a + 1) 2^-32 for a in [0, 2^32), plus a sweep
   for (uint64_t a = 0; a < (uint64_t(1) << 32); a = a * 3 + 1) {
     const double u = (double(a) + 1.0) * 0x1p-32;
-    worst = std::max(worst, std::abs(log_fast(u) - std::log(u)) / std::max(1.0, std::abs(std::log(u))));
+    worst =
+        std::max(worst, std::abs(log_fast(u) - std::log(u)) / std::max(1.0, std::abs(std::log(u))));
   }
   for (double x = 1e-12; x < 1e12; x *= 1.0137) {
-    worst = std::max(worst, std::abs(log_fast(x) - std::log(x)) / std::max(1.0, std::abs(std::log(x))));
+    worst =
+        std::max(worst, std::abs(log_fast(x) - std::log(x)) / std::max(1.0, std::abs(std::log(x))));
   }
   EXPECT_LT(worst, 4e-16);
   EXPECT_EQ(log_fast(1.0), 0.0);
