@@ -4,7 +4,8 @@
 summary.json; the fastest run of each configuration is kept.
 
   collect.py stream DST SERIES THREADS LOAD_BEFORE LOAD_AFTER "MODE TIME_LOG SUMMARY"...
-  collect.py scaling DST N STEPS MAX_CORES LOAD_BEFORE LOAD_AFTER "R T TIME_LOG SUMMARY"...
+  collect.py scaling DST N STEPS MAX_CORES LOAD_BEFORE LOAD_AFTER
+             "R T TIME_LOG SUMMARY TIME_LOG_2 SUMMARY_2"...  (runs of STEPS and 2 x STEPS steps)
 """
 import json
 import os
@@ -80,10 +81,16 @@ def stream(dst, series, threads, lb, la, specs):
 def scaling(dst, n, steps, maxc, lb, la, specs):
     best = {}
     for spec in specs:
-        r, t, log, summ = spec.split(" ")
-        row, _ = run_row(log, summ)
+        # R T, then the run of `steps` steps and the run of 2 x `steps`
+        r, t, log1, summ1, log2, summ2 = spec.split(" ")
+        short, _ = run_row(log1, summ1)
+        row, _ = run_row(log2, summ2)
         row.update({"ranks": int(r), "threads": int(t)})
         row["body_steps_per_s"] = row["body_steps"] / row["integration_wall_s"]
+        dcpu = row["cpu_s"] - short["cpu_s"]
+        dsteps = row["body_steps"] - short["body_steps"]
+        row["step_cpu_s"] = dcpu
+        row["body_steps_per_cpu_s"] = dsteps / dcpu if dcpu > 0 else None
         key = (row["ranks"], row["threads"])
         if key not in best or row["integration_wall_s"] < best[key]["integration_wall_s"]:
             best[key] = row
@@ -93,6 +100,9 @@ def scaling(dst, n, steps, maxc, lb, la, specs):
         if base:
             row["speedup"] = base["integration_wall_s"] / row["integration_wall_s"]
             row["efficiency"] = row["speedup"] / (row["ranks"] * row["threads"])
+            if row["body_steps_per_cpu_s"] and base["body_steps_per_cpu_s"]:
+                row["cpu_efficiency"] = row["body_steps_per_cpu_s"] / base["body_steps_per_cpu_s"]
+                row["idle_speedup"] = row["ranks"] * row["threads"] * row["cpu_efficiency"]
     doc = header(lb, la)
     doc.update({"n": int(n), "steps": int(steps), "max_cores": int(maxc),
                 "scene": "scenes/leaves_wind.json scaled to N bodies, splitting, dt = 0.002 s, "

@@ -106,7 +106,7 @@ def main():
         if k in mach:
             w("| %s | %s |" % (label, mach[k]))
     w("| scene | `%s`, effects: %s |" % (bench["scene"], bench["effects"]))
-    w("| field | `%s`, %s bytes |" % (bench.get("field", "uniform"), si(bench["field_bytes"], "B")))
+    w("| field | `%s`, %s |" % (bench.get("field", "uniform"), si(bench["field_bytes"], "B")))
     w("")
     w("Reproduce (Release build, ~25 min): `nice -n 19 bench/perf/run_perf.sh` runs all of "
       "this page and the generated tables of [scaling.md](scaling.md): `lrigid bench`, the "
@@ -451,20 +451,34 @@ def peers_block(peer_docs):
 def ranks_block(sc):
     L = []
     w = L.append
-    w("`bench/perf/scaling_bench.sh`: %s; N = %d bodies, %d steps; %s; %s, load %s before / "
+    w("`bench/perf/scaling_bench.sh`: %s; N = %d bodies, %d and 2 x %d steps; %s; %s, load %s before / "
       "%s after, nice %s. Best of the runs of each configuration; the rate and speedup come "
       "from the integration wall (the slowest rank's step time, no set-up, gathers or writes)."
-      % (sc["scene"], sc["n"], sc["steps"], sc["machine"], sc["date"], sc["load_before"],
+      % (sc["scene"], sc["n"], sc["steps"], sc["steps"], sc["machine"], sc["date"], sc["load_before"],
          sc["load_after"], sc.get("nice", "?")))
     w("")
     w("| ranks R | threads T | cores R x T | integration wall (s) | body-steps/s | speedup | "
-      "efficiency | process wall (s) | CPU, all ranks (s) | peak RSS of a rank (MB) |")
-    w("|---|---|---|---|---|---|---|---|---|---|")
+      "efficiency | body-steps per CPU s | CPU efficiency | idle-core speedup estimate | "
+      "process wall (s) | CPU, all ranks (s) | peak RSS of a rank (MB) |")
+    w("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     for r in sc["runs"]:
-        w("| %d | %d | %d | %.2f | %s | %.2f | %.0f %% | %.1f | %.1f | %s |" %
+        cr = r.get("body_steps_per_cpu_s")
+        w("| %d | %d | %d | %.2f | %s | %.2f | %.0f %% | %s | %s | %s | %.1f | %.1f | %s |" %
           (r["ranks"], r["threads"], r["ranks"] * r["threads"], r["integration_wall_s"],
            si(r["body_steps_per_s"]), r.get("speedup", 0), 100 * r.get("efficiency", 0),
+           si(cr) if cr else "-",
+           "%.0f %%" % (100 * r["cpu_efficiency"]) if "cpu_efficiency" in r else "-",
+           "%.2f" % r["idle_speedup"] if "idle_speedup" in r else "-",
            r["process_wall_s"], r["cpu_s"], mb(r["peak_rss_bytes"])))
+    w("")
+    w("Wall-clock figures (integration wall, speedup, efficiency) are of the run of %d steps; "
+      "on a machine whose cores other jobs keep busy (see the load) a second thread or rank "
+      "gets no second core, so they show the load, not the code. The CPU figures do not "
+      "depend on the load: body-steps per CPU second of the steps alone (CPU of all ranks, "
+      "run of %d steps minus run of %d: set-up, MPI start-up and writes cancel); CPU "
+      "efficiency = that rate over the 1 x 1 rate; idle-core speedup estimate = R x T x CPU "
+      "efficiency, an upper bound (time a rank or thread waits without spinning is not "
+      "counted)." % (2 * sc["steps"], 2 * sc["steps"], sc["steps"]))
     w("")
     w("Only R x T <= %d (this machine's cores) is measured: beyond, ranks and threads share "
       "cores and the figures measure the scheduler (and MPI's busy-waiting ranks), not the "

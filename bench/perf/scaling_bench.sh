@@ -5,7 +5,9 @@
 # (read by bench/perf/make_report.py for docs/scaling.md): per (R, T) the integration wall (the
 # slowest rank's, summary.json wall_seconds: the step only, no set-up, gathers or writes), the
 # process wall, CPU user+sys of all ranks and peak RSS (/usr/bin/time -v), and the speedup and
-# efficiency against R = T = 1.
+# efficiency against R = T = 1; and body-steps per CPU second of the steps alone (two runs of
+# `steps` and 2 x `steps` steps: the difference), which the other jobs on a shared machine do not
+# change, so R x T x that rate's efficiency estimates the speedup on idle cores.
 #
 #   bench/perf/scaling_bench.sh OUT [--n N] [--steps S] [--build DIR] [--repeat K]
 #                                [--max-cores C]
@@ -44,9 +46,12 @@ mkdir -p "$out"
 out=$(cd "$out" && pwd)
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 
-# the wind scene with n bodies in its proportions, `steps` steps, one output at the end
-/usr/bin/python3 - scenes/leaves_wind.json "$root/results/grids/windCourtyard.vti" "$n" "$steps" \
-  "$out/scene.json" <<'PY'
+# the wind scene with n bodies in its proportions, `steps` steps (scene.1.json) and 2 x `steps`
+# (scene.2.json), one output at the end: the CPU time of the second minus the first is the CPU
+# time of `steps` steps alone (set-up, MPI start-up and the writes cancel)
+for k in 1 2; do
+/usr/bin/python3 - scenes/leaves_wind.json "$root/results/grids/windCourtyard.vti" "$n" \
+  "$((k * steps))" "$out/scene.$k.json" <<'PY'
 import json, sys
 src, field, n, steps, dst = sys.argv[1], sys.argv[2], int(sys.argv[3]), int(sys.argv[4]), sys.argv[5]
 s = json.load(open(src))
@@ -61,6 +66,7 @@ s["duration"] = steps * s["integrator"]["dt"]
 s["output"] = {"dir": "out", "every": s["duration"], "formats": ["csv"]}
 json.dump(s, open(dst, "w"), indent=1)
 PY
+done
 
 load_before=$(cut -d' ' -f1-3 /proc/loadavg)
 runs=()
@@ -68,12 +74,16 @@ for r in 1 2 4 8; do
   for t in 1 2 4 8; do
     [ $((r * t)) -le "$maxc" ] || continue
     for i in $(seq "$repeat"); do
-      log=$out/time.r$r.t$t.$i.log
-      rm -rf "$out/run"
-      /usr/bin/time -v mpirun --bind-to none -np "$r" "$lrigid" run "$out/scene.json" \
-        -o "$out/run" --threads "$t" --quiet 2> "$log" || { cat "$log" >&2; exit 1; }
-      cp "$out/run/summary.json" "$out/summary.r$r.t$t.$i.json"
-      runs+=("$r $t $log $out/summary.r$r.t$t.$i.json")
+      spec="$r $t"
+      for k in 1 2; do
+        log=$out/time.r$r.t$t.$i.$k.log
+        rm -rf "$out/run"
+        /usr/bin/time -v mpirun --bind-to none -np "$r" "$lrigid" run "$out/scene.$k.json" \
+          -o "$out/run" --threads "$t" --quiet 2> "$log" || { cat "$log" >&2; exit 1; }
+        cp "$out/run/summary.json" "$out/summary.r$r.t$t.$i.$k.json"
+        spec+=" $log $out/summary.r$r.t$t.$i.$k.json"
+      done
+      runs+=("$spec")
       echo "scaling_bench.sh: $r rank(s) x $t thread(s), run $i done" >&2
     done
   done
