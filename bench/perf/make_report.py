@@ -108,12 +108,12 @@ def main():
     w("| scene | `%s`, effects: %s |" % (bench["scene"], bench["effects"]))
     w("| field | `%s`, %s |" % (bench.get("field", "uniform"), si(bench["field_bytes"], "B")))
     w("")
-    w("Reproduce (Release build, ~25 min): `nice -n 19 bench/perf/run_perf.sh` runs all of "
+    w("Reproduce (Release build, ~15 min on 2 busy cores): `nice -n 19 bench/perf/run_perf.sh` runs all of "
       "this page and the generated tables of [scaling.md](scaling.md): `lrigid bench`, the "
       "kernels, callgrind and lackey counts, `bench/peers/run_peers.sh` (N = 10^3, 10^4), "
       "`bench/converter/run_benchmark.sh`, `bench/perf/stream_bench.sh` and "
       "`bench/perf/scaling_bench.sh`; its raw JSON stays in build/perf. `--quick` checks the "
-      "script in ~8 min (not for the docs).")
+      "script in ~5 min (not for the docs).")
     w("")
     w("The machine is shared (other jobs run during the measurement: see the load). Wall-clock "
       "rates are therefore lower bounds of what the code does on an idle machine; the "

@@ -6,7 +6,7 @@
 #       [--wind-case DIR] [--no-converter] [--no-stream] [--no-scaling] [--tank-series FILE.pvd]
 #       [--build DIR] [--out DIR]
 #   --quick       N up to 10^5, shorter runs, one repeat, peers at N = 10^3 only (a check of the
-#                 script, not for the docs: about 8 min)
+#                 script, not for the docs: about 5 min)
 #   --no-flops    skip the lackey flop count (slow: minutes)
 #   --peers FILE  use bench/peers/run_peers.sh's peers.json (repeatable) instead of running the
 #                 peers; --no-peers: neither
@@ -17,7 +17,7 @@
 #   --tank-series the tank .pvd series for the streaming table (default results/grids/tankJet.pvd)
 # Needs results/grids/windCourtyard.vti (./Allrun), results/grids/tankJet.pvd (./Allrun -all;
 # for the streaming table), valgrind, mpirun, /usr/bin/time, OpenFOAM and mujoco_harness.
-# The full run takes about 25 min on 2 cores.
+# The full run takes about 15 min on 2 cores (measured at load 5, niced).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 build=build
