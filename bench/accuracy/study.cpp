@@ -8,7 +8,6 @@
 #include "io/added_mass_cache.h"
 #include "io/grid_reader.h"
 #include "util/error.h"
-#include "util/log_slope.h"
 
 namespace lrigid::accuracy {
 
@@ -262,10 +261,6 @@ Metric landing_variance_error(const RunResult& a, const RunResult& ref) {
   return landing_metric(a, ref, [&](size_t j, const auto& idx) {
     return variance_error(a.x[j], ref.x[j], idx, true);
   });
-}
-
-double fit_slope(const std::vector<double>& dt, const std::vector<double>& err) {
-  return log_log_slope(dt, err);
 }
 
 }  // namespace lrigid::accuracy

@@ -65,8 +65,6 @@ Metric weak_variance_error(const RunResult& a, const RunResult& ref);
 Metric landing_mean_error(const RunResult& a, const RunResult& ref);
 Metric landing_variance_error(const RunResult& a, const RunResult& ref);
 
-// Least-squares slope of log(err) against log(dt).
-double fit_slope(const std::vector<double>& dt, const std::vector<double>& err);
 
 Integrator integrator_from_name(const std::string& name);  // throws on an unknown name
 // Scales the scene's body counts so they sum to about n (each type keeps at least one body).

@@ -15,7 +15,6 @@
 
 #include "integrate/simulation.h"
 #include "support/fixture.h"
-#include "util/log_slope.h"
 
 namespace lrigid {
 namespace {
@@ -49,6 +48,20 @@ double rms_diff(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
 }
 
 // deterministic order: errors of the final positions against rk4 at dt_ref
+// least-squares slope of log(err) against log(dt): the observed order
+double log_log_slope(const std::vector<double>& dt, const std::vector<double>& err) {
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  const double n = double(dt.size());
+  for (size_t i = 0; i < dt.size(); ++i) {
+    const double x = std::log(dt[i]), y = std::log(err[i]);
+    sx += x;
+    sy += y;
+    sxx += x * x;
+    sxy += x * y;
+  }
+  return (n * sxy - sx * sy) / (n * sxx - sx * sx);
+}
+
 double deterministic_slope(const Scene& s, Integrator integ, const std::vector<double>& dts,
                            double dt_ref, const char* label) {
   const Run ref = run(s, Integrator::RK4, dt_ref, 1);
