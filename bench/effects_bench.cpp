@@ -1,7 +1,7 @@
 // Cost per body-step of representative effect sets (docs/effects.md). Each benchmark advances
 // 1024 bodies of one type by step_body, single thread, uniform field; the reported
 // "ns_per_body_step" is wall time / body-steps.
-//   build-effects/bin/effects_bench --benchmark_min_time=0.5
+//   build/bin/effects_bench --benchmark_min_time=0.5
 #include <benchmark/benchmark.h>
 
 #include <string>

@@ -80,7 +80,8 @@ void explain(const std::string& path) {
     }
     std::printf("  auto chooses: %s\n", list(a.chosen).c_str());
     if (!scene.effects_auto) std::printf("  the scene lists: %s\n", list(t.effects).c_str());
-    const double ns = estimated_cost_ns(t.effects, scene.integrator, !scene.uniform_field, t.flat);
+    const double ns = estimated_cost_ns(t.effects, scene.integrator, !scene.uniform_field,
+                                        t.M_isotropic);
     total_ns += ns * double(t.count);
     std::printf("  simulated: %s\n  estimated cost: %.0f ns per body-step\n",
                 list(t.effects).c_str(), ns);

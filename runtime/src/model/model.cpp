@@ -228,7 +228,8 @@ EffectAnalysis analyze_effects(const Scene& scene, const BodyType& t, const Flow
              ? "Re = " + fmt(a.reynolds) + " > " + fmt(kBassetMaxRe) +
                    " (the memory decays faster than t^-1/2)"
              : "history force / drag = " + fmt(basset) + " < " + fmt(kKeepBasset));
-  a.cost_ns = estimated_cost_ns(a.chosen, scene.integrator, !scene.uniform_field, t.flat);
+  a.cost_ns = estimated_cost_ns(a.chosen, scene.integrator, !scene.uniform_field,
+                                t.shape.type == ShapeType::Sphere && t.r_cob.isZero());
   return a;
 }
 
@@ -237,23 +238,25 @@ EffectSet auto_effects(const Scene& scene, const BodyType& type, const FlowScale
   return analyze_effects(scene, type, flow, spec).chosen;
 }
 
-double estimated_cost_ns(EffectSet set, Integrator integrator, bool grid, bool flat) {
-  // additive fit to bench/effects_bench (docs/effects.md: splitting, uniform field, one core);
-  // sampling a grid costs more than the uniform field and is not included
+double estimated_cost_ns(EffectSet set, Integrator integrator, bool grid, bool isotropic_mass) {
+  // additive fit to bench/effects_bench (docs/effects.md: splitting, uniform field, one core,
+  // idle machine, 2026-12-01); sampling a grid costs more than the uniform field and is not
+  // included. A mass matrix that is not a multiple of the identity per block (anything but a
+  // uniform sphere) needs the iterated Kirchhoff flow instead of its closed form.
   (void)grid;
-  (void)flat;
-  double ns = 330;
-  if (set.has(Effect::Gravity)) ns += 10;
-  if (set.has(Effect::Buoyancy)) ns += 10;
-  if (set.has(Effect::AddedMass)) ns += 40;
+  double ns = 305;
+  if (!isotropic_mass) ns += 240;
+  if (set.has(Effect::Gravity)) ns += 5;
+  if (set.has(Effect::Buoyancy)) ns += 5;
+  if (set.has(Effect::AddedMass)) ns += 15;
   if (set.has(Effect::Drag)) ns += 100;
-  if (set.has(Effect::MeanFlow) || set.has(Effect::Turbulence)) ns += 70;
-  if (set.has(Effect::Turbulence)) ns += 200;
-  if (set.has(Effect::Lift)) ns += 70;
+  if (set.has(Effect::MeanFlow) || set.has(Effect::Turbulence)) ns += 40;
+  if (set.has(Effect::Turbulence)) ns += 100;
+  if (set.has(Effect::Lift)) ns += 80;
   if (set.has(Effect::Magnus)) ns += 10;
-  if (set.has(Effect::Basset)) ns += 110;
+  if (set.has(Effect::Basset)) ns += 90;
   if (integrator == Integrator::Euler) ns *= 0.55;
-  if (integrator == Integrator::RK4) ns *= 1.6;
+  if (integrator == Integrator::RK4) ns *= 1.65;
   return ns;
 }
 

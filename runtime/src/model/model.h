@@ -162,7 +162,7 @@ EffectSet auto_effects(const Scene& scene, const BodyType& type, const FlowScale
 
 // Estimated cost of one body-step for an effect set and integrator, ns: an additive fit to the
 // table in docs/effects.md (uniform field; grid sampling is extra). A guide, not a promise.
-double estimated_cost_ns(EffectSet set, Integrator integrator, bool grid, bool flat);
+double estimated_cost_ns(EffectSet set, Integrator integrator, bool grid, bool isotropic_mass);
 
 // Throws lrigid::Error naming the scene file and key for physically impossible input.
 Model compile_model(const Scene& scene, FluidField field, const AddedMassProvider& added_mass);
