@@ -3,14 +3,6 @@
 // that opened the series (it is not read twice), so this also checks that hand-over.
 #include <gtest/gtest.h>
 #include <unistd.h>
-#include <vtkDoubleArray.h>
-#include <vtkFloatArray.h>
-#include <vtkImageData.h>
-#include <vtkNew.h>
-#include <vtkPointData.h>
-#include <vtkFieldData.h>
-#include <vtkUnsignedCharArray.h>
-#include <vtkXMLImageDataWriter.h>
 
 #include <cmath>
 #include <cstdlib>
@@ -19,6 +11,8 @@
 #include <sstream>
 #include <string>
 
+#include "support/vti_writer.h"
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -26,44 +20,18 @@ const std::string kLrigid = std::string(LRIGID_BINARY_DIR) + "/bin/lrigid";
 
 // a 5 x 4 x 3 grid on [0, 2] x [0, 1.5] x [0, 1] m whose U, k and epsilon change with time
 void write_frame(const std::string& path, double t) {
-  vtkNew<vtkImageData> img;
-  img->SetDimensions(5, 4, 3);
-  img->SetOrigin(0, 0, 0);
-  img->SetSpacing(0.5, 0.5, 0.5);
-  const int n = 60;
-  vtkNew<vtkFloatArray> U, k, eps;
-  vtkNew<vtkUnsignedCharArray> valid;
-  U->SetName("U");
-  U->SetNumberOfComponents(3);
-  U->SetNumberOfTuples(n);
-  k->SetName("k");
-  k->SetNumberOfTuples(n);
-  eps->SetName("epsilon");
-  eps->SetNumberOfTuples(n);
-  valid->SetName("valid");
-  valid->SetNumberOfTuples(n);
-  for (int p = 0; p < n; ++p) {
-    const double x = 0.5 * (p % 5), y = 0.5 * ((p / 5) % 4), z = 0.5 * (p / 20);
-    U->SetTuple3(p, 0.3 * (1 + t) * y, 0.2 * std::sin(3 * t + x), 0.05 * z);
-    k->SetValue(p, float(0.02 + 0.01 * std::sin(x + 5 * t)));
-    eps->SetValue(p, float(0.01 + 0.003 * std::cos(z + 2 * t)));
-    valid->SetValue(p, 1);
-  }
-  img->GetPointData()->AddArray(U);
-  img->GetPointData()->AddArray(k);
-  img->GetPointData()->AddArray(eps);
-  img->GetPointData()->AddArray(valid);
-  vtkNew<vtkDoubleArray> nu, time;
-  nu->SetName("kinematic_viscosity");
-  nu->InsertNextValue(1.5e-5);
-  time->SetName("time");
-  time->InsertNextValue(t);
-  img->GetFieldData()->AddArray(nu);
-  img->GetFieldData()->AddArray(time);
-  vtkNew<vtkXMLImageDataWriter> w;
-  w->SetFileName(path.c_str());
-  w->SetInputData(img);
-  ASSERT_EQ(w->Write(), 1);
+  lrigid::test::VtiGrid g;
+  g.dims = {5, 4, 3};
+  g.spacing = {0.5, 0.5, 0.5};
+  g.time = t;
+  ASSERT_TRUE(lrigid::test::write_vti(
+      path, g, [t](int, const std::array<double, 3>& x, float U[3], float* k, float* eps) {
+        U[0] = float(0.3 * (1 + t) * x[1]);
+        U[1] = float(0.2 * std::sin(3 * t + x[0]));
+        U[2] = float(0.05 * x[2]);
+        *k = float(0.02 + 0.01 * std::sin(x[0] + 5 * t));
+        *eps = float(0.01 + 0.003 * std::cos(x[2] + 2 * t));
+      }));
 }
 
 std::string slurp(const fs::path& p) {

@@ -3,19 +3,12 @@
 #include "io/grid_reader.h"
 
 #include <gtest/gtest.h>
-#include <vtkDoubleArray.h>
-#include <vtkFieldData.h>
-#include <vtkFloatArray.h>
-#include <vtkImageData.h>
-#include <vtkNew.h>
-#include <vtkPointData.h>
-#include <vtkUnsignedCharArray.h>
-#include <vtkXMLImageDataWriter.h>
 
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 
+#include "support/vti_writer.h"
 #include "util/error.h"
 
 namespace lrigid {
@@ -29,52 +22,26 @@ std::string tmpdir() {
   return d.string();
 }
 
-// writes a 4 x 3 x 2 grid with U = (x, 0, 0), k = 0.1, eps = 0.01; `edit` may spoil it
+// writes a 4 x 3 x 2 grid with U = (x, 0, 0), k = k_value, eps = 0.01; one value may be spoilt
 void write_grid(const std::string& path, double time, float k_value = 0.1f, int bad_point = -1,
                 float bad_value = 0, const char* bad_array = "k", bool with_epsilon = true) {
-  vtkNew<vtkImageData> img;
-  img->SetDimensions(4, 3, 2);
-  img->SetOrigin(1, 2, 3);
-  img->SetSpacing(0.5, 0.5, 1);
-  const int n = 24;
-  vtkNew<vtkFloatArray> U, k, eps;
-  U->SetName("U");
-  U->SetNumberOfComponents(3);
-  U->SetNumberOfTuples(n);
-  k->SetName("k");
-  k->SetNumberOfTuples(n);
-  eps->SetName("epsilon");
-  eps->SetNumberOfTuples(n);
-  vtkNew<vtkUnsignedCharArray> valid;
-  valid->SetName("valid");
-  valid->SetNumberOfTuples(n);
-  for (int p = 0; p < n; ++p) {
-    const double x = 1 + 0.5 * (p % 4);
-    U->SetTuple3(p, x, 0, 0);
-    k->SetValue(p, k_value);
-    eps->SetValue(p, 0.01f);
-    valid->SetValue(p, 1);
-  }
-  if (bad_point >= 0) {
-    if (std::string(bad_array) == "k") k->SetValue(bad_point, bad_value);
-    if (std::string(bad_array) == "epsilon") eps->SetValue(bad_point, bad_value);
-    if (std::string(bad_array) == "U") U->SetTuple3(bad_point, bad_value, 0, 0);
-  }
-  img->GetPointData()->AddArray(U);
-  img->GetPointData()->AddArray(k);
-  if (with_epsilon) img->GetPointData()->AddArray(eps);
-  img->GetPointData()->AddArray(valid);
-  vtkNew<vtkDoubleArray> nu, t;
-  nu->SetName("kinematic_viscosity");
-  nu->InsertNextValue(1.5e-5);
-  t->SetName("time");
-  t->InsertNextValue(time);
-  img->GetFieldData()->AddArray(nu);
-  img->GetFieldData()->AddArray(t);
-  vtkNew<vtkXMLImageDataWriter> w;
-  w->SetFileName(path.c_str());
-  w->SetInputData(img);
-  ASSERT_EQ(w->Write(), 1);
+  test::VtiGrid g;
+  g.dims = {4, 3, 2};
+  g.origin = {1, 2, 3};
+  g.spacing = {0.5, 0.5, 1};
+  g.time = time;
+  g.with_epsilon = with_epsilon;
+  const std::string bad = bad_array;
+  ASSERT_TRUE(test::write_vti(path, g, [&](int p, const std::array<double, 3>& x, float U[3],
+                                           float* k, float* eps) {
+    U[0] = float(x[0]);
+    *k = k_value;
+    *eps = 0.01f;
+    if (p != bad_point) return;
+    if (bad == "k") *k = bad_value;
+    if (bad == "epsilon") *eps = bad_value;
+    if (bad == "U") U[0] = bad_value;
+  }));
 }
 
 std::string error_of(const std::string& path) {
