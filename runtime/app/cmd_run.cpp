@@ -6,7 +6,6 @@
 #include <cstdio>
 #include <iostream>
 #include <memory>
-#include <optional>
 
 #include "commands.h"
 #include "ranks.h"
@@ -81,19 +80,10 @@ FluidField load_field(const Scene& scene, const std::string& stream, bool quiet)
       std::fprintf(stderr,
                    "lrigid: streaming %s: %zu frames of %.3g MB, 2 or 3 in memory at once\n",
                    scene.field_path.c_str(), g.times.size(), all_bytes / g.times.size() / 1e6);
-    // frame 0 was read with the series header: the loader hands it over on its first request
-    // instead of reading it again (later requests, e.g. a looping series, read from disk)
-    auto held = std::make_shared<std::optional<RawGridFrame>>(std::move(first));
-    FrameLoader load = [series, held](size_t i) {
-      if (i == 0 && held->has_value()) {
-        RawGridFrame f = std::move(**held);
-        held->reset();
-        return f;
-      }
-      return series->load(i);
-    };
-    return FluidField::streamed(g.geometry, g.times, std::move(load), scene.kinematic_viscosity,
-                                scene.drift, scene.time_mode);
+    // frame 0 was read with the series header: handed over, not read again
+    return FluidField::streamed(g.geometry, g.times, [series](size_t i) { return series->load(i); },
+                                scene.kinematic_viscosity, scene.drift, scene.time_mode, {},
+                                &first);
   }
   std::vector<RawGridFrame> frames;
   frames.push_back(std::move(first));

@@ -76,7 +76,7 @@ struct FluidField::Stream {
 
 FluidField FluidField::streamed(const GridGeometry& geometry, const std::vector<double>& times,
                                 FrameLoader load, double nu, Drift drift, TimeMode mode,
-                                const TurbulenceLimits& limits) {
+                                const TurbulenceLimits& limits, RawGridFrame* first) {
   FluidField f;
   f.geometry_ = geometry;
   f.mode_ = mode;
@@ -87,7 +87,9 @@ FluidField FluidField::streamed(const GridGeometry& geometry, const std::vector<
   f.stream_->nu = nu;
   f.stream_->drift = drift;
   f.stream_->limits = limits;
-  // the first frame is what model compilation and the initial state sample
+  // the first frame is what model compilation and the initial state sample; a frame the caller
+  // already read is taken as it is (not counted as a read)
+  if (first && !times.empty()) f.frames_[0] = records(geometry, *first, nu, drift, limits);
   if (!times.empty()) f.prepare(times.front(), times.front());
   return f;
 }

@@ -84,10 +84,11 @@ class FluidField {
                          double nu, Drift drift, TimeMode mode,
                          const TurbulenceLimits& limits = {});
   // A series read on demand: `times` (s, increasing) of the frames `load` returns. The first
-  // frame is resident from the start (for the initial state).
+  // frame is resident from the start (for the initial state); pass it as `first` when the
+  // caller has already read it (opening the series does), so it is not read again.
   static FluidField streamed(const GridGeometry& geometry, const std::vector<double>& times,
                              FrameLoader load, double nu, Drift drift, TimeMode mode,
-                             const TurbulenceLimits& limits = {});
+                             const TurbulenceLimits& limits = {}, RawGridFrame* first = nullptr);
 
   // Streamed fields: makes resident exactly the frames sample() uses for times in
   // [t_lo, t_hi] (s), reading missing ones and dropping the rest. Not thread-safe: call it
