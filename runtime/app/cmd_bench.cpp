@@ -188,7 +188,8 @@ void add_bench_command(CLI::App& app) {
   cmd->add_option("--body-steps", args->body_steps,
                   "Body-steps timed per point (at least --min-steps steps)")
       ->check(CLI::PositiveNumber);
-  cmd->add_option("--min-steps", args->min_steps, "Fewest timed steps")->check(CLI::Range(1, 1 << 20));
+  cmd->add_option("--min-steps", args->min_steps, "Fewest timed steps")
+      ->check(CLI::Range(1, 1 << 20));
   cmd->add_option("--warmup", args->warmup, "Untimed steps first")->check(CLI::Range(0, 1 << 20));
   cmd->add_option("--json", args->json, "Also write the results as JSON");
   cmd->add_flag("--quiet", args->quiet, "Print nothing but errors");

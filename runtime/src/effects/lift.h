@@ -7,8 +7,9 @@
 // chord across w_p:
 //   translational  F = -rho C_T S (u_n / |u|) (|u_t|^2 n - u_n u_t)   (normal to u, in span(u, n))
 //   rotational     F = 1/2 rho C_R l S  w_p x u
-// Both act at the centroid and fade below Re ~ 200 (circulation_factor). The added-mass (Munk) torque and the plate drag and dissipative
-// torque (effects/drag.h) complete APW's model. Only for flat bodies (BodyType::flat).
+// Both act at the centroid and fade below Re ~ 200 (circulation_factor). The added-mass (Munk)
+// torque and the plate drag and dissipative torque (effects/drag.h) complete APW's model. Only
+// for flat bodies (BodyType::flat).
 #pragma once
 #include "effects/wrench.h"
 #include "model/model.h"

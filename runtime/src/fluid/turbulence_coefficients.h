@@ -1,9 +1,11 @@
-// Langevin coefficients from the RANS fields k and epsilon (physics-notes §1-2, docs/physics/langevin.md).
+// Langevin coefficients from the RANS fields k and epsilon (physics-notes §1-2,
+// docs/physics/langevin.md).
 //   R_lambda = sqrt(20/3 * k^2 / (nu eps))            Taylor-scale Reynolds number
 //   C0 = 6.5 (1 + 140 R_lambda^(-4/3))^(-1)            Sawford's fit, clamped below by c0_min
 //   beta = sqrt(C0 eps)                                noise amplitude, m/s^(3/2)
 //   alpha = (1/2 + 3/4 C0) eps/k   ("original" drift, Pope's SLM: decaying turbulence)
-//   alpha = 3/4 C0 eps/k           ("stationary" drift: reproduces <u_i^2> = 2k/3 in a frozen field)
+//   alpha = 3/4 C0 eps/k           ("stationary" drift: reproduces <u_i^2> = 2k/3 in a frozen
+//                                   field)
 //   sigma2 = beta^2 / (2 alpha)    stationary per-component variance of the OU process, m^2/s^2
 // Guards: k >= k_min, eps >= eps_min, and alpha <= sqrt(eps/nu) (the Lagrangian time scale is not
 // shorter than the Kolmogorov time tau_eta = sqrt(nu/eps)); where that cap acts, beta is lowered so
