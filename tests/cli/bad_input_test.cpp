@@ -338,6 +338,20 @@ TEST_F(Cli, SeriesEntryWithAnOverlongFileName) {
   expect_error(run_scene(grid_scene("long.pvd")), 3, {"long.pvd"});
 }
 
+TEST_F(Cli, GridPieceOutsideItsExtentIsOneClearLine) {
+  // found by fuzz_grid (F3, docs/stability.md): a <Piece> extent outside the WholeExtent.
+  // VTK's reader fails on it and used to print its own ERR lines before lrigid's message,
+  // which then only said the dimensions were 0 x 0 x 0
+  std::string g =
+      vti("0.1 0.1 0.1 0.1 0.1 0.1 0.1 0.1", "0.05 0.05 0.05 0.05 0.05 0.05 0.05 0.05");
+  g = replace(g, "<Piece Extent=\"0 1 0 1 0 1\">", "<Piece Extent=\"0 1 0 7 0 1\">");
+  put(dir_ / "piece.vti", g);
+  const Result r = run_scene(grid_scene("piece.vti"));
+  expect_error(r, 3, {"piece.vti", "VTK's .vti reader failed"});
+  EXPECT_EQ(r.err.find("ERR|"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("0 x 0 x 0"), std::string::npos) << r.err;
+}
+
 // ---- meshes ----
 
 std::string mesh_scene(const std::string& file) {

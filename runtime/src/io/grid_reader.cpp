@@ -1,5 +1,7 @@
 #include "io/grid_reader.h"
 
+#include <vtkCallbackCommand.h>
+#include <vtkCommand.h>
 #include <vtkDataArray.h>
 #include <vtkFieldData.h>
 #include <vtkImageData.h>
@@ -28,6 +30,20 @@ std::string fmt(double v) {
   return s.str();
 }
 
+// VTK reports a broken file through its error events; printed, they come before lrigid's own
+// message and name no key. The first one is kept (the text after "(0x...): ", one line) for
+// lrigid's error, and none is printed.
+void keep_first_vtk_error(vtkObject*, unsigned long event, void* client, void* call) {
+  auto* first = static_cast<std::string*>(client);
+  if (event != vtkCommand::ErrorEvent || !first->empty() || !call) return;
+  std::string m = static_cast<const char*>(call);
+  if (const size_t p = m.find("): "); p != std::string::npos) m = m.substr(p + 3);
+  while (!m.empty() && (m.back() == '\n' || m.back() == ' ')) m.pop_back();
+  for (char& c : m)
+    if (c == '\n') c = ' ';
+  *first = m.empty() ? "unspecified error" : m;
+}
+
 void read_vti(const std::string& path, GridGeometry* geom, RawGridFrame* frame, double* nu) {
   std::error_code ec;  // the non-throwing overload: an over-long or odd name is a bad input too
   if (!fs::is_regular_file(path, ec)) fail_input(path, "", "grid file not found");
@@ -35,7 +51,14 @@ void read_vti(const std::string& path, GridGeometry* geom, RawGridFrame* frame, 
   if (!reader->CanReadFile(path.c_str()))
     fail_input(path, "", "not a VTK XML ImageData (.vti) file");
   reader->SetFileName(path.c_str());
+  std::string vtk_error;
+  vtkNew<vtkCallbackCommand> on_message;
+  on_message->SetCallback(keep_first_vtk_error);
+  on_message->SetClientData(&vtk_error);
+  reader->AddObserver(vtkCommand::ErrorEvent, on_message);
+  reader->AddObserver(vtkCommand::WarningEvent, on_message);
   reader->Update();
+  if (!vtk_error.empty()) fail_input(path, "", "VTK's .vti reader failed: " + vtk_error);
   vtkImageData* img = reader->GetOutput();
   if (!img || reader->GetErrorCode() != 0) fail_input(path, "", "cannot be read as .vti");
   int dims[3];
