@@ -85,9 +85,9 @@ else
 fi
 echo "run_perf.sh: lrigid bench (N = $ns)" >&2
 "$bin/lrigid" bench $scene --n $ns --threads 1,2 --body-steps $bsteps --min-steps 2 --json "$out/bench.json"
-# linearity in N: the same steps (the same simulated window) at every N. The implicit step's
-# cost changes along the trajectory (the released leaves' transient costs more Newton work), so
-# the fixed body-step budget above gives each N a different window and a different cost.
+# linearity in N: the same steps (the same simulated window) at every N. The splitting step's
+# cost changes along the trajectory (its implicit iterations are data-dependent), so the fixed
+# body-step budget above gives each N a different window and a different cost.
 # Two passes; the report takes the faster of the two at each point (this VM's host shows
 # slow episodes of a minute or so that would otherwise read as a cost growing with N).
 for pass in 1 2; do

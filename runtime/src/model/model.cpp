@@ -228,8 +228,6 @@ EffectAnalysis analyze_effects(const Scene& scene, const BodyType& t, const Flow
              ? "Re = " + fmt(a.reynolds) + " > " + fmt(kBassetMaxRe) +
                    " (the memory decays faster than t^-1/2)"
              : "history force / drag = " + fmt(basset) + " < " + fmt(kKeepBasset));
-  a.cost_ns = estimated_cost_ns(a.chosen, scene.integrator, !scene.uniform_field,
-                                t.shape.type == ShapeType::Sphere && t.r_cob.isZero());
   return a;
 }
 

@@ -151,7 +151,6 @@ struct EffectAnalysis {
   std::vector<std::pair<Effect, double>> size_rel;  // force (or inertia) / driving force
   EffectSet chosen;
   std::vector<std::pair<Effect, std::string>> skipped;
-  double cost_ns = 0;          // estimated cost per body-step (docs/effects.md table)
 };
 EffectAnalysis analyze_effects(const Scene& scene, const BodyType& type, const FlowScales& flow,
                                const BodySpec& spec);
