@@ -112,6 +112,11 @@ class FluidField {
   size_t frame_count() const { return frames_.size(); }
   const std::vector<double>& times() const { return times_; }
   size_t bytes() const;  // of the resident frames
+  // frame i's records as floats, 8 per grid point in GridRecord's order (the batched step
+  // gathers from it); the frame must be resident
+  const float* frame_records(size_t i) const {
+    return reinterpret_cast<const float*>(frames_[i].data());
+  }
 
  private:
   struct Stream;

@@ -364,6 +364,8 @@ StepOutcome step_body(const Model& model, const BodyType& type, uint32_t body, u
         out = turbulence_update(model, type, t + 0.5 * h, 0.5 * h, true, z2, s);
       break;
   }
+  // a state that went non-finite within the step samples as "outside": it failed, not exited
+  if (out == StepOutcome::Exited && first_nonfinite(*s)) out = StepOutcome::Ok;
   if (out == StepOutcome::Exited) {
     *s = before;
     *reason = "left the fluid (outside the grid or inside a solid)";

@@ -8,6 +8,8 @@
 #include <string>
 
 #include "integrate/integrators.h"
+#include "integrate/sphere_batch.h"
+#include "integrate/stops.h"
 
 namespace lrigid {
 
@@ -18,36 +20,10 @@ uint64_t output_stride(const Model& model, double every) {
 
 namespace {
 
-// the body's lowest point is on or below the ground
-bool touches_ground(const Model& m, const BodyType& type, const BodyState& s) {
-  const Mat3 R = s.q.toRotationMatrix();
-  double reach = 0;
-  for (int a = 0; a < 3; ++a) reach += std::abs(R(2, a)) * type.half_extents[a];
-  return s.x.z() - reach <= m.ground_z;
-}
-
-// where one more step would take the body: its world velocity R v, plus the turbulent velocity
-// u' for the body turbulence model (which carries the body directly; for the seen model u' is
-// the fluid's and acts through the forces)
-Vec3 predicted_position(const Model& m, const BodyType& type, const BodyState& b) {
-  Vec3 velocity = b.q * b.v;
-  if (type.effects.has(Effect::Turbulence) && m.turbulence_model == TurbulenceModel::Body)
-    velocity += b.u_seen;
-  return b.x + m.dt * velocity;
-}
-
 // the last time a stretch of steps ending at step `last` samples: an RK4 stage at t + dt may
 // round a little beyond last * dt
 double stream_window_end(const Model& m, uint64_t last) {
   return static_cast<double>(last) * m.dt * (1 + 1e-12) + 1e-9 * m.dt;
-}
-
-// where a body that could not be sampled went: where one more step would take it
-std::string exit_reason(const Model& m, const BodyType& type, const BodyState& b) {
-  const Vec3 next = predicted_position(m, type, b);
-  if (m.field.in_box(next) && m.field.in_box(b.x))
-    return "hit a solid: no valid grid point around it (a wall, a building, an obstacle)";
-  return "left the grid";
 }
 
 // a streamed field's frames change at frame times: a stretch of steps ends before the next one
@@ -58,6 +34,81 @@ uint64_t stream_stretch_end(const Model& m, uint64_t first, uint64_t last) {
   uint64_t end = first + 1;
   while (end < last && stream_window_end(m, end + 1) < t_next) ++end;
   return end;
+}
+
+// Advances body i (scalar step) from step `first` to `last`; returns the steps it took.
+uint64_t advance_body(const Model& model, State& st, int64_t i, uint64_t first, uint64_t last) {
+  uint64_t body_steps = 0;
+  const BodyType& type = model.types[st.type[i]];
+  BodyState b{st.x[i], st.q[i], st.v[i], st.w[i], st.u_seen[i], st.history_of(size_t(i))};
+  for (uint64_t k = first; k < last; ++k) {
+    const double t = static_cast<double>(k) * model.dt;
+    std::string reason;
+    const StepOutcome out = step_body(model, type, static_cast<uint32_t>(i), k, t, &b, &reason);
+    if (out == StepOutcome::Exited && model.has_ground) {
+      // a step that would cross the ground (often also the grid's bottom) lands the body,
+      // even when a stage of it sampled below the grid first
+      BodyState next = b;
+      next.x = predicted_position(model, type, b);
+      if (touches_ground(model, type, next)) {
+        st.status[i] = BodyStatus::Landed;
+        st.t_stop[i] = t + model.dt;
+        b.v.setZero();
+        b.w.setZero();
+        break;
+      }
+    }
+    if (out != StepOutcome::Ok) {
+      st.status[i] = out == StepOutcome::Exited ? BodyStatus::Exited : BodyStatus::Failed;
+      st.t_stop[i] = t;
+      st.reason[i] = out == StepOutcome::Exited ? exit_reason(model, type, b) : reason;
+      break;
+    }
+    ++body_steps;
+    if (model.has_ground && touches_ground(model, type, b)) {
+      st.status[i] = BodyStatus::Landed;
+      st.t_stop[i] = t + model.dt;
+      b.v.setZero();
+      b.w.setZero();
+      break;
+    }
+  }
+  st.x[i] = b.x;
+  st.q[i] = b.q;
+  st.v[i] = b.v;
+  st.w[i] = b.w;
+  st.u_seen[i] = b.u_seen;
+  return body_steps;
+}
+
+// The bodies a stretch advances: those still moving in [n0, n), the batched step's types in
+// blocks of kBatch bodies of one type, the others one by one. Rebuilt for every stretch, so
+// bodies that stopped leave the blocks.
+struct WorkList {
+  std::vector<std::vector<uint32_t>> blocks;
+  std::vector<int64_t> scalar;
+};
+
+WorkList work_list(const Model& model, const State& st, const std::vector<char>& batched,
+                   int64_t n0, int64_t n) {
+  WorkList w;
+  std::vector<std::vector<uint32_t>> open(model.types.size());
+  for (int64_t i = n0; i < n; ++i) {
+    if (st.status[i] != BodyStatus::Moving) continue;
+    const uint16_t t = st.type[i];
+    if (!batched[t]) {
+      w.scalar.push_back(i);
+      continue;
+    }
+    open[t].push_back(static_cast<uint32_t>(i));
+    if (open[t].size() == size_t(kBatch)) {
+      w.blocks.push_back(std::move(open[t]));
+      open[t].clear();
+    }
+  }
+  for (auto& b : open)
+    if (!b.empty()) w.blocks.push_back(std::move(b));
+  return w;
 }
 
 }  // namespace
@@ -73,6 +124,10 @@ RunStats simulate(const Model& model, State* state, const RunOptions& options) {
   const auto n = static_cast<int64_t>(std::min(st.size(), options.body_end));
   const auto n0 = static_cast<int64_t>(std::min(st.size(), options.body_begin));
   double wall = 0;
+  // body types that take the batched sphere step (integrate/sphere_batch.h)
+  std::vector<char> batched(model.types.size());
+  for (size_t t = 0; t < model.types.size(); ++t)
+    batched[t] = sphere_batch_eligible(model, model.types[t]);
 
   while (st.step < total_steps) {
     const uint64_t first = st.step;
@@ -81,48 +136,21 @@ RunStats simulate(const Model& model, State* state, const RunOptions& options) {
     model.field.prepare(static_cast<double>(first) * model.dt, stream_window_end(model, last));
     uint64_t body_steps = 0;
     const auto t0 = std::chrono::steady_clock::now();
-#pragma omp parallel for schedule(static) num_threads(threads) reduction(+ : body_steps)
-    for (int64_t i = n0; i < n; ++i) {
-      if (st.status[i] != BodyStatus::Moving) continue;
-      const BodyType& type = model.types[st.type[i]];
-      BodyState b{st.x[i], st.q[i], st.v[i], st.w[i], st.u_seen[i], st.history_of(size_t(i))};
-      for (uint64_t k = first; k < last; ++k) {
-        const double t = static_cast<double>(k) * model.dt;
-        std::string reason;
-        const StepOutcome out = step_body(model, type, static_cast<uint32_t>(i), k, t, &b, &reason);
-        if (out == StepOutcome::Exited && model.has_ground) {
-          // a step that would cross the ground (often also the grid's bottom) lands the body,
-          // even when a stage of it sampled below the grid first
-          BodyState next = b;
-          next.x = predicted_position(model, type, b);
-          if (touches_ground(model, type, next)) {
-            st.status[i] = BodyStatus::Landed;
-            st.t_stop[i] = t + model.dt;
-            b.v.setZero();
-            b.w.setZero();
-            break;
-          }
-        }
-        if (out != StepOutcome::Ok) {
-          st.status[i] = out == StepOutcome::Exited ? BodyStatus::Exited : BodyStatus::Failed;
-          st.t_stop[i] = t;
-          st.reason[i] = out == StepOutcome::Exited ? exit_reason(model, type, b) : reason;
-          break;
-        }
-        ++body_steps;
-        if (model.has_ground && touches_ground(model, type, b)) {
-          st.status[i] = BodyStatus::Landed;
-          st.t_stop[i] = t + model.dt;
-          b.v.setZero();
-          b.w.setZero();
-          break;
-        }
+    const WorkList work = work_list(model, st, batched, n0, n);
+    const auto nblocks = static_cast<int64_t>(work.blocks.size());
+    const auto nscalar = static_cast<int64_t>(work.scalar.size());
+#pragma omp parallel num_threads(threads) reduction(+ : body_steps)
+    {
+#pragma omp for schedule(dynamic, 4) nowait
+      for (int64_t k = 0; k < nblocks; ++k) {
+        const std::vector<uint32_t>& blk = work.blocks[k];
+        body_steps += advance_sphere_block(model, model.types[st.type[blk[0]]], &st, blk.data(),
+                                           static_cast<int>(blk.size()), first, last)
+                          .body_steps;
       }
-      st.x[i] = b.x;
-      st.q[i] = b.q;
-      st.v[i] = b.v;
-      st.w[i] = b.w;
-      st.u_seen[i] = b.u_seen;
+#pragma omp for schedule(static)
+      for (int64_t k = 0; k < nscalar; ++k)
+        body_steps += advance_body(model, st, work.scalar[k], first, last);
     }
     wall += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     stats.body_steps += body_steps;

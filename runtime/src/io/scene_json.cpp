@@ -44,6 +44,11 @@ class Obj {
     return v;
   }
   double positive_or(const std::string& key, double def) { return has(key) ? positive(key) : def; }
+  bool boolean(const std::string& key) {
+    const json& v = get(key);
+    if (!v.is_boolean()) fail(key, "must be true or false, got " + dump(v));
+    return v.get<bool>();
+  }
   std::string string(const std::string& key) {
     const json& v = get(key);
     if (!v.is_string()) fail(key, "must be a string, got " + dump(v));
@@ -296,6 +301,13 @@ Scene parse_scene_unchecked(const std::string& text, const std::string& path) {
     else if (scheme == "splitting") s.integrator = Integrator::Splitting;
     else in.fail("scheme", "must be euler, rk4 or splitting, got \"" + scheme + "\"");
     s.dt = in.positive("dt");
+    if (in.has("batched")) s.batched = in.boolean("batched");
+    if (in.has("precision")) {
+      const std::string p = in.string("precision");
+      if (p == "double") s.precision = Precision::Double;
+      else if (p == "float") s.precision = Precision::Float;
+      else in.fail("precision", "must be double or float, got \"" + p + "\"");
+    }
     in.finish();
   }
   s.duration = top.positive("duration");

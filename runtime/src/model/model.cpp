@@ -348,6 +348,8 @@ Model compile_model(const Scene& scene, FluidField field, const AddedMassProvide
   m.nu = scene.kinematic_viscosity;
   m.gravity = scene.gravity;
   m.integrator = scene.integrator;
+  m.batched = scene.batched;
+  m.precision = scene.precision;
   m.dt = scene.dt;
   m.duration = scene.duration;
   m.seed = scene.seed;

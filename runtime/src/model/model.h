@@ -104,6 +104,10 @@ struct Model {
   Vec3 gravity = Vec3(0, 0, -9.81);
   FluidField field;
   Integrator integrator = Integrator::Splitting;
+  // spheres take the batched step (integrate/sphere_batch.h) unless the scene says otherwise,
+  // in double or single precision
+  bool batched = true;
+  Precision precision = Precision::Double;
   double dt = 1e-3;              // s
   double duration = 1;           // s
   uint64_t seed = 1;

@@ -13,6 +13,8 @@ namespace lrigid {
 
 enum class Integrator { Euler, RK4, Splitting };
 enum class TurbulenceModel { Body, Seen };
+// arithmetic of the batched sphere step (integrate/sphere_batch.h); the scalar step is double
+enum class Precision { Double, Float };
 
 const char* integrator_name(Integrator i);
 const char* turbulence_model_name(TurbulenceModel m);
@@ -63,6 +65,8 @@ struct Scene {
   bool effects_auto = false;
   EffectSet effects;
   Integrator integrator = Integrator::Splitting;
+  bool batched = true;                    // integrator.batched: the batched sphere step
+  Precision precision = Precision::Double;  // integrator.precision
   double dt = 1e-3;                       // s
   double duration = 1;                    // s
   uint64_t seed = 1;

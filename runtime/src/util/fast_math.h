@@ -1,4 +1,5 @@
-// Elementary functions for the normal generator (util/rng.h) as straight-line polynomials:
+// Elementary functions for the normal generator (util/rng.h) and the batched sphere step
+// (integrate/sphere_batch.h) as straight-line polynomials:
 // no table, no library call, no branch, so a loop over them vectorizes, and the results do not
 // depend on the C library. Accurate to a few ulp over the ranges they are used on (tested in
 // tests/runtime/util/rng_test.cpp against std::log, std::sin, std::cos).
@@ -67,6 +68,58 @@ inline void sincos_of_turn(uint32_t b, double* c, double* s) {
   const double cc = odd ? sn : cs, ss = odd ? cs : sn;
   *c = neg_c ? -cc : cc;
   *s = neg_s ? -ss : ss;
+}
+
+// e^x for x in [-700, 700] (clamped outside): x = k ln2 + r, |r| <= ln2/2, e^r by its Taylor
+// series to r^13 (error < 1e-17), 2^k put into the exponent bits
+inline double exp_fast(double x) {
+  x = x < -700.0 ? -700.0 : (x > 700.0 ? 700.0 : x);
+  constexpr double kShift = 0x1.8p52;  // adding it rounds to an integer held in the low bits
+  const double kd = (x * 1.4426950408889634074 + kShift) - kShift;
+  const double r = (x - kd * 0.693147180369123816490) - kd * 1.90821492927058770002e-10;
+  double p = 1.0 / 6227020800.0;  // 1/13!
+  p = p * r + 1.0 / 479001600.0;
+  p = p * r + 1.0 / 39916800.0;
+  p = p * r + 1.0 / 3628800.0;
+  p = p * r + 1.0 / 362880.0;
+  p = p * r + 1.0 / 40320.0;
+  p = p * r + 1.0 / 5040.0;
+  p = p * r + 1.0 / 720.0;
+  p = p * r + 1.0 / 120.0;
+  p = p * r + 1.0 / 24.0;
+  p = p * r + 1.0 / 6.0;
+  p = p * r + 0.5;
+  p = p * r + 1.0;
+  p = p * r + 1.0;
+  const int64_t k = static_cast<int64_t>(kd);
+  const uint64_t scale_bits = static_cast<uint64_t>(k + 1023) << 52;
+  double scale;
+  std::memcpy(&scale, &scale_bits, sizeof scale);
+  return p * scale;
+}
+
+// 1 - e^-y for y >= 0 without the cancellation of the difference at small y: its Taylor series
+// to y^16 below y = 0.5 (error < 1e-19 y), 1 - exp_fast(-y) above
+inline double one_minus_exp_neg(double y) {
+  double p = -1.0 / 20922789888000.0;  // the series y - y^2/2! + y^3/3! - ... to -y^16/16!
+  p = p * y + 1.0 / 1307674368000.0;
+  p = p * y - 1.0 / 87178291200.0;
+  p = p * y + 1.0 / 6227020800.0;
+  p = p * y - 1.0 / 479001600.0;
+  p = p * y + 1.0 / 39916800.0;
+  p = p * y - 1.0 / 3628800.0;
+  p = p * y + 1.0 / 362880.0;
+  p = p * y - 1.0 / 40320.0;
+  p = p * y + 1.0 / 5040.0;
+  p = p * y - 1.0 / 720.0;
+  p = p * y + 1.0 / 120.0;
+  p = p * y - 1.0 / 24.0;
+  p = p * y + 1.0 / 6.0;
+  p = p * y - 0.5;
+  p = p * y + 1.0;
+  const double series = p * y;
+  const double direct = 1.0 - exp_fast(-y);
+  return y < 0.5 ? series : direct;
 }
 
 }  // namespace lrigid

@@ -64,6 +64,18 @@ TEST(SceneJson, ReadsEveryKey) {
   EXPECT_TRUE(s.output.csv);
   EXPECT_FALSE(s.output.pvd);
   EXPECT_EQ(s.output.dir, "out");
+  // integrator.batched and integrator.precision default to the batched step in double
+  EXPECT_TRUE(s.batched);
+  EXPECT_EQ(s.precision, Precision::Double);
+}
+
+TEST(SceneJson, BatchedStepKeys) {
+  json j = valid_scene();
+  j["integrator"]["batched"] = false;
+  j["integrator"]["precision"] = "float";
+  const Scene s = parse_scene(j.dump(), "/tmp/scene.json");
+  EXPECT_FALSE(s.batched);
+  EXPECT_EQ(s.precision, Precision::Float);
 }
 
 TEST(SceneJson, MalformedJsonReportsLineAndColumn) {
@@ -122,6 +134,10 @@ INSTANTIATE_TEST_SUITE_P(
                 "effects[3]: unknown effect \"magic\""},
         BadCase{"unknown scheme", [](json& j) { j["integrator"]["scheme"] = "leapfrog"; },
                 "integrator.scheme: must be euler, rk4 or splitting, got \"leapfrog\""},
+        BadCase{"unknown precision", [](json& j) { j["integrator"]["precision"] = "half"; },
+                "integrator.precision: must be double or float, got \"half\""},
+        BadCase{"batched not a bool", [](json& j) { j["integrator"]["batched"] = "yes"; },
+                "integrator.batched: must be true or false, got \"yes\""},
         BadCase{"bad count", [](json& j) { j["bodies"][0]["count"] = 0; },
                 "bodies[0].count: must be an integer >= 1, got 0"},
         BadCase{"both placements",

@@ -28,6 +28,26 @@ TEST(FastMath, LogMatchesLibraryOverTheBoxMullerRange) {
   EXPECT_EQ(log_fast(1.0), 0.0);
 }
 
+TEST(FastMath, ExpAndOneMinusExpMatchLibrary) {
+  // relative errors of a few ulp over the ranges the batched sphere step uses them on
+  double worst_exp = 0, worst_om = 0;
+  for (int i = 0; i <= 200000; ++i) {
+    const double x = -700.0 + 1400.0 * i / 200000.0;
+    worst_exp = std::max(worst_exp, std::abs(exp_fast(x) - std::exp(x)) / std::exp(x));
+  }
+  for (int i = 0; i <= 200000; ++i) {
+    const double y = std::pow(10.0, -14.0 + 16.0 * i / 200000.0);  // 1e-14 .. 100
+    const double ref = -std::expm1(-y);
+    worst_om = std::max(worst_om, std::abs(one_minus_exp_neg(y) - ref) / ref);
+  }
+  std::printf("exp_fast: worst relative error %.3g; one_minus_exp_neg: %.3g\n", worst_exp,
+              worst_om);
+  EXPECT_LT(worst_exp, 1e-15);
+  EXPECT_LT(worst_om, 1e-15);
+  EXPECT_EQ(exp_fast(0.0), 1.0);
+  EXPECT_EQ(exp_fast(-1000.0), exp_fast(-700.0));  // clamped, finite
+}
+
 TEST(FastMath, SinCosOfTurnMatchesLibrary) {
   double worst = 0;
   for (uint64_t b = 0; b < (uint64_t(1) << 32); b += 99991) {

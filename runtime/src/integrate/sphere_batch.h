@@ -1,0 +1,44 @@
+// The batched step for small spheres: the splitting scheme of integrate/integrators.h for bodies
+// whose generalized mass is isotropic (uniform spheres), advanced kBatch at a time in
+// structure-of-arrays blocks, so each stage of the step is one loop across bodies that the
+// compiler vectorizes (docs/performance.md, "The batched sphere step").
+//
+// The physics is the scalar step's, term for term, on the same random numbers (Philox keyed by
+// seed, body and step): exact Ornstein-Uhlenbeck half steps with Thomson's drift, the free
+// Kirchhoff flow (for an isotropic M a pure rotation, q <- q cay(h w)), gravity and buoyancy,
+// sphere drag implicit with Newton when stiff, added mass with the mean-flow acceleration. Two
+// things differ only in rounding: the velocity is kept in the world frame (for an isotropic M the
+// equations do not depend on the orientation) and exp, log and pow are util/fast_math.h's
+// polynomials. tests/runtime/integrate/sphere_batch_test.cpp holds the batched step to the scalar
+// one. Precision::Float runs the same step in single precision (its accuracy cost is measured by
+// bench/perf/float_accuracy.sh).
+//
+// What qualifies (sphere_batch_eligible): a uniform sphere (centre of mass at the centroid) with
+// effects among gravity, buoyancy, drag, added mass, mean flow and turbulence; the seen
+// turbulence model; the splitting integrator; one noise increment per step; a uniform field or a
+// steady grid (one frame). Other body types take the scalar step; a scene can mix both.
+#pragma once
+#include <cstdint>
+#include <string>
+
+#include "model/model.h"
+#include "model/state.h"
+
+namespace lrigid {
+
+constexpr int kBatch = 32;  // bodies per block: a multiple of every SIMD width
+
+// Whether bodies of this type take the batched step; when not, `why` says what excludes it.
+bool sphere_batch_eligible(const Model& model, const BodyType& type, std::string* why = nullptr);
+
+struct BlockStats {
+  uint64_t body_steps = 0;
+};
+
+// Advances up to kBatch bodies of one eligible type (indices body[0..count)) in `state` from
+// step `first` to step `last`, with the same statuses, stop times and reasons the scalar loop of
+// integrate/simulation.cpp gives (landing, leaving the grid, non-finite state).
+BlockStats advance_sphere_block(const Model& model, const BodyType& type, State* state,
+                                const uint32_t* body, int count, uint64_t first, uint64_t last);
+
+}  // namespace lrigid

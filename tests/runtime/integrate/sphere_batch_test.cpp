@@ -1,0 +1,278 @@
+// The batched sphere step (integrate/sphere_batch.h) against the scalar step it replaces: the
+// same scene run with model.batched on and off gives the same statuses, stop times and reasons,
+// and states that differ by rounding only (double), or by what single precision costs (float).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+
+#include "integrate/simulation.h"
+#include "integrate/sphere_batch.h"
+#include "support/fixture.h"
+
+namespace lrigid {
+namespace {
+
+// A 12 x 8 x 6 m box of air with a sheared, accelerating wind, k rising with height, a solid
+// block in the middle (invalid points) and the ground at z = 0.
+FluidField wind_grid(double nu) {
+  GridGeometry g;
+  g.n[0] = 25;
+  g.n[1] = 17;
+  g.n[2] = 13;
+  g.origin = Vec3(-6, -4, -0.5);
+  g.spacing = Vec3(0.5, 0.5, 0.5);
+  RawGridFrame f;
+  const size_t np = g.points();
+  f.U.resize(3 * np);
+  f.k.resize(np);
+  f.epsilon.resize(np);
+  f.valid.assign(np, 1);
+  for (size_t p = 0; p < np; ++p) {
+    const int i = int(p % g.n[0]), j = int((p / g.n[0]) % g.n[1]), l = int(p / (g.n[0] * g.n[1]));
+    const Vec3 x = g.origin + Vec3(i, j, l).cwiseProduct(g.spacing);
+    const double z = std::max(x.z(), 0.0);
+    f.U[3 * p + 0] = float(1.5 * std::sqrt(z) * (1 + 0.05 * x.x()));
+    f.U[3 * p + 1] = float(0.3 * std::sin(0.5 * x.x()));
+    f.U[3 * p + 2] = float(-0.05 * x.y());
+    const double k = 0.05 + 0.2 * z / 5.5;
+    f.k[p] = float(k);
+    f.epsilon[p] = float(0.4 * k);
+    if (std::abs(x.x()) <= 1.0 && std::abs(x.y()) <= 1.0 && x.z() <= 2.0) f.valid[p] = 0;
+  }
+  return FluidField::grid(g, {f}, nu, Drift::Stationary, TimeMode::Clamp);
+}
+
+Scene bead_scene(double radius, double density, int count) {
+  Scene s = test::sphere_scene(radius, density, 1.2, 1.5e-5, count);
+  s.effects = test::effects({Effect::Gravity, Effect::Buoyancy, Effect::Drag, Effect::AddedMass,
+                             Effect::MeanFlow, Effect::Turbulence});
+  s.uniform_field = false;
+  s.integrator = Integrator::Splitting;
+  s.dt = 2e-3;
+  s.duration = 1.0;
+  s.seed = 7;
+  s.has_ground = true;
+  s.ground_z = 0;
+  s.bodies[0].spawn_in_box = true;
+  s.bodies[0].box_lo = Vec3(-5, -3, 0.3);
+  s.bodies[0].box_hi = Vec3(-1.5, 3, 3);
+  s.bodies[0].random_orientation = true;
+  return s;
+}
+
+struct Outcome {
+  State state;
+  RunStats stats;
+};
+
+Outcome run(const Scene& s, const FluidField& field, bool batched, Precision p, int threads = 1) {
+  Model m = test::compile(s, field);
+  m.batched = batched;
+  m.precision = p;
+  Outcome r{initial_state(m, s), {}};
+  RunOptions opt;
+  opt.threads = threads;
+  r.stats = simulate(m, &r.state, opt);
+  return r;
+}
+
+// largest differences between two runs' states, per part
+struct Diff {
+  double x = 0, v = 0, w = 0, q = 0, u = 0;
+};
+
+Diff compare(const Outcome& a, const Outcome& b) {
+  Diff d;
+  EXPECT_EQ(a.state.size(), b.state.size());
+  for (size_t i = 0; i < a.state.size(); ++i) {
+    EXPECT_EQ(a.state.status[i], b.state.status[i]) << "body " << i;
+    EXPECT_EQ(a.state.t_stop[i], b.state.t_stop[i]) << "body " << i;
+    EXPECT_EQ(a.state.reason[i], b.state.reason[i]) << "body " << i;
+    d.x = std::max(d.x, (a.state.x[i] - b.state.x[i]).norm());
+    d.v = std::max(d.v, (a.state.v[i] - b.state.v[i]).norm());
+    d.w = std::max(d.w, (a.state.w[i] - b.state.w[i]).norm());
+    d.q = std::max(d.q, (a.state.q[i].coeffs() - b.state.q[i].coeffs()).norm());
+    d.u = std::max(d.u, (a.state.u_seen[i] - b.state.u_seen[i]).norm());
+  }
+  return d;
+}
+
+size_t count(const State& s, BodyStatus status) {
+  size_t n = 0;
+  for (BodyStatus x : s.status) n += x == status;
+  return n;
+}
+
+TEST(SphereBatch, BeadsInAGridMatchTheScalarStep) {
+  // 300 bodies: 9 full blocks and one of 12
+  const Scene s = bead_scene(2.5e-4, 2500, 300);
+  const FluidField field = wind_grid(1.5e-5);
+  ASSERT_TRUE(sphere_batch_eligible(test::compile(s, field), test::compile(s, field).types[0]));
+  const Outcome scalar = run(s, field, false, Precision::Double);
+  const Outcome batched = run(s, field, true, Precision::Double);
+  const Diff d = compare(scalar, batched);
+  EXPECT_EQ(scalar.stats.body_steps, batched.stats.body_steps);
+  EXPECT_LT(d.x, 1e-9);
+  EXPECT_LT(d.v, 1e-9);
+  EXPECT_LT(d.w, 1e-9);
+  EXPECT_LT(d.q, 1e-12);
+  EXPECT_LT(d.u, 1e-9);
+  // the scene exercises what it should: bodies moved by turbulence, some landed, some hit the
+  // block or left the grid, some still moving
+  EXPECT_GT(count(batched.state, BodyStatus::Moving), 0u);
+  EXPECT_GT(count(batched.state, BodyStatus::Landed) + count(batched.state, BodyStatus::Exited),
+            0u);
+  EXPECT_GT((batched.state.u_seen[0] - batched.state.u_seen[1]).norm(), 0.0);
+}
+
+TEST(SphereBatch, StiffDragTakesTheNewtonPathLikeTheScalarStep) {
+  // 20 um droplets, response time ~1 ms, dt 20 ms: the implicit drag iterates
+  Scene s = bead_scene(2e-5, 1000, 100);
+  s.dt = 0.02;
+  s.duration = 2.0;
+  const FluidField field = wind_grid(1.5e-5);
+  const Outcome scalar = run(s, field, false, Precision::Double);
+  const Outcome batched = run(s, field, true, Precision::Double);
+  const Diff d = compare(scalar, batched);
+  EXPECT_LT(d.x, 1e-9);
+  EXPECT_LT(d.v, 1e-9);
+  EXPECT_LT(d.u, 1e-9);
+  // stiff and stable: the droplets move with the air (|v| of order the wind, not blown up)
+  for (size_t i = 0; i < batched.state.size(); ++i) {
+    if (batched.state.status[i] == BodyStatus::Moving) {
+      EXPECT_LT(batched.state.v[i].norm(), 10.0);
+    }
+  }
+}
+
+TEST(SphereBatch, LightSpheresInWaterWithAddedMassMatchTheScalarStep) {
+  // bubbles-like light spheres in a uniform water flow: added mass dominates the inertia
+  Scene s = test::sphere_scene(1e-3, 50, 1000, 1e-6, 64);
+  s.effects = test::effects({Effect::Gravity, Effect::Buoyancy, Effect::Drag, Effect::AddedMass,
+                             Effect::MeanFlow, Effect::Turbulence});
+  s.uniform_U = Vec3(0.2, 0, 0.05);
+  s.uniform_k = 1e-3;
+  s.uniform_epsilon = 1e-3;
+  s.integrator = Integrator::Splitting;
+  s.dt = 1e-3;
+  s.duration = 0.5;
+  s.bodies[0].spawn_in_box = true;
+  s.bodies[0].box_hi = Vec3(0.1, 0.1, 0.1);
+  const FluidField field = FluidField::uniform(s.uniform_U, s.uniform_k, s.uniform_epsilon,
+                                               s.kinematic_viscosity, s.drift);
+  const Outcome scalar = run(s, field, false, Precision::Double);
+  const Outcome batched = run(s, field, true, Precision::Double);
+  const Diff d = compare(scalar, batched);
+  EXPECT_LT(d.x, 1e-10);
+  EXPECT_LT(d.v, 1e-10);
+  EXPECT_LT(d.u, 1e-10);
+  // they rise (buoyancy beats gravity 20 to 1)
+  EXPECT_GT(batched.state.v[0].norm(), 0.05);
+}
+
+TEST(SphereBatch, IdenticalForAnyThreadCount) {
+  const Scene s = bead_scene(2.5e-4, 2500, 200);
+  const FluidField field = wind_grid(1.5e-5);
+  const Outcome one = run(s, field, true, Precision::Double, 1);
+  const Outcome two = run(s, field, true, Precision::Double, 2);
+  const Diff d = compare(one, two);
+  EXPECT_EQ(d.x, 0.0);
+  EXPECT_EQ(d.v, 0.0);
+  EXPECT_EQ(d.q, 0.0);
+  EXPECT_EQ(d.u, 0.0);
+}
+
+TEST(SphereBatch, NonFiniteStateFailsWithTheScalarStepsReason) {
+  const Scene s = bead_scene(2.5e-4, 2500, 40);
+  const FluidField field = wind_grid(1.5e-5);
+  Outcome r[2];
+  for (int b = 0; b < 2; ++b) {
+    Model m = test::compile(s, field);
+    m.batched = b == 1;
+    r[b].state = initial_state(m, s);
+    // a non-finite spin leaves the position (and the sample) finite: the orientation fails
+    r[b].state.w[3] = Vec3(std::nan(""), 0, 0);
+    r[b].stats = simulate(m, &r[b].state, RunOptions{});
+  }
+  // both fail the body at the same step; the scalar step (body-frame velocity, rotated with
+  // the orientation) meets the non-finite position first, the batched one (world-frame
+  // velocity) the orientation
+  for (int b = 0; b < 2; ++b) {
+    EXPECT_EQ(r[b].state.status[3], BodyStatus::Failed);
+    EXPECT_EQ(r[b].state.t_stop[3], 0.0);
+  }
+  EXPECT_EQ(r[0].state.reason[3], "non-finite position");
+  EXPECT_EQ(r[1].state.reason[3], "non-finite orientation");
+  // the other bodies of the block went on
+  for (size_t i = 0; i < r[0].state.size(); ++i) {
+    if (i == 3) continue;
+    EXPECT_EQ(r[0].state.status[i], r[1].state.status[i]) << "body " << i;
+    EXPECT_LT((r[0].state.x[i] - r[1].state.x[i]).norm(), 1e-9) << "body " << i;
+  }
+}
+
+TEST(SphereBatch, FloatCostsLittleAccuracy) {
+  const Scene s = bead_scene(2.5e-4, 2500, 300);
+  const FluidField field = wind_grid(1.5e-5);
+  const Outcome dbl = run(s, field, true, Precision::Double);
+  const Outcome flt = run(s, field, true, Precision::Float);
+  // the same bodies keep moving; positions after 1 s (of up to ~5 m travel) agree to well
+  // below a millimetre where both still move
+  double dx = 0;
+  size_t same = 0;
+  for (size_t i = 0; i < dbl.state.size(); ++i) {
+    if (dbl.state.status[i] != flt.state.status[i]) continue;
+    ++same;
+    if (dbl.state.status[i] == BodyStatus::Moving)
+      dx = std::max(dx, (dbl.state.x[i] - flt.state.x[i]).norm());
+  }
+  std::printf("float vs double: %zu of %zu bodies with the same status, max |dx| = %.3g m\n",
+              same, dbl.state.size(), dx);
+  EXPECT_GE(same, dbl.state.size() - 3);
+  EXPECT_LT(dx, 1e-4);
+  EXPECT_GT(dx, 0.0);  // single precision really ran
+}
+
+TEST(SphereBatch, EligibilitySaysWhatExcludesABodyType) {
+  Scene s = bead_scene(2.5e-4, 2500, 1);
+  const FluidField field = wind_grid(1.5e-5);
+  std::string why;
+  EXPECT_TRUE(sphere_batch_eligible(test::compile(s, field), test::compile(s, field).types[0]));
+  {
+    Scene e = s;
+    e.bodies[0].shape = Shape::ellipsoid(3e-4, 2.5e-4, 2e-4);
+    const Model m = test::compile(e, field);
+    EXPECT_FALSE(sphere_batch_eligible(m, m.types[0], &why));
+    EXPECT_EQ(why, "not a sphere");
+  }
+  {
+    Scene e = s;
+    e.integrator = Integrator::RK4;
+    const Model m = test::compile(e, field);
+    EXPECT_FALSE(sphere_batch_eligible(m, m.types[0], &why));
+    EXPECT_EQ(why, "the integrator is not splitting");
+  }
+  {
+    Scene e = s;
+    e.effects.add(Effect::Basset);
+    const Model m = test::compile(e, field);
+    EXPECT_FALSE(sphere_batch_eligible(m, m.types[0], &why));
+    EXPECT_EQ(why, "effect basset");
+  }
+  {
+    Scene e = s;
+    e.turbulence_model = TurbulenceModel::Body;
+    const Model m = test::compile(e, field);
+    EXPECT_FALSE(sphere_batch_eligible(m, m.types[0], &why));
+    EXPECT_EQ(why, "the body turbulence model");
+  }
+  {
+    Model m = test::compile(s, field);
+    m.batched = false;
+    EXPECT_FALSE(sphere_batch_eligible(m, m.types[0], &why));
+  }
+}
+
+}  // namespace
+}  // namespace lrigid
