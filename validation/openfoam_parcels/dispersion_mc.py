@@ -11,8 +11,8 @@ expected spread ratio from the same geometry:
 * lrigid's "seen" Langevin model (docs/physics/langevin.md): the fluid fluctuation u' seen by
   the particle follows an Ornstein-Uhlenbeck process per component, alpha = 3/4 C0 eps/k
   ("stationary" drift), beta^2 = C0 eps, C0 from Sawford's fit of R_lambda, with Thomson's
-  well-mixed drift 1/2 grad(sigma^2) + u' (u' + U).grad(sigma^2) / (2 sigma^2); u' starts from
-  its stationary distribution at the release point.
+  well-mixed drift 1/2 grad(sigma^2) + u' v.grad(sigma^2) / (2 sigma^2) along the parcel's path
+  (v its velocity); u' starts from its stationary distribution at the release point.
 * OpenFOAM's stochasticDispersionRAS (read from its source, v1912 = OpenFOAM-dev here): a
   random velocity sigma |xi| e, sigma = sqrt(2k/3), xi standard normal, e a uniform random
   direction, held for the eddy lifetime t_e = min(k/eps, 0.16432 k^1.5 / (eps |u_rel|)) and then
@@ -134,7 +134,8 @@ def simulate(grid, release, n, model, *, D, rho_p, rho_f, nu, dt, t_end, seed=1,
                 dx[c] = d[c]
                 grad[:, c] = (sigma2_at(grid, xa + dx, nu) - sigma2_at(grid, xa - dx, nu)) / (
                     2 * d[c])
-            drift = 0.5 * grad + ua * (np.sum((ua + U) * grad, axis=1) / (2 * s2))[:, None]
+            # along the parcel's path (effects/turbulence.h): its velocity va
+            drift = 0.5 * grad + ua * (np.sum(va * grad, axis=1) / (2 * s2))[:, None]
             decay = np.exp(-alpha * dt)
             noise = np.sqrt(beta2 * -np.expm1(-2 * alpha * dt) / (2 * alpha))
             ua = decay[:, None] * ua + dt * drift + noise[:, None] * rng.standard_normal(

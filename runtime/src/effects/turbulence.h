@@ -7,8 +7,12 @@
 //   seen: the fluctuating fluid velocity u' seen by the body follows the OU process and acts on
 //         the body through drag and added mass: heavy bodies filter it, light ones follow it.
 //         In inhomogeneous turbulence it carries Thomson's (1987) well-mixed drift
-//         a_i = 1/2 d_i sigma2 + u'_i (u' + U) . grad sigma2 / (2 sigma2), which keeps a uniform
-//         cloud of tracers uniform (without it tracers gather where k is low).
+//         a_i = 1/2 d_i sigma2 + u'_i v . grad sigma2 / (2 sigma2), which keeps a uniform
+//         cloud of tracers uniform (without it tracers gather where k is low). v is the velocity
+//         of the path along which u' is sampled, the body's own: for a tracer v = U + u'
+//         (Thomson's form); for a body that lags the fluid the term keeps u' / sigma stationary
+//         along its path, where U + u' would feed u' back into itself (d u'/dt ~ u'^2, a
+//         blow-up in finite time in steep gradients: docs/physics/langevin.md).
 #pragma once
 #include <cmath>
 
@@ -33,7 +37,8 @@ inline OUStep ou_exact(double alpha, double beta, double h) {
   return s;
 }
 
-// Thomson's well-mixed drift correction for the seen fluctuation u' (world frame), m/s^2.
-Vec3 well_mixed_drift(const Vec3& u_seen, const FluidSample& s);
+// Thomson's well-mixed drift correction for the seen fluctuation u' (world frame), m/s^2, for u'
+// sampled along a path moving at path_velocity (world frame, m/s).
+Vec3 well_mixed_drift(const Vec3& u_seen, const Vec3& path_velocity, const FluidSample& s);
 
 }  // namespace lrigid

@@ -52,12 +52,13 @@ StepOutcome turbulence_update(const Model& model, const BodyType& type, double t
   }
   // the turbulent velocity u' (world frame, in u_seen) follows the OU process with Thomson's
   // well-mixed drift in both models: "seen" makes it the fluid velocity around the body (acting
-  // through drag and added mass), "body" adds it to the body's own velocity (x' = R v + u')
-  const Vec3 U = type.effects.has(Effect::MeanFlow) ? fs.U : Vec3::Zero();
-  FluidSample drift_sample = fs;
-  drift_sample.U = U;
-  const Vec3 drift =
-      model.well_mixed_correction ? well_mixed_drift(s->u_seen, drift_sample) : Vec3::Zero();
+  // through drag and added mass), "body" adds it to the body's own velocity (x' = R v + u').
+  // The drift follows the body's path: its velocity x'.
+  Vec3 path_velocity = s->q * s->v;
+  if (!seen) path_velocity += s->u_seen;
+  const Vec3 drift = model.well_mixed_correction
+                         ? well_mixed_drift(s->u_seen, path_velocity, fs)
+                         : Vec3::Zero();
   s->u_seen = decay * s->u_seen + h * drift + noise * xi1;
   if (!seen) {
     const Vec3 xi2(z[3], z[4], z[5]);

@@ -233,20 +233,17 @@ void sample_lanes(const Consts& k, const T (*x)[kBatch], Lanes<T>* L) {
 }
 
 // One exact Ornstein-Uhlenbeck half step of the seen fluctuation us (effects/turbulence.h) with
-// Thomson's drift, for one lane.
+// Thomson's drift along the body's path (world velocity V), for one lane.
 template <typename T>
-inline void ou_half(const Consts& k, T alpha, T beta, T sigma2, const T* U, const T* gs,
+inline void ou_half(const Consts& k, T alpha, T beta, T sigma2, const T* V, const T* gs,
                     const T* z, T hh, T* us) {
   const double ah = double(alpha * hh);
   const T decay = T(exp_fast(-ah));
   const double a_safe = alpha > T(0) ? double(alpha) : 1.0;
   const T noise = ah > 1e-12 ? beta * T(std::sqrt(one_minus_exp_neg(2.0 * ah) / (2.0 * a_safe)))
                              : beta * std::sqrt(hh);
-  const T mf = T(k.mf);
   const T s_safe = sigma2 > T(0) ? sigma2 : T(1);
-  const T proj = ((us[0] + mf * U[0]) * gs[0] + (us[1] + mf * U[1]) * gs[1] +
-                  (us[2] + mf * U[2]) * gs[2]) /
-                 (T(2) * s_safe);
+  const T proj = (V[0] * gs[0] + V[1] * gs[1] + V[2] * gs[2]) / (T(2) * s_safe);
   const T on = sigma2 > T(0) ? T(k.wm) : T(0);
 #pragma GCC unroll 3
   for (int a = 0; a < 3; ++a)
@@ -370,7 +367,8 @@ void step_lanes(const Consts& k, Lanes<T>* L, uint64_t step, uint8_t* outcome, b
     // 1. first OU half step
     if constexpr (Turb) {
       const T z[3] = {z1[0][j], z1[1][j], z1[2][j]};
-      ou_half(k, L->alpha[j], L->beta[j], L->sigma2[j], U, gs, z, hh, us);
+      const T V[3] = {L->V[0][j], L->V[1][j], L->V[2][j]};
+      ou_half(k, L->alpha[j], L->beta[j], L->sigma2[j], V, gs, z, hh, us);
     }
     // 2. the free Kirchhoff flow: for isotropic M the world velocity is unchanged and
     //    q <- q cay(h w) (integrate/dynamics.cpp kirchhoff_flow)
@@ -486,10 +484,10 @@ void step_lanes(const Consts& k, Lanes<T>* L, uint64_t step, uint8_t* outcome, b
   for (int j = 0; j < kBatch; ++j) {
     T us[3] = {usn[0][j], usn[1][j], usn[2][j]};
     if constexpr (Turb) {
-      const T U[3] = {L->U[0][j], L->U[1][j], L->U[2][j]};
+      const T V[3] = {Vn[0][j], Vn[1][j], Vn[2][j]};
       const T gs[3] = {L->gs[0][j], L->gs[1][j], L->gs[2][j]};
       const T z[3] = {z2[0][j], z2[1][j], z2[2][j]};
-      ou_half(k, L->alpha[j], L->beta[j], L->sigma2[j], U, gs, z, hh, us);
+      ou_half(k, L->alpha[j], L->beta[j], L->sigma2[j], V, gs, z, hh, us);
     }
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) usn[a][j] = us[a];

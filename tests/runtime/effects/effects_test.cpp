@@ -91,11 +91,25 @@ TEST(Turbulence, ExactOUStepLimits) {
 TEST(Turbulence, WellMixedDriftVanishesInHomogeneousTurbulence) {
   FluidSample s;
   s.sigma2 = 0.2;
-  EXPECT_EQ(well_mixed_drift(Vec3(0.1, 0.2, 0.3), s).norm(), 0.0);
+  EXPECT_EQ(well_mixed_drift(Vec3(0.1, 0.2, 0.3), Vec3(1, 2, 3), s).norm(), 0.0);
   s.grad_sigma2 = Vec3(0.1, 0, 0);
-  // mean over u' ~ N(0, sigma2): <a> = 1/2 grad sigma2 + <u u^T> grad sigma2/(2 sigma2) = grad
-  // sigma2
-  EXPECT_NEAR(well_mixed_drift(Vec3::Zero(), s).x(), 0.05, 1e-15);
+  // mean over u' ~ N(0, sigma2) for a tracer (path velocity U + u', U = 0): <a> = 1/2 grad
+  // sigma2 + <u u^T> grad sigma2 / (2 sigma2) = grad sigma2
+  EXPECT_NEAR(well_mixed_drift(Vec3::Zero(), Vec3::Zero(), s).x(), 0.05, 1e-15);
+  const Vec3 u(0.3, -0.1, 0.2);
+  EXPECT_NEAR(well_mixed_drift(u, u, s).x(), 0.05 + 0.3 * 0.3 * 0.1 / 0.4, 1e-15);
+}
+
+TEST(Turbulence, WellMixedDriftFollowsThePathNotTheFluctuation) {
+  // a body at rest in a gradient: u' is rescaled only as fast as the body moves through sigma,
+  // so the drift does not grow with u' (Thomson's u' + U would give u'^2 growth)
+  FluidSample s;
+  s.sigma2 = 0.2;
+  s.grad_sigma2 = Vec3(0, 0, 0.4);
+  const Vec3 big(0, 0, 10.0);
+  EXPECT_NEAR(well_mixed_drift(big, Vec3::Zero(), s).z(), 0.2, 1e-15);
+  const Vec3 v(0, 0, 0.5);
+  EXPECT_NEAR(well_mixed_drift(big, v, s).z(), 0.2 + 10.0 * 0.5 * 0.4 / 0.4, 1e-13);
 }
 
 }  // namespace
