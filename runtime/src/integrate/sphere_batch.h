@@ -1,7 +1,7 @@
 // The batched step for small spheres: the splitting scheme of integrate/integrators.h for bodies
 // whose generalized mass is isotropic (uniform spheres), advanced kBatch at a time in
 // structure-of-arrays blocks, so each stage of the step is one loop across bodies that the
-// compiler vectorizes (docs/performance.md, "The batched sphere step").
+// compiler vectorizes (docs/batched-step.md).
 //
 // The physics is the scalar step's, term for term, on the same random numbers (Philox keyed by
 // seed, body and step): exact Ornstein-Uhlenbeck half steps with Thomson's drift, the free
@@ -10,8 +10,8 @@
 // things differ only in rounding: the velocity is kept in the world frame (for an isotropic M the
 // equations do not depend on the orientation) and exp, log and pow are util/fast_math.h's
 // polynomials. tests/runtime/integrate/sphere_batch_test.cpp holds the batched step to the scalar
-// one. Precision::Float runs the same step in single precision (its accuracy cost is measured by
-// bench/perf/float_accuracy.sh).
+// one. Precision::Float runs the same step in single precision (its speed and accuracy cost are
+// measured by bench/perf/batch_bench.py).
 //
 // What qualifies (sphere_batch_eligible): a uniform sphere (centre of mass at the centroid) with
 // effects among gravity, buoyancy, drag, added mass, mean flow and turbulence; the seen

@@ -13,6 +13,24 @@
 
 namespace lrigid {
 
+// Philox4x32-10 on one counter, written for loops across many counters: plain 32 x 32 -> 64-bit
+// products and xors, which the compiler vectorizes (Random123's generator takes one counter per
+// call). Bit-for-bit Random123's r123::Philox4x32 (tests/runtime/util/rng_test.cpp).
+inline void philox4x32_10(uint32_t& c0, uint32_t& c1, uint32_t& c2, uint32_t& c3, uint32_t k0,
+                          uint32_t k1) {
+#pragma GCC unroll 10
+  for (int r = 0; r < 10; ++r) {
+    const uint64_t p0 = uint64_t(0xD2511F53u) * c0;
+    const uint64_t p1 = uint64_t(0xCD9E8D57u) * c2;
+    c0 = uint32_t(p1 >> 32) ^ c1 ^ k0;
+    c1 = uint32_t(p1);
+    c2 = uint32_t(p0 >> 32) ^ c3 ^ k1;
+    c3 = uint32_t(p0);
+    k0 += 0x9E3779B9u;
+    k1 += 0xBB67AE85u;
+  }
+}
+
 class NormalStream {
  public:
   NormalStream(uint64_t seed, uint32_t body, uint64_t step) {

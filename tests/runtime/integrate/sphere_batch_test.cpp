@@ -171,6 +171,33 @@ TEST(SphereBatch, LightSpheresInWaterWithAddedMassMatchTheScalarStep) {
   EXPECT_GT(batched.state.v[0].norm(), 0.05);
 }
 
+TEST(SphereBatch, SpheresInFluidAtRestMatchTheScalarStep) {
+  // no effect samples the field (gravity and drag, or nothing at all): the fluid is at rest
+  for (const EffectSet& e :
+       {test::effects({Effect::Gravity, Effect::Drag}), test::effects({})}) {
+    Scene s = test::sphere_scene(0.01, 500, 1000, 1e-6, 40);
+    s.effects = e;
+    s.integrator = Integrator::Splitting;
+    s.dt = 0.01;
+    s.duration = 1.0;
+    s.bodies[0].velocity = Vec3(0.3, 0.0, -0.2);
+    s.bodies[0].angular_velocity = Vec3(1.0, 2.0, 0.5);
+    const FluidField field = FluidField::uniform(Vec3::Zero(), 0, 0, s.kinematic_viscosity,
+                                                 s.drift);
+    const Outcome scalar = run(s, field, false, Precision::Double);
+    const Outcome batched = run(s, field, true, Precision::Double);
+    const Diff d = compare(scalar, batched);
+    EXPECT_LT(d.x, 1e-12);
+    EXPECT_LT(d.v, 1e-12);
+    EXPECT_LT(d.q, 1e-12);
+    for (size_t i = 0; i < batched.state.size(); ++i) {
+      EXPECT_EQ(batched.state.status[i], BodyStatus::Moving) << "body " << i;
+      // the spin turned the sphere (about 2.3 rad in 1 s)
+      EXPECT_GT(batched.state.q[i].angularDistance(Quat::Identity()), 1.0) << "body " << i;
+    }
+  }
+}
+
 TEST(SphereBatch, IdenticalForAnyThreadCount) {
   const Scene s = bead_scene(2.5e-4, 2500, 200);
   const FluidField field = wind_grid(1.5e-5);

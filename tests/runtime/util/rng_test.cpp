@@ -62,6 +62,27 @@ TEST(FastMath, SinCosOfTurnMatchesLibrary) {
 // standard normal CDF
 double phi(double x) { return 0.5 * std::erfc(-x / std::sqrt(2.0)); }
 
+TEST(Philox, LoopFormIsRandom123BitForBit) {
+  r123::Philox4x32 gen;
+  uint64_t state = 0x9e3779b97f4a7c15ULL;
+  auto next = [&state]() {  // splitmix64: counters and keys that cover the 32-bit range
+    state += 0x9e3779b97f4a7c15ULL;
+    uint64_t z = state;
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+    return z ^ (z >> 31);
+  };
+  for (int i = 0; i < 100000; ++i) {
+    const uint64_t a = next(), b = next(), key = next();
+    uint32_t c[4] = {uint32_t(a), uint32_t(a >> 32), uint32_t(b), uint32_t(b >> 32)};
+    const r123::Philox4x32::ctr_type ctr = {{c[0], c[1], c[2], c[3]}};
+    const r123::Philox4x32::key_type k = {{uint32_t(key), uint32_t(key >> 32)}};
+    const auto ref = gen(ctr, k);
+    philox4x32_10(c[0], c[1], c[2], c[3], uint32_t(key), uint32_t(key >> 32));
+    for (int w = 0; w < 4; ++w) ASSERT_EQ(c[w], ref[w]) << "draw " << i << " word " << w;
+  }
+}
+
 TEST(NormalStream, MomentsAndCdfOfAMillionDraws) {
   const int bodies = 1 << 17;  // 8 per stream x 2^17 = 1 048 576 draws
   double m1 = 0, m2 = 0, m3 = 0, m4 = 0, lag = 0;
