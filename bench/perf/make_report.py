@@ -69,6 +69,7 @@ def main():
     ap.add_argument("--converter")
     ap.add_argument("--stream")
     ap.add_argument("--scaling")
+    ap.add_argument("--batch", help="bench/perf/batch_bench.py's batch.json (batched spheres)")
     ap.add_argument("--scaling-doc", default="docs/scaling.md")
     ap.add_argument("--out", default="docs/performance.md")
     ap.add_argument("--note", default="")
@@ -87,6 +88,7 @@ def main():
     conv = must_load(a.converter, "--converter") if a.converter else None
     stream = must_load(a.stream, "--stream") if a.stream else None
     scal = must_load(a.scaling, "--scaling") if a.scaling else None
+    batch = must_load(a.batch, "--batch") if a.batch else None
 
     runs = bench["runs"]
     L = []
@@ -390,6 +392,8 @@ def main():
           "N = %d, load %s before the runs); %s = 2 x per-CPU-second rate (idle-machine "
           "estimate) | %s |" % (si(s), split2["n"], mach.get("load_before", "?"), si(s2),
                                 "yes" if max(s, s2) >= 2e7 else "no"))
+    if batch:
+        batch_target_rows(w, batch)
     ratios = [cost_ratio(lin_ns[-1], i) for i in integs]
     ratios = [c for c in ratios if c is not None]
     if ratios:
@@ -419,6 +423,30 @@ def main():
         blocks["stream"] = stream_block(stream)
     if blocks:
         fill_blocks(a.scaling_doc, blocks)
+
+
+def batch_target_rows(w, batch):
+    """The targets for spheres, which take the batched step (docs/batched-step.md): the beads of
+    scenes/beads_wind.json are the OpenFOAM peer's own parcels, measured in batch_bench.py's run."""
+    def row(variant, n, t):
+        for r in batch["throughput"]:
+            if r["variant"] == variant and r["n"] == n and r["threads"] == t:
+                return r
+        return None
+    of = ((batch.get("peers") or {}).get("openfoam") or {}).get("dispersion_on")
+    for variant in ("batched, double", "batched, float"):
+        one = row(variant, 10000, 1)
+        if one and of:
+            c = one["cpu_rate"]
+            w("| spheres (%s), >= 10 x OpenFOAM per core on the same parcels (%s, dispersion "
+              "on, [batched-step.md](batched-step.md)) | %s at N = 10^4 (%.1f x) | %s |" %
+              (variant, si(of), si(c), c / of, "yes" if c >= 10 * of else "no"))
+        two = [r for r in batch["throughput"] if r["variant"] == variant and r["threads"] == 2]
+        if two:
+            best = max(two, key=lambda r: r["n"])
+            w("| spheres (%s), 2 x 10^7 body-steps/s on 2 cores | %s wall (2 threads, N = %d) "
+              "| %s |" % (variant, si(best["rate"]), best["n"],
+                          "yes" if best["rate"] >= 2e7 else "no"))
 
 
 def converter_section(w, conv):

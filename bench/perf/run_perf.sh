@@ -3,7 +3,8 @@
 # and ranks x threads scaling, and writes docs/performance.md and the generated tables of
 # docs/scaling.md (issue 11). Run from anywhere after a Release build, niced on a shared machine:
 #   nice -n 19 bench/perf/run_perf.sh [--quick] [--no-flops] [--peers FILE]... [--no-peers]
-#       [--wind-case DIR] [--no-converter] [--no-stream] [--no-scaling] [--tank-series FILE.pvd]
+#       [--wind-case DIR] [--no-converter] [--no-stream] [--no-scaling] [--no-batch]
+#       [--tank-series FILE.pvd]
 #       [--build DIR] [--out DIR]
 #   --quick       N up to 10^5, shorter runs, one repeat, peers at N = 10^3 only (a check of the
 #                 script, not for the docs: about 5 min)
@@ -11,9 +12,10 @@
 #   --peers FILE  use bench/peers/run_peers.sh's peers.json (repeatable) instead of running the
 #                 peers; --no-peers: neither
 #   --wind-case   a solved windCourtyard case for the peers (else solved once, in OUT/peers_1000)
-#   --no-converter, --no-stream, --no-scaling: skip bench/converter/run_benchmark.sh (1 M cells,
-#                 its case cached in /tmp/foam2grid-bench), bench/perf/stream_bench.sh,
-#                 bench/perf/scaling_bench.sh
+#   --no-converter, --no-stream, --no-scaling, --no-batch: skip bench/converter/run_benchmark.sh
+#                 (1 M cells, its case cached in /tmp/foam2grid-bench), bench/perf/stream_bench.sh,
+#                 bench/perf/scaling_bench.sh, bench/perf/batch_bench.py (the batched sphere
+#                 step against the scalar one and OpenFOAM's parcels: docs/batched-step.md)
 #   --tank-series the tank .pvd series for the streaming table (default results/grids/tankJet.pvd)
 # Needs results/grids/windCourtyard.vti (./Allrun), results/grids/tankJet.pvd (./Allrun -all;
 # for the streaming table), valgrind, mpirun, /usr/bin/time, OpenFOAM and mujoco_harness.
@@ -30,6 +32,7 @@ flops=1
 converter=1
 stream=1
 scaling=1
+batch=1
 series=results/grids/tankJet.pvd
 while [ $# -gt 0 ]; do
   case "$1" in
@@ -41,6 +44,7 @@ while [ $# -gt 0 ]; do
     --no-converter) converter=0 ;;
     --no-stream) stream=0 ;;
     --no-scaling) scaling=0 ;;
+    --no-batch) batch=0 ;;
     --tank-series) series="$2"; shift ;;
     --build) build="$2"; shift ;;
     --out) out="$2"; shift ;;
@@ -200,6 +204,18 @@ if [ $scaling = 1 ]; then
   args+=(--scaling "$out/scaling/scaling.json")
 fi
 
+if [ $batch = 1 ]; then
+  echo "run_perf.sh: batched sphere step (batch_bench.py)" >&2
+  bargs=(--build "$build" --out "$out/batch")
+  [ $quick = 1 ] && bargs+=(--quick)
+  if [ -n "$wind" ]; then
+    bargs+=(--wind-case "$wind")
+  elif [ $run_peers = 0 ]; then
+    bargs+=(--no-peers)
+  fi
+  /usr/bin/python3 bench/perf/batch_bench.py "${bargs[@]}"
+  args+=(--batch "$out/batch/batch.json")
+fi
 /usr/bin/python3 bench/perf/make_report.py "${args[@]}" --out docs/performance.md \
   --scaling-doc docs/scaling.md
 echo "run_perf.sh: wrote docs/performance.md and docs/scaling.md (data in $out)" >&2
