@@ -9,6 +9,7 @@
 #include "effects/basset.h"
 #include "io/added_mass_cache.h"
 #include "io/grid_reader.h"
+#include "integrate/sphere_batch.h"
 #include "io/scene_json.h"
 #include "model/model.h"
 
@@ -80,11 +81,20 @@ void explain(const std::string& path) {
     }
     std::printf("  auto chooses: %s\n", list(a.chosen).c_str());
     if (!scene.effects_auto) std::printf("  the scene lists: %s\n", list(t.effects).c_str());
-    const double ns = estimated_cost_ns(t.effects, scene.integrator, !scene.uniform_field,
-                                        t.M_isotropic);
+    std::string why;
+    const bool batched = sphere_batch_eligible(model, t, &why);
+    const double ns = batched ? estimated_batched_cost_ns(t.effects, model.precision)
+                              : estimated_cost_ns(t.effects, scene.integrator,
+                                                  !scene.uniform_field, t.M_isotropic);
     total_ns += ns * double(t.count);
-    std::printf("  simulated: %s\n  estimated cost: %.0f ns per body-step\n",
-                list(t.effects).c_str(), ns);
+    std::printf("  simulated: %s\n", list(t.effects).c_str());
+    if (batched)
+      std::printf("  step: batched, %d bodies per block, %s loops, %s (docs/batched-step.md)\n",
+                  kBatch, sphere_batch_isa(),
+                  model.precision == Precision::Float ? "float" : "double");
+    else
+      std::printf("  step: scalar (not batched: %s)\n", why.c_str());
+    std::printf("  estimated cost: %.0f ns per body-step\n", ns);
   }
   const double steps = std::round(scene.duration / scene.dt);
   std::printf("\nestimated total: %.3g body-steps, %.3g s on one core\n",

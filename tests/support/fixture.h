@@ -48,6 +48,41 @@ inline Model compile(const Scene& s, FluidField f) {
   });
 }
 
+// A grid geometry: n points per axis from `origin` with `spacing` (m).
+inline GridGeometry grid_geometry(int nx, int ny, int nz, const Vec3& origin, const Vec3& spacing) {
+  GridGeometry g;
+  g.n[0] = nx;
+  g.n[1] = ny;
+  g.n[2] = nz;
+  g.origin = origin;
+  g.spacing = spacing;
+  return g;
+}
+
+// One frame of grid g whose point values come from point(x, &U, &k, &eps), which returns false
+// for a point inside a solid (x the point's position; U, k, eps start at zero; SI units).
+template <typename PointFn>
+RawGridFrame grid_frame(const GridGeometry& g, PointFn point) {
+  RawGridFrame f;
+  const size_t np = g.points();
+  f.U.resize(3 * np);
+  f.k.resize(np);
+  f.epsilon.resize(np);
+  f.valid.resize(np);
+  for (size_t p = 0; p < np; ++p) {
+    const size_t i = p % size_t(g.n[0]), j = (p / size_t(g.n[0])) % size_t(g.n[1]);
+    const size_t l = p / (size_t(g.n[0]) * size_t(g.n[1]));
+    const Vec3 x = g.origin + Vec3(double(i), double(j), double(l)).cwiseProduct(g.spacing);
+    Vec3 U = Vec3::Zero();
+    double k = 0, eps = 0;
+    f.valid[p] = point(x, &U, &k, &eps) ? 1 : 0;
+    for (int a = 0; a < 3; ++a) f.U[3 * p + a] = float(U[a]);
+    f.k[p] = float(k);
+    f.epsilon[p] = float(eps);
+  }
+  return f;
+}
+
 template <typename A, typename B>
 ::testing::AssertionResult near(const A& a, const B& b, double tol) {
   const double err = (a - b).cwiseAbs().maxCoeff();

@@ -25,6 +25,7 @@
 #include <string>
 
 #include "model/model.h"
+#include "model/state.h"
 
 namespace lrigid {
 
@@ -36,6 +37,10 @@ struct BodyState {
   Vec3 u_seen;   // world, m/s
   double* history = nullptr;  // Basset history in State (BassetKernel::stride()), or null
 };
+
+// Body i of a State as a BodyState (its history pointer into the State), and back.
+BodyState load_body(State& st, size_t i);
+void store_body(const BodyState& b, size_t i, State* st);
 
 enum class StepOutcome { Ok, Exited, Failed };
 

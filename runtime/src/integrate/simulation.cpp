@@ -40,7 +40,7 @@ uint64_t stream_stretch_end(const Model& m, uint64_t first, uint64_t last) {
 uint64_t advance_body(const Model& model, State& st, int64_t i, uint64_t first, uint64_t last) {
   uint64_t body_steps = 0;
   const BodyType& type = model.types[st.type[i]];
-  BodyState b{st.x[i], st.q[i], st.v[i], st.w[i], st.u_seen[i], st.history_of(size_t(i))};
+  BodyState b = load_body(st, size_t(i));
   for (uint64_t k = first; k < last; ++k) {
     const double t = static_cast<double>(k) * model.dt;
     std::string reason;
@@ -73,11 +73,7 @@ uint64_t advance_body(const Model& model, State& st, int64_t i, uint64_t first, 
       break;
     }
   }
-  st.x[i] = b.x;
-  st.q[i] = b.q;
-  st.v[i] = b.v;
-  st.w[i] = b.w;
-  st.u_seen[i] = b.u_seen;
+  store_body(b, size_t(i), &st);
   return body_steps;
 }
 

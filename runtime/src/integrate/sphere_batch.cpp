@@ -664,16 +664,23 @@ BlockStats advance(const Model& model, const BodyType& type, State* state, const
     const size_t i = body[j];
     BodyState b;
     lane_to_body(L, j, &b);
-    st.x[i] = b.x;
-    st.q[i] = b.q;
-    st.v[i] = b.v;
-    st.w[i] = b.w;
-    st.u_seen[i] = b.u_seen;
+    store_body(b, i, &st);
   }
   return stats;
 }
 
 }  // namespace
+
+const char* sphere_batch_isa() {
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+  // the same tests the loader's choice among the target_clones versions makes
+  if (__builtin_cpu_supports("x86-64-v4")) return "AVX-512";
+  if (__builtin_cpu_supports("x86-64-v3")) return "AVX2";
+  return "baseline x86-64";
+#else
+  return "baseline";
+#endif
+}
 
 BlockStats advance_sphere_block(const Model& model, const BodyType& type, State* state,
                                 const uint32_t* body, int count, uint64_t first, uint64_t last) {

@@ -41,4 +41,8 @@ struct BlockStats {
 BlockStats advance_sphere_block(const Model& model, const BodyType& type, State* state,
                                 const uint32_t* body, int count, uint64_t first, uint64_t last);
 
+// The version of the batched step's loops this CPU runs: "AVX-512", "AVX2" or "baseline x86-64"
+// (or "baseline" off x86-64 and in Clang builds).
+const char* sphere_batch_isa();
+
 }  // namespace lrigid

@@ -258,6 +258,19 @@ double estimated_cost_ns(EffectSet set, Integrator integrator, bool grid, bool i
   return ns;
 }
 
+double estimated_batched_cost_ns(EffectSet set, Precision precision) {
+  // additive fit to lrigid bench on scenes/beads_wind.json with --effects subsets (N = 10^4,
+  // one thread, AVX-512 loops, best of 3, 2026-12-01): gravity 9.7 ns, + drag 17.5, + mean flow
+  // 51.8 (the grid sample), all six effects 67.2; float 0.78 of that. Gravity, buoyancy and added
+  // mass cost next to nothing; the baseline x86-64 loops take about 4 times longer.
+  double ns = 10;
+  if (set.has(Effect::Drag)) ns += 8;
+  if (set.has(Effect::MeanFlow) || set.has(Effect::Turbulence)) ns += 34;
+  if (set.has(Effect::Turbulence)) ns += 15;
+  if (precision == Precision::Float) ns *= 0.78;
+  return ns;
+}
+
 namespace {
 
 BodyType make_body_type(const Scene& scene, const BodySpec& b, const Shape& shape,

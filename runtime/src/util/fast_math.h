@@ -12,6 +12,14 @@ namespace lrigid {
 
 constexpr double kLn2 = 0.6931471805599453094;
 
+// c[0] x^(N-1) + c[1] x^(N-2) + ... + c[N-1] by Horner's rule (N is a constant: unrolled)
+template <int N>
+inline double horner(double x, const double (&c)[N]) {
+  double p = c[0];
+  for (int i = 1; i < N; ++i) p = p * x + c[i];
+  return p;
+}
+
 // ln x for finite x > 0 (normal numbers): x = 2^e m, m in [sqrt(1/2), sqrt(2)),
 // ln m = 2 atanh(s), s = (m - 1)/(m + 1), |s| < 0.1716, series to s^21 (error < 1e-17)
 inline double log_fast(double x) {
@@ -25,17 +33,9 @@ inline double log_fast(double x) {
   std::memcpy(&m, &mbits, sizeof m);
   const double s = (m - 1.0) / (m + 1.0);
   const double s2 = s * s;
-  double p = 1.0 / 21;
-  p = p * s2 + 1.0 / 19;
-  p = p * s2 + 1.0 / 17;
-  p = p * s2 + 1.0 / 15;
-  p = p * s2 + 1.0 / 13;
-  p = p * s2 + 1.0 / 11;
-  p = p * s2 + 1.0 / 9;
-  p = p * s2 + 1.0 / 7;
-  p = p * s2 + 1.0 / 5;
-  p = p * s2 + 1.0 / 3;
-  p = p * s2;
+  constexpr double kAtanh[] = {1.0 / 21, 1.0 / 19, 1.0 / 17, 1.0 / 15, 1.0 / 13, 1.0 / 11,
+                               1.0 / 9,  1.0 / 7,  1.0 / 5,  1.0 / 3};
+  const double p = horner(s2, kAtanh) * s2;
   return static_cast<double>(e) * kLn2 + (2.0 * s + 2.0 * s * p);
 }
 
@@ -46,22 +46,15 @@ inline void sincos_of_turn(uint32_t b, double* c, double* s) {
   const uint32_t quadrant = b >> 30;
   const double x = (static_cast<double>(b & 0x3fffffffu) * 0x1p-30 - 0.5) * (M_PI / 2);
   const double x2 = x * x;
-  double sp = -1.0 / 1307674368000.0;  // -1/15!
-  sp = sp * x2 + 1.0 / 6227020800.0;
-  sp = sp * x2 - 1.0 / 39916800.0;
-  sp = sp * x2 + 1.0 / 362880.0;
-  sp = sp * x2 - 1.0 / 5040.0;
-  sp = sp * x2 + 1.0 / 120.0;
-  sp = sp * x2 - 1.0 / 6.0;
+  constexpr double kSin[] = {-1.0 / 1307674368000.0, 1.0 / 6227020800.0, -1.0 / 39916800.0,
+                             1.0 / 362880.0,          -1.0 / 5040.0,      1.0 / 120.0,
+                             -1.0 / 6.0};  // -1/15! ... -1/3!
+  const double sp = horner(x2, kSin);
   const double sn = x + x * x2 * sp;
-  double cp = 1.0 / 20922789888000.0;  // 1/16!
-  cp = cp * x2 - 1.0 / 87178291200.0;
-  cp = cp * x2 + 1.0 / 479001600.0;
-  cp = cp * x2 - 1.0 / 3628800.0;
-  cp = cp * x2 + 1.0 / 40320.0;
-  cp = cp * x2 - 1.0 / 720.0;
-  cp = cp * x2 + 1.0 / 24.0;
-  cp = cp * x2 - 0.5;
+  constexpr double kCos[] = {1.0 / 20922789888000.0, -1.0 / 87178291200.0, 1.0 / 479001600.0,
+                             -1.0 / 3628800.0,       1.0 / 40320.0,        -1.0 / 720.0,
+                             1.0 / 24.0,             -0.5};  // 1/16! ... -1/2!
+  const double cp = horner(x2, kCos);
   const double cs = 1.0 + x2 * cp;
   // rotate by quadrant * pi/2: (c, s) -> (-s, c) per quarter turn
   const bool odd = quadrant & 1u, neg_c = quadrant == 1 || quadrant == 2, neg_s = quadrant >= 2;
@@ -77,20 +70,12 @@ inline double exp_fast(double x) {
   constexpr double kShift = 0x1.8p52;  // adding it rounds to an integer held in the low bits
   const double kd = (x * 1.4426950408889634074 + kShift) - kShift;
   const double r = (x - kd * 0.693147180369123816490) - kd * 1.90821492927058770002e-10;
-  double p = 1.0 / 6227020800.0;  // 1/13!
-  p = p * r + 1.0 / 479001600.0;
-  p = p * r + 1.0 / 39916800.0;
-  p = p * r + 1.0 / 3628800.0;
-  p = p * r + 1.0 / 362880.0;
-  p = p * r + 1.0 / 40320.0;
-  p = p * r + 1.0 / 5040.0;
-  p = p * r + 1.0 / 720.0;
-  p = p * r + 1.0 / 120.0;
-  p = p * r + 1.0 / 24.0;
-  p = p * r + 1.0 / 6.0;
-  p = p * r + 0.5;
-  p = p * r + 1.0;
-  p = p * r + 1.0;
+  constexpr double kExp[] = {1.0 / 6227020800.0, 1.0 / 479001600.0, 1.0 / 39916800.0,
+                             1.0 / 3628800.0,    1.0 / 362880.0,    1.0 / 40320.0,
+                             1.0 / 5040.0,       1.0 / 720.0,       1.0 / 120.0,
+                             1.0 / 24.0,         1.0 / 6.0,         0.5,
+                             1.0,                1.0};  // 1/13! ... 1/1!, 1/0!
+  const double p = horner(r, kExp);
   const int64_t k = static_cast<int64_t>(kd);
   const uint64_t scale_bits = static_cast<uint64_t>(k + 1023) << 52;
   double scale;
@@ -101,22 +86,16 @@ inline double exp_fast(double x) {
 // 1 - e^-y for y >= 0 without the cancellation of the difference at small y: its Taylor series
 // to y^16 below y = 0.5 (error < 1e-19 y), 1 - exp_fast(-y) above
 inline double one_minus_exp_neg(double y) {
-  double p = -1.0 / 20922789888000.0;  // the series y - y^2/2! + y^3/3! - ... to -y^16/16!
-  p = p * y + 1.0 / 1307674368000.0;
-  p = p * y - 1.0 / 87178291200.0;
-  p = p * y + 1.0 / 6227020800.0;
-  p = p * y - 1.0 / 479001600.0;
-  p = p * y + 1.0 / 39916800.0;
-  p = p * y - 1.0 / 3628800.0;
-  p = p * y + 1.0 / 362880.0;
-  p = p * y - 1.0 / 40320.0;
-  p = p * y + 1.0 / 5040.0;
-  p = p * y - 1.0 / 720.0;
-  p = p * y + 1.0 / 120.0;
-  p = p * y - 1.0 / 24.0;
-  p = p * y + 1.0 / 6.0;
-  p = p * y - 0.5;
-  p = p * y + 1.0;
+  // the series y - y^2/2! + y^3/3! - ... to -y^16/16!, divided by y
+  constexpr double kSeries[] = {-1.0 / 20922789888000.0, 1.0 / 1307674368000.0,
+                                -1.0 / 87178291200.0,    1.0 / 6227020800.0,
+                                -1.0 / 479001600.0,      1.0 / 39916800.0,
+                                -1.0 / 3628800.0,        1.0 / 362880.0,
+                                -1.0 / 40320.0,          1.0 / 5040.0,
+                                -1.0 / 720.0,            1.0 / 120.0,
+                                -1.0 / 24.0,             1.0 / 6.0,
+                                -0.5,                    1.0};
+  const double p = horner(y, kSeries);
   const double series = p * y;
   const double direct = 1.0 - exp_fast(-y);
   return y < 0.5 ? series : direct;

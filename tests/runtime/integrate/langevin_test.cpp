@@ -128,25 +128,13 @@ TEST(OUStatistics, EulerMaruyamaVarianceIsBiasedAsTheoryPredicts) {
 // Returns the counts in 8 bins across [-2, 2] m after 8 s.
 std::vector<int> tracer_bins(bool correction, int n,
                              TurbulenceModel model = TurbulenceModel::Seen) {
-  GridGeometry g;
-  g.n[0] = 81;
-  g.n[1] = 2;
-  g.n[2] = 2;
-  g.origin = Vec3(-20, -50, -50);
-  g.spacing = Vec3(0.5, 100, 100);
-  RawGridFrame f;
-  const size_t np = g.points();
-  f.U.assign(3 * np, 0.f);
-  f.k.resize(np);
-  f.epsilon.resize(np);
-  f.valid.assign(np, 1);
-  for (size_t p = 0; p < np; ++p) {
-    const double x = g.origin.x() + double(p % g.n[0]) * g.spacing.x();
+  const GridGeometry g = test::grid_geometry(81, 2, 2, Vec3(-20, -50, -50), Vec3(0.5, 100, 100));
+  const RawGridFrame f = test::grid_frame(g, [](const Vec3& x, Vec3*, double* k, double* eps) {
     // k from 0.02 to 0.32 m^2/s^2 across |x| < 1.5 m; eps/k = 0.5 1/s, T_L ~ 0.44 s
-    const double k = 0.17 + 0.15 * std::tanh(x / 1.0);
-    f.k[p] = float(k);
-    f.epsilon[p] = float(0.5 * k);
-  }
+    *k = 0.17 + 0.15 * std::tanh(x.x() / 1.0);
+    *eps = 0.5 * *k;
+    return true;
+  });
   Scene s = test::sphere_scene(1e-4, 1000, 1000, kNu, n);
   s.effects = test::effects({Effect::Drag, Effect::Turbulence});
   s.turbulence_model = model;
@@ -273,26 +261,14 @@ TEST(WellMixed, BodyModelTracersStayUniformToo) {
 // u' + U fed u' back into itself (du'/dt ~ u'^2 d ln sigma^2/dz), which blew beads that lag the
 // fluid up to 150 m/s in the courtyard wind; along the body's own path the term is bounded.
 TEST(WellMixed, SeenFluctuationOfHeavyBodiesStaysBoundedInASteepGradient) {
-  GridGeometry g;
-  g.n[0] = 2;
-  g.n[1] = 2;
-  g.n[2] = 61;
-  g.origin = Vec3(-50, -50, -0.5);
-  g.spacing = Vec3(100, 100, 0.05);
-  RawGridFrame f;
-  const size_t np = g.points();
-  f.U.assign(3 * np, 0.f);
-  f.k.resize(np);
-  f.epsilon.resize(np);
-  f.valid.assign(np, 1);
+  const GridGeometry g = test::grid_geometry(2, 2, 61, Vec3(-50, -50, -0.5), Vec3(100, 100, 0.05));
   double k_max = 0;
-  for (size_t p = 0; p < np; ++p) {
-    const double z = g.origin.z() + double(p / 4) * g.spacing.z();
-    const double k = 1e-4 * std::exp(3.0 * (z + 0.5));  // 1e-4 .. 0.8 m^2/s^2
-    f.k[p] = float(k);
-    f.epsilon[p] = float(0.2 * k);
-    k_max = std::max(k_max, k);
-  }
+  const RawGridFrame f = test::grid_frame(g, [&](const Vec3& x, Vec3*, double* k, double* eps) {
+    *k = 1e-4 * std::exp(3.0 * (x.z() + 0.5));  // 1e-4 .. 0.8 m^2/s^2
+    *eps = 0.2 * *k;
+    k_max = std::max(k_max, *k);
+    return true;
+  });
   for (Integrator scheme : {Integrator::Splitting, Integrator::Euler}) {
     // 500 um glass beads in air, no gravity: they lag the fluid (response time ~1 s)
     Scene s = test::sphere_scene(2.5e-4, 2500, 1.2, 1.5e-5, 400);

@@ -5,6 +5,9 @@
 
 #include <cmath>
 #include <cstring>
+#include <functional>
+#include <utility>
+#include <vector>
 
 #include "integrate/simulation.h"
 #include "integrate/sphere_batch.h"
@@ -16,30 +19,15 @@ namespace {
 // A 12 x 8 x 6 m box of air with a sheared, accelerating wind, k rising with height, a solid
 // block in the middle (invalid points) and the ground at z = 0.
 FluidField wind_grid(double nu) {
-  GridGeometry g;
-  g.n[0] = 25;
-  g.n[1] = 17;
-  g.n[2] = 13;
-  g.origin = Vec3(-6, -4, -0.5);
-  g.spacing = Vec3(0.5, 0.5, 0.5);
-  RawGridFrame f;
-  const size_t np = g.points();
-  f.U.resize(3 * np);
-  f.k.resize(np);
-  f.epsilon.resize(np);
-  f.valid.assign(np, 1);
-  for (size_t p = 0; p < np; ++p) {
-    const int i = int(p % g.n[0]), j = int((p / g.n[0]) % g.n[1]), l = int(p / (g.n[0] * g.n[1]));
-    const Vec3 x = g.origin + Vec3(i, j, l).cwiseProduct(g.spacing);
+  const GridGeometry g = test::grid_geometry(25, 17, 13, Vec3(-6, -4, -0.5), Vec3(0.5, 0.5, 0.5));
+  const RawGridFrame f = test::grid_frame(g, [](const Vec3& x, Vec3* U, double* k, double* eps) {
     const double z = std::max(x.z(), 0.0);
-    f.U[3 * p + 0] = float(1.5 * std::sqrt(z) * (1 + 0.05 * x.x()));
-    f.U[3 * p + 1] = float(0.3 * std::sin(0.5 * x.x()));
-    f.U[3 * p + 2] = float(-0.05 * x.y());
-    const double k = 0.05 + 0.2 * z / 5.5;
-    f.k[p] = float(k);
-    f.epsilon[p] = float(0.4 * k);
-    if (std::abs(x.x()) <= 1.0 && std::abs(x.y()) <= 1.0 && x.z() <= 2.0) f.valid[p] = 0;
-  }
+    *U = Vec3(1.5 * std::sqrt(z) * (1 + 0.05 * x.x()), 0.3 * std::sin(0.5 * x.x()),
+              -0.05 * x.y());
+    *k = 0.05 + 0.2 * z / 5.5;
+    *eps = 0.4 * *k;
+    return !(std::abs(x.x()) <= 1.0 && std::abs(x.y()) <= 1.0 && x.z() <= 2.0);
+  });
   return FluidField::grid(g, {f}, nu, Drift::Stationary, TimeMode::Clamp);
 }
 
@@ -262,42 +250,25 @@ TEST(SphereBatch, FloatCostsLittleAccuracy) {
 }
 
 TEST(SphereBatch, EligibilitySaysWhatExcludesABodyType) {
-  Scene s = bead_scene(2.5e-4, 2500, 1);
+  const Scene s = bead_scene(2.5e-4, 2500, 1);
   const FluidField field = wind_grid(1.5e-5);
   std::string why;
-  EXPECT_TRUE(sphere_batch_eligible(test::compile(s, field), test::compile(s, field).types[0]));
-  {
+  const Model ok = test::compile(s, field);
+  EXPECT_TRUE(sphere_batch_eligible(ok, ok.types[0], &why));
+  const std::vector<std::pair<std::function<void(Scene&)>, std::string>> cases = {
+      {[](Scene& e) { e.bodies[0].shape = Shape::ellipsoid(3e-4, 2.5e-4, 2e-4); },
+       "not a sphere"},
+      {[](Scene& e) { e.integrator = Integrator::RK4; }, "the integrator is not splitting"},
+      {[](Scene& e) { e.effects.add(Effect::Basset); }, "effect basset"},
+      {[](Scene& e) { e.turbulence_model = TurbulenceModel::Body; }, "the body turbulence model"},
+      {[](Scene& e) { e.batched = false; }, "the scene turns the batched step off"},
+  };
+  for (const auto& [change, reason] : cases) {
     Scene e = s;
-    e.bodies[0].shape = Shape::ellipsoid(3e-4, 2.5e-4, 2e-4);
+    change(e);
     const Model m = test::compile(e, field);
-    EXPECT_FALSE(sphere_batch_eligible(m, m.types[0], &why));
-    EXPECT_EQ(why, "not a sphere");
-  }
-  {
-    Scene e = s;
-    e.integrator = Integrator::RK4;
-    const Model m = test::compile(e, field);
-    EXPECT_FALSE(sphere_batch_eligible(m, m.types[0], &why));
-    EXPECT_EQ(why, "the integrator is not splitting");
-  }
-  {
-    Scene e = s;
-    e.effects.add(Effect::Basset);
-    const Model m = test::compile(e, field);
-    EXPECT_FALSE(sphere_batch_eligible(m, m.types[0], &why));
-    EXPECT_EQ(why, "effect basset");
-  }
-  {
-    Scene e = s;
-    e.turbulence_model = TurbulenceModel::Body;
-    const Model m = test::compile(e, field);
-    EXPECT_FALSE(sphere_batch_eligible(m, m.types[0], &why));
-    EXPECT_EQ(why, "the body turbulence model");
-  }
-  {
-    Model m = test::compile(s, field);
-    m.batched = false;
-    EXPECT_FALSE(sphere_batch_eligible(m, m.types[0], &why));
+    EXPECT_FALSE(sphere_batch_eligible(m, m.types[0], &why)) << reason;
+    EXPECT_EQ(why, reason);
   }
 }
 
