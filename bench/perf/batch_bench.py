@@ -52,13 +52,18 @@ def scene_variant(base, out_dir, name, batched=True, precision="double", dt=None
 
 
 def bench(lrigid, scene, n, threads, json_out, quick):
+    """The faster of two runs (this VM has slow episodes of a minute or so)."""
     steps = "5e5" if quick else "2e6"
-    subprocess.run([lrigid, "bench", scene, "--n", str(n), "--threads", str(threads),
-                    "--integrators", "splitting", "--effects", "auto", "--body-steps", steps,
-                    "--min-steps", "20", "--warmup", "2", "--quiet", "--json", json_out],
-                   check=True)
-    run = json.load(open(json_out))["runs"][0]
-    return run["body_steps_per_s"], run["body_steps_per_cpu_s"], run["state_bytes_per_body"]
+    best = None
+    for _ in range(1 if quick else 2):
+        subprocess.run([lrigid, "bench", scene, "--n", str(n), "--threads", str(threads),
+                        "--integrators", "splitting", "--effects", "auto", "--body-steps",
+                        steps, "--min-steps", "20", "--warmup", "2", "--quiet", "--json",
+                        json_out], check=True)
+        run = json.load(open(json_out))["runs"][0]
+        if best is None or run["body_steps_per_s"] > best["body_steps_per_s"]:
+            best = run
+    return best["body_steps_per_s"], best["body_steps_per_cpu_s"], best["state_bytes_per_body"]
 
 
 def landings(lrigid, scene, out):
@@ -133,10 +138,19 @@ def main():
                "--skip-mujoco"]
         if os.path.isdir(wind):
             cmd += ["--wind-case", wind]
-        print("batch_bench.py: OpenFOAM peer (run_peers.sh --skip-mujoco)", file=sys.stderr)
-        with open(os.path.join(args.out, "peers.log"), "w") as log:
-            subprocess.run(cmd, check=True, stdout=log, stderr=subprocess.STDOUT)
-        peers = json.load(open(os.path.join(args.out, "peers", "peers.json")))
+        # the faster of two runs at each setting, as for lrigid
+        for rep in range(1 if args.quick else 2):
+            print("batch_bench.py: OpenFOAM peer (run_peers.sh --skip-mujoco), run %d" % (rep + 1),
+                  file=sys.stderr)
+            with open(os.path.join(args.out, "peers.log"), "a") as log:
+                subprocess.run(cmd, check=True, stdout=log, stderr=subprocess.STDOUT)
+            got = json.load(open(os.path.join(args.out, "peers", "peers.json")))
+            if peers is None:
+                peers = got
+            else:
+                for key in ("dispersion_off", "dispersion_on"):
+                    peers["openfoam"][key] = max(peers["openfoam"][key], got["openfoam"][key])
+                peers["load"] += " / " + got.get("load", "?")
 
     acc = {}
     for turb in (False, True):
@@ -188,7 +202,7 @@ def write_doc(path, m, rows, acc, peers, quick):
         "",
         "`lrigid bench scenes/beads_wind.json` (500 um glass beads in the courtyard wind: "
         "gravity, buoyancy, drag, added mass, mean flow, seen turbulence; splitting, dt = 2 ms), "
-        "body-steps per second (wall clock):",
+        "body-steps per second (wall clock), the faster of two runs:",
         "",
         "| N | threads | scalar step | batched, double | batched, float | "
         "batched double / scalar |",
@@ -211,7 +225,8 @@ def write_doc(path, m, rows, acc, peers, quick):
             "and gravity, dt = 2 ms, 200 steps, steady-state stepping, no writes), against "
             "lrigid's batched step on `scenes/beads_wind.json`, which does more per step (added "
             "mass, buoyancy and the seen-velocity Langevin model with Thomson's drift in every "
-            "run). Per core: body- or parcel-steps per CPU second, one process, one thread.",
+            "run). Per core: body- or parcel-steps per CPU second, one process, one thread; the "
+            "faster of two runs each.",
             "",
             "| | per core | lrigid batched double / it | lrigid batched float / it |",
             "|---|---|---|---|",
