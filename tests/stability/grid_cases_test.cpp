@@ -14,33 +14,20 @@ const Vec3 kU(2, 0, 0);
 
 // [0, 2] x [0, 1] x [0, 1] m, spacing 0.1 m
 FluidField hard_grid() {
-  GridGeometry g;
-  g.n[0] = 21;
-  g.n[1] = 11;
-  g.n[2] = 11;
-  g.spacing = Vec3(0.1, 0.1, 0.1);
-  RawGridFrame f;
-  const size_t n = g.points();
-  f.U.resize(3 * n);
-  f.k.resize(n);
-  f.epsilon.resize(n);
-  f.valid.resize(n);
-  for (int kz = 0; kz < g.n[2]; ++kz)
-    for (int jy = 0; jy < g.n[1]; ++jy)
-      for (int ix = 0; ix < g.n[0]; ++ix) {
-        const size_t p = ix + size_t(g.n[0]) * (jy + size_t(g.n[1]) * kz);
-        const double x = 0.1 * ix, y = 0.1 * jy;
-        for (int a = 0; a < 3; ++a) f.U[3 * p + a] = float(kU[a]);
-        f.k[p] = 0.3f;
-        f.epsilon[p] = 1.0f;
-        if (x >= 0.55 && x <= 0.85) f.k[p] = f.epsilon[p] = 0.f;  // no turbulence at all
-        if (x >= 0.95 && x <= 1.25) {                            // eps/k infinite
-          f.k[p] = 0.f;
-          f.epsilon[p] = 5.f;
-        }
-        // a solid block over the lower half of the channel
-        f.valid[p] = (x >= 1.35 && x <= 1.55 && y <= 0.45) ? 0 : 1;
-      }
+  const GridGeometry g = test::grid_geometry(21, 11, 11, Vec3::Zero(), Vec3(0.1, 0.1, 0.1));
+  const RawGridFrame f = test::grid_frame(g, [](const Vec3& p, Vec3* U, double* k, double* eps) {
+    const double x = p.x(), y = p.y();
+    *U = kU;
+    *k = 0.3;
+    *eps = 1.0;
+    if (x >= 0.55 && x <= 0.85) *k = *eps = 0.0;  // no turbulence at all
+    if (x >= 0.95 && x <= 1.25) {                  // eps/k infinite
+      *k = 0.0;
+      *eps = 5.0;
+    }
+    // a solid block over the lower half of the channel
+    return !(x >= 1.35 && x <= 1.55 && y <= 0.45);
+  });
   return FluidField::grid(g, {f}, kNuAir, Drift::Stationary, TimeMode::Clamp);
 }
 

@@ -86,6 +86,18 @@ Diff compare(const Outcome& a, const Outcome& b) {
   return d;
 }
 
+// The scene run on the scalar step and on the batched step (double), and how far apart they end.
+struct Both {
+  Outcome scalar, batched;
+  Diff d;
+};
+
+Both scalar_and_batched(const Scene& s, const FluidField& field) {
+  Both b{run(s, field, false, Precision::Double), run(s, field, true, Precision::Double), {}};
+  b.d = compare(b.scalar, b.batched);
+  return b;
+}
+
 size_t count(const State& s, BodyStatus status) {
   size_t n = 0;
   for (BodyStatus x : s.status) n += x == status;
@@ -97,9 +109,7 @@ TEST(SphereBatch, BeadsInAGridMatchTheScalarStep) {
   const Scene s = bead_scene(2.5e-4, 2500, 300);
   const FluidField field = wind_grid(1.5e-5);
   ASSERT_TRUE(sphere_batch_eligible(test::compile(s, field), test::compile(s, field).types[0]));
-  const Outcome scalar = run(s, field, false, Precision::Double);
-  const Outcome batched = run(s, field, true, Precision::Double);
-  const Diff d = compare(scalar, batched);
+  const auto [scalar, batched, d] = scalar_and_batched(s, field);
   EXPECT_EQ(scalar.stats.body_steps, batched.stats.body_steps);
   EXPECT_LT(d.x, 1e-9);
   EXPECT_LT(d.v, 1e-9);
@@ -120,9 +130,7 @@ TEST(SphereBatch, StiffDragTakesTheNewtonPathLikeTheScalarStep) {
   s.dt = 0.02;
   s.duration = 2.0;
   const FluidField field = wind_grid(1.5e-5);
-  const Outcome scalar = run(s, field, false, Precision::Double);
-  const Outcome batched = run(s, field, true, Precision::Double);
-  const Diff d = compare(scalar, batched);
+  const auto [scalar, batched, d] = scalar_and_batched(s, field);
   EXPECT_LT(d.x, 1e-9);
   EXPECT_LT(d.v, 1e-9);
   EXPECT_LT(d.u, 1e-9);
@@ -149,9 +157,7 @@ TEST(SphereBatch, LightSpheresInWaterWithAddedMassMatchTheScalarStep) {
   s.bodies[0].box_hi = Vec3(0.1, 0.1, 0.1);
   const FluidField field = FluidField::uniform(s.uniform_U, s.uniform_k, s.uniform_epsilon,
                                                s.kinematic_viscosity, s.drift);
-  const Outcome scalar = run(s, field, false, Precision::Double);
-  const Outcome batched = run(s, field, true, Precision::Double);
-  const Diff d = compare(scalar, batched);
+  const auto [scalar, batched, d] = scalar_and_batched(s, field);
   EXPECT_LT(d.x, 1e-10);
   EXPECT_LT(d.v, 1e-10);
   EXPECT_LT(d.u, 1e-10);
@@ -172,9 +178,7 @@ TEST(SphereBatch, SpheresInFluidAtRestMatchTheScalarStep) {
     s.bodies[0].angular_velocity = Vec3(1.0, 2.0, 0.5);
     const FluidField field = FluidField::uniform(Vec3::Zero(), 0, 0, s.kinematic_viscosity,
                                                  s.drift);
-    const Outcome scalar = run(s, field, false, Precision::Double);
-    const Outcome batched = run(s, field, true, Precision::Double);
-    const Diff d = compare(scalar, batched);
+    const auto [scalar, batched, d] = scalar_and_batched(s, field);
     EXPECT_LT(d.x, 1e-12);
     EXPECT_LT(d.v, 1e-12);
     EXPECT_LT(d.q, 1e-12);
