@@ -2,7 +2,9 @@
 // ellipsoid fluid model (fluidshape="ellipsoid"), contacts off, stepped with RK4 and with Euler.
 // Two layouts: one body per model (many mjData of a one-body model: MuJoCo's best case) and all
 // bodies in one model. Prints one JSON object of body-steps per second of CPU time (one core).
-//   mujoco_harness [--n N] [--dt DT] [--steps S] [--one-model-max M]
+//   mujoco_harness [--n N] [--dt DT] [--steps S] [--one-model-max M] [--body pod|bead]
+// --body: the wind scene's seed pod (default; scenes/leaves_wind.json) or the 500 um glass bead
+// of scenes/beads_wind.json (a sphere; the OpenFOAM peer's parcel, for bench/perf/batch_bench.py).
 // One model of many bodies costs MuJoCo O(bodies^2) per step (mj_applyFT builds a dense 3 x nv
 // Jacobian for each body's fluid force), so that layout is measured with min(N, M) bodies
 // (default M = 1000) and at most 10 steps: at N = 10^4 it would take about 15 min.
@@ -21,8 +23,11 @@
 
 namespace {
 
-// the wind scene's seed pod: ellipsoid 8 x 4 x 4 mm, 400 kg/m^3, in air (1.204 kg/m^3,
-// mu = 1.204 * 1.5e-5 Pa s) blowing at 5 m/s
+// the body's geom: the wind scene's seed pod, an ellipsoid 8 x 4 x 4 mm of 400 kg/m^3, or the
+// beads scene's glass bead, a sphere of 0.25 mm radius and 2500 kg/m^3
+const char* g_geom = "type=\"ellipsoid\" size=\"0.004 0.002 0.002\" density=\"400\"";
+
+// bodies in air (1.204 kg/m^3, mu = 1.204 * 1.5e-5 Pa s) blowing at 5 m/s
 std::string model_xml(int bodies, double dt, const char* integrator) {
   std::string xml = "<mujoco><option timestep=\"" + std::to_string(dt) + "\" integrator=\"" +
                     integrator +
@@ -34,9 +39,8 @@ std::string model_xml(int bodies, double dt, const char* integrator) {
     char buf[400];
     std::snprintf(buf, sizeof buf,
                   "<body pos=\"%d %d 20\" euler=\"%d %d 0\"><freejoint/>"
-                  "<geom type=\"ellipsoid\" size=\"0.004 0.002 0.002\" density=\"400\" "
-                  "fluidshape=\"ellipsoid\" contype=\"0\" conaffinity=\"0\"/></body>",
-                  i % side, i / side, (17 * i) % 180, (29 * i) % 180);
+                  "<geom %s fluidshape=\"ellipsoid\" contype=\"0\" conaffinity=\"0\"/></body>",
+                  i % side, i / side, (17 * i) % 180, (29 * i) % 180, g_geom);
     xml += buf;
   }
   return xml + "</worldbody></mujoco>";
@@ -83,13 +87,21 @@ double rate(int bodies, int copies, int steps, double dt, const char* integrator
 
 int main(int argc, char** argv) {
   int n = 10000, steps = 100, one_model_max = 1000;
+  const char* body = "pod";
   double dt = 0.002;
   for (int i = 1; i + 1 < argc; i += 2) {
     if (!std::strcmp(argv[i], "--n")) n = std::atoi(argv[i + 1]);
     else if (!std::strcmp(argv[i], "--dt")) dt = std::atof(argv[i + 1]);
     else if (!std::strcmp(argv[i], "--steps")) steps = std::atoi(argv[i + 1]);
     else if (!std::strcmp(argv[i], "--one-model-max")) one_model_max = std::atoi(argv[i + 1]);
-    else {
+    else if (!std::strcmp(argv[i], "--body") && !std::strcmp(argv[i + 1], "pod")) body = "pod";
+    else if (!std::strcmp(argv[i], "--body") && !std::strcmp(argv[i + 1], "bead")) {
+      body = "bead";
+      g_geom = "type=\"sphere\" size=\"0.00025\" density=\"2500\"";
+    } else if (!std::strcmp(argv[i], "--body")) {
+      std::fprintf(stderr, "mujoco_harness: --body must be pod or bead, got %s\n", argv[i + 1]);
+      return 2;
+    } else {
       std::fprintf(stderr, "mujoco_harness: unknown option %s\n", argv[i]);
       return 2;
     }
@@ -111,12 +123,13 @@ int main(int argc, char** argv) {
     const int steps_many = std::min(steps, 10);
     const double rk4_many = rate(n_many, 1, steps_many, dt, "RK4");
     const double euler_many = rate(n_many, 1, steps_many, dt, "Euler");
-    std::printf("{\"mujoco_version\": %d, \"n\": %d, \"dt\": %g, \"steps\": %d, "
+    std::printf("{\"mujoco_version\": %d, \"body\": \"%s\", \"n\": %d, \"dt\": %g, "
+                "\"steps\": %d, "
                 "\"one_body_per_model\": {\"rk4\": %.6g, \"euler\": %.6g, \"copies\": %d, "
                 "\"steps_per_copy\": %d}, "
                 "\"one_model\": {\"rk4\": %.6g, \"euler\": %.6g, \"bodies\": %d, "
                 "\"steps\": %d}}\n",
-                mj_version(), n, dt, steps, rk4_one, euler_one, copies, steps_one, rk4_many,
+                mj_version(), body, n, dt, steps, rk4_one, euler_one, copies, steps_one, rk4_many,
                 euler_many, n_many, steps_many);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "%s\n", e.what());

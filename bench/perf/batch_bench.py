@@ -13,7 +13,9 @@ Peer, in the same run: OpenFOAM's icoUncoupledKinematicParcelFoam on the same pa
 (bench/peers/run_peers.sh --skip-mujoco: the same 500 um glass beads, N = 10^4, dt = 2 ms,
 200 steps, sphereDrag, dispersion off and on), per core (CPU time) against lrigid's per-core rate;
 the solved wind case from --wind-case or build/perf/peers_1000/windCourtyard (run_perf.sh's),
-else solved once (about 2 min).
+else solved once (about 2 min). And MuJoCo 2.2's ellipsoid fluid model stepping the same beads
+(bench/peers/mujoco_harness --body bead: free spheres, contacts off, one body per model, RK4 and
+Euler), per CPU second.
 Accuracy: `lrigid run` of the scene for 10 s; landing points of float against double, next to
 the time-step error (dt against dt/2) of the same scene without turbulence (deterministic, so the
 difference is the discretization alone), and with turbulence (where any perturbation grows).
@@ -168,13 +170,30 @@ def main():
         acc[tag] = {"float": landing_diff(runs["double"], runs["float"])}
         if "double_half_dt" in runs:
             acc[tag]["dt"] = landing_diff(runs["double"], runs["double_half_dt"])
-    json.dump({"machine": m, "throughput": rows, "accuracy": acc, "peers": peers},
+    mujoco = None
+    harness = os.path.join(args.build, "bin", "mujoco_harness")
+    if not args.no_peers and os.path.exists(harness):
+        for rep in range(1 if args.quick else 2):
+            print("batch_bench.py: MuJoCo peer (mujoco_harness --body bead), run %d" % (rep + 1),
+                  file=sys.stderr)
+            out = subprocess.run([harness, "--body", "bead", "--n", "10000", "--steps", "200",
+                                  "--dt", "0.002", "--one-model-max", "100"], check=True,
+                                 capture_output=True, text=True).stdout
+            got = json.loads(out)
+            if mujoco is None:
+                mujoco = got
+            else:
+                for key in ("rk4", "euler"):
+                    mujoco["one_body_per_model"][key] = max(mujoco["one_body_per_model"][key],
+                                                            got["one_body_per_model"][key])
+    json.dump({"machine": m, "throughput": rows, "accuracy": acc, "peers": peers,
+               "mujoco": mujoco},
               open(os.path.join(args.out, "batch.json"), "w"), indent=1)
-    write_doc(args.doc, m, rows, acc, peers, args.quick)
+    write_doc(args.doc, m, rows, acc, peers, mujoco, args.quick)
     print(f"batch_bench.py: wrote {args.doc} (data in {args.out})", file=sys.stderr)
 
 
-def write_doc(path, m, rows, acc, peers, quick):
+def write_doc(path, m, rows, acc, peers, mujoco, quick):
     def rate(variant, n, t, key="rate"):
         for r in rows:
             if r["variant"] == variant and r["n"] == n and r["threads"] == t:
@@ -218,7 +237,7 @@ def write_doc(path, m, rows, acc, peers, quick):
         of = peers["openfoam"]
         lines += [
             "",
-            "## Against OpenFOAM's parcels, same run",
+            "## Against the peers, same run",
             "",
             "OpenFOAM's `icoUncoupledKinematicParcelFoam` (v1912) tracking the same 10,000 beads "
             "through the same steady field (`bench/peers/run_peers.sh --skip-mujoco`: sphereDrag "
@@ -239,7 +258,20 @@ def write_doc(path, m, rows, acc, peers, quick):
                            ("dispersion_on", "OpenFOAM, stochasticDispersionRAS")):
             lines.append(f"| {label} | {of[key] / 1e6:.2f} M | {d / of[key]:.1f} | "
                          f"{f / of[key]:.1f} |")
-        lines += ["", f"OpenFOAM measured {peers.get('date', '?')}, load {peers.get('load', '?')}."]
+        if mujoco:
+            mj = mujoco["one_body_per_model"]
+            for key, label in (("rk4", "MuJoCo 2.2 ellipsoid fluid model, RK4"),
+                               ("euler", "MuJoCo 2.2 ellipsoid fluid model, Euler")):
+                lines.append(f"| {label} | {mj[key] / 1e6:.2f} M | {d / mj[key]:.1f} | "
+                             f"{f / mj[key]:.1f} |")
+        lines += ["", f"OpenFOAM measured {peers.get('date', '?')}, "
+                  f"load {peers.get('load', '?')}."]
+        if mujoco:
+            lines += ["", "MuJoCo (`bench/peers/mujoco_harness --body bead`): the same beads as "
+                      "free spheres with `fluidshape=\"ellipsoid\"`, contacts off, in a 5 m/s "
+                      "uniform wind (MuJoCo has no field to sample and no turbulence model), one "
+                      "body per model (its best case: a model of many bodies costs it "
+                      "O(bodies²) per step)."]
     lines += [
         "",
         "## What single precision costs",

@@ -434,6 +434,7 @@ def batch_target_rows(w, batch):
                 return r
         return None
     of = ((batch.get("peers") or {}).get("openfoam") or {}).get("dispersion_on")
+    mj = ((batch.get("mujoco") or {}).get("one_body_per_model") or {}).get("rk4")
     for variant in ("batched, double", "batched, float"):
         one = row(variant, 10000, 1)
         if one and of:
@@ -441,6 +442,11 @@ def batch_target_rows(w, batch):
             w("| spheres (%s), >= 10 x OpenFOAM per core on the same parcels (%s, dispersion "
               "on, [batched-step.md](batched-step.md)) | %s at N = 10^4 (%.1f x) | %s |" %
               (variant, si(of), si(c), c / of, "yes" if c >= 10 * of else "no"))
+        if one and mj:
+            c = one["cpu_rate"]
+            w("| spheres (%s), >= 10 x MuJoCo RK4 per core on the same beads (%s) | %s at "
+              "N = 10^4 (%.1f x) | %s |" % (variant, si(mj), si(c), c / mj,
+                                             "yes" if c >= 10 * mj else "no"))
         two = [r for r in batch["throughput"] if r["variant"] == variant and r["threads"] == 2]
         if two:
             best = max(two, key=lambda r: r["n"])
