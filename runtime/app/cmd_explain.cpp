@@ -7,9 +7,9 @@
 
 #include "commands.h"
 #include "effects/basset.h"
+#include "integrate/sphere_batch.h"
 #include "io/added_mass_cache.h"
 #include "io/grid_reader.h"
-#include "integrate/sphere_batch.h"
 #include "io/scene_json.h"
 #include "model/model.h"
 

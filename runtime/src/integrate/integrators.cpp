@@ -377,17 +377,17 @@ StepOutcome step_body(const Model& model, const BodyType& type, uint32_t body, u
         out = turbulence_update(model, type, t + 0.5 * h, 0.5 * h, true, z2, s);
       break;
   }
-  // a state that went non-finite within the step samples as "outside": it failed, not exited
-  if (out == StepOutcome::Exited && first_nonfinite(*s)) out = StepOutcome::Ok;
-  if (out == StepOutcome::Exited) {
-    *s = before;
-    *reason = "left the fluid (outside the grid or inside a solid)";
-    return out;
-  }
+  // checked first: a state that went non-finite within the step also samples as "outside", and
+  // it failed, not exited
   if (const char* what = first_nonfinite(*s)) {
     *s = before;
     *reason = std::string("non-finite ") + what;
     return StepOutcome::Failed;
+  }
+  if (out == StepOutcome::Exited) {
+    *s = before;
+    *reason = "left the fluid (outside the grid or inside a solid)";
+    return out;
   }
   if (type.plan.basset && s->history) {
     // relative velocity g = u_f - v at the end of the step enters the history
