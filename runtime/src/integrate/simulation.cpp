@@ -45,23 +45,11 @@ uint64_t advance_body(const Model& model, State& st, int64_t i, uint64_t first, 
     const double t = static_cast<double>(k) * model.dt;
     std::string reason;
     const StepOutcome out = step_body(model, type, static_cast<uint32_t>(i), k, t, &b, &reason);
-    if (out == StepOutcome::Exited && model.has_ground) {
-      // a step that would cross the ground (often also the grid's bottom) lands the body,
-      // even when a stage of it sampled below the grid first
-      BodyState next = b;
-      next.x = predicted_position(model, type, b);
-      if (touches_ground(model, type, next)) {
-        st.status[i] = BodyStatus::Landed;
-        st.t_stop[i] = t + model.dt;
+    if (out != StepOutcome::Ok) {
+      if (stop_body(model, type, size_t(i), t, out, reason, b, &st) == BodyStatus::Landed) {
         b.v.setZero();
         b.w.setZero();
-        break;
       }
-    }
-    if (out != StepOutcome::Ok) {
-      st.status[i] = out == StepOutcome::Exited ? BodyStatus::Exited : BodyStatus::Failed;
-      st.t_stop[i] = t;
-      st.reason[i] = out == StepOutcome::Exited ? exit_reason(model, type, b) : reason;
       break;
     }
     ++body_steps;

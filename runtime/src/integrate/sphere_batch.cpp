@@ -70,9 +70,9 @@ namespace {
 // What the step needs of the model and the body type, in the world frame.
 struct Consts {
   double h = 0;
-  bool mean_flow = false, turb = false, drag = false, added_mass = false, well_mixed = false;
-  bool grad_u = false;  // added mass in a mean flow: grad U for the fluid acceleration
-  // the same switches as factors 1 or 0, so the loops across bodies stay free of branches
+  bool turb = false, drag = false;  // the step's two template switches
+  // switches as factors 1 or 0, so the loops across bodies stay free of branches: mean flow,
+  // Thomson's drift, grad U for the fluid acceleration (added mass in a mean flow)
   double mf = 0, wm = 0, gu = 0;
   bool sample = false;  // the field is sampled at all
   bool grid = false;
@@ -97,19 +97,15 @@ Consts make_consts(const Model& model, const BodyType& type) {
   Consts k;
   const EffectSet& e = type.effects;
   k.h = model.dt;
-  k.mean_flow = e.has(Effect::MeanFlow);
   k.turb = e.has(Effect::Turbulence);
   k.drag = e.has(Effect::Drag);
-  k.added_mass = e.has(Effect::AddedMass);
-  k.well_mixed = model.well_mixed_correction;
-  k.grad_u = type.plan.gradients;
   k.sample = type.plan.sample_field;
-  k.mf = k.mean_flow ? 1.0 : 0.0;
-  k.wm = k.well_mixed ? 1.0 : 0.0;
-  k.gu = k.grad_u ? 1.0 : 0.0;
+  k.mf = e.has(Effect::MeanFlow) ? 1.0 : 0.0;
+  k.wm = model.well_mixed_correction ? 1.0 : 0.0;
+  k.gu = type.plan.gradients ? 1.0 : 0.0;
   k.grid = !model.field.is_uniform();
   k.m = type.M(0, 0);
-  k.ma = k.added_mass ? type.K_fluid(0, 0) : 0.0;
+  k.ma = e.has(Effect::AddedMass) ? type.K_fluid(0, 0) : 0.0;
   k.J = type.M(3, 3);
   Vec3 F = Vec3::Zero();
   if (e.has(Effect::Gravity)) F += type.mass * model.gravity;
@@ -640,21 +636,11 @@ BlockStats advance(const Model& model, const BodyType& type, State* state, const
         // the lane kept its state at the start of the step (as step_body restores it)
         BodyState b;
         lane_to_body(L, j, &b);
-        if (outcome[j] == kOutside && model.has_ground) {
-          BodyState next = b;
-          next.x = predicted_position(model, type, b);
-          if (touches_ground(model, type, next)) {
-            st.status[i] = BodyStatus::Landed;
-            st.t_stop[i] = t + model.dt;
-          }
-        }
-        if (st.status[i] != BodyStatus::Landed) {
-          st.status[i] = outcome[j] == kOutside ? BodyStatus::Exited : BodyStatus::Failed;
-          st.t_stop[i] = t;
-          st.reason[i] = outcome[j] == kOutside ? exit_reason(model, type, b)
-                                                 : std::string("non-finite ") +
-                                                       kNonFiniteName[outcome[j] - kNonFinite];
-        }
+        const bool outside = outcome[j] == kOutside;
+        const std::string failure =
+            outside ? "" : std::string("non-finite ") + kNonFiniteName[outcome[j] - kNonFinite];
+        stop_body(model, type, i, t, outside ? StepOutcome::Exited : StepOutcome::Failed, failure,
+                  b, &st);
       }
       L.live[j] = false;
       if (st.status[i] == BodyStatus::Landed) {

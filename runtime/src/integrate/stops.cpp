@@ -11,6 +11,11 @@ bool touches_ground(const Model& m, const BodyType& type, const BodyState& s) {
   return s.x.z() - reach <= m.ground_z;
 }
 
+namespace {
+
+// where one more step would take the body: its world velocity R v, plus the turbulent velocity
+// u' for the body turbulence model (which carries the body directly; for the seen model u' is
+// the fluid's and acts through the forces)
 Vec3 predicted_position(const Model& m, const BodyType& type, const BodyState& b) {
   Vec3 velocity = b.q * b.v;
   if (type.effects.has(Effect::Turbulence) && m.turbulence_model == TurbulenceModel::Body)
@@ -18,11 +23,34 @@ Vec3 predicted_position(const Model& m, const BodyType& type, const BodyState& b
   return b.x + m.dt * velocity;
 }
 
+// where a body that could not be sampled went: where one more step would take it
 std::string exit_reason(const Model& m, const BodyType& type, const BodyState& b) {
   const Vec3 next = predicted_position(m, type, b);
   if (m.field.in_box(next) && m.field.in_box(b.x))
     return "hit a solid: no valid grid point around it (a wall, a building, an obstacle)";
   return "left the grid";
+}
+
+}  // namespace
+
+BodyStatus stop_body(const Model& m, const BodyType& type, size_t i, double t, StepOutcome out,
+                     const std::string& failure, const BodyState& b, State* st) {
+  if (out == StepOutcome::Exited && m.has_ground) {
+    // a step that would cross the ground (often also the grid's bottom) lands the body, even
+    // when a stage of it sampled below the grid first
+    BodyState next = b;
+    next.x = predicted_position(m, type, b);
+    if (touches_ground(m, type, next)) {
+      st->status[i] = BodyStatus::Landed;
+      st->t_stop[i] = t + m.dt;
+      return BodyStatus::Landed;
+    }
+  }
+  const bool exited = out == StepOutcome::Exited;
+  st->status[i] = exited ? BodyStatus::Exited : BodyStatus::Failed;
+  st->t_stop[i] = t;
+  st->reason[i] = exited ? exit_reason(m, type, b) : failure;
+  return st->status[i];
 }
 
 }  // namespace lrigid

@@ -11,12 +11,12 @@ namespace lrigid {
 // the body's lowest point (of its bounding box) is on or below the ground
 bool touches_ground(const Model& m, const BodyType& type, const BodyState& s);
 
-// where one more step would take the body: its world velocity R v, plus the turbulent velocity
-// u' for the body turbulence model (which carries the body directly; for the seen model u' is
-// the fluid's and acts through the forces)
-Vec3 predicted_position(const Model& m, const BodyType& type, const BodyState& b);
-
-// where a body that could not be sampled went: where one more step would take it
-std::string exit_reason(const Model& m, const BodyType& type, const BodyState& b);
+// Stops body i after its step from t did not succeed (out: Exited or Failed; `failure`: why it
+// failed), with b its state at the start of that step: a step that would take it onto the ground
+// lands it at t + dt (the caller sets it at rest), otherwise it exited or failed at t, with the
+// reason (for an exit: where one more step would have taken it). Writes st's status, t_stop and
+// reason; returns the status.
+BodyStatus stop_body(const Model& m, const BodyType& type, size_t i, double t, StepOutcome out,
+                     const std::string& failure, const BodyState& b, State* st);
 
 }  // namespace lrigid
