@@ -394,14 +394,13 @@ def main():
                                 "yes" if max(s, s2) >= 2e7 else "no"))
     if batch:
         batch_target_rows(w, batch)
-    ratios = [cost_ratio(lin_ns[-1], i) for i in integs]
-    ratios = [c for c in ratios if c is not None]
+    ratios = {i: cost_ratio(lin_ns[-1], i) for i in integs}
+    ratios = {i: c for i, c in ratios.items() if c is not None}
     if ratios:
-        worst = max(ratios)
+        worst = max(ratios.values())
         w("| cost linear in N from %d to %d | cost per body-step x %.2f at most (%s) | %s |" %
-          (lin_ns[0], lin_ns[-1], worst, ", ".join(
-              "%s %.2f" % (i, cost_ratio(lin_ns[-1], i)) for i in integs
-              if cost_ratio(lin_ns[-1], i) is not None), "yes" if worst < 1.3 else "no"))
+          (lin_ns[0], lin_ns[-1], worst, ", ".join("%s %.2f" % (i, c) for i, c in ratios.items()),
+           "yes" if worst < 1.3 else "no"))
     dflt = [r for r in (conv or {}).get("runs", []) if r["grid"] == "default"]
     if dflt:
         wall = min(r["wall_s"] for r in dflt)
