@@ -1,0 +1,422 @@
+// What the batched steps share (integrate/sphere_batch.cpp for spheres, rigid_batch.cpp for
+// plates and ellipsoids): the compile switches of their loops across bodies, the field sample and
+// the Ornstein-Uhlenbeck half step in structure-of-arrays form, the per-lane normals, and the
+// driver that runs a block of bodies through a stretch of steps and stops them as the scalar loop
+// of integrate/simulation.cpp does. Internal to those two files: everything here has internal
+// linkage (each file compiles its own versions of the loops, see LRIGID_MULTIVERSION).
+#pragma once
+#include <cmath>
+#include <cstdint>
+#include <string>
+
+#include "integrate/dynamics.h"
+#include "integrate/integrators.h"
+#include "integrate/sphere_batch.h"
+#include "integrate/stops.h"
+#include "model/model.h"
+#include "model/state.h"
+#include "util/fast_math.h"
+#include "util/rng.h"
+
+namespace lrigid {
+namespace {  // NOLINT(build/namespaces): internal to the two batched-step files
+
+// The loops across bodies are compiled for AVX-512, AVX2 and the baseline, and the best the CPU
+// has is chosen when the program loads (GCC's function multiversioning; 3.6 against 14.8 M
+// body-steps/s per core for the baseline and AVX-512 on this machine). Rounding can differ
+// between the versions (fused multiply-adds), never between threads. Clang 14 does not multiversion
+// templates: its builds (the fuzz targets) run the baseline.
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+#define LRIGID_MULTIVERSION \
+  __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
+#else
+#define LRIGID_MULTIVERSION
+#endif
+
+// The loops across bodies carry LRIGID_IVDEP (GCC's `ivdep`: their iterations are independent),
+// not `#pragma omp simd`: OpenMP sizes the per-lane copies of a loop's local arrays before GCC
+// makes the versions above, and the AVX-512 and AVX2 versions then stay scalar (measured: 4.9
+// against 13 M body-steps/s per core). The per-body helpers are inlined into each version (a call
+// would run the baseline one).
+#define LRIGID_LANE inline __attribute__((always_inline))
+#if defined(__GNUC__) && !defined(__clang__)
+#define LRIGID_IVDEP _Pragma("GCC ivdep")
+#else
+// Clang: no hint. Its 'vectorize(assume_safety)' is an order that fails the build (-Werror) where
+// it cannot vectorize, as in the sanitizer builds of the fuzz targets, which are not for speed.
+#define LRIGID_IVDEP
+#endif
+
+// What every batched step needs of the model and the body type: the field and the switches of
+// the Langevin model.
+struct FieldConsts {
+  double h = 0;
+  bool turb = false;    // seen turbulence
+  bool sample = false;  // the field is sampled at all
+  bool grid = false;
+  // switches as factors 1 or 0, so the loops across bodies stay free of branches: mean flow,
+  // Thomson's drift, grad U for the fluid acceleration (added mass in a mean flow)
+  double mf = 0, wm = 0, gu = 0;
+  double mean_flow_scale = 1, turbulence_scale = 1;
+  // grid
+  double origin[3] = {0, 0, 0}, spacing[3] = {1, 1, 1}, upper_index[3] = {0, 0, 0};
+  int n[3] = {0, 0, 0};
+  int64_t sy = 0, sz = 0;
+  const float* records = nullptr;
+  FluidSample uniform;  // art scales applied
+  bool ground = false;
+  double ground_z = 0, half[3] = {0, 0, 0};
+  uint64_t seed = 0;
+};
+
+void set_field_consts(const Model& model, const BodyType& type, FieldConsts* k) {
+  const EffectSet& e = type.effects;
+  k->h = model.dt;
+  k->turb = e.has(Effect::Turbulence);
+  k->sample = type.plan.sample_field;
+  k->mf = e.has(Effect::MeanFlow) ? 1.0 : 0.0;
+  k->wm = model.well_mixed_correction ? 1.0 : 0.0;
+  k->gu = type.plan.gradients ? 1.0 : 0.0;
+  k->grid = !model.field.is_uniform();
+  k->mean_flow_scale = model.mean_flow_scale;
+  k->turbulence_scale = model.turbulence_scale;
+  if (k->grid) {
+    const GridGeometry& g = model.field.geometry();
+    for (int a = 0; a < 3; ++a) {
+      k->origin[a] = g.origin[a];
+      k->spacing[a] = g.spacing[a];
+      k->n[a] = g.n[a];
+      k->upper_index[a] = double(g.n[a] - 1);
+    }
+    k->sy = g.n[0];
+    k->sz = int64_t(g.n[0]) * g.n[1];
+    k->records = model.field.frame_records(0);
+  } else {
+    model.field.sample(Vec3::Zero(), 0.0, false, &k->uniform);
+    apply_art_scales(model, &k->uniform);
+  }
+  k->ground = model.has_ground;
+  k->ground_z = model.ground_z;
+  for (int a = 0; a < 3; ++a) k->half[a] = type.half_extents[a];
+  k->seed = model.seed;
+}
+
+// What rules out the batched steps for every body type: the integrator, the turbulence model,
+// the noise, the field. Empty when none does.
+std::string batch_exclusion(const Model& model, const BodyType& type) {
+  if (!model.batched) return "the scene turns the batched step off";
+  if (model.integrator != Integrator::Splitting) return "the integrator is not splitting";
+  if (type.effects.has(Effect::Turbulence) && model.turbulence_model != TurbulenceModel::Seen)
+    return "the body turbulence model";
+  if (model.noise_substeps > 1) return "noise substeps";
+  if (model.field.is_streamed() || model.field.frame_count() > 1)
+    return "a time-dependent field";
+  // the steps address grid records with 32-bit float offsets
+  if (!model.field.is_uniform() && model.field.geometry().points() >= (size_t(1) << 28))
+    return "a grid of 2^28 points or more";
+  return "";
+}
+
+// The fluid sample at a block's positions, structure of arrays, and the block's bookkeeping.
+template <typename T>
+struct Samples {
+  alignas(64) T x[3][kBatch];  // positions, m (the state of every kind of lane starts with it)
+  alignas(64) T U[3][kBatch];
+  alignas(64) T alpha[kBatch];
+  alignas(64) T beta[kBatch];
+  alignas(64) T sigma2[kBatch];
+  alignas(64) T gs[3][kBatch];   // grad sigma2
+  alignas(64) T acc[3][kBatch];  // (grad U) U: the mean flow's acceleration (steady field)
+  alignas(64) T inside[kBatch];  // 1 in the fluid, 0 outside
+  // the exact OU half step's coefficients at the sample (ou_exact): a steady field gives the
+  // second half step of one step and the first of the next the same ones
+  alignas(64) T decay[kBatch];   // exp(-alpha h/2)
+  alignas(64) T noise[kBatch];   // beta sqrt((1 - exp(-alpha h)) / (2 alpha)), m/s
+  uint32_t body[kBatch];
+  bool live[kBatch];
+};
+
+// Fills the sample arrays of L at positions x (may be L.x itself).
+template <typename T>
+LRIGID_MULTIVERSION void sample_lanes(const FieldConsts& k, const T (*x)[kBatch], Samples<T>* L) {
+  if (!k.grid) {
+    const FluidSample& u = k.uniform;
+LRIGID_IVDEP
+    for (int j = 0; j < kBatch; ++j) {
+#pragma GCC unroll 3
+      for (int a = 0; a < 3; ++a) {
+        L->U[a][j] = T(u.U[a]);
+        L->gs[a][j] = T(0);
+        L->acc[a][j] = T(0);
+      }
+      L->alpha[j] = T(u.alpha);
+      L->beta[j] = T(u.beta);
+      L->sigma2[j] = T(u.sigma2);
+      const bool fin = std::isfinite(x[0][j]) && std::isfinite(x[1][j]) && std::isfinite(x[2][j]);
+      L->inside[j] = fin ? T(1) : T(0);
+    }
+    return;
+  }
+  const float* rec = k.records;
+  // 32-bit float offsets of the 8 corners' records (sphere_batch_eligible bounds the grid)
+  const int sy = int(k.sy), sz = int(k.sz);
+  const int off[8] = {0, 8, 8 * sy, 8 * (1 + sy), 8 * sz, 8 * (1 + sz), 8 * (sy + sz),
+                      8 * (1 + sy + sz)};
+  const T mfs = T(k.mean_flow_scale), ts = T(k.turbulence_scale), ts2 = ts * ts;
+LRIGID_IVDEP
+  for (int j = 0; j < kBatch; ++j) {
+    T f[3];
+    int idx = 0;
+    bool in = true;
+#pragma GCC unroll 3
+    for (int a = 0; a < 3; ++a) {
+      T s = (x[a][j] - T(k.origin[a])) / T(k.spacing[a]);
+      in = in & (s >= T(0)) & (s <= T(k.upper_index[a]));
+      // clamped so that every lane reads inside the grid, also lanes outside it
+      s = s > T(0) ? s : T(0);
+      s = s < T(k.upper_index[a]) ? s : T(k.upper_index[a]);
+      int i = static_cast<int>(s);
+      i = i < k.n[a] - 2 ? i : k.n[a] - 2;
+      f[a] = s - T(i);
+      idx += 8 * (a == 0 ? 1 : (a == 1 ? sy : sz)) * i;
+    }
+    const T gx[2] = {T(1) - f[0], f[0]}, gy[2] = {T(1) - f[1], f[1]}, gz[2] = {T(1) - f[2], f[2]};
+    T W = 0, v[6] = {0, 0, 0, 0, 0, 0}, dv[4][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
+    int nvalid = 0;
+#pragma GCC unroll 8
+    for (int c = 0; c < 8; ++c) {
+      const int cx = c & 1, cy = (c >> 1) & 1, cz = c >> 2;
+      const int r = idx + off[c];
+      const T valid = T(rec[r + 6]);
+      nvalid += valid != T(0);
+      const T wc = valid * (gx[cx] * gy[cy] * gz[cz]);
+      const T dw[3] = {(cx ? T(1) : T(-1)) * gy[cy] * gz[cz], gx[cx] * (cy ? T(1) : T(-1)) * gz[cz],
+                       gx[cx] * gy[cy] * (cz ? T(1) : T(-1))};
+      W += wc;
+      const T g[6] = {T(rec[r]),     T(rec[r + 1]), T(rec[r + 2]),
+                      T(rec[r + 3]), T(rec[r + 4]), T(rec[r + 5])};
+#pragma GCC unroll 6
+      for (int p = 0; p < 6; ++p) v[p] += wc * g[p];
+      const T gv[4] = {g[0], g[1], g[2], g[5]};
+#pragma GCC unroll 4
+      for (int p = 0; p < 4; ++p)
+#pragma GCC unroll 3
+        for (int a = 0; a < 3; ++a) dv[p][a] += dw[a] * gv[p];
+    }
+    in = in & (nvalid > 0) & (W >= T(0.5));
+    const T inv = T(1) / (W > T(0) ? W : T(1));
+    // gradients only where all 8 corners are valid (as FluidField::sample)
+    const T all = nvalid == 8 ? T(1) : T(0);
+    T gu[3][3];
+#pragma GCC unroll 3
+    for (int p = 0; p < 3; ++p) {
+      L->U[p][j] = mfs * v[p] * inv;
+#pragma GCC unroll 3
+      for (int a = 0; a < 3; ++a) gu[p][a] = mfs * all * dv[p][a] / T(k.spacing[a]);
+    }
+    L->alpha[j] = v[3] * inv;
+    L->beta[j] = ts * v[4] * inv;
+    L->sigma2[j] = ts2 * v[5] * inv;
+#pragma GCC unroll 3
+    for (int a = 0; a < 3; ++a) {
+      L->gs[a][j] = ts2 * all * dv[3][a] / T(k.spacing[a]);
+      L->acc[a][j] = gu[a][0] * L->U[0][j] + gu[a][1] * L->U[1][j] + gu[a][2] * L->U[2][j];
+    }
+    L->inside[j] = in ? T(1) : T(0);
+  }
+}
+
+// The OU half step's decay and noise at the lanes' samples (effects/turbulence.h ou_exact).
+template <typename T>
+LRIGID_MULTIVERSION void ou_coefficients(const FieldConsts& k, Samples<T>* L) {
+  const double hh = 0.5 * k.h;
+LRIGID_IVDEP
+  for (int j = 0; j < kBatch; ++j) {
+    const double alpha = double(L->alpha[j]), ah = alpha * hh;
+    const double a_safe = alpha > 0 ? alpha : 1.0;
+    L->decay[j] = T(exp_fast(-ah));
+    L->noise[j] = T(double(L->beta[j]) * (ah > 1e-12 ? std::sqrt(one_minus_exp_neg(2.0 * ah) /
+                                                                 (2.0 * a_safe))
+                                                     : std::sqrt(hh)));
+  }
+}
+
+// One exact Ornstein-Uhlenbeck half step of the seen fluctuation us (effects/turbulence.h) with
+// Thomson's drift along the body's path (world velocity V), for one lane; wm: 1 with the drift,
+// 0 without (Consts::wm, passed in: a load under a lane's condition would not vectorize).
+template <typename T>
+LRIGID_LANE void ou_half(T wm, T decay, T noise, T sigma2, const T* V, const T* gs, const T* z,
+                         T hh, T* us) {
+  const T s_safe = sigma2 > T(0) ? sigma2 : T(1);
+  const T proj = (V[0] * gs[0] + V[1] * gs[1] + V[2] * gs[2]) / (T(2) * s_safe);
+  const T on = sigma2 > T(0) ? wm : T(0);
+#pragma GCC unroll 3
+  for (int a = 0; a < 3; ++a)
+    us[a] = decay * us[a] + hh * (on * (T(0.5) * gs[a] + us[a] * proj)) + noise * z[a];
+}
+
+
+// Normals of step `step` for every lane: the Strang half-step increments of the linear noise,
+// exactly as brownian_increments (integrators.cpp) draws them from NormalStream.
+template <typename T>
+LRIGID_MULTIVERSION void lane_normals(const FieldConsts& k, const Samples<T>& L, uint64_t step,
+                                      T (*z1)[kBatch], T (*z2)[kBatch]) {
+  // words: block 0 (pairs 0, 1), block 1 words 2, 3 (pair 3), block 2 words 0, 1 (pair 4)
+  alignas(64) uint32_t wd[8][kBatch];
+  const uint32_t k0 = static_cast<uint32_t>(k.seed), k1 = static_cast<uint32_t>(k.seed >> 32);
+  const uint32_t lo = static_cast<uint32_t>(step), hi = static_cast<uint32_t>(step >> 32);
+LRIGID_IVDEP
+  for (int j = 0; j < kBatch; ++j) {
+    const uint32_t body = L.body[j];
+    uint32_t b0[4] = {body, lo, hi, 0x6c720000u};
+    uint32_t b1[4] = {body, lo, hi, 0x6c720001u};
+    uint32_t b2[4] = {body, lo, hi, 0x6c720002u};
+    philox4x32_10(b0[0], b0[1], b0[2], b0[3], k0, k1);
+    philox4x32_10(b1[0], b1[1], b1[2], b1[3], k0, k1);
+    philox4x32_10(b2[0], b2[1], b2[2], b2[3], k0, k1);
+    wd[0][j] = b0[0], wd[1][j] = b0[1], wd[2][j] = b0[2], wd[3][j] = b0[3];
+    wd[4][j] = b1[2], wd[5][j] = b1[3], wd[6][j] = b2[0], wd[7][j] = b2[1];
+  }
+LRIGID_IVDEP
+  for (int j = 0; j < kBatch; ++j) {
+    double c0, s0, c1, s1, c3, s3, c4, s4;
+    sincos_of_turn(wd[1][j], &c0, &s0);
+    sincos_of_turn(wd[3][j], &c1, &s1);
+    sincos_of_turn(wd[5][j], &c3, &s3);
+    sincos_of_turn(wd[7][j], &c4, &s4);
+    const double r0 = NormalStream::box_muller_radius(wd[0][j]);
+    const double r1 = NormalStream::box_muller_radius(wd[2][j]);
+    const double r3 = NormalStream::box_muller_radius(wd[4][j]);
+    const double r4 = NormalStream::box_muller_radius(wd[6][j]);
+    const double a[3] = {r0 * c0, r0 * s0, r1 * c1};  // n[0..2]
+    const double b[3] = {r3 * c3, r3 * s3, r4 * c4};  // n[6..8]
+#pragma GCC unroll 3
+    for (int c = 0; c < 3; ++c) {
+      z1[c][j] = T((a[c] + b[c]) * M_SQRT1_2);
+      z2[c][j] = T((a[c] - b[c]) * M_SQRT1_2);
+    }
+  }
+}
+
+
+// A lane's outcome after one step. kScalar: the lane needs what the batched loops leave to the
+// scalar step (e.g. a Newton iteration), which then redoes it; kNonFinite + i names the first
+// non-finite part of the new state.
+enum Outcome : uint8_t { kOk = 0, kOutside = 1, kScalar = 2, kNonFinite = 3 };
+const char* const kNonFiniteName[5] = {"position", "orientation", "velocity", "angular velocity",
+                                       "seen turbulent velocity"};
+
+// Bits of what went right in a lane's step (bit i clear: part i of the new state is non-finite,
+// in step_body's order; bit 5: inside the fluid; bit 6 set: take the scalar step), from the
+// loop across lanes, where branches would stop it vectorizing.
+template <typename T>
+LRIGID_LANE int outcome_bits(const T* x, const T* q, const T* v, const T* w, const T* us,
+                             bool inside, bool scalar) {
+  // int & int: every condition evaluated, no branch (bool && would short-circuit)
+  auto fin = [](T a) { return int(std::isfinite(a)); };
+  const int fx = fin(x[0]) & fin(x[1]) & fin(x[2]);
+  const int fq = fin(q[0]) & fin(q[1]) & fin(q[2]) & fin(q[3]);
+  const int fv = fin(v[0]) & fin(v[1]) & fin(v[2]);
+  const int fw = fin(w[0]) & fin(w[1]) & fin(w[2]);
+  const int fu = fin(us[0]) & fin(us[1]) & fin(us[2]);
+  return fx | fq << 1 | fv << 2 | fw << 3 | fu << 4 | int(inside) << 5 | int(scalar) << 6;
+}
+
+inline int decode_outcome(int bits) {
+  if (bits >> 6 & 1) return kScalar;
+  if (!(bits >> 5 & 1)) return kOutside;
+  int bad = 0;  // the first non-finite part, in the order step_body names them
+  while (bad < 5 && (bits >> bad & 1)) ++bad;
+  return bad < 5 ? int(kNonFinite) + bad : int(kOk);
+}
+
+// The body's lowest point is on or below the ground (stops.h touches_ground) for quaternion q
+// (w, x, y, z) at height z.
+template <typename T>
+LRIGID_LANE int lane_landed(const FieldConsts& k, const T* q, T z) {
+  const T qw = q[0], qx = q[1], qy = q[2], qz = q[3];
+  const T r20 = T(2) * (qx * qz - qw * qy), r21 = T(2) * (qy * qz + qw * qx);
+  const T r22 = T(1) - T(2) * (qx * qx + qy * qy);
+  const T reach = std::abs(r20) * T(k.half[0]) + std::abs(r21) * T(k.half[1]) +
+                  std::abs(r22) * T(k.half[2]);
+  return int(k.ground & (z - reach <= T(k.ground_z)));
+}
+
+// Runs a block of count bodies (indices body[0..count)) of one type through steps [first, last)
+// with the scalar loop's statuses, stop times and reasons. Lanes (derived from Samples<T>) holds
+// the block's state and provides load(j, BodyState), store(j, BodyState*) and rest(j) (set at
+// rest after landing); step(L, step, outcome, landed) advances every lane by one step, keeping
+// the start state of lanes that are not kOk, and leaves the samples at the new positions.
+template <typename T, class Lanes, class Step>
+BlockStats drive_block(const Model& model, const BodyType& type, const FieldConsts& k, Lanes* L,
+                       State* state, const uint32_t* body, int count, uint64_t first,
+                       uint64_t last, Step step) {
+  BlockStats stats;
+  State& st = *state;
+  for (int j = 0; j < kBatch; ++j) {
+    // lanes past count repeat the first body and stay idle
+    const size_t i = body[j < count ? j : 0];
+    L->load(j, load_body(st, i));
+    L->body[j] = static_cast<uint32_t>(i);
+    L->live[j] = j < count && st.status[i] == BodyStatus::Moving;
+  }
+  auto resample = [&] {
+    if (k.sample) sample_lanes(k, L->x, L);
+    if (k.turb) ou_coefficients(k, L);
+  };
+  resample();
+  alignas(64) int outcome[kBatch];
+  alignas(64) int landed[kBatch];
+  for (uint64_t s = first; s < last; ++s) {
+    bool any = false;
+    for (int j = 0; j < count; ++j) any = any || L->live[j];
+    if (!any) break;
+    const double t = static_cast<double>(s) * model.dt;
+    step(L, s, outcome, landed);
+    bool moved_by_scalar = false;
+    for (int j = 0; j < count; ++j) {
+      if (!L->live[j]) continue;
+      const size_t i = L->body[j];
+      BodyState b;
+      StepOutcome out = StepOutcome::Ok;
+      std::string reason;
+      bool land = landed[j] != 0;
+      if (outcome[j] == kScalar) {
+        L->store(j, &b);
+        out = step_body(model, type, L->body[j], s, t, &b, &reason);
+        if (out == StepOutcome::Ok) {
+          L->load(j, b);
+          moved_by_scalar = true;
+          land = model.has_ground && touches_ground(model, type, b);
+        }
+      } else if (outcome[j] != kOk) {
+        // the lane kept its state at the start of the step (as step_body restores it)
+        L->store(j, &b);
+        const bool outside = outcome[j] == kOutside;
+        out = outside ? StepOutcome::Exited : StepOutcome::Failed;
+        if (!outside) reason = std::string("non-finite ") + kNonFiniteName[outcome[j] - kNonFinite];
+      }
+      if (out == StepOutcome::Ok) {
+        ++stats.body_steps;
+        if (!land) continue;
+        st.status[i] = BodyStatus::Landed;
+        st.t_stop[i] = t + model.dt;
+      } else {
+        stop_body(model, type, i, t, out, reason, b, &st);
+      }
+      L->live[j] = false;
+      if (st.status[i] == BodyStatus::Landed) L->rest(j);
+    }
+    // the samples of lanes the scalar step moved are at their batched positions
+    if (moved_by_scalar) resample();
+  }
+  for (int j = 0; j < count; ++j) {
+    BodyState b;
+    L->store(j, &b);
+    store_body(b, body[j], &st);
+  }
+  return stats;
+}
+
+}  // namespace
+}  // namespace lrigid
