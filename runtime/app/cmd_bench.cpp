@@ -119,8 +119,9 @@ void bench(const BenchArgs& a) {
   out["max_threads"] = omp_get_max_threads();
   out["runs"] = nlohmann::json::array();
   if (!a.quiet)
-    std::printf("%9s %-10s %7s %6s %9s %14s %12s %14s %10s\n", "bodies", "integrator", "threads",
-                "steps", "wall_s", "body_steps_s", "per_thread", "per_cpu_s", "B/body");
+    std::printf("%9s %-10s %7s %6s %9s %14s %12s %14s %10s %8s\n", "bodies", "integrator",
+                "threads", "steps", "wall_s", "body_steps_s", "per_thread", "per_cpu_s", "B/body",
+                "scalar%");
   for (const long long n : a.n) {
     for (const std::string& iname : a.integrators) {
       Scene s = base;
@@ -145,9 +146,13 @@ void bench(const BenchArgs& a) {
         const double cpu_rate = cpu > 0 ? double(r.body_steps) / cpu : 0.0;
         const double rate = r.wall_seconds > 0 ? double(r.body_steps) / r.wall_seconds : 0.0;
         const double bpb = state_bytes_per_body(st);
+        // steps of batched bodies handed to the scalar step (integrate/rigid_batch.h)
+        const double handoff =
+            r.body_steps > 0 ? 100.0 * double(r.scalar_handoffs) / double(r.body_steps) : 0.0;
         if (!a.quiet)
-          std::printf("%9lld %-10s %7d %6d %9.3f %14.4g %12.4g %14.4g %10.0f\n", n, iname.c_str(),
-                      th, steps, r.wall_seconds, rate, rate / th, cpu_rate, bpb);
+          std::printf("%9lld %-10s %7d %6d %9.3f %14.4g %12.4g %14.4g %10.0f %8.2f\n", n,
+                      iname.c_str(), th, steps, r.wall_seconds, rate, rate / th, cpu_rate, bpb,
+                      handoff);
         std::fflush(stdout);
         nlohmann::json j;
         j["n"] = n;
@@ -160,6 +165,7 @@ void bench(const BenchArgs& a) {
         j["cpu_seconds"] = cpu;
         j["body_steps_per_cpu_s"] = cpu_rate;  // per core-second of CPU time
         j["state_bytes_per_body"] = bpb;
+        j["scalar_handoffs"] = r.scalar_handoffs;
         j["exited"] = r.exited + r.failed;
         j["landed"] = r.landed;
         out["runs"].push_back(j);

@@ -7,6 +7,7 @@
 
 #include "commands.h"
 #include "effects/basset.h"
+#include "integrate/rigid_batch.h"
 #include "integrate/sphere_batch.h"
 #include "io/added_mass_cache.h"
 #include "io/grid_reader.h"
@@ -81,16 +82,19 @@ void explain(const std::string& path) {
     }
     std::printf("  auto chooses: %s\n", list(a.chosen).c_str());
     if (!scene.effects_auto) std::printf("  the scene lists: %s\n", list(t.effects).c_str());
+    // a sphere takes the sphere step or none; anything else the plates-and-ellipsoids step
     std::string why;
-    const bool batched = sphere_batch_eligible(model, t, &why);
-    const double ns = batched ? estimated_batched_cost_ns(t.effects, model.precision)
-                              : estimated_cost_ns(t.effects, scene.integrator,
-                                                  !scene.uniform_field, t.M_isotropic);
+    const bool sphere = t.M_isotropic && sphere_batch_eligible(model, t, &why);
+    const bool rigid = !t.M_isotropic && rigid_batch_eligible(model, t, &why);
+    const double ns = sphere || rigid
+                          ? estimated_batched_cost_ns(t.effects, model.precision, rigid)
+                          : estimated_cost_ns(t.effects, scene.integrator, !scene.uniform_field,
+                                              t.M_isotropic);
     total_ns += ns * double(t.count);
     std::printf("  simulated: %s\n", list(t.effects).c_str());
-    if (batched)
-      std::printf("  step: batched, %d bodies per block, %s loops, %s (docs/batched-step.md)\n",
-                  kBatch, sphere_batch_isa(),
+    if (sphere || rigid)
+      std::printf("  step: batched (%s), %d bodies per block, %s loops, %s (docs/batched-step.md)\n",
+                  sphere ? "spheres" : "plates and ellipsoids", kBatch, sphere_batch_isa(),
                   model.precision == Precision::Float ? "float" : "double");
     else
       std::printf("  step: scalar (not batched: %s)\n", why.c_str());

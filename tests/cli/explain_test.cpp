@@ -73,9 +73,9 @@ TEST(CliExplain, CardGetsLiftBeadDoesNotAndTheSphereIsCheaper) {
   EXPECT_GT(t[0].cost_ns, 0.0);
   EXPECT_GT(t[1].cost_ns, 0.0);
   EXPECT_LT(t[1].cost_ns, t[0].cost_ns) << "closed-form sphere step vs iterated plate step";
-  // the bead takes the batched step, the card the scalar one, and the output says so
-  const size_t card = r.out.find("step: scalar (not batched: not a sphere)");
-  const size_t bead = r.out.find("step: batched, 32 bodies per block");
+  // each takes its batched step, and the output says so
+  const size_t card = r.out.find("step: batched (plates and ellipsoids), 32 bodies per block");
+  const size_t bead = r.out.find("step: batched (spheres), 32 bodies per block");
   EXPECT_NE(card, std::string::npos) << r.out;
   EXPECT_NE(bead, std::string::npos) << r.out;
   EXPECT_LT(card, bead) << "card first, as in the scene";

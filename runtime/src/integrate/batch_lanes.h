@@ -136,13 +136,14 @@ struct Samples {
   bool live[kBatch];
 };
 
-// Fills the sample arrays of L at positions x (may be L.x itself).
+// Fills the sample arrays of L at positions x (may be L.x itself), lanes [lo, hi).
 template <typename T>
-LRIGID_MULTIVERSION void sample_lanes(const FieldConsts& k, const T (*x)[kBatch], Samples<T>* L) {
+LRIGID_MULTIVERSION void sample_lanes(const FieldConsts& k, const T (*x)[kBatch], Samples<T>* L,
+                                      int lo = 0, int hi = kBatch) {
   if (!k.grid) {
     const FluidSample& u = k.uniform;
 LRIGID_IVDEP
-    for (int j = 0; j < kBatch; ++j) {
+    for (int j = lo; j < hi; ++j) {
 #pragma GCC unroll 3
       for (int a = 0; a < 3; ++a) {
         L->U[a][j] = T(u.U[a]);
@@ -164,7 +165,7 @@ LRIGID_IVDEP
                       8 * (1 + sy + sz)};
   const T mfs = T(k.mean_flow_scale), ts = T(k.turbulence_scale), ts2 = ts * ts;
 LRIGID_IVDEP
-  for (int j = 0; j < kBatch; ++j) {
+  for (int j = lo; j < hi; ++j) {
     T f[3];
     int idx = 0;
     bool in = true;
@@ -228,10 +229,11 @@ LRIGID_IVDEP
 
 // The OU half step's decay and noise at the lanes' samples (effects/turbulence.h ou_exact).
 template <typename T>
-LRIGID_MULTIVERSION void ou_coefficients(const FieldConsts& k, Samples<T>* L) {
+LRIGID_MULTIVERSION void ou_coefficients(const FieldConsts& k, Samples<T>* L, int lo = 0,
+                                         int hi = kBatch) {
   const double hh = 0.5 * k.h;
 LRIGID_IVDEP
-  for (int j = 0; j < kBatch; ++j) {
+  for (int j = lo; j < hi; ++j) {
     const double alpha = double(L->alpha[j]), ah = alpha * hh;
     const double a_safe = alpha > 0 ? alpha : 1.0;
     L->decay[j] = T(exp_fast(-ah));
@@ -360,11 +362,11 @@ BlockStats drive_block(const Model& model, const BodyType& type, const FieldCons
     L->body[j] = static_cast<uint32_t>(i);
     L->live[j] = j < count && st.status[i] == BodyStatus::Moving;
   }
-  auto resample = [&] {
-    if (k.sample) sample_lanes(k, L->x, L);
-    if (k.turb) ou_coefficients(k, L);
+  auto resample = [&](int lo, int hi) {
+    if (k.sample) sample_lanes(k, L->x, L, lo, hi);
+    if (k.turb) ou_coefficients(k, L, lo, hi);
   };
-  resample();
+  resample(0, kBatch);
   alignas(64) int outcome[kBatch];
   alignas(64) int landed[kBatch];
   for (uint64_t s = first; s < last; ++s) {
@@ -373,7 +375,6 @@ BlockStats drive_block(const Model& model, const BodyType& type, const FieldCons
     if (!any) break;
     const double t = static_cast<double>(s) * model.dt;
     step(L, s, outcome, landed);
-    bool moved_by_scalar = false;
     for (int j = 0; j < count; ++j) {
       if (!L->live[j]) continue;
       const size_t i = L->body[j];
@@ -383,10 +384,12 @@ BlockStats drive_block(const Model& model, const BodyType& type, const FieldCons
       bool land = landed[j] != 0;
       if (outcome[j] == kScalar) {
         L->store(j, &b);
+        ++stats.scalar_steps;
         out = step_body(model, type, L->body[j], s, t, &b, &reason);
         if (out == StepOutcome::Ok) {
+          // the lane's sample is at its batched position: sample it where the scalar step took it
           L->load(j, b);
-          moved_by_scalar = true;
+          resample(j, j + 1);
           land = model.has_ground && touches_ground(model, type, b);
         }
       } else if (outcome[j] != kOk) {
@@ -407,8 +410,6 @@ BlockStats drive_block(const Model& model, const BodyType& type, const FieldCons
       L->live[j] = false;
       if (st.status[i] == BodyStatus::Landed) L->rest(j);
     }
-    // the samples of lanes the scalar step moved are at their batched positions
-    if (moved_by_scalar) resample();
   }
   for (int j = 0; j < count; ++j) {
     BodyState b;

@@ -77,11 +77,8 @@ EvalResult impulse_rates(const Model& model, const BodyType& type, const Kinemat
 
 namespace {
 
-constexpr int kKirchhoffMaxFixedPoint = 10;
-constexpr double kKirchhoffSlowContraction = 0.01;  // squared: contraction factor above 0.1
 constexpr int kKirchhoffMaxNewton = 16;
 constexpr double kKirchhoffRefactor = 0.25;  // contraction per Newton step that keeps J
-constexpr double kKirchhoffTol = 1e-13;  // Newton update / |Y|, energy norm
 
 // One implicit-midpoint step of the free Kirchhoff flow from Y0 (see kirchhoff_flow): false
 // when Newton did not converge. w_mid: the angular velocity at the midpoint.

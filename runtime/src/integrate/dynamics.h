@@ -108,6 +108,13 @@ void context_from_sample(const Model& model, const BodyType& type, const Kinemat
 // does not converge. Returns the number of Newton iterations (cost accounting). For an isotropic
 // M (spheres) the midpoint equation is linear and solved in closed form (no iteration).
 constexpr int kKirchhoffMaxSubsteps = 64;
+// The solver: the fixed-point iteration Y <- Y0 - h gyro((Y0 + Y)/2) first (cheap), at most
+// kKirchhoffMaxFixedPoint times, until the update is below kKirchhoffTol |Y| (energy norm);
+// Newton from there when it contracts by less than sqrt(kKirchhoffSlowContraction) per
+// iteration, diverges or runs out. The batched step (rigid_batch.h) iterates by the same rule.
+constexpr int kKirchhoffMaxFixedPoint = 10;
+constexpr double kKirchhoffSlowContraction = 0.01;  // squared: contraction factor above 0.1
+constexpr double kKirchhoffTol = 1e-13;             // update / |Y|, energy norm
 int kirchhoff_flow(const BodyType& type, const Vec3& u_fluid, double h, Quat* q, Vec3* v,
                    Vec3* w);
 

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "integrate/integrators.h"
+#include "integrate/rigid_batch.h"
 #include "integrate/sphere_batch.h"
 #include "integrate/stops.h"
 
@@ -65,6 +66,9 @@ uint64_t advance_body(const Model& model, State& st, int64_t i, uint64_t first, 
   return body_steps;
 }
 
+// how a body type is advanced
+enum StepKind : char { kScalarBody = 0, kSphereBlock = 1, kRigidBlock = 2 };
+
 // The bodies a stretch advances: those still moving in [n0, n), the batched step's types in
 // blocks of kBatch bodies of one type, the others one by one. Rebuilt for every stretch, so
 // bodies that stopped leave the blocks.
@@ -108,29 +112,36 @@ RunStats simulate(const Model& model, State* state, const RunOptions& options) {
   const auto n = static_cast<int64_t>(std::min(st.size(), options.body_end));
   const auto n0 = static_cast<int64_t>(std::min(st.size(), options.body_begin));
   double wall = 0;
-  // body types that take the batched sphere step (integrate/sphere_batch.h)
+  // body types that take a batched step: spheres (integrate/sphere_batch.h), plates and
+  // ellipsoids (integrate/rigid_batch.h)
   std::vector<char> batched(model.types.size());
   for (size_t t = 0; t < model.types.size(); ++t)
-    batched[t] = sphere_batch_eligible(model, model.types[t]);
+    batched[t] = sphere_batch_eligible(model, model.types[t])  ? kSphereBlock
+                 : rigid_batch_eligible(model, model.types[t]) ? kRigidBlock
+                                                                : kScalarBody;
 
   while (st.step < total_steps) {
     const uint64_t first = st.step;
     const uint64_t next_output = (first / stride + 1) * stride;
     const uint64_t last = stream_stretch_end(model, first, std::min(total_steps, next_output));
     model.field.prepare(static_cast<double>(first) * model.dt, stream_window_end(model, last));
-    uint64_t body_steps = 0;
+    uint64_t body_steps = 0, handoffs = 0;
     const auto t0 = std::chrono::steady_clock::now();
     const WorkList work = work_list(model, st, batched, n0, n);
     const auto nblocks = static_cast<int64_t>(work.blocks.size());
     const auto nscalar = static_cast<int64_t>(work.scalar.size());
-#pragma omp parallel num_threads(threads) reduction(+ : body_steps)
+#pragma omp parallel num_threads(threads) reduction(+ : body_steps, handoffs)
     {
 #pragma omp for schedule(dynamic, 4) nowait
       for (int64_t k = 0; k < nblocks; ++k) {
         const std::vector<uint32_t>& blk = work.blocks[k];
-        body_steps += advance_sphere_block(model, model.types[st.type[blk[0]]], &st, blk.data(),
-                                           static_cast<int>(blk.size()), first, last)
-                          .body_steps;
+        const uint16_t t = st.type[blk[0]];
+        const auto advance = batched[t] == kSphereBlock ? advance_sphere_block
+                                                        : advance_rigid_block;
+        const BlockStats b = advance(model, model.types[t], &st, blk.data(),
+                                     static_cast<int>(blk.size()), first, last);
+        body_steps += b.body_steps;
+        handoffs += b.scalar_steps;
       }
 #pragma omp for schedule(static)
       for (int64_t k = 0; k < nscalar; ++k)
@@ -138,6 +149,7 @@ RunStats simulate(const Model& model, State* state, const RunOptions& options) {
     }
     wall += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     stats.body_steps += body_steps;
+    stats.scalar_handoffs += handoffs;
     st.step = last;
     st.t = static_cast<double>(last) * model.dt;
     if (last % stride == 0 || last == total_steps) {

@@ -258,7 +258,7 @@ double estimated_cost_ns(EffectSet set, Integrator integrator, bool grid, bool i
   return ns;
 }
 
-double estimated_batched_cost_ns(EffectSet set, Precision precision) {
+double estimated_batched_cost_ns(EffectSet set, Precision precision, bool rigid) {
   // additive fit to lrigid bench on scenes/beads_wind.json with --effects subsets (N = 10^4,
   // one thread, AVX-512 loops, best of 3, 2026-12-01): gravity 9.7 ns, + drag 17.5, + mean flow
   // 51.8 (the grid sample), all six effects 67.2; float 0.78 of that. Gravity, buoyancy and added
@@ -267,6 +267,7 @@ double estimated_batched_cost_ns(EffectSet set, Precision precision) {
   if (set.has(Effect::Drag)) ns += 8;
   if (set.has(Effect::MeanFlow) || set.has(Effect::Turbulence)) ns += 34;
   if (set.has(Effect::Turbulence)) ns += 15;
+  if (rigid) ns += 60;
   if (precision == Precision::Float) ns *= 0.78;
   return ns;
 }

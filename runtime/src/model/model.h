@@ -166,9 +166,10 @@ EffectSet auto_effects(const Scene& scene, const BodyType& type, const FlowScale
 // Estimated cost of one body-step for an effect set and integrator, ns: an additive fit to the
 // table in docs/effects.md (uniform field; grid sampling is extra). A guide, not a promise.
 double estimated_cost_ns(EffectSet set, Integrator integrator, bool grid, bool isotropic_mass);
-// The same for a body type that takes the batched sphere step (integrate/sphere_batch.h): a fit
-// to docs/batched-step.md's measurements (AVX-512 loops, steady grid, one core).
-double estimated_batched_cost_ns(EffectSet set, Precision precision);
+// The same for a body type that takes a batched step: spheres (integrate/sphere_batch.h) or, with
+// `rigid`, plates and ellipsoids (integrate/rigid_batch.h); a fit to docs/batched-step.md's
+// measurements (AVX-512 loops, steady grid, one core).
+double estimated_batched_cost_ns(EffectSet set, Precision precision, bool rigid = false);
 
 // Throws lrigid::Error naming the scene file and key for physically impossible input.
 Model compile_model(const Scene& scene, FluidField field, const AddedMassProvider& added_mass);

@@ -1,0 +1,559 @@
+#include "integrate/rigid_batch.h"
+
+#include <algorithm>
+#include <cmath>
+#include <type_traits>
+
+#include "effects/drag.h"
+#include "effects/lift.h"
+#include "integrate/batch_lanes.h"
+#include "integrate/dynamics.h"
+
+namespace lrigid {
+
+bool rigid_batch_eligible(const Model& model, const BodyType& type, std::string* why) {
+  auto no = [why](const std::string& reason) {
+    if (why) *why = reason;
+    return false;
+  };
+  if (const std::string all = batch_exclusion(model, type); !all.empty()) return no(all);
+  if (type.M_isotropic) return no("an isotropic generalized mass (the sphere step's)");
+  if (!type.M_diagonal) return no("the generalized mass is not diagonal");
+  if (!type.r_cob.isZero(0.0)) return no("the centre of mass is off the centroid");
+  if (type.effects.has(Effect::AddedMass) &&
+      Mat6(type.K_fluid.diagonal().asDiagonal()) != type.K_fluid)
+    return no("the added-mass tensor is not diagonal");
+  for (const EffectInfo& info : all_effects()) {
+    const Effect e = info.effect;
+    if (!type.effects.has(e)) continue;
+    if (e != Effect::Gravity && e != Effect::Buoyancy && e != Effect::Drag &&
+        e != Effect::Lift && e != Effect::AddedMass && e != Effect::MeanFlow &&
+        e != Effect::Turbulence)
+      return no(std::string("effect ") + info.name);
+  }
+  return true;
+}
+
+namespace {
+
+// What the step needs of the body type.
+struct Consts : FieldConsts {
+  bool plate = false;  // flat: plate drag and lift (with turb, the step's template switches)
+  double M[6] = {0, 0, 0, 0, 0, 0}, Mi[6] = {0, 0, 0, 0, 0, 0};  // M's diagonal and its inverse
+  double K[3] = {0, 0, 0};  // K's linear diagonal (0 without added mass)
+  double F[3] = {0, 0, 0};  // gravity and buoyancy, world frame, N
+  double drag = 0, lift = 0;  // the effects as factors 1 or 0
+  double rho = 0, nu = 0;
+  // plate (effects/drag.cpp plate_drag_wrench, effects/lift.cpp lift_wrench with r_cob = 0):
+  // the normal n and the in-plane axes e1, e2 as unit vectors (component index na, i1, i2)
+  double n[3] = {0, 0, 0}, e1[3] = {0, 0, 0}, e2[3] = {0, 0, 0};
+  double S = 0, box = 0;         // planform area; 1 for a rectangle, 0 for an ellipse
+  double c1 = 0, c2 = 0;         // half extents (box) or semi-axes (ellipse) along e1, e2
+  double width = 0, apw_speed = 0;
+  double sf[3] = {0, 0, 0}, c_visc = 0;   // mu k_i, mu max k_i (Stokes force)
+  double st[3] = {0, 0, 0}, st_in = 0;    // mu r_i; mu max r_i over the in-plane axes
+  double rot_n = 0;                       // out-of-roundness drag of the spin about n
+  // ellipsoid (effects/drag.cpp drag_wrench with r_cob = 0)
+  double l[3] = {0, 0, 0}, area_max = 0, c_ang0 = 0, rot[3] = {0, 0, 0}, rot_max = 0;
+};
+
+Consts make_consts(const Model& model, const BodyType& type) {
+  Consts k;
+  set_field_consts(model, type, &k);
+  const EffectSet& e = type.effects;
+  k.plate = type.flat;
+  for (int a = 0; a < 6; ++a) {
+    k.M[a] = type.M(a, a);
+    k.Mi[a] = type.M_inv_diagonal[a];
+  }
+  for (int a = 0; a < 3; ++a) k.K[a] = e.has(Effect::AddedMass) ? type.K_fluid(a, a) : 0.0;
+  Vec3 F = Vec3::Zero();
+  if (e.has(Effect::Gravity)) F += type.mass * model.gravity;
+  if (e.has(Effect::Buoyancy)) F -= model.fluid_density * type.volume * model.gravity;
+  for (int a = 0; a < 3; ++a) k.F[a] = F[a];
+  k.drag = e.has(Effect::Drag) ? 1.0 : 0.0;
+  k.lift = e.has(Effect::Lift) && type.flat ? 1.0 : 0.0;
+  k.rho = model.fluid_density;
+  k.nu = model.nu;
+  const double mu = k.rho * k.nu;
+  const int na = type.normal_axis, i1 = (na + 1) % 3, i2 = (na + 2) % 3;
+  k.n[na] = k.e1[i1] = k.e2[i2] = 1.0;
+  k.S = type.plate_area;
+  k.box = type.shape.type == ShapeType::Box ? 1.0 : 0.0;
+  const Vec3& ext = type.shape.type == ShapeType::Box ? type.half_extents : type.ell;
+  k.c1 = ext[i1];
+  k.c2 = ext[i2];
+  if (type.flat) k.width = plate_width(type);
+  k.apw_speed = type.apw_speed;
+  for (int a = 0; a < 3; ++a) {
+    k.sf[a] = mu * type.stokes_force[a];
+    k.st[a] = mu * type.stokes_torque[a];
+    k.l[a] = type.ell[a];
+    k.rot[a] = 0.5 * k.rho * kDragRotation * type.rot_drag_len5[a];
+  }
+  k.c_visc = mu * type.stokes_force.maxCoeff();
+  k.st_in = mu * std::max(type.stokes_torque[i1], type.stokes_torque[i2]);
+  k.rot_n = k.rot[na];
+  k.area_max = type.area_max;
+  const double r_m = type.ell.mean();
+  k.c_ang0 = 8.0 * M_PI * k.rho * k.nu * r_m * r_m * r_m;
+  k.rot_max = k.rho * kDragRotation * type.rot_drag_len5.maxCoeff();
+  return k;
+}
+
+// The state of a block of bodies, structure of arrays, in the scalar step's frames: v and w in
+// the body frame.
+template <typename T>
+struct Lanes : Samples<T> {
+  alignas(64) T v[3][kBatch];
+  alignas(64) T w[3][kBatch];
+  alignas(64) T q[4][kBatch];  // (w, x, y, z)
+  alignas(64) T us[3][kBatch];
+
+  void load(int j, const BodyState& b) {
+#pragma GCC unroll 3
+    for (int a = 0; a < 3; ++a) {
+      this->x[a][j] = T(b.x[a]);
+      v[a][j] = T(b.v[a]);
+      w[a][j] = T(b.w[a]);
+      us[a][j] = T(b.u_seen[a]);
+    }
+    q[0][j] = T(b.q.w()), q[1][j] = T(b.q.x()), q[2][j] = T(b.q.y()), q[3][j] = T(b.q.z());
+  }
+  void store(int j, BodyState* b) const {
+    b->x = Vec3(double(this->x[0][j]), double(this->x[1][j]), double(this->x[2][j]));
+    b->q = Quat(double(q[0][j]), double(q[1][j]), double(q[2][j]), double(q[3][j]));
+    b->v = Vec3(double(v[0][j]), double(v[1][j]), double(v[2][j]));
+    b->w = Vec3(double(w[0][j]), double(w[1][j]), double(w[2][j]));
+    b->u_seen = Vec3(double(us[0][j]), double(us[1][j]), double(us[2][j]));
+  }
+  void rest(int j) {
+#pragma GCC unroll 3
+    for (int a = 0; a < 3; ++a) v[a][j] = w[a][j] = T(0);
+  }
+};
+
+// ---- small vector algebra on one lane's values -------------------------------------------------
+
+template <typename T>
+LRIGID_LANE T dot3(const T* a, const T* b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+template <typename T>
+LRIGID_LANE void cross3(const T* a, const T* b, T* c) {
+  c[0] = a[1] * b[2] - a[2] * b[1];
+  c[1] = a[2] * b[0] - a[0] * b[2];
+  c[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+// R (row major) of the unit quaternion q = (w, x, y, z), as Eigen's toRotationMatrix
+template <typename T>
+LRIGID_LANE void rotation(const T* q, T* R) {
+  const T w = q[0], x = q[1], y = q[2], z = q[3];
+  const T tx = T(2) * x, ty = T(2) * y, tz = T(2) * z;
+  const T twx = tx * w, twy = ty * w, twz = tz * w, txx = tx * x, txy = ty * x, txz = tz * x;
+  const T tyy = ty * y, tyz = tz * y, tzz = tz * z;
+  R[0] = T(1) - (tyy + tzz), R[1] = txy - twz, R[2] = txz + twy;
+  R[3] = txy + twz, R[4] = T(1) - (txx + tzz), R[5] = tyz - twx;
+  R[6] = txz - twy, R[7] = tyz + twx, R[8] = T(1) - (txx + tyy);
+}
+
+template <typename T>
+LRIGID_LANE void mul(const T* R, const T* a, T* b) {  // b = R a
+#pragma GCC unroll 3
+  for (int i = 0; i < 3; ++i) b[i] = R[3 * i] * a[0] + R[3 * i + 1] * a[1] + R[3 * i + 2] * a[2];
+}
+
+template <typename T>
+LRIGID_LANE void mul_t(const T* R, const T* a, T* b) {  // b = R^T a
+#pragma GCC unroll 3
+  for (int i = 0; i < 3; ++i) b[i] = R[i] * a[0] + R[3 + i] * a[1] + R[6 + i] * a[2];
+}
+
+// The free Kirchhoff flow's right-hand side with its sign: dY/dt = -gyro(Y),
+// gyro = (w x P, w x L + v x P) with (v, w) = M^-1 Y (effects/wrench.h kirchhoff_gyro)
+template <typename T>
+LRIGID_LANE void gyro(const Consts& k, const T* Y, T* g) {
+  const T v[3] = {T(k.Mi[0]) * Y[0], T(k.Mi[1]) * Y[1], T(k.Mi[2]) * Y[2]};
+  const T w[3] = {T(k.Mi[3]) * Y[3], T(k.Mi[4]) * Y[4], T(k.Mi[5]) * Y[5]};
+  T a[3], b[3], c[3];
+  cross3(w, Y, a);
+  cross3(w, Y + 3, b);
+  cross3(v, Y, c);
+#pragma GCC unroll 3
+  for (int i = 0; i < 3; ++i) {
+    g[i] = a[i];
+    g[3 + i] = b[i] + c[i];
+  }
+}
+
+// Drag (and lift) on relative velocity u and spin w, body frame, and the stiffness the implicit
+// step needs (effects/drag.h DragStiffness).
+template <typename T>
+struct Forces {
+  T f[3], tq[3];
+  T c_lin, p, c_ang;
+  T u_hat[3];
+};
+
+// Plate drag and torque (plate_drag_wrench) and lift (lift_wrench), r_cob = 0
+template <typename T>
+LRIGID_LANE Forces<T> plate_forces(const Consts& k, const T* u, const T* w) {
+  Forces<T> d;
+  const T rho = T(k.rho);
+  const T n[3] = {T(k.n[0]), T(k.n[1]), T(k.n[2])};
+  const T e1[3] = {T(k.e1[0]), T(k.e1[1]), T(k.e1[2])}, e2[3] = {T(k.e2[0]), T(k.e2[1]), T(k.e2[2])};
+  const T s2 = dot3(u, u);
+  const T speed = std::sqrt(s2);
+  const bool moving = speed > T(0);
+  const T inv = T(1) / (moving ? speed : T(1));
+  const T un = dot3(n, u);
+  const T cos2a = (s2 - T(2) * un * un) * (inv * inv);
+  const T c_lin = moving ? T(0.5) * rho * T(k.S) * (T(kPlateDragA) - T(kPlateDragB) * cos2a) * speed
+                         : T(0);
+  // the in-plane part of the spin and the chord across it
+  const T wn = dot3(n, w);
+  T wp[3];
+#pragma GCC unroll 3
+  for (int a = 0; a < 3; ++a) wp[a] = w[a] - wn * n[a];
+  const T wp_norm = std::sqrt(dot3(wp, wp));
+  const bool spinning = wp_norm > T(0);
+  T dir[3];
+  cross3(n, wp, dir);
+  const T winv = T(1) / (spinning ? wp_norm : T(1));
+  const T d1 = dot3(e1, dir) * winv, d2 = dot3(e2, dir) * winv;
+  const T tiny = T(std::is_same_v<T, float> ? 1e-30 : 1e-300);
+  const T a1 = std::abs(d1) > tiny ? std::abs(d1) : tiny, a2 = std::abs(d2) > tiny ? std::abs(d2) : tiny;
+  const T r1 = T(k.c1) / a1, r2 = T(k.c2) / a2;
+  const T chord_box = T(2) * (r1 < r2 ? r1 : r2);
+  const T q1 = d1 / T(k.c1), q2 = d2 / T(k.c2);
+  const T chord_ell = T(2) / std::sqrt(q1 * q1 + q2 * q2 + (spinning ? T(0) : T(1)));
+  const T chord = k.box != 0 ? chord_box : chord_ell;
+  // APW's pitching torque, its viscous coefficient scaled as a laminar boundary layer
+  const T c = T(0.5) * (spinning ? chord : T(1));
+  const T span = T(k.S) / (T(2) * c);
+  const T Uv = k.apw_speed > 0 ? T(k.apw_speed) : speed;
+  const T kk = T(M_PI) * rho * (c * c) * (c * c) * span;
+  const T re_w = speed * T(k.width / k.nu);
+  const T re = re_w > T(kPlateTorqueReMin) ? re_w : T(kPlateTorqueReMin);
+  const T mu1 = T(kPlateTorqueMu1) * std::sqrt(T(kPlateTorqueFitRe) / re);
+  const T pitch = spinning ? kk * (mu1 * Uv / c + T(kPlateTorqueMu2) * wp_norm) : T(0);
+  const T c_pitch = spinning ? kk * (mu1 * Uv / c + T(2 * kPlateTorqueMu2) * wp_norm) : T(0);
+  const T c_n = T(k.st[0]) * T(k.n[0]) + T(k.st[1]) * T(k.n[1]) + T(k.st[2]) * T(k.n[2]) +
+                T(k.rot_n) * std::abs(wn);
+  // lift: translational (circulation gate (Re/Re_c)^4 / (1 + ...)) and rotational
+  static_assert(kLiftReExponent == 4.0, "the gate below is written for the exponent 4");
+  const T rg = re_w * T(1.0 / kLiftReCritical), rg2 = rg * rg, x4 = rg2 * rg2;
+  const T gate = T(k.lift) * (x4 / (T(1) + x4));
+  T ut[3];
+#pragma GCC unroll 3
+  for (int a = 0; a < 3; ++a) ut[a] = u[a] - un * n[a];
+  const T ut2 = dot3(ut, ut);
+  const T lt = moving ? -rho * gate * T(kLiftTranslational * k.S) * (un * inv) : T(0);
+  const T lr = spinning ? T(0.5) * rho * gate * T(kLiftRotational) * chord * T(k.S) : T(0);
+  T wxu[3];
+  cross3(wp, u, wxu);
+  const T dr = T(k.drag);
+#pragma GCC unroll 3
+  for (int a = 0; a < 3; ++a) {
+    d.f[a] = dr * (-c_lin * u[a] - T(k.sf[a]) * u[a]) + lt * (ut2 * n[a] - un * ut[a]) +
+             lr * wxu[a];
+    d.tq[a] = dr * (-pitch * wp[a] - T(k.st[a]) * wp[a] - c_n * wn * n[a]);
+    d.u_hat[a] = moving ? u[a] * inv : T(0);
+  }
+  const T c_tot = c_lin + T(k.c_visc);
+  d.c_lin = dr * c_tot;
+  d.p = c_tot > T(0) ? c_lin / c_tot : T(0);
+  const T ca = c_pitch + T(k.st_in), cn2 = T(2) * c_n;
+  d.c_ang = dr * (ca > cn2 ? ca : cn2);
+  return d;
+}
+
+// Drag of a body that is not flat (drag_wrench): the equivalent ellipsoid's projected area
+// across u, Schiller-Naumann on its diameter, and the rotational drag
+template <typename T>
+LRIGID_LANE Forces<T> ellipsoid_forces(const Consts& k, const T* u, const T* w) {
+  Forces<T> d;
+  const T speed = std::sqrt(dot3(u, u));
+  const bool moving = speed > T(0);
+  const T inv = T(1) / (moving ? speed : T(1));
+  T uh[3];
+#pragma GCC unroll 3
+  for (int a = 0; a < 3; ++a) uh[a] = moving ? u[a] * inv : T(0);
+  const T p0 = T(k.l[1] * k.l[2]) * uh[0], p1 = T(k.l[0] * k.l[2]) * uh[1];
+  const T p2 = T(k.l[0] * k.l[1]) * uh[2];
+  const T a_perp = T(M_PI) * std::sqrt(p0 * p0 + p1 * p1 + p2 * p2);
+  const T d_perp = T(2) * std::sqrt(a_perp * T(1.0 / M_PI));
+  const T re = speed * d_perp / T(k.nu);
+  const T re_safe = moving ? re : T(1);
+  const T s = T(0.15 * exp_fast(0.687 * log_fast(double(re_safe))));
+  const bool newton_regime = re >= T(1000);
+  const T cd = newton_regime ? T(0.44) : T(24) / re_safe * (T(1) + s);
+  const T p = newton_regime ? T(1) : T(0.687) * s / (T(1) + s);
+  const T c_moving =
+      T(0.5 * k.rho) * speed * (cd * a_perp + T(kDragEdgewise) * (T(k.area_max) - a_perp));
+  const T dr = T(k.drag);
+  const T c_lin = moving ? dr * c_moving : T(0);
+  const T w_norm = std::sqrt(dot3(w, w));
+#pragma GCC unroll 3
+  for (int a = 0; a < 3; ++a) {
+    d.f[a] = -c_lin * u[a];
+    d.tq[a] = -dr * (T(k.c_ang0) + T(k.rot[a]) * w_norm) * w[a];
+    d.u_hat[a] = uh[a];
+  }
+  d.c_lin = c_lin;
+  d.p = moving ? p : T(0);
+  d.c_ang = dr * (T(k.c_ang0) + T(k.rot_max) * w_norm);
+  return d;
+}
+
+// the scalar step's Kirchhoff tolerance (integrate/dynamics.h); float converges to its own
+// round-off
+template <typename T>
+constexpr double kLaneKirchhoffTol = std::is_same_v<T, float> ? 1e-5 : kKirchhoffTol;
+constexpr double kStiffChange = 0.1;  // as integrators.cpp
+
+// Advances every lane of L by one step (see rigid_batch.h); lanes that are not kOk keep their
+// state at the start of the step. landed: the lane is on or below the ground after the step.
+template <typename T, bool Turb, bool Plate>
+LRIGID_MULTIVERSION void step_lanes(const Consts& k, Lanes<T>* L, uint64_t step, int* outcome,
+                                    int* landed) {
+  const T h = T(k.h), hh = T(0.5 * k.h), wm = T(k.wm);
+  alignas(64) T z1[3][kBatch], z2[3][kBatch];
+  if constexpr (Turb) lane_normals(k, *L, step, z1, z2);
+  // the Kirchhoff iteration: start impulse Y0 and iterate Y (relative to the fluid), the fluid
+  // velocity uf (world), the world velocity V0 at the start, the seen fluctuation after the
+  // first half step
+  alignas(64) T Y0[6][kBatch], Y[6][kBatch], tol2[kBatch], last[kBatch];
+  alignas(64) T uf[3][kBatch], V0[3][kBatch], usn[3][kBatch];
+  int active[kBatch], scalar[kBatch];
+LRIGID_IVDEP
+  for (int j = 0; j < kBatch; ++j) {
+    T us[3] = {L->us[0][j], L->us[1][j], L->us[2][j]};
+    const T q[4] = {L->q[0][j], L->q[1][j], L->q[2][j], L->q[3][j]};
+    const T v[3] = {L->v[0][j], L->v[1][j], L->v[2][j]};
+    const T w[3] = {L->w[0][j], L->w[1][j], L->w[2][j]};
+    T R[9], V[3];
+    rotation(q, R);
+    mul(R, v, V);
+    // 1. first OU half step
+    if constexpr (Turb) {
+      const T gs[3] = {L->gs[0][j], L->gs[1][j], L->gs[2][j]};
+      const T z[3] = {z1[0][j], z1[1][j], z1[2][j]};
+      ou_half(wm, L->decay[j], L->noise[j], L->sigma2[j], V, gs, z, hh, us);
+    }
+    T u_f[3], ufb[3];
+#pragma GCC unroll 3
+    for (int a = 0; a < 3; ++a) u_f[a] = T(k.mf) * L->U[a][j] + (Turb ? us[a] : T(0));
+    mul_t(R, u_f, ufb);
+    // 2. the free Kirchhoff flow of the motion relative to the fluid, implicit midpoint from the
+    //    explicit midpoint predictor (dynamics.cpp kirchhoff_midpoint)
+    T y0[6], g[6], ym[6], y[6];
+#pragma GCC unroll 3
+    for (int a = 0; a < 3; ++a) {
+      y0[a] = T(k.M[a]) * (v[a] - ufb[a]);
+      y0[3 + a] = T(k.M[3 + a]) * w[a];
+    }
+    gyro(k, y0, g);
+#pragma GCC unroll 6
+    for (int a = 0; a < 6; ++a) ym[a] = y0[a] - T(0.5) * h * g[a];
+    gyro(k, ym, g);
+    T norm0 = 0;
+#pragma GCC unroll 6
+    for (int a = 0; a < 6; ++a) {
+      y[a] = y0[a] - h * g[a];
+      norm0 += y0[a] * y0[a] * T(k.Mi[a]);
+      Y0[a][j] = y0[a];
+      Y[a][j] = y[a];
+    }
+    tol2[j] = T(kLaneKirchhoffTol<T> * kLaneKirchhoffTol<T>) * norm0;
+    last[j] = T(0);
+    active[j] = 1;
+    scalar[j] = 0;
+#pragma GCC unroll 3
+    for (int a = 0; a < 3; ++a) {
+      uf[a][j] = u_f[a];
+      V0[a][j] = V[a];
+      usn[a][j] = us[a];
+    }
+  }
+  // the fixed-point iteration Y <- Y0 - h gyro((Y0 + Y)/2); lanes drop out as they converge;
+  // a lane that contracts slowly or diverges goes to the scalar step (its Newton iteration)
+  for (int it = 0; it < kKirchhoffMaxFixedPoint; ++it) {
+    int any = 0;
+LRIGID_IVDEP
+    for (int j = 0; j < kBatch; ++j) {
+      T ym[6], g[6];
+#pragma GCC unroll 6
+      for (int a = 0; a < 6; ++a) ym[a] = T(0.5) * (Y0[a][j] + Y[a][j]);
+      gyro(k, ym, g);
+      T step2 = 0;
+      int fin = 1;
+      T next[6];
+#pragma GCC unroll 6
+      for (int a = 0; a < 6; ++a) {
+        next[a] = Y0[a][j] - h * g[a];
+        const T d = next[a] - Y[a][j];
+        step2 += d * d * T(k.Mi[a]);
+        fin &= int(std::isfinite(next[a]));
+      }
+      const int act = active[j];
+      const int keep = act & fin;
+#pragma GCC unroll 6
+      for (int a = 0; a < 6; ++a) Y[a][j] = keep ? next[a] : Y[a][j];
+      const int conv = int(step2 <= tol2[j]);
+      const int slow = int(it > 0) & int(step2 > T(kKirchhoffSlowContraction) * last[j]);
+      scalar[j] |= act & ((1 - fin) | ((1 - conv) & slow));
+      const int more = keep & (1 - conv) & (1 - slow);
+      last[j] = act ? step2 : last[j];
+      active[j] = more;
+      any |= more;
+    }
+    if (!any) break;
+  }
+  // 3. the forces at the new orientation, drag implicit: (M + h J) M^-1 dPi = h G; 4. x by the
+  //    trapezoidal rule
+  alignas(64) T xn[3][kBatch], qn[4][kBatch], vn[3][kBatch], wn[3][kBatch], Vn[3][kBatch];
+LRIGID_IVDEP
+  for (int j = 0; j < kBatch; ++j) {
+    T y0[6], y[6];
+#pragma GCC unroll 6
+    for (int a = 0; a < 6; ++a) {
+      y0[a] = Y0[a][j];
+      y[a] = Y[a][j];
+    }
+    // q <- q cay(h w_mid)
+    T q[4];
+    {
+      const T ax = hh * T(k.Mi[3]) * (T(0.5) * (y0[3] + y[3]));
+      const T ay = hh * T(k.Mi[4]) * (T(0.5) * (y0[4] + y[4]));
+      const T az = hh * T(k.Mi[5]) * (T(0.5) * (y0[5] + y[5]));
+      const T qw = L->q[0][j], qx = L->q[1][j], qy = L->q[2][j], qz = L->q[3][j];
+      const T nw = qw - (qx * ax + qy * ay + qz * az);
+      const T nx = qw * ax + qx + (qy * az - qz * ay);
+      const T ny = qw * ay + qy + (qz * ax - qx * az);
+      const T nz = qw * az + qz + (qx * ay - qy * ax);
+      const T inv = T(1) / std::sqrt(nw * nw + nx * nx + ny * ny + nz * nz);
+      q[0] = nw * inv, q[1] = nx * inv, q[2] = ny * inv, q[3] = nz * inv;
+    }
+    T R[9];
+    rotation(q, R);
+    const T u_f[3] = {uf[0][j], uf[1][j], uf[2][j]};
+    T ufb[3], v[3], w[3], vr[3];
+    mul_t(R, u_f, ufb);
+#pragma GCC unroll 3
+    for (int a = 0; a < 3; ++a) {
+      v[a] = T(k.Mi[a]) * y[a] + ufb[a];
+      w[a] = T(k.Mi[3 + a]) * y[3 + a];
+      vr[a] = v[a] - ufb[a];
+    }
+    const Forces<T> d = Plate ? plate_forces(k, vr, w) : ellipsoid_forces(k, vr, w);
+    const T F[3] = {T(k.F[0]), T(k.F[1]), T(k.F[2])};
+    T Fb[3], u_end[3], ufb_end[3];
+    mul_t(R, F, Fb);
+#pragma GCC unroll 3
+    for (int a = 0; a < 3; ++a) u_end[a] = u_f[a] + h * T(k.gu) * L->acc[a][j];
+    mul_t(R, u_end, ufb_end);
+    // linear block: (diag(M) + h c (I + p u u^T)) x = b by Sherman-Morrison; angular: diagonal
+    T b[3], Dinv_b[3], Dinv_u[3];
+#pragma GCC unroll 3
+    for (int a = 0; a < 3; ++a) {
+      b[a] = h * (Fb[a] + d.f[a]);
+      const T Dinv = T(1) / (T(k.M[a]) + h * d.c_lin);
+      Dinv_b[a] = Dinv * b[a];
+      Dinv_u[a] = Dinv * d.u_hat[a];
+    }
+    const T cp = h * d.c_lin * d.p;
+    const T g = cp * dot3(d.u_hat, Dinv_b) / (T(1) + cp * dot3(d.u_hat, Dinv_u));
+    T e_new = 0, e_r = 0, vnew[3], wnew[3];
+#pragma GCC unroll 3
+    for (int a = 0; a < 3; ++a) {
+      const T dP = T(k.M[a]) * (Dinv_b[a] - g * Dinv_u[a]);
+      const T dL = T(k.M[3 + a]) * (h * d.tq[a]) / (T(k.M[3 + a]) + h * d.c_ang);
+      const T P = T(k.M[a]) * v[a] - T(k.K[a]) * ufb[a];
+      const T Lm = T(k.M[3 + a]) * w[a];
+      vnew[a] = T(k.Mi[a]) * (P + dP + T(k.K[a]) * ufb_end[a]);
+      wnew[a] = T(k.Mi[3 + a]) * (Lm + dL);
+      e_new += dP * dP * T(k.Mi[a]) + dL * dL * T(k.Mi[3 + a]);
+      e_r += T(k.M[a]) * vr[a] * vr[a] + T(k.M[3 + a]) * w[a] * w[a];
+    }
+    // drag that changes the relative velocity by more than kStiffChange: the scalar step's Newton
+    const int stiff = int(k.drag != 0) & int(e_new > T(kStiffChange * kStiffChange) * e_r);
+    scalar[j] |= stiff | active[j];
+    T Vend[3];
+    mul(R, vnew, Vend);
+#pragma GCC unroll 3
+    for (int a = 0; a < 3; ++a) {
+      xn[a][j] = L->x[a][j] + hh * (V0[a][j] + Vend[a]);
+      vn[a][j] = vnew[a];
+      wn[a][j] = wnew[a];
+      Vn[a][j] = Vend[a];
+    }
+#pragma GCC unroll 4
+    for (int a = 0; a < 4; ++a) qn[a][j] = q[a];
+  }
+  // 5. the second OU half step at the new position
+  alignas(64) T inside0[kBatch];
+  for (int j = 0; j < kBatch; ++j) inside0[j] = k.sample ? L->inside[j] : T(1);
+  if (k.sample) sample_lanes(k, xn, L);
+  if (Turb) ou_coefficients(k, L);
+  const bool sample = k.sample;
+LRIGID_IVDEP
+  for (int j = 0; j < kBatch; ++j) {
+    T us[3] = {usn[0][j], usn[1][j], usn[2][j]};
+    if constexpr (Turb) {
+      const T V[3] = {Vn[0][j], Vn[1][j], Vn[2][j]};
+      const T gs[3] = {L->gs[0][j], L->gs[1][j], L->gs[2][j]};
+      const T z[3] = {z2[0][j], z2[1][j], z2[2][j]};
+      ou_half(wm, L->decay[j], L->noise[j], L->sigma2[j], V, gs, z, hh, us);
+    }
+#pragma GCC unroll 3
+    for (int a = 0; a < 3; ++a) usn[a][j] = us[a];
+    const bool in = (inside0[j] != T(0)) & (!sample | (L->inside[j] != T(0)));
+    const T x[3] = {xn[0][j], xn[1][j], xn[2][j]}, v[3] = {vn[0][j], vn[1][j], vn[2][j]};
+    const T w[3] = {wn[0][j], wn[1][j], wn[2][j]};
+    const T q[4] = {qn[0][j], qn[1][j], qn[2][j], qn[3][j]};
+    outcome[j] = outcome_bits(x, q, v, w, us, in, scalar[j] != 0);
+    landed[j] = lane_landed(k, q, x[2]);
+  }
+  for (int j = 0; j < kBatch; ++j) outcome[j] = decode_outcome(outcome[j]);
+  // commit the lanes whose step succeeded
+  for (int j = 0; j < kBatch; ++j) {
+    if (outcome[j] != kOk || !L->live[j]) continue;
+#pragma GCC unroll 3
+    for (int a = 0; a < 3; ++a) {
+      L->x[a][j] = xn[a][j];
+      L->v[a][j] = vn[a][j];
+      L->w[a][j] = wn[a][j];
+      L->us[a][j] = usn[a][j];
+    }
+#pragma GCC unroll 4
+    for (int a = 0; a < 4; ++a) L->q[a][j] = qn[a][j];
+  }
+}
+
+template <typename T>
+BlockStats advance(const Model& model, const BodyType& type, State* state, const uint32_t* body,
+                   int count, uint64_t first, uint64_t last) {
+  const Consts k = make_consts(model, type);
+  Lanes<T> L{};  // zeroed: without a field to sample, the sample arrays stay the fluid at rest
+  auto step = [&k](Lanes<T>* lanes, uint64_t s, int* outcome, int* landed) {
+    if (k.turb && k.plate) step_lanes<T, true, true>(k, lanes, s, outcome, landed);
+    else if (k.turb) step_lanes<T, true, false>(k, lanes, s, outcome, landed);
+    else if (k.plate) step_lanes<T, false, true>(k, lanes, s, outcome, landed);
+    else step_lanes<T, false, false>(k, lanes, s, outcome, landed);
+  };
+  return drive_block<T>(model, type, k, &L, state, body, count, first, last, step);
+}
+
+}  // namespace
+
+BlockStats advance_rigid_block(const Model& model, const BodyType& type, State* state,
+                               const uint32_t* body, int count, uint64_t first, uint64_t last) {
+  if (model.precision == Precision::Float)
+    return advance<float>(model, type, state, body, count, first, last);
+  return advance<double>(model, type, state, body, count, first, last);
+}
+
+}  // namespace lrigid

@@ -1,0 +1,40 @@
+// The batched step for plates and ellipsoids: the splitting scheme of integrate/integrators.h for
+// rigid bodies whose generalized mass M is diagonal but not isotropic (boxes, disks, ellipsoids
+// with the centre of mass at the centroid; leaves, paper, seed pods), advanced kBatch at a time in
+// structure-of-arrays blocks like the sphere step (integrate/sphere_batch.h, docs/batched-step.md).
+//
+// The physics is the scalar step's, term for term, on the same random numbers: exact
+// Ornstein-Uhlenbeck half steps with Thomson's drift; the free Kirchhoff flow by the implicit
+// midpoint rule, solved by the scalar step's fixed-point iteration with a convergence mask per
+// lane, and the Cayley rotation; gravity and buoyancy; the Andersen-Pesavento-Wang plate drag and
+// torque with the Stokes terms, and plate lift (flat bodies) or the ellipsoid drag (others); the
+// linearly implicit force step with added mass and the mean-flow acceleration.
+//
+// What the loops leave to the scalar step, which then redoes the lane's whole step (so the result
+// is the scalar step's): a Kirchhoff flow whose fixed-point iteration does not converge fast (the
+// scalar step's Newton fallback) and drag stiff enough for the Newton iteration of the force step.
+// On the leaves scene these are rare (bench/perf/batch_bench.py counts them).
+//
+// What qualifies (rigid_batch_eligible): a type that is not a sphere, with M and the fluid
+// Kirchhoff tensor K diagonal and the centre of buoyancy at the centre of mass, effects among
+// gravity, buoyancy, drag, lift, added mass, mean flow and turbulence, and what every batched step
+// needs (batch_lanes.h batch_exclusion: splitting, the seen model, one noise increment per step, a
+// steady field).
+#pragma once
+#include <cstdint>
+#include <string>
+
+#include "integrate/sphere_batch.h"
+#include "model/model.h"
+#include "model/state.h"
+
+namespace lrigid {
+
+// Whether bodies of this type take the batched rigid-body step; when not, `why` says why.
+bool rigid_batch_eligible(const Model& model, const BodyType& type, std::string* why = nullptr);
+
+// As advance_sphere_block, for a type that rigid_batch_eligible accepts.
+BlockStats advance_rigid_block(const Model& model, const BodyType& type, State* state,
+                               const uint32_t* body, int count, uint64_t first, uint64_t last);
+
+}  // namespace lrigid

@@ -1,0 +1,204 @@
+// The batched step for plates and ellipsoids (integrate/rigid_batch.h) against the scalar step it
+// replaces: the same scene run with model.batched on and off gives the same statuses, stop times
+// and reasons, and states that differ by rounding only (double), or by what single precision
+// costs (float). Lanes the loops hand to the scalar step (slow Kirchhoff iteration, stiff drag)
+// are part of it.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "integrate/rigid_batch.h"
+#include "integrate/sphere_batch.h"
+#include "support/batch_compare.h"
+#include "support/fixture.h"
+
+namespace lrigid {
+namespace {
+
+using batch_test::count;
+using batch_test::Diff;
+using batch_test::Outcome;
+using batch_test::run;
+using batch_test::scalar_and_batched;
+using batch_test::wind_grid;
+
+// count bodies of `shape` released in the wind grid with the leaves scene's effects
+Scene rigid_scene(const Shape& shape, double density, int count) {
+  Scene s = test::sphere_scene(0.01, density, 1.2, 1.5e-5, count);
+  s.bodies[0].shape = shape;
+  s.effects = test::effects({Effect::Gravity, Effect::Buoyancy, Effect::Drag, Effect::Lift,
+                             Effect::AddedMass, Effect::MeanFlow, Effect::Turbulence});
+  s.uniform_field = false;
+  s.integrator = Integrator::Splitting;
+  s.dt = 2e-3;
+  s.duration = 1.0;
+  s.seed = 11;
+  s.has_ground = true;
+  s.ground_z = 0;
+  s.bodies[0].spawn_in_box = true;
+  s.bodies[0].box_lo = Vec3(-5, -3, 0.3);
+  s.bodies[0].box_hi = Vec3(-1.5, 3, 3);
+  s.bodies[0].random_orientation = true;
+  return s;
+}
+
+void expect_close(const Diff& d, double tol) {
+  EXPECT_LT(d.x, tol);
+  EXPECT_LT(d.v, tol);
+  EXPECT_LT(d.w, tol);
+  EXPECT_LT(d.q, tol);
+  EXPECT_LT(d.u, tol);
+}
+
+void expect_eligible(const Scene& s, const FluidField& field) {
+  const Model m = test::compile(s, field);
+  std::string why;
+  EXPECT_TRUE(rigid_batch_eligible(m, m.types[0], &why)) << why;
+  EXPECT_FALSE(sphere_batch_eligible(m, m.types[0]));
+}
+
+TEST(RigidBatch, LeavesInAGridMatchTheScalarStep) {
+  // leaf-sized rectangles (plate drag, APW torque, lift, added mass): 7 full blocks and one of 20
+  const Scene s = rigid_scene(Shape::box(0.06, 0.04, 4e-4), 600, 244);
+  const FluidField field = wind_grid(1.5e-5);
+  expect_eligible(s, field);
+  const auto [scalar, batched, d] = scalar_and_batched(s, field);
+  EXPECT_EQ(scalar.stats.body_steps, batched.stats.body_steps);
+  // rounding grows in the leaves' tumbling (up to tens of rad/s) to about 1e-9
+  expect_close(d, 1e-8);
+  // the scene exercises what it should: the leaves turn, some landed or hit the block, some
+  // still move
+  EXPECT_GT(count(batched.state, BodyStatus::Moving), 0u);
+  EXPECT_GT(count(batched.state, BodyStatus::Landed) + count(batched.state, BodyStatus::Exited),
+            0u);
+  double turned = 0;
+  for (size_t i = 0; i < batched.state.size(); ++i)
+    turned = std::max(turned, batched.state.w[i].norm());
+  EXPECT_GT(turned, 1.0);  // rad/s
+  // a few steps (leaves that start at rest in the wind, tumbling ones) go to the scalar step
+  EXPECT_GT(batched.stats.scalar_handoffs, 0u);
+  EXPECT_LT(batched.stats.scalar_handoffs, batched.stats.body_steps / 10);
+  std::printf("leaves: %llu of %llu steps handed to the scalar step\n",
+              static_cast<unsigned long long>(batched.stats.scalar_handoffs),
+              static_cast<unsigned long long>(batched.stats.body_steps));
+}
+
+TEST(RigidBatch, EllipsoidsAndDisksMatchTheScalarStep) {
+  // a seed pod (prolate, not flat: ellipsoid drag) and a disk (flat: the ellipse's chord)
+  for (const Shape& shape : {Shape::ellipsoid(0.004, 0.002, 0.002),
+                             Shape::ellipsoid(0.015, 0.01, 6e-4)}) {
+    const Scene s = rigid_scene(shape, 500, 100);
+    const FluidField field = wind_grid(1.5e-5);
+    expect_eligible(s, field);
+    const Model m = test::compile(s, field);
+    const auto [scalar, batched, d] = scalar_and_batched(s, field);
+    EXPECT_EQ(scalar.stats.body_steps, batched.stats.body_steps);
+    expect_close(d, 1e-9);
+    // they flew for a while (50 steps on average) and some landed
+    EXPECT_GT(batched.stats.body_steps, 50u * s.bodies[0].count) << m.types[0].flat;
+    EXPECT_GT(count(batched.state, BodyStatus::Landed), 0u) << m.types[0].flat;
+  }
+}
+
+TEST(RigidBatch, HardLanesGoToTheScalarStepAndStillMatch) {
+  // tissue-paper squares spinning fast at a coarse step: the drag is stiff (Newton) and the
+  // Kirchhoff fixed-point iteration does not contract
+  Scene s = rigid_scene(Shape::box(0.03, 0.03, 5e-5), 200, 64);
+  s.dt = 0.02;
+  s.duration = 1.0;
+  s.bodies[0].angular_velocity = Vec3(40, -25, 10);
+  s.bodies[1].angular_velocity = Vec3::Zero();
+  const FluidField field = wind_grid(1.5e-5);
+  expect_eligible(s, field);
+  const auto [scalar, batched, d] = scalar_and_batched(s, field);
+  EXPECT_GT(batched.stats.scalar_handoffs, batched.stats.body_steps / 2);
+  EXPECT_EQ(scalar.stats.body_steps, batched.stats.body_steps);
+  expect_close(d, 1e-9);
+  std::printf("tissue: %llu of %llu steps handed to the scalar step\n",
+              static_cast<unsigned long long>(batched.stats.scalar_handoffs),
+              static_cast<unsigned long long>(batched.stats.body_steps));
+}
+
+TEST(RigidBatch, PlatesInFluidAtRestMatchTheScalarStep) {
+  // nothing samples the field: falling cards with drag and lift in still air
+  Scene s = rigid_scene(Shape::box(0.05, 0.03, 5e-4), 700, 40);
+  s.effects = test::effects({Effect::Gravity, Effect::Drag, Effect::Lift, Effect::AddedMass});
+  s.uniform_field = true;
+  s.has_ground = false;
+  const FluidField field =
+      FluidField::uniform(Vec3::Zero(), 0, 0, s.kinematic_viscosity, s.drift);
+  expect_eligible(s, field);
+  const auto [scalar, batched, d] = scalar_and_batched(s, field);
+  expect_close(d, 1e-9);
+  for (size_t i = 0; i < batched.state.size(); ++i)
+    EXPECT_LT(batched.state.x[i].z(), s.bodies[0].box_hi.z()) << "body " << i;  // they fell
+}
+
+TEST(RigidBatch, IdenticalForAnyThreadCount) {
+  const Scene s = rigid_scene(Shape::box(0.06, 0.04, 4e-4), 600, 200);
+  const FluidField field = wind_grid(1.5e-5);
+  const Outcome one = run(s, field, true, Precision::Double, 1);
+  const Outcome two = run(s, field, true, Precision::Double, 2);
+  const Diff d = batch_test::compare(one, two);
+  EXPECT_EQ(d.x, 0.0);
+  EXPECT_EQ(d.v, 0.0);
+  EXPECT_EQ(d.q, 0.0);
+  EXPECT_EQ(d.u, 0.0);
+}
+
+TEST(RigidBatch, FloatStaysCloseToDouble) {
+  // spinning seed pods (the free Kirchhoff flow of an anisotropic inertia; not chaotic like
+  // tumbling plates): float follows double closely over 1 s
+  Scene s = rigid_scene(Shape::ellipsoid(0.004, 0.002, 0.002), 400, 200);
+  s.effects.remove(Effect::AddedMass);
+  s.bodies[0].angular_velocity = Vec3(5, 20, -10);
+  const FluidField field = wind_grid(1.5e-5);
+  const Outcome dbl = run(s, field, true, Precision::Double);
+  const Outcome flt = run(s, field, true, Precision::Float);
+  double dx = 0;
+  size_t same = 0;
+  for (size_t i = 0; i < dbl.state.size(); ++i) {
+    if (dbl.state.status[i] != flt.state.status[i]) continue;
+    ++same;
+    dx = std::max(dx, (dbl.state.x[i] - flt.state.x[i]).norm());  // moving or where they stopped
+  }
+  std::printf("handoffs: double %llu, float %llu of %llu\n",
+              static_cast<unsigned long long>(dbl.stats.scalar_handoffs),
+              static_cast<unsigned long long>(flt.stats.scalar_handoffs),
+              static_cast<unsigned long long>(flt.stats.body_steps));
+  std::printf("float vs double: %zu of %zu bodies with the same status, max |dx| = %.3g m\n",
+              same, dbl.state.size(), dx);
+  EXPECT_GE(same, dbl.state.size() - 3);
+  EXPECT_LT(dx, 1e-3);
+  EXPECT_GT(dx, 0.0);  // single precision really ran
+}
+
+TEST(RigidBatch, EligibilitySaysWhatExcludesABodyType) {
+  const Scene s = rigid_scene(Shape::box(0.06, 0.04, 4e-4), 600, 1);
+  const FluidField field = wind_grid(1.5e-5);
+  std::string why;
+  const std::vector<std::pair<std::function<void(Scene&)>, std::string>> cases = {
+      {[](Scene& e) { e.bodies[0].shape = Shape::sphere(0.01); },
+       "an isotropic generalized mass (the sphere step's)"},
+      {[](Scene& e) { e.bodies[0].mass_offset = Vec3(0, 0, -1e-4); },
+       "the generalized mass is not diagonal"},
+      {[](Scene& e) { e.integrator = Integrator::RK4; }, "the integrator is not splitting"},
+      {[](Scene& e) { e.effects.add(Effect::Magnus); }, "effect magnus"},
+      {[](Scene& e) { e.turbulence_model = TurbulenceModel::Body; }, "the body turbulence model"},
+      {[](Scene& e) { e.batched = false; }, "the scene turns the batched step off"},
+  };
+  for (const auto& [change, reason] : cases) {
+    Scene e = s;
+    change(e);
+    const Model m = test::compile(e, field);
+    EXPECT_FALSE(rigid_batch_eligible(m, m.types[0], &why)) << reason;
+    EXPECT_EQ(why, reason);
+  }
+}
+
+}  // namespace
+}  // namespace lrigid

@@ -1,0 +1,87 @@
+// What the batched-step tests share: a sheared wind grid with an obstacle, and a scene run on
+// the scalar and on the batched step with the largest differences of the final states (the
+// statuses, stop times and reasons must be equal).
+#pragma once
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "integrate/simulation.h"
+#include "support/fixture.h"
+
+namespace lrigid {
+namespace batch_test {
+
+// A 12 x 8 x 6 m box of air with a sheared, accelerating wind, k rising with height, a solid
+// block in the middle (invalid points) and the ground at z = 0.
+inline FluidField wind_grid(double nu) {
+  const GridGeometry g = test::grid_geometry(25, 17, 13, Vec3(-6, -4, -0.5), Vec3(0.5, 0.5, 0.5));
+  const RawGridFrame f = test::grid_frame(g, [](const Vec3& x, Vec3* U, double* k, double* eps) {
+    const double z = std::max(x.z(), 0.0);
+    *U = Vec3(1.5 * std::sqrt(z) * (1 + 0.05 * x.x()), 0.3 * std::sin(0.5 * x.x()),
+              -0.05 * x.y());
+    *k = 0.05 + 0.2 * z / 5.5;
+    *eps = 0.4 * *k;
+    return !(std::abs(x.x()) <= 1.0 && std::abs(x.y()) <= 1.0 && x.z() <= 2.0);
+  });
+  return FluidField::grid(g, {f}, nu, Drift::Stationary, TimeMode::Clamp);
+}
+
+struct Outcome {
+  State state;
+  RunStats stats;
+};
+
+inline Outcome run(const Scene& s, const FluidField& field, bool batched, Precision p, int threads = 1) {
+  Model m = test::compile(s, field);
+  m.batched = batched;
+  m.precision = p;
+  Outcome r{initial_state(m, s), {}};
+  RunOptions opt;
+  opt.threads = threads;
+  r.stats = simulate(m, &r.state, opt);
+  return r;
+}
+
+// largest differences between two runs' states, per part
+struct Diff {
+  double x = 0, v = 0, w = 0, q = 0, u = 0;
+};
+
+inline Diff compare(const Outcome& a, const Outcome& b) {
+  Diff d;
+  EXPECT_EQ(a.state.size(), b.state.size());
+  for (size_t i = 0; i < a.state.size(); ++i) {
+    EXPECT_EQ(a.state.status[i], b.state.status[i]) << "body " << i;
+    EXPECT_EQ(a.state.t_stop[i], b.state.t_stop[i]) << "body " << i;
+    EXPECT_EQ(a.state.reason[i], b.state.reason[i]) << "body " << i;
+    d.x = std::max(d.x, (a.state.x[i] - b.state.x[i]).norm());
+    d.v = std::max(d.v, (a.state.v[i] - b.state.v[i]).norm());
+    d.w = std::max(d.w, (a.state.w[i] - b.state.w[i]).norm());
+    d.q = std::max(d.q, (a.state.q[i].coeffs() - b.state.q[i].coeffs()).norm());
+    d.u = std::max(d.u, (a.state.u_seen[i] - b.state.u_seen[i]).norm());
+  }
+  return d;
+}
+
+// The scene run on the scalar step and on the batched step (double), and how far apart they end.
+struct Both {
+  Outcome scalar, batched;
+  Diff d;
+};
+
+inline Both scalar_and_batched(const Scene& s, const FluidField& field) {
+  Both b{run(s, field, false, Precision::Double), run(s, field, true, Precision::Double), {}};
+  b.d = compare(b.scalar, b.batched);
+  return b;
+}
+
+inline size_t count(const State& s, BodyStatus status) {
+  size_t n = 0;
+  for (BodyStatus x : s.status) n += x == status;
+  return n;
+}
+
+}  // namespace batch_test
+}  // namespace lrigid
