@@ -1,6 +1,7 @@
 #!/usr/bin/python3
-"""The batched sphere step (runtime/src/integrate/sphere_batch.h) against the scalar step, and
-what single precision costs in accuracy. Writes docs/batched-step.md (machine and date stamped).
+"""The batched steps (runtime/src/integrate/sphere_batch.h for spheres, rigid_batch.h for plates
+and ellipsoids) against the scalar step, and what single precision costs in accuracy. Writes
+docs/batched-step.md (machine and date stamped).
 
     bench/perf/batch_bench.py [--build build] [--out build/perf/batch] [--quick]
                               [--wind-case DIR] [--no-peers]
@@ -19,7 +20,12 @@ Euler), per CPU second.
 Accuracy: `lrigid run` of the scene for 10 s; landing points of float against double, next to
 the time-step error (dt against dt/2) of the same scene without turbulence (deterministic, so the
 difference is the discretization alone), and with turbulence (where any perturbation grows).
-About 3 minutes on 2 cores.
+The same for the full leaves model: scenes/leaves_wind.json (leaves, paper sheets and seed pods,
+the scene's own effects) with 0.5 s of warm-up before the timed steps (the start, bodies at rest
+in the wind, hands more steps to the scalar step), against the same OpenFOAM parcels and MuJoCo
+stepping the scene's seed pods (mujoco_harness's default body), and its float cost on landing
+points without turbulence (art.turbulence_scale = 0).
+About 10 minutes on 2 cores.
 """
 import argparse
 import csv
@@ -39,6 +45,10 @@ ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)
 def scene_variant(base, out_dir, name, batched=True, precision="double", dt=None,
                   turbulence=True, output=None):
     s = json.load(open(base))
+    if not turbulence and not isinstance(s["effects"], list):
+        # "auto" effects: keep the choice, turn the fluctuation off
+        s.setdefault("art", {})["turbulence_scale"] = 0.0
+        turbulence = True
     s["fluid"]["field"] = os.path.join(ROOT, "results/grids/windCourtyard.vti")
     s["integrator"]["batched"] = batched
     s["integrator"]["precision"] = precision
@@ -53,19 +63,20 @@ def scene_variant(base, out_dir, name, batched=True, precision="double", dt=None
     return path
 
 
-def bench(lrigid, scene, n, threads, json_out, quick):
+def bench(lrigid, scene, n, threads, json_out, quick, warmup=2):
     """The faster of two runs (this VM has slow episodes of a minute or so)."""
     steps = "5e5" if quick else "2e6"
     best = None
     for _ in range(1 if quick else 2):
         subprocess.run([lrigid, "bench", scene, "--n", str(n), "--threads", str(threads),
                         "--integrators", "splitting", "--effects", "auto", "--body-steps",
-                        steps, "--min-steps", "20", "--warmup", "2", "--quiet", "--json",
+                        steps, "--min-steps", "20", "--warmup", str(warmup), "--quiet", "--json",
                         json_out], check=True)
         run = json.load(open(json_out))["runs"][0]
         if best is None or run["body_steps_per_s"] > best["body_steps_per_s"]:
             best = run
-    return best["body_steps_per_s"], best["body_steps_per_cpu_s"], best["state_bytes_per_body"]
+    return (best["body_steps_per_s"], best["body_steps_per_cpu_s"], best["state_bytes_per_body"],
+            best.get("scalar_handoffs", 0) / max(best["body_steps"], 1))
 
 
 def landings(lrigid, scene, out):
@@ -119,18 +130,27 @@ def main():
                 ("batched, double", dict(batched=True)),
                 ("batched, float", dict(batched=True, precision="float"))]
     ns = [10000, 100000]
-    rows = []
-    for label, kw in variants:
-        name = "tp_" + label.replace(", ", "_").replace(" ", "_")
-        scene = scene_variant(base, args.out, name, **kw)
-        for n in ns:
-            for t in (1, 2):
-                print(f"batch_bench.py: {label}, N = {n}, {t} thread(s)", file=sys.stderr)
-                rate, cpu_rate, bpb = bench(lrigid, scene, n, t,
-                                            os.path.join(args.out, f"{name}_{n}_{t}.json"),
-                                            args.quick)
-                rows.append({"variant": label, "n": n, "threads": t, "rate": rate,
-                             "cpu_rate": cpu_rate, "bytes_per_body": bpb})
+
+    def throughput(scene_file, tag, warmup):
+        rows = []
+        for label, kw in variants:
+            name = f"tp_{tag}_" + label.replace(", ", "_").replace(" ", "_")
+            scene = scene_variant(scene_file, args.out, name, **kw)
+            for n in ns:
+                for t in (1, 2):
+                    print(f"batch_bench.py: {tag}, {label}, N = {n}, {t} thread(s)",
+                          file=sys.stderr)
+                    rate, cpu_rate, bpb, handoff = bench(
+                        lrigid, scene, n, t, os.path.join(args.out, f"{name}_{n}_{t}.json"),
+                        args.quick, warmup)
+                    rows.append({"variant": label, "n": n, "threads": t, "rate": rate,
+                                 "cpu_rate": cpu_rate, "bytes_per_body": bpb,
+                                 "scalar_handoff_fraction": handoff})
+        return rows
+
+    rows = throughput(base, "beads", 2)
+    leaves = os.path.join(ROOT, "scenes/leaves_wind.json")
+    leaf_rows = throughput(leaves, "leaves", 250)
 
     peers = None
     if not args.no_peers:
@@ -154,22 +174,28 @@ def main():
                     peers["openfoam"][key] = max(peers["openfoam"][key], got["openfoam"][key])
                 peers["load"] += " / " + got.get("load", "?")
 
-    acc = {}
-    for turb in (False, True):
-        tag = "turb" if turb else "det"
-        runs = {}
-        for key, kw in (("double", {}), ("float", dict(precision="float")),
-                        ("double_half_dt", dict(dt=0.001))):
-            if turb and key == "double_half_dt":
-                continue  # the noise differs with dt: no discretization error to compare with
-            name = f"acc_{tag}_{key}"
-            out = os.path.join(args.out, name)
-            scene = scene_variant(base, args.out, name, turbulence=turb, output=out, **kw)
-            print(f"batch_bench.py: accuracy run {name}", file=sys.stderr)
-            runs[key] = landings(lrigid, scene, out)
-        acc[tag] = {"float": landing_diff(runs["double"], runs["float"])}
-        if "double_half_dt" in runs:
-            acc[tag]["dt"] = landing_diff(runs["double"], runs["double_half_dt"])
+    def accuracy(scene_file, prefix, turbs):
+        acc = {}
+        for turb in turbs:
+            tag = "turb" if turb else "det"
+            runs = {}
+            for key, kw in (("double", {}), ("float", dict(precision="float")),
+                            ("double_half_dt", dict(dt=0.001))):
+                if turb and key == "double_half_dt":
+                    continue  # the noise differs with dt: no discretization error to compare
+                name = f"acc_{prefix}{tag}_{key}"
+                out = os.path.join(args.out, name)
+                scene = scene_variant(scene_file, args.out, name, turbulence=turb, output=out,
+                                      **kw)
+                print(f"batch_bench.py: accuracy run {name}", file=sys.stderr)
+                runs[key] = landings(lrigid, scene, out)
+            acc[tag] = {"float": landing_diff(runs["double"], runs["float"])}
+            if "double_half_dt" in runs:
+                acc[tag]["dt"] = landing_diff(runs["double"], runs["double_half_dt"])
+        return acc
+
+    acc = accuracy(base, "", (False, True))
+    leaf_acc = accuracy(leaves, "leaves_", (False,))
     mujoco = None
     harness = os.path.join(args.build, "bin", "mujoco_harness")
     if not args.no_peers and os.path.exists(harness):
@@ -186,22 +212,123 @@ def main():
                 for key in ("rk4", "euler"):
                     mujoco["one_body_per_model"][key] = max(mujoco["one_body_per_model"][key],
                                                             got["one_body_per_model"][key])
+    mujoco_pod = None
+    if not args.no_peers and os.path.exists(harness):
+        for rep in range(1 if args.quick else 2):
+            print("batch_bench.py: MuJoCo peer (mujoco_harness, seed pods), run %d" % (rep + 1),
+                  file=sys.stderr)
+            got = json.loads(subprocess.run(
+                [harness, "--n", "10000", "--steps", "200", "--dt", "0.002", "--one-model-max",
+                 "100"], check=True, capture_output=True, text=True).stdout)
+            if mujoco_pod is None:
+                mujoco_pod = got
+            else:
+                for key in ("rk4", "euler"):
+                    mujoco_pod["one_body_per_model"][key] = max(
+                        mujoco_pod["one_body_per_model"][key], got["one_body_per_model"][key])
     json.dump({"machine": m, "throughput": rows, "accuracy": acc, "peers": peers,
-               "mujoco": mujoco},
+               "mujoco": mujoco, "leaves": {"throughput": leaf_rows, "accuracy": leaf_acc,
+                                            "mujoco": mujoco_pod}},
               open(os.path.join(args.out, "batch.json"), "w"), indent=1)
-    write_doc(args.doc, m, rows, acc, peers, mujoco, args.quick)
+    write_doc(args.doc, m, rows, acc, peers, mujoco, args.quick,
+              (leaf_rows, leaf_acc, mujoco_pod))
     print(f"batch_bench.py: wrote {args.doc} (data in {args.out})", file=sys.stderr)
 
 
-def write_doc(path, m, rows, acc, peers, mujoco, quick):
+def find_rate(rows, variant, n, t, key="rate"):
+    for r in rows:
+        if r["variant"] == variant and r["n"] == n and r["threads"] == t:
+            return r[key]
+    return float("nan")
+
+
+def throughput_table(rows, handoffs=False):
+    lines = ["| N | threads | scalar step | batched, double | batched, float | "
+             "batched double / scalar |" + (" steps handed to the scalar step |" if handoffs
+                                            else ""),
+             "|---|---|---|---|---|---|" + ("---|" if handoffs else "")]
+    for n in sorted({r["n"] for r in rows}):
+        for t in (1, 2):
+            s, d, f = (find_rate(rows, "scalar step, double", n, t),
+                       find_rate(rows, "batched, double", n, t),
+                       find_rate(rows, "batched, float", n, t))
+            line = (f"| {n:,} | {t} | {s / 1e6:.2f} M | {d / 1e6:.2f} M | {f / 1e6:.2f} M "
+                    f"| {d / s:.2f} |")
+            if handoffs:
+                h = find_rate(rows, "batched, double", n, t, "scalar_handoff_fraction")
+                line += f" {100 * h:.2f} % |"
+            lines.append(line)
+    return lines
+
+
+def accuracy_table(acc, labels):
+    lines = ["| scene | compared | landed in both | median | 90th percentile | max |",
+             "|---|---|---|---|---|---|"]
+    for tag, label in labels:
+        for key, what in (("float", "float vs double"), ("dt", "dt 2 ms vs 1 ms (double)")):
+            if key not in acc.get(tag, {}):
+                continue
+            a = acc[tag][key]
+            lines.append(f"| {label} | {what} | {a['common']:,} of {a['landed_a']:,} | "
+                         f"{a['median']:.2e} m | {a['p90']:.2e} m | {a['max']:.2e} m |")
+    return lines
+
+
+def leaves_section(leaves, peers):
+    rows, acc, mujoco_pod = leaves
+    lines = [
+        "",
+        "## The full leaves model",
+        "",
+        "`lrigid bench scenes/leaves_wind.json`: 600 leaves (6 x 4 cm, 0.4 mm), 200 paper sheets "
+        "(A6) and 200 seed pods (8 x 4 x 4 mm ellipsoids) in the courtyard wind, scaled to N "
+        "in these proportions, each type with the scene's own effects (`effects: auto`: "
+        "gravity, drag, mean flow, seen turbulence for all; added mass and lift for the flat "
+        "ones; splitting, dt = 2 ms). Timed after 0.5 s (250 steps) of warm-up: from rest in "
+        "the wind, more of the first steps are stiff. Body-steps per second (wall clock), the "
+        "faster of two runs; the last column is the share of the batched steps that a lane "
+        "handed to the scalar step:",
+        "",
+    ]
+    lines += throughput_table(rows, handoffs=True)
+    d = find_rate(rows, "batched, double", 10000, 1, "cpu_rate")
+    f = find_rate(rows, "batched, float", 10000, 1, "cpu_rate")
+    s = find_rate(rows, "scalar step, double", 10000, 1, "cpu_rate")
+    lines += ["", "Against the peers of this run, per core (per CPU second, one thread, N = 10^4):",
+              "", "| | per core | lrigid batched double / it | lrigid batched float / it |",
+              "|---|---|---|---|",
+              f"| lrigid scalar step | {s / 1e6:.2f} M | {d / s:.1f} | {f / s:.1f} |"]
+    if peers:
+        of = peers["openfoam"]
+        for key, label in (("dispersion_off", "OpenFOAM parcels, dispersion off"),
+                           ("dispersion_on", "OpenFOAM parcels, stochasticDispersionRAS")):
+            lines.append(f"| {label} | {of[key] / 1e6:.2f} M | {d / of[key]:.1f} | "
+                         f"{f / of[key]:.1f} |")
+    if mujoco_pod:
+        mj = mujoco_pod["one_body_per_model"]
+        for key, label in (("rk4", "MuJoCo 2.2, the seed pods, RK4"),
+                           ("euler", "MuJoCo 2.2, the seed pods, Euler")):
+            lines.append(f"| {label} | {mj[key] / 1e6:.2f} M | {d / mj[key]:.1f} | "
+                         f"{f / mj[key]:.1f} |")
+    lines += ["", "The OpenFOAM parcels are point spheres (drag and gravity); lrigid's leaves "
+              "are rigid plates with added mass, the Kirchhoff equations, APW drag, torque and "
+              "lift. MuJoCo steps the scene's seed pods (`mujoco_harness`, its default body: "
+              "free ellipsoids with `fluidshape=\"ellipsoid\"`, contacts off, a uniform 5 m/s "
+              "wind, one body per model); lrigid the whole scene.", "",
+              "What single precision costs on the leaves scene (1,000 bodies, up to 20 s, "
+              "landing points; without turbulence: `art.turbulence_scale = 0`). Tumbling plates "
+              "are chaotic even in a steady wind, so a rounding difference can send a leaf "
+              "elsewhere: compare the float column with the time-step one.", ""]
+    lines += accuracy_table(acc, (("det", "leaves, no turbulence"),))
+    return lines
+
+
+def write_doc(path, m, rows, acc, peers, mujoco, quick, leaves=None):
     def rate(variant, n, t, key="rate"):
-        for r in rows:
-            if r["variant"] == variant and r["n"] == n and r["threads"] == t:
-                return r[key]
-        return float("nan")
+        return find_rate(rows, variant, n, t, key)
 
     lines = [
-        "# The batched sphere step",
+        "# The batched steps",
         "",
         "<!-- generated by bench/perf/batch_bench.py; do not edit -->",
         "",
@@ -211,11 +338,16 @@ def write_doc(path, m, rows, acc, peers, mujoco, quick):
         "Spheres whose mass matrix is isotropic take a batched step "
         "(`runtime/src/integrate/sphere_batch.h`): blocks of 32 bodies of one type, structure "
         "of arrays, each stage one loop across the block that the compiler vectorizes, the "
-        "field sampled once per step. The physics is the scalar splitting step's, term for "
-        "term; `tests/runtime/integrate/sphere_batch_test.cpp` holds the two to 1e-9 m. "
-        "Scenes choose it per body type automatically; `\"integrator\": {\"batched\": false}` "
-        "turns it off and `\"precision\": \"float\"` runs it in single precision "
-        "(docs/scene-format.md).",
+        "field sampled once per step. Plates and ellipsoids (a diagonal mass matrix: leaves, "
+        "paper, seed pods) take a second one (`runtime/src/integrate/rigid_batch.h`) built the "
+        "same way, with the Kirchhoff implicit midpoint iterated per lane under a convergence "
+        "mask; a lane that needs a Newton iteration (stiff drag, a Kirchhoff iteration that "
+        "does not contract) hands its step to the scalar step. The physics is the scalar "
+        "splitting step's, term for term; `tests/runtime/integrate/sphere_batch_test.cpp` and "
+        "`rigid_batch_test.cpp` hold them to the scalar step to 1e-9. "
+        "Scenes choose a step per body type automatically (`lrigid explain` says which); "
+        "`\"integrator\": {\"batched\": false}` turns them off and `\"precision\": "
+        "\"float\"` runs them in single precision (docs/scene-format.md).",
         "",
         "## Throughput",
         "",
@@ -223,16 +355,8 @@ def write_doc(path, m, rows, acc, peers, mujoco, quick):
         "gravity, buoyancy, drag, added mass, mean flow, seen turbulence; splitting, dt = 2 ms), "
         "body-steps per second (wall clock), the faster of two runs:",
         "",
-        "| N | threads | scalar step | batched, double | batched, float | "
-        "batched double / scalar |",
-        "|---|---|---|---|---|---|",
     ]
-    for n in sorted({r["n"] for r in rows}):
-        for t in (1, 2):
-            s, d, f = (rate("scalar step, double", n, t), rate("batched, double", n, t),
-                       rate("batched, float", n, t))
-            lines.append(f"| {n:,} | {t} | {s / 1e6:.2f} M | {d / 1e6:.2f} M | {f / 1e6:.2f} M "
-                         f"| {d / s:.2f} |")
+    lines += throughput_table(rows)
     if peers:
         of = peers["openfoam"]
         lines += [
@@ -282,16 +406,10 @@ def write_doc(path, m, rows, acc, peers, mujoco, quick):
         "different time step) moves a bead onto another path of the chaotic flow around the "
         "buildings, so there only the statistics of the two runs can agree.",
         "",
-        "| scene | compared | landed in both | median | 90th percentile | max |",
-        "|---|---|---|---|---|---|",
     ]
-    for tag, label in (("det", "no turbulence"), ("turb", "with turbulence")):
-        for key, what in (("float", "float vs double"), ("dt", "dt 2 ms vs 1 ms (double)")):
-            if key not in acc.get(tag, {}):
-                continue
-            a = acc[tag][key]
-            lines.append(f"| {label} | {what} | {a['common']:,} of {a['landed_a']:,} | "
-                         f"{a['median']:.2e} m | {a['p90']:.2e} m | {a['max']:.2e} m |")
+    lines += accuracy_table(acc, (("det", "no turbulence"), ("turb", "with turbulence")))
+    if leaves:
+        lines += leaves_section(leaves, peers)
     lines += [""]
     tmp = path + ".tmp"
     with open(tmp, "w") as f:

@@ -112,8 +112,8 @@ constexpr int kKirchhoffMaxSubsteps = 64;
 // kKirchhoffMaxFixedPoint times, until the update is below kKirchhoffTol |Y| (energy norm);
 // Newton from there when it contracts by less than sqrt(kKirchhoffSlowContraction) per
 // iteration, diverges or runs out. The batched step (rigid_batch.h) iterates by the same rule.
-constexpr int kKirchhoffMaxFixedPoint = 10;
-constexpr double kKirchhoffSlowContraction = 0.01;  // squared: contraction factor above 0.1
+constexpr int kKirchhoffMaxFixedPoint = 40;
+constexpr double kKirchhoffSlowContraction = 0.25;  // squared: contraction factor above 0.5
 constexpr double kKirchhoffTol = 1e-13;             // update / |Y|, energy norm
 int kirchhoff_flow(const BodyType& type, const Vec3& u_fluid, double h, Quat* q, Vec3* v,
                    Vec3* w);

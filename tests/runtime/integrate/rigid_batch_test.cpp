@@ -79,9 +79,8 @@ TEST(RigidBatch, LeavesInAGridMatchTheScalarStep) {
   for (size_t i = 0; i < batched.state.size(); ++i)
     turned = std::max(turned, batched.state.w[i].norm());
   EXPECT_GT(turned, 1.0);  // rad/s
-  // a few steps (leaves that start at rest in the wind, tumbling ones) go to the scalar step
-  EXPECT_GT(batched.stats.scalar_handoffs, 0u);
-  EXPECT_LT(batched.stats.scalar_handoffs, batched.stats.body_steps / 10);
+  // the loops advance the leaves themselves (the hard lanes of the next test aside)
+  EXPECT_LT(batched.stats.scalar_handoffs, batched.stats.body_steps / 100);
   std::printf("leaves: %llu of %llu steps handed to the scalar step\n",
               static_cast<unsigned long long>(batched.stats.scalar_handoffs),
               static_cast<unsigned long long>(batched.stats.body_steps));
