@@ -88,7 +88,7 @@ struct Lanes : Samples<T> {
   void store(int j, BodyState* b) const {
     b->x = Vec3(double(this->x[0][j]), double(this->x[1][j]), double(this->x[2][j]));
     b->q = Quat(double(q[0][j]), double(q[1][j]), double(q[2][j]), double(q[3][j]));
-    const Vec3 Vw(double(V[0][j]), double(V[1][j]), double(V[2][j]));
+    const Vec3 Vw = Vec3(double(V[0][j]), double(V[1][j]), double(V[2][j]));
     b->v = b->q.toRotationMatrix().transpose() * Vw;
     b->w = Vec3(double(w[0][j]), double(w[1][j]), double(w[2][j]));
     b->u_seen = Vec3(double(us[0][j]), double(us[1][j]), double(us[2][j]));
