@@ -74,7 +74,9 @@ void add(const Case& c, const std::string& sweep, const RunSpec& s, const std::s
   Row row;
   row.scene = c.name;
   row.sweep = sweep;
-  row.integrator = integrator_name(s.integrator);
+  // the batched steps in single precision count as a scheme of their own
+  row.integrator = std::string(integrator_name(s.integrator)) +
+                   (s.precision == Precision::Float ? "_float" : "");
   row.effects = effect_mode_name(s.effects);
   row.grid = grid;
   row.metric = metric;
@@ -167,6 +169,25 @@ void sweep_deterministic(const Case& c, const Scene& base, const FluidField& fie
       log(c.name + ": " + name + " dt " + std::to_string(s.dt) + " trajectory error " +
           std::to_string(m.value) + (m.valid ? "" : " (" + m.note + ")"));
     }
+  // what single precision costs: splitting in float at the same steps, against the reference
+  // (dt_det, scheme "splitting_float") and against the double run (sweep "precision")
+  if (std::find(schemes.begin(), schemes.end(), "splitting") == schemes.end()) return;
+  for (int ratio : c.ratios) {
+    RunSpec s = ref_spec;
+    s.integrator = Integrator::Splitting;
+    s.dt = ratio * c.h;
+    const RunResult dbl = run(scene, field, s, c.every);
+    s.precision = Precision::Float;
+    const RunResult flt = run(scene, field, s, c.every);
+    const Metric m = pathwise_error(flt, ref);
+    add(c, "dt_det", s, "", "trajectory", m, ref_err.value, flt);
+    add(c, "dt_det", s, "", "trajectory_t1", pathwise_error(flt, ref, 1), ref_err1.value, flt);
+    add(c, "precision", s, "", "trajectory", pathwise_error(flt, dbl), 0, flt);
+    add(c, "precision", s, "", "trajectory_t1", pathwise_error(flt, dbl, 1), 0, flt);
+    log(c.name + ": splitting (float) dt " + std::to_string(s.dt) + " trajectory error " +
+        std::to_string(m.value) + ", against double " +
+        std::to_string(pathwise_error(flt, dbl).value));
+  }
 }
 
 // integrator x dt on one Brownian path, against splitting at dt = h (checked at 2h)

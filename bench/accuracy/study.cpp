@@ -50,6 +50,7 @@ RunResult run(const Scene& scene_in, const FluidField& field, const RunSpec& spe
   Scene scene = scene_in;
   scene.integrator = spec.integrator;
   scene.dt = spec.dt;
+  scene.precision = spec.precision;
   switch (spec.effects) {
     case EffectMode::Scene: break;
     case EffectMode::Auto: scene.effects_auto = true; break;

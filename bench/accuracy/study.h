@@ -25,6 +25,8 @@ struct RunSpec {
   EffectMode effects = EffectMode::Scene;
   bool turbulence = true;        // false: the Turbulence effect is removed from every body type
   int threads = 1;
+  // the batched steps' arithmetic (integrate/sphere_batch.h, rigid_batch.h; splitting only)
+  Precision precision = Precision::Double;
 };
 
 // Body positions at the output times (t = 0 first) and the run's cost.

@@ -1,7 +1,8 @@
 #!/bin/bash
 # The accuracy study tool and its report on a reduced sweep (seconds).
 # Checks: the tool writes a CSV with every planned point measured (valid, finite, no failed
-# body); euler's deterministic error grows with dt; the report writes a non-empty PNG, a
+# body); euler's deterministic error grows with dt; single precision (splitting_float) stays
+# within 1e-3 of double and is measured apart from it; the report writes a non-empty PNG, a
 # tolerance table lrigid can read and a document; a bad argument fails with exit code 2.
 # usage: study_quick_test.sh SOURCE_DIR STUDY_BINARY WORK_DIR
 set -u
@@ -18,11 +19,11 @@ import csv, math, sys
 rows = list(csv.DictReader(open(sys.argv[1])))
 det = [r for r in rows if r["sweep"] == "dt_det" and r["metric"] == "trajectory"]
 det1 = [r for r in rows if r["sweep"] == "dt_det" and r["metric"] == "trajectory_t1"]
-assert len(det1) == 9, len(det1)
+assert len(det1) == 12, len(det1)
 for a, b in zip(det, det1):             # the first compared time is one of the times
     assert float(b["error"]) <= float(a["error"]), (a, b)
 sto = [r for r in rows if r["sweep"] == "dt_stoch" and r["metric"] == "strong"]
-assert len(det) == 9, len(det)          # 3 integrators x 3 dt
+assert len(det) == 12, len(det)         # 3 integrators and splitting in float x 3 dt
 assert len(sto) == 9, len(sto)
 for r in det + sto:
     assert r["valid"] == "1" and r["failed"] == "0", r
@@ -30,6 +31,11 @@ for r in det + sto:
     assert int(r["body_steps"]) > 0, r
 e = sorted((float(r["dt"]), float(r["error"])) for r in det if r["integrator"] == "euler")
 assert e[0][1] < e[1][1] < e[2][1], e   # first-order scheme: error grows with dt
+prec = [r for r in rows if r["sweep"] == "precision" and r["metric"] == "trajectory"]
+assert len(prec) == 3, len(prec)
+for r in prec:                          # float really ran, and costs little on this scene
+    assert r["integrator"] == "splitting_float", r
+    assert 0 < float(r["error"]) < 1e-3, r
 ref = [r for r in rows if r["sweep"] == "reference_det"][0]
 assert float(ref["error"]) < 0.1 * min(x[1] for x in e), ref  # the reference is resolved
 PY
@@ -38,6 +44,7 @@ PY
 [ -s "$work/error_vs_cost.png" ] || fail "no png"
 [ -s "$work/accuracy.md" ] || fail "no document"
 grep -q "cheapest way to" "$work/accuracy.md" || fail "no headline in the document"
+grep -q "What single precision costs" "$work/accuracy.md" || fail "no float section"
 /usr/bin/python3 -c "
 import json, sys
 t = json.load(open(sys.argv[1]))

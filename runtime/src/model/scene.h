@@ -13,7 +13,7 @@ namespace lrigid {
 
 enum class Integrator { Euler, RK4, Splitting };
 enum class TurbulenceModel { Body, Seen };
-// arithmetic of the batched sphere step (integrate/sphere_batch.h); the scalar step is double
+// arithmetic of the batched steps (integrate/sphere_batch.h, rigid_batch.h); the scalar step is double
 enum class Precision { Double, Float };
 
 const char* integrator_name(Integrator i);
@@ -65,7 +65,7 @@ struct Scene {
   bool effects_auto = false;
   EffectSet effects;
   Integrator integrator = Integrator::Splitting;
-  bool batched = true;                    // integrator.batched: the batched sphere step
+  bool batched = true;                    // integrator.batched: the batched steps
   Precision precision = Precision::Double;  // integrator.precision
   double dt = 1e-3;                       // s
   double duration = 1;                    // s
