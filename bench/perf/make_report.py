@@ -69,7 +69,7 @@ def main():
     ap.add_argument("--converter")
     ap.add_argument("--stream")
     ap.add_argument("--scaling")
-    ap.add_argument("--batch", help="bench/perf/batch_bench.py's batch.json (batched spheres)")
+    ap.add_argument("--batch", help="bench/perf/batch_bench.py's batch.json (the batched steps)")
     ap.add_argument("--scaling-doc", default="docs/scaling.md")
     ap.add_argument("--out", default="docs/performance.md")
     ap.add_argument("--note", default="")
@@ -380,15 +380,17 @@ def main():
         of_on = (peers or {}).get("openfoam", {}).get("dispersion_on") or 0.9e6
         mj_rk4 = (peers or {}).get("mujoco", {}).get("rk4") or 0.3e6
         src = "measured at N = %s" % peers.get("n") if peers else "issue's figure"
-        w("| splitting >= 10 x OpenFOAM parcel rate per core (%s: %s, dispersion on) | %s at "
+        w("| leaves scene with all nine effects (Basset and Magnus too: the scalar step), "
+          "splitting >= 10 x OpenFOAM parcel rate per core (%s: %s, dispersion on) | %s at "
           "N = %d (%.1f x) | %s |" % (src, si(of_on), si(s), split1["n"], s / of_on,
                                       "yes" if s >= 10 * of_on else "no"))
-        w("| splitting >= 10 x MuJoCo RK4 per core (%s: %s) | %s at N = %d (%.1f x) | %s |" %
+        w("| the same, >= 10 x MuJoCo RK4 per core (%s: %s) | %s at N = %d (%.1f x) | %s |" %
           (src, si(mj_rk4), si(s), split1["n"], s / mj_rk4, "yes" if s >= 10 * mj_rk4 else "no"))
     if split2:
         s = split2["body_steps_per_s"]
         s2 = 2 * split2.get("body_steps_per_cpu_s", 0)
-        w("| 300 000 bodies at 60 Hz on 2 cores (2 x 10^7 body-steps/s) | %s wall (2 threads, "
+        w("| all nine effects, 300 000 bodies at 60 Hz on 2 cores (2 x 10^7 body-steps/s) | "
+          "%s wall (2 threads, "
           "N = %d, load %s before the runs); %s = 2 x per-CPU-second rate (idle-machine "
           "estimate) | %s |" % (si(s), split2["n"], mach.get("load_before", "?"), si(s2),
                                 "yes" if max(s, s2) >= 2e7 else "no"))
@@ -425,33 +427,44 @@ def main():
 
 
 def batch_target_rows(w, batch):
-    """The targets for spheres, which take the batched step (docs/batched-step.md): the beads of
-    scenes/beads_wind.json are the OpenFOAM peer's own parcels, measured in batch_bench.py's run."""
-    def row(variant, n, t):
-        for r in batch["throughput"]:
-            if r["variant"] == variant and r["n"] == n and r["threads"] == t:
-                return r
-        return None
+    """The targets for the batched steps (docs/batched-step.md), measured in batch_bench.py's run:
+    the beads of scenes/beads_wind.json (the OpenFOAM peer's own parcels), and the full leaves
+    model (scenes/leaves_wind.json with the scene's own effects) against the same parcels and
+    MuJoCo stepping the scene's seed pods."""
     of = ((batch.get("peers") or {}).get("openfoam") or {}).get("dispersion_on")
-    mj = ((batch.get("mujoco") or {}).get("one_body_per_model") or {}).get("rk4")
-    for variant in ("batched, double", "batched, float"):
-        one = row(variant, 10000, 1)
-        if one and of:
-            c = one["cpu_rate"]
-            w("| spheres (%s), >= 10 x OpenFOAM per core on the same parcels (%s, dispersion "
-              "on, [batched-step.md](batched-step.md)) | %s at N = 10^4 (%.1f x) | %s |" %
-              (variant, si(of), si(c), c / of, "yes" if c >= 10 * of else "no"))
-        if one and mj:
-            c = one["cpu_rate"]
-            w("| spheres (%s), >= 10 x MuJoCo RK4 per core on the same beads (%s) | %s at "
-              "N = 10^4 (%.1f x) | %s |" % (variant, si(mj), si(c), c / mj,
-                                             "yes" if c >= 10 * mj else "no"))
-        two = [r for r in batch["throughput"] if r["variant"] == variant and r["threads"] == 2]
-        if two:
-            best = max(two, key=lambda r: r["n"])
-            w("| spheres (%s), 2 x 10^7 body-steps/s on 2 cores | %s wall (2 threads, N = %d) "
-              "| %s |" % (variant, si(best["rate"]), best["n"],
-                          "yes" if best["rate"] >= 2e7 else "no"))
+    cases = [("spheres", "the same parcels", batch["throughput"],
+              ((batch.get("mujoco") or {}).get("one_body_per_model") or {}).get("rk4"),
+              "the same beads")]
+    leaves = batch.get("leaves")
+    if leaves:
+        cases.append(("full leaves model, the scene's effects", "parcels in the same field",
+                      leaves["throughput"],
+                      ((leaves.get("mujoco") or {}).get("one_body_per_model") or {}).get("rk4"),
+                      "the scene's seed pods"))
+    for what, of_on, rows, mj, mj_on in cases:
+        def row(variant, n, t):
+            for r in rows:
+                if r["variant"] == variant and r["n"] == n and r["threads"] == t:
+                    return r
+            return None
+        for variant in ("batched, double", "batched, float"):
+            one = row(variant, 10000, 1)
+            if one and of:
+                c = one["cpu_rate"]
+                w("| %s (%s), >= 10 x OpenFOAM per core on %s (%s, dispersion on, "
+                  "[batched-step.md](batched-step.md)) | %s at N = 10^4 (%.1f x) | %s |" %
+                  (what, variant, of_on, si(of), si(c), c / of, "yes" if c >= 10 * of else "no"))
+            if one and mj:
+                c = one["cpu_rate"]
+                w("| %s (%s), >= 10 x MuJoCo RK4 per core on %s (%s) | %s at N = 10^4 (%.1f x) "
+                  "| %s |" % (what, variant, mj_on, si(mj), si(c), c / mj,
+                              "yes" if c >= 10 * mj else "no"))
+            two = [r for r in rows if r["variant"] == variant and r["threads"] == 2]
+            if two:
+                best = max(two, key=lambda r: r["n"])
+                w("| %s (%s), 2 x 10^7 body-steps/s on 2 cores | %s wall (2 threads, N = %d) "
+                  "| %s |" % (what, variant, si(best["rate"]), best["n"],
+                              "yes" if best["rate"] >= 2e7 else "no"))
 
 
 def converter_section(w, conv):

@@ -14,8 +14,8 @@
 #   --wind-case   a solved windCourtyard case for the peers (else solved once, in OUT/peers_1000)
 #   --no-converter, --no-stream, --no-scaling, --no-batch: skip bench/converter/run_benchmark.sh
 #                 (1 M cells, its case cached in /tmp/foam2grid-bench), bench/perf/stream_bench.sh,
-#                 bench/perf/scaling_bench.sh, bench/perf/batch_bench.py (the batched sphere
-#                 step against the scalar one and OpenFOAM's parcels: docs/batched-step.md)
+#                 bench/perf/scaling_bench.sh, bench/perf/batch_bench.py (the batched
+#                 steps against the scalar one and the peers: docs/batched-step.md)
 #   --tank-series the tank .pvd series for the streaming table (default results/grids/tankJet.pvd)
 # Needs results/grids/windCourtyard.vti (./Allrun), results/grids/tankJet.pvd (./Allrun -all;
 # for the streaming table), valgrind, mpirun, /usr/bin/time, OpenFOAM and mujoco_harness.
@@ -205,7 +205,7 @@ if [ $scaling = 1 ]; then
 fi
 
 if [ $batch = 1 ]; then
-  echo "run_perf.sh: batched sphere step (batch_bench.py)" >&2
+  echo "run_perf.sh: batched steps (batch_bench.py)" >&2
   bargs=(--build "$build" --out "$out/batch")
   [ $quick = 1 ] && bargs+=(--quick)
   if [ -n "$wind" ]; then
