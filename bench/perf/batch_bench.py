@@ -82,6 +82,25 @@ def bench(lrigid, scene, n, threads, json_out, quick, warmup=2, effects="auto"):
             best.get("scalar_handoffs", 0) / max(best["body_steps"], 1))
 
 
+def mujoco_peer(harness, body, label, quick):
+    """MuJoCo's one-body-per-model rates (bench/peers/mujoco_harness, N = 10^4, dt = 2 ms), the
+    faster of two runs for each integrator"""
+    best = None
+    for rep in range(1 if quick else 2):
+        print("batch_bench.py: MuJoCo peer (%s), run %d" % (label, rep + 1), file=sys.stderr)
+        got = json.loads(subprocess.run(
+            [harness] + body + ["--n", "10000", "--steps", "200", "--dt", "0.002",
+                                "--one-model-max", "100"],
+            check=True, capture_output=True, text=True).stdout)
+        if best is None:
+            best = got
+        else:
+            for key in ("rk4", "euler"):
+                best["one_body_per_model"][key] = max(best["one_body_per_model"][key],
+                                                      got["one_body_per_model"][key])
+    return best
+
+
 def landings(lrigid, scene, out):
     subprocess.run([lrigid, "run", scene, "--quiet"], check=True, stdout=subprocess.DEVNULL)
     pts = {}
@@ -161,9 +180,10 @@ def main():
         print(f"batch_bench.py: leaves, all seven batched effects, bodies: {key}",
               file=sys.stderr)
         scene = scene_variant(leaves, args.out, f"tp_leaves_all7_{key}", bodies=names)
-        rate, cpu_rate, _, handoff = bench(lrigid, scene, 10000, 1,
-                                           os.path.join(args.out, f"tp_leaves_all7_{key}.json"),
-                                           args.quick, 250, ALL_BATCHED)
+        # (not the scene's own name: bench's JSON would overwrite the scene)
+        out = os.path.join(args.out, f"tp_leaves_all7_{key}_10000_1.json")
+        rate, cpu_rate, _, handoff = bench(lrigid, scene, 10000, 1, out, args.quick, 250,
+                                           ALL_BATCHED)
         leaf_all[key] = {"rate": rate, "cpu_rate": cpu_rate, "scalar_handoff_fraction": handoff}
 
     peers = None
@@ -210,36 +230,11 @@ def main():
 
     acc = accuracy(base, "", (False, True))
     leaf_acc = accuracy(leaves, "leaves_", (False,))
-    mujoco = None
     harness = os.path.join(args.build, "bin", "mujoco_harness")
+    mujoco = mujoco_pod = None
     if not args.no_peers and os.path.exists(harness):
-        for rep in range(1 if args.quick else 2):
-            print("batch_bench.py: MuJoCo peer (mujoco_harness --body bead), run %d" % (rep + 1),
-                  file=sys.stderr)
-            out = subprocess.run([harness, "--body", "bead", "--n", "10000", "--steps", "200",
-                                  "--dt", "0.002", "--one-model-max", "100"], check=True,
-                                 capture_output=True, text=True).stdout
-            got = json.loads(out)
-            if mujoco is None:
-                mujoco = got
-            else:
-                for key in ("rk4", "euler"):
-                    mujoco["one_body_per_model"][key] = max(mujoco["one_body_per_model"][key],
-                                                            got["one_body_per_model"][key])
-    mujoco_pod = None
-    if not args.no_peers and os.path.exists(harness):
-        for rep in range(1 if args.quick else 2):
-            print("batch_bench.py: MuJoCo peer (mujoco_harness, seed pods), run %d" % (rep + 1),
-                  file=sys.stderr)
-            got = json.loads(subprocess.run(
-                [harness, "--n", "10000", "--steps", "200", "--dt", "0.002", "--one-model-max",
-                 "100"], check=True, capture_output=True, text=True).stdout)
-            if mujoco_pod is None:
-                mujoco_pod = got
-            else:
-                for key in ("rk4", "euler"):
-                    mujoco_pod["one_body_per_model"][key] = max(
-                        mujoco_pod["one_body_per_model"][key], got["one_body_per_model"][key])
+        mujoco = mujoco_peer(harness, ["--body", "bead"], "the beads", args.quick)
+        mujoco_pod = mujoco_peer(harness, [], "the seed pods", args.quick)
     json.dump({"machine": m, "throughput": rows, "accuracy": acc, "peers": peers,
                "mujoco": mujoco, "leaves": {"throughput": leaf_rows, "accuracy": leaf_acc,
                                             "mujoco": mujoco_pod, "all_batched": leaf_all}},
@@ -288,6 +283,19 @@ def accuracy_table(acc, labels):
     return lines
 
 
+def peer_lines(d, f, peers, of_label, mujoco, mj_label):
+    """table rows: each peer's rate and lrigid's batched double (d) and float (f) against it"""
+    rates = []
+    if peers:
+        of = peers["openfoam"]
+        rates += [(of_label + ", dispersion off", of["dispersion_off"]),
+                  (of_label + ", stochasticDispersionRAS", of["dispersion_on"])]
+    if mujoco:
+        mj = mujoco["one_body_per_model"]
+        rates += [(mj_label + ", RK4", mj["rk4"]), (mj_label + ", Euler", mj["euler"])]
+    return [f"| {label} | {r / 1e6:.2f} M | {d / r:.1f} | {f / r:.1f} |" for label, r in rates]
+
+
 def leaves_section(leaves, peers):
     rows, acc, mujoco_pod, all7 = leaves
     lines = [
@@ -323,18 +331,7 @@ def leaves_section(leaves, peers):
               "", "| | per core | lrigid batched double / it | lrigid batched float / it |",
               "|---|---|---|---|",
               f"| lrigid scalar step | {s / 1e6:.2f} M | {d / s:.1f} | {f / s:.1f} |"]
-    if peers:
-        of = peers["openfoam"]
-        for key, label in (("dispersion_off", "OpenFOAM parcels, dispersion off"),
-                           ("dispersion_on", "OpenFOAM parcels, stochasticDispersionRAS")):
-            lines.append(f"| {label} | {of[key] / 1e6:.2f} M | {d / of[key]:.1f} | "
-                         f"{f / of[key]:.1f} |")
-    if mujoco_pod:
-        mj = mujoco_pod["one_body_per_model"]
-        for key, label in (("rk4", "MuJoCo 2.2, the seed pods, RK4"),
-                           ("euler", "MuJoCo 2.2, the seed pods, Euler")):
-            lines.append(f"| {label} | {mj[key] / 1e6:.2f} M | {d / mj[key]:.1f} | "
-                         f"{f / mj[key]:.1f} |")
+    lines += peer_lines(d, f, peers, "OpenFOAM parcels", mujoco_pod, "MuJoCo 2.2, the seed pods")
     lines += ["", "The OpenFOAM parcels are point spheres (drag and gravity); lrigid's leaves "
               "are rigid plates with added mass, the Kirchhoff equations, APW drag, torque and "
               "lift. MuJoCo steps the scene's seed pods (`mujoco_harness`, its default body: "
@@ -383,7 +380,6 @@ def write_doc(path, m, rows, acc, peers, mujoco, quick, leaves=None):
     ]
     lines += throughput_table(rows)
     if peers:
-        of = peers["openfoam"]
         lines += [
             "",
             "## Against the peers, same run",
@@ -403,16 +399,7 @@ def write_doc(path, m, rows, acc, peers, mujoco, quick, leaves=None):
         f = rate("batched, float", 10000, 1, "cpu_rate")
         s = rate("scalar step, double", 10000, 1, "cpu_rate")
         lines.append(f"| lrigid scalar step | {s / 1e6:.2f} M | {d / s:.1f} | {f / s:.1f} |")
-        for key, label in (("dispersion_off", "OpenFOAM, dispersion off"),
-                           ("dispersion_on", "OpenFOAM, stochasticDispersionRAS")):
-            lines.append(f"| {label} | {of[key] / 1e6:.2f} M | {d / of[key]:.1f} | "
-                         f"{f / of[key]:.1f} |")
-        if mujoco:
-            mj = mujoco["one_body_per_model"]
-            for key, label in (("rk4", "MuJoCo 2.2 ellipsoid fluid model, RK4"),
-                               ("euler", "MuJoCo 2.2 ellipsoid fluid model, Euler")):
-                lines.append(f"| {label} | {mj[key] / 1e6:.2f} M | {d / mj[key]:.1f} | "
-                             f"{f / mj[key]:.1f} |")
+        lines += peer_lines(d, f, peers, "OpenFOAM", mujoco, "MuJoCo 2.2 ellipsoid fluid model")
         lines += ["", f"OpenFOAM measured {peers.get('date', '?')}, "
                   f"load {peers.get('load', '?')}."]
         if mujoco:

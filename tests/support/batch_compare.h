@@ -6,6 +6,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <functional>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "integrate/simulation.h"
 #include "support/fixture.h"
@@ -19,8 +24,7 @@ inline FluidField wind_grid(double nu) {
   const GridGeometry g = test::grid_geometry(25, 17, 13, Vec3(-6, -4, -0.5), Vec3(0.5, 0.5, 0.5));
   const RawGridFrame f = test::grid_frame(g, [](const Vec3& x, Vec3* U, double* k, double* eps) {
     const double z = std::max(x.z(), 0.0);
-    *U = Vec3(1.5 * std::sqrt(z) * (1 + 0.05 * x.x()), 0.3 * std::sin(0.5 * x.x()),
-              -0.05 * x.y());
+    *U = Vec3(1.5 * std::sqrt(z) * (1 + 0.05 * x.x()), 0.3 * std::sin(0.5 * x.x()), -0.05 * x.y());
     *k = 0.05 + 0.2 * z / 5.5;
     *eps = 0.4 * *k;
     return !(std::abs(x.x()) <= 1.0 && std::abs(x.y()) <= 1.0 && x.z() <= 2.0);
@@ -28,12 +32,29 @@ inline FluidField wind_grid(double nu) {
   return FluidField::grid(g, {f}, nu, Drift::Stationary, TimeMode::Clamp);
 }
 
+// Splitting at 2 ms for 1 s (seed `seed`), the first body entry spawned with random orientations
+// west of the grid's block, and the ground at z = 0.
+inline void release_in_wind_grid(Scene* s, uint64_t seed) {
+  s->uniform_field = false;
+  s->integrator = Integrator::Splitting;
+  s->dt = 2e-3;
+  s->duration = 1.0;
+  s->seed = seed;
+  s->has_ground = true;
+  s->ground_z = 0;
+  s->bodies[0].spawn_in_box = true;
+  s->bodies[0].box_lo = Vec3(-5, -3, 0.3);
+  s->bodies[0].box_hi = Vec3(-1.5, 3, 3);
+  s->bodies[0].random_orientation = true;
+}
+
 struct Outcome {
   State state;
   RunStats stats;
 };
 
-inline Outcome run(const Scene& s, const FluidField& field, bool batched, Precision p, int threads = 1) {
+inline Outcome run(const Scene& s, const FluidField& field, bool batched, Precision p,
+                   int threads = 1) {
   Model m = test::compile(s, field);
   m.batched = batched;
   m.precision = p;
@@ -81,6 +102,43 @@ inline size_t count(const State& s, BodyStatus status) {
   size_t n = 0;
   for (BodyStatus x : s.status) n += x == status;
   return n;
+}
+
+// Float against double runs of one scene: the bodies with the same status, and the largest
+// distance between their positions (of the moving ones only, or of all: where they stopped).
+struct FloatCost {
+  size_t same = 0;
+  double dx = 0;  // m
+};
+
+inline FloatCost float_vs_double(const Outcome& dbl, const Outcome& flt, bool moving_only) {
+  FloatCost c;
+  for (size_t i = 0; i < dbl.state.size(); ++i) {
+    if (dbl.state.status[i] != flt.state.status[i]) continue;
+    ++c.same;
+    if (!moving_only || dbl.state.status[i] == BodyStatus::Moving)
+      c.dx = std::max(c.dx, (dbl.state.x[i] - flt.state.x[i]).norm());
+  }
+  std::printf("float vs double: %zu of %zu bodies with the same status, max |dx| = %.3g m\n",
+              c.same, dbl.state.size(), c.dx);
+  return c;
+}
+
+// Each change of the scene `s` excludes its first body type from a batched step (`eligible`),
+// which names the reason given.
+using Eligible = std::function<bool(const Model&, const BodyType&, std::string*)>;
+using Exclusion = std::pair<std::function<void(Scene&)>, std::string>;
+
+inline void expect_exclusions(const Scene& s, const FluidField& field, const Eligible& eligible,
+                              const std::vector<Exclusion>& cases) {
+  for (const auto& [change, reason] : cases) {
+    Scene e = s;
+    change(e);
+    const Model m = test::compile(e, field);
+    std::string why;
+    EXPECT_FALSE(eligible(m, m.types[0], &why)) << reason;
+    EXPECT_EQ(why, reason);
+  }
 }
 
 }  // namespace batch_test

@@ -26,9 +26,8 @@ bool rigid_batch_eligible(const Model& model, const BodyType& type, std::string*
   for (const EffectInfo& info : all_effects()) {
     const Effect e = info.effect;
     if (!type.effects.has(e)) continue;
-    if (e != Effect::Gravity && e != Effect::Buoyancy && e != Effect::Drag &&
-        e != Effect::Lift && e != Effect::AddedMass && e != Effect::MeanFlow &&
-        e != Effect::Turbulence)
+    if (e != Effect::Gravity && e != Effect::Buoyancy && e != Effect::Drag && e != Effect::Lift &&
+        e != Effect::AddedMass && e != Effect::MeanFlow && e != Effect::Turbulence)
       return no(std::string("effect ") + info.name);
   }
   return true;
@@ -40,19 +39,19 @@ namespace {
 struct Consts : FieldConsts {
   bool plate = false;  // flat: plate drag and lift (with turb, the step's template switches)
   double M[6] = {0, 0, 0, 0, 0, 0}, Mi[6] = {0, 0, 0, 0, 0, 0};  // M's diagonal and its inverse
-  double K[3] = {0, 0, 0};  // K's linear diagonal (0 without added mass)
-  double F[3] = {0, 0, 0};  // gravity and buoyancy, world frame, N
+  double K[3] = {0, 0, 0};    // K's linear diagonal (0 without added mass)
+  double F[3] = {0, 0, 0};    // gravity and buoyancy, world frame, N
   double drag = 0, lift = 0;  // the effects as factors 1 or 0
   double rho = 0, nu = 0;
   // plate (effects/drag.cpp plate_drag_wrench, effects/lift.cpp lift_wrench with r_cob = 0):
   // the normal n and the in-plane axes e1, e2 as unit vectors (component index na, i1, i2)
   double n[3] = {0, 0, 0}, e1[3] = {0, 0, 0}, e2[3] = {0, 0, 0};
-  double S = 0, box = 0;         // planform area; 1 for a rectangle, 0 for an ellipse
-  double c1 = 0, c2 = 0;         // half extents (box) or semi-axes (ellipse) along e1, e2
+  double S = 0, box = 0;  // planform area; 1 for a rectangle, 0 for an ellipse
+  double c1 = 0, c2 = 0;  // half extents (box) or semi-axes (ellipse) along e1, e2
   double width = 0, apw_speed = 0;
-  double sf[3] = {0, 0, 0}, c_visc = 0;   // mu k_i, mu max k_i (Stokes force)
-  double st[3] = {0, 0, 0}, st_in = 0;    // mu r_i; mu max r_i over the in-plane axes
-  double rot_n = 0;                       // out-of-roundness drag of the spin about n
+  double sf[3] = {0, 0, 0}, c_visc = 0;  // mu k_i, mu max k_i (Stokes force)
+  double st[3] = {0, 0, 0}, st_in = 0;   // mu r_i; mu max r_i over the in-plane axes
+  double rot_n = 0;                      // out-of-roundness drag of the spin about n
   // ellipsoid (effects/drag.cpp drag_wrench with r_cob = 0)
   double l[3] = {0, 0, 0}, area_max = 0, c_ang0 = 0, rot[3] = {0, 0, 0}, rot_max = 0;
 };
@@ -131,6 +130,7 @@ struct Lanes : Samples<T> {
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) v[a][j] = w[a][j] = T(0);
   }
+  T (*velocity())[kBatch] { return v; }  // the velocity a lane keeps (end_step)
 };
 
 // ---- small vector algebra on one lane's values -------------------------------------------------
@@ -203,15 +203,16 @@ LRIGID_LANE Forces<T> plate_forces(const Consts& k, const T* u, const T* w) {
   Forces<T> d;
   const T rho = T(k.rho);
   const T n[3] = {T(k.n[0]), T(k.n[1]), T(k.n[2])};
-  const T e1[3] = {T(k.e1[0]), T(k.e1[1]), T(k.e1[2])}, e2[3] = {T(k.e2[0]), T(k.e2[1]), T(k.e2[2])};
+  const T e1[3] = {T(k.e1[0]), T(k.e1[1]), T(k.e1[2])},
+          e2[3] = {T(k.e2[0]), T(k.e2[1]), T(k.e2[2])};
   const T s2 = dot3(u, u);
   const T speed = std::sqrt(s2);
   const bool moving = speed > T(0);
   const T inv = T(1) / (moving ? speed : T(1));
   const T un = dot3(n, u);
   const T cos2a = (s2 - T(2) * un * un) * (inv * inv);
-  const T c_lin = moving ? T(0.5) * rho * T(k.S) * (T(kPlateDragA) - T(kPlateDragB) * cos2a) * speed
-                         : T(0);
+  const T c_lin =
+      moving ? T(0.5) * rho * T(k.S) * (T(kPlateDragA) - T(kPlateDragB) * cos2a) * speed : T(0);
   // the in-plane part of the spin and the chord across it
   const T wn = dot3(n, w);
   T wp[3];
@@ -224,7 +225,8 @@ LRIGID_LANE Forces<T> plate_forces(const Consts& k, const T* u, const T* w) {
   const T winv = T(1) / (spinning ? wp_norm : T(1));
   const T d1 = dot3(e1, dir) * winv, d2 = dot3(e2, dir) * winv;
   const T tiny = T(std::is_same_v<T, float> ? 1e-30 : 1e-300);
-  const T a1 = std::abs(d1) > tiny ? std::abs(d1) : tiny, a2 = std::abs(d2) > tiny ? std::abs(d2) : tiny;
+  const T a1 = std::abs(d1) > tiny ? std::abs(d1) : tiny,
+          a2 = std::abs(d2) > tiny ? std::abs(d2) : tiny;
   const T r1 = T(k.c1) / a1, r2 = T(k.c2) / a2;
   const T chord_box = T(2) * (r1 < r2 ? r1 : r2);
   const T q1 = d1 / T(k.c1), q2 = d2 / T(k.c2);
@@ -257,8 +259,8 @@ LRIGID_LANE Forces<T> plate_forces(const Consts& k, const T* u, const T* w) {
   const T dr = T(k.drag);
 #pragma GCC unroll 3
   for (int a = 0; a < 3; ++a) {
-    d.f[a] = dr * (-c_lin * u[a] - T(k.sf[a]) * u[a]) + lt * (ut2 * n[a] - un * ut[a]) +
-             lr * wxu[a];
+    d.f[a] =
+        dr * (-c_lin * u[a] - T(k.sf[a]) * u[a]) + lt * (ut2 * n[a] - un * ut[a]) + lr * wxu[a];
     d.tq[a] = dr * (-pitch * wp[a] - T(k.st[a]) * wp[a] - c_n * wn * n[a]);
     d.u_hat[a] = moving ? u[a] * inv : T(0);
   }
@@ -326,8 +328,12 @@ LRIGID_MULTIVERSION void step_lanes(const Consts& k, Lanes<T>* L, uint64_t step,
   // velocity uf (world), the world velocity V0 at the start, the seen fluctuation after the
   // first half step
   alignas(64) T Y0[6][kBatch], Y[6][kBatch], tol2[kBatch], last[kBatch];
-  alignas(64) T uf[3][kBatch], V0[3][kBatch], usn[3][kBatch];
-  int active[kBatch], scalar[kBatch];
+  alignas(64) T uf[3][kBatch], V0[3][kBatch];
+  int active[kBatch];
+  // new state, committed at the end for the lanes whose step succeeded
+  NewState<T> n;
+  T(&usn)[3][kBatch] = n.us;
+  int(&scalar)[kBatch] = n.scalar;
 LRIGID_IVDEP
   for (int j = 0; j < kBatch; ++j) {
     T us[3] = {L->us[0][j], L->us[1][j], L->us[2][j]};
@@ -414,7 +420,11 @@ LRIGID_IVDEP
   }
   // 3. the forces at the new orientation, drag implicit: (M + h J) M^-1 dPi = h G; 4. x by the
   //    trapezoidal rule
-  alignas(64) T xn[3][kBatch], qn[4][kBatch], vn[3][kBatch], wn[3][kBatch], Vn[3][kBatch];
+  T(&xn)[3][kBatch] = n.x;
+  T(&qn)[4][kBatch] = n.q;
+  T(&vn)[3][kBatch] = n.vel;
+  T(&wn)[3][kBatch] = n.w;
+  alignas(64) T Vn[3][kBatch];  // the world velocity at the end
 LRIGID_IVDEP
   for (int j = 0; j < kBatch; ++j) {
     T y0[6], y[6];
@@ -494,57 +504,18 @@ LRIGID_IVDEP
     for (int a = 0; a < 4; ++a) qn[a][j] = q[a];
   }
   // 5. the second OU half step at the new position
-  alignas(64) T inside0[kBatch];
-  for (int j = 0; j < kBatch; ++j) inside0[j] = k.sample ? L->inside[j] : T(1);
-  if (k.sample) sample_lanes(k, xn, L);
-  if (Turb) ou_coefficients(k, L);
-  const bool sample = k.sample;
-LRIGID_IVDEP
-  for (int j = 0; j < kBatch; ++j) {
-    T us[3] = {usn[0][j], usn[1][j], usn[2][j]};
-    if constexpr (Turb) {
-      const T V[3] = {Vn[0][j], Vn[1][j], Vn[2][j]};
-      const T gs[3] = {L->gs[0][j], L->gs[1][j], L->gs[2][j]};
-      const T z[3] = {z2[0][j], z2[1][j], z2[2][j]};
-      ou_half(wm, L->decay[j], L->noise[j], L->sigma2[j], V, gs, z, hh, us);
-    }
-#pragma GCC unroll 3
-    for (int a = 0; a < 3; ++a) usn[a][j] = us[a];
-    const bool in = (inside0[j] != T(0)) & (!sample | (L->inside[j] != T(0)));
-    const T x[3] = {xn[0][j], xn[1][j], xn[2][j]}, v[3] = {vn[0][j], vn[1][j], vn[2][j]};
-    const T w[3] = {wn[0][j], wn[1][j], wn[2][j]};
-    const T q[4] = {qn[0][j], qn[1][j], qn[2][j], qn[3][j]};
-    outcome[j] = outcome_bits(x, q, v, w, us, in, scalar[j] != 0);
-    landed[j] = lane_landed(k, q, x[2]);
-  }
-  for (int j = 0; j < kBatch; ++j) outcome[j] = decode_outcome(outcome[j]);
-  // commit the lanes whose step succeeded
-  for (int j = 0; j < kBatch; ++j) {
-    if (outcome[j] != kOk || !L->live[j]) continue;
-#pragma GCC unroll 3
-    for (int a = 0; a < 3; ++a) {
-      L->x[a][j] = xn[a][j];
-      L->v[a][j] = vn[a][j];
-      L->w[a][j] = wn[a][j];
-      L->us[a][j] = usn[a][j];
-    }
-#pragma GCC unroll 4
-    for (int a = 0; a < 4; ++a) L->q[a][j] = qn[a][j];
-  }
+  end_step<T, Turb>(k, z2, Vn, &n, L, outcome, landed);
 }
 
 template <typename T>
 BlockStats advance(const Model& model, const BodyType& type, State* state, const uint32_t* body,
                    int count, uint64_t first, uint64_t last) {
   const Consts k = make_consts(model, type);
-  Lanes<T> L{};  // zeroed: without a field to sample, the sample arrays stay the fluid at rest
-  auto step = [&k](Lanes<T>* lanes, uint64_t s, int* outcome, int* landed) {
-    if (k.turb && k.plate) step_lanes<T, true, true>(k, lanes, s, outcome, landed);
-    else if (k.turb) step_lanes<T, true, false>(k, lanes, s, outcome, landed);
-    else if (k.plate) step_lanes<T, false, true>(k, lanes, s, outcome, landed);
-    else step_lanes<T, false, false>(k, lanes, s, outcome, landed);
+  auto step = [&k](auto turb, auto plate, Lanes<T>* lanes, uint64_t s, int* outcome, int* landed) {
+    step_lanes<T, decltype(turb)::value, decltype(plate)::value>(k, lanes, s, outcome, landed);
   };
-  return drive_block<T>(model, type, k, &L, state, body, count, first, last, step);
+  return drive_block<T, Lanes<T>>(model, type, k, k.turb, k.plate, state, body, count, first, last,
+                                  step);
 }
 
 }  // namespace

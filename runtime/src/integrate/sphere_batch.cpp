@@ -97,6 +97,7 @@ struct Lanes : Samples<T> {
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) V[a][j] = w[a][j] = T(0);
   }
+  T (*velocity())[kBatch] { return V; }  // the velocity a lane keeps (end_step)
 };
 
 // Sphere drag (effects/drag.cpp drag_wrench, centre of buoyancy at the centre of mass): force
@@ -156,11 +157,16 @@ template <typename T, bool Turb, bool WithDrag>
 LRIGID_MULTIVERSION void step_lanes(const Consts& k, Lanes<T>* L, uint64_t step, int* outcome,
                                     int* landed) {
   const T h = T(k.h), hh = T(0.5 * k.h), wm = T(k.wm);
-  const bool sample = k.sample;
   alignas(64) T z1[3][kBatch], z2[3][kBatch];
   if constexpr (Turb) lane_normals(k, *L, step, z1, z2);
   // new state, committed at the end for the lanes whose step succeeded
-  alignas(64) T xn[3][kBatch], Vn[3][kBatch], wn[3][kBatch], qn[4][kBatch], usn[3][kBatch];
+  NewState<T> n;
+  T(&xn)[3][kBatch] = n.x;
+  T(&Vn)[3][kBatch] = n.vel;
+  T(&wn)[3][kBatch] = n.w;
+  T(&qn)[4][kBatch] = n.q;
+  T(&usn)[3][kBatch] = n.us;
+  for (int j = 0; j < kBatch; ++j) n.scalar[j] = 0;
   // what the Newton iteration of stiff drag needs
   alignas(64) T uf[3][kBatch], Pi[3][kBatch], dP[3][kBatch], dL[3][kBatch], V0[3][kBatch];
   alignas(64) T norm_r[kBatch];
@@ -284,58 +290,18 @@ LRIGID_IVDEP
   for (int j = 0; j < kBatch; ++j)
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) xn[a][j] = L->x[a][j] + hh * (V0[a][j] + Vn[a][j]);
-  alignas(64) T inside0[kBatch];
-  for (int j = 0; j < kBatch; ++j) inside0[j] = k.sample ? L->inside[j] : T(1);
-  if (k.sample) sample_lanes(k, xn, L);
-  if (Turb) ou_coefficients(k, L);
-LRIGID_IVDEP
-  for (int j = 0; j < kBatch; ++j) {
-    T us[3] = {usn[0][j], usn[1][j], usn[2][j]};
-    if constexpr (Turb) {
-      const T V[3] = {Vn[0][j], Vn[1][j], Vn[2][j]};
-      const T gs[3] = {L->gs[0][j], L->gs[1][j], L->gs[2][j]};
-      const T z[3] = {z2[0][j], z2[1][j], z2[2][j]};
-      ou_half(wm, L->decay[j], L->noise[j], L->sigma2[j], V, gs, z, hh, us);
-    }
-    usn[0][j] = us[0];
-    usn[1][j] = us[1];
-    usn[2][j] = us[2];
-    // & rather than && on the lanes' conditions: no branches in the loop
-    const bool in = (inside0[j] != T(0)) & (!sample | (L->inside[j] != T(0)));
-    const T x[3] = {xn[0][j], xn[1][j], xn[2][j]}, V[3] = {Vn[0][j], Vn[1][j], Vn[2][j]};
-    const T w[3] = {wn[0][j], wn[1][j], wn[2][j]};
-    const T q[4] = {qn[0][j], qn[1][j], qn[2][j], qn[3][j]};
-    outcome[j] = outcome_bits(x, q, V, w, us, in, false);
-    landed[j] = lane_landed(k, q, x[2]);
-  }
-  for (int j = 0; j < kBatch; ++j) outcome[j] = decode_outcome(outcome[j]);
-  // commit the lanes whose step succeeded
-  for (int j = 0; j < kBatch; ++j) {
-    if (outcome[j] != kOk || !L->live[j]) continue;
-#pragma GCC unroll 3
-    for (int a = 0; a < 3; ++a) {
-      L->x[a][j] = xn[a][j];
-      L->V[a][j] = Vn[a][j];
-      L->w[a][j] = wn[a][j];
-      L->us[a][j] = usn[a][j];
-    }
-#pragma GCC unroll 4
-    for (int a = 0; a < 4; ++a) L->q[a][j] = qn[a][j];
-  }
+  end_step<T, Turb>(k, z2, Vn, &n, L, outcome, landed);
 }
 
 template <typename T>
 BlockStats advance(const Model& model, const BodyType& type, State* state, const uint32_t* body,
                    int count, uint64_t first, uint64_t last) {
   const Consts k = make_consts(model, type);
-  Lanes<T> L{};  // zeroed: without a field to sample, the sample arrays stay the fluid at rest
-  auto step = [&k](Lanes<T>* lanes, uint64_t s, int* outcome, int* landed) {
-    if (k.turb && k.drag) step_lanes<T, true, true>(k, lanes, s, outcome, landed);
-    else if (k.turb) step_lanes<T, true, false>(k, lanes, s, outcome, landed);
-    else if (k.drag) step_lanes<T, false, true>(k, lanes, s, outcome, landed);
-    else step_lanes<T, false, false>(k, lanes, s, outcome, landed);
+  auto step = [&k](auto turb, auto drag, Lanes<T>* lanes, uint64_t s, int* outcome, int* landed) {
+    step_lanes<T, decltype(turb)::value, decltype(drag)::value>(k, lanes, s, outcome, landed);
   };
-  return drive_block<T>(model, type, k, &L, state, body, count, first, last, step);
+  return drive_block<T, Lanes<T>>(model, type, k, k.turb, k.drag, state, body, count, first, last,
+                                  step);
 }
 
 }  // namespace

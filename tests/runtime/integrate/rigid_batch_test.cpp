@@ -3,6 +3,8 @@
 // and reasons, and states that differ by rounding only (double), or by what single precision
 // costs (float). Lanes the loops hand to the scalar step (slow Kirchhoff iteration, stiff drag)
 // are part of it.
+#include "integrate/rigid_batch.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -11,7 +13,6 @@
 #include <utility>
 #include <vector>
 
-#include "integrate/rigid_batch.h"
 #include "integrate/sphere_batch.h"
 #include "support/batch_compare.h"
 #include "support/fixture.h"
@@ -32,17 +33,7 @@ Scene rigid_scene(const Shape& shape, double density, int count) {
   s.bodies[0].shape = shape;
   s.effects = test::effects({Effect::Gravity, Effect::Buoyancy, Effect::Drag, Effect::Lift,
                              Effect::AddedMass, Effect::MeanFlow, Effect::Turbulence});
-  s.uniform_field = false;
-  s.integrator = Integrator::Splitting;
-  s.dt = 2e-3;
-  s.duration = 1.0;
-  s.seed = 11;
-  s.has_ground = true;
-  s.ground_z = 0;
-  s.bodies[0].spawn_in_box = true;
-  s.bodies[0].box_lo = Vec3(-5, -3, 0.3);
-  s.bodies[0].box_hi = Vec3(-1.5, 3, 3);
-  s.bodies[0].random_orientation = true;
+  batch_test::release_in_wind_grid(&s, 11);
   return s;
 }
 
@@ -88,8 +79,8 @@ TEST(RigidBatch, LeavesInAGridMatchTheScalarStep) {
 
 TEST(RigidBatch, EllipsoidsAndDisksMatchTheScalarStep) {
   // a seed pod (prolate, not flat: ellipsoid drag) and a disk (flat: the ellipse's chord)
-  for (const Shape& shape : {Shape::ellipsoid(0.004, 0.002, 0.002),
-                             Shape::ellipsoid(0.015, 0.01, 6e-4)}) {
+  for (const Shape& shape :
+       {Shape::ellipsoid(0.004, 0.002, 0.002), Shape::ellipsoid(0.015, 0.01, 6e-4)}) {
     const Scene s = rigid_scene(shape, 500, 100);
     const FluidField field = wind_grid(1.5e-5);
     expect_eligible(s, field);
@@ -128,8 +119,7 @@ TEST(RigidBatch, PlatesInFluidAtRestMatchTheScalarStep) {
   s.effects = test::effects({Effect::Gravity, Effect::Drag, Effect::Lift, Effect::AddedMass});
   s.uniform_field = true;
   s.has_ground = false;
-  const FluidField field =
-      FluidField::uniform(Vec3::Zero(), 0, 0, s.kinematic_viscosity, s.drift);
+  const FluidField field = FluidField::uniform(Vec3::Zero(), 0, 0, s.kinematic_viscosity, s.drift);
   expect_eligible(s, field);
   const auto [scalar, batched, d] = scalar_and_batched(s, field);
   expect_close(d, 1e-9);
@@ -158,19 +148,7 @@ TEST(RigidBatch, FloatStaysCloseToDouble) {
   const FluidField field = wind_grid(1.5e-5);
   const Outcome dbl = run(s, field, true, Precision::Double);
   const Outcome flt = run(s, field, true, Precision::Float);
-  double dx = 0;
-  size_t same = 0;
-  for (size_t i = 0; i < dbl.state.size(); ++i) {
-    if (dbl.state.status[i] != flt.state.status[i]) continue;
-    ++same;
-    dx = std::max(dx, (dbl.state.x[i] - flt.state.x[i]).norm());  // moving or where they stopped
-  }
-  std::printf("handoffs: double %llu, float %llu of %llu\n",
-              static_cast<unsigned long long>(dbl.stats.scalar_handoffs),
-              static_cast<unsigned long long>(flt.stats.scalar_handoffs),
-              static_cast<unsigned long long>(flt.stats.body_steps));
-  std::printf("float vs double: %zu of %zu bodies with the same status, max |dx| = %.3g m\n",
-              same, dbl.state.size(), dx);
+  const auto [same, dx] = batch_test::float_vs_double(dbl, flt, false);  // where they stopped
   EXPECT_GE(same, dbl.state.size() - 3);
   EXPECT_LT(dx, 1e-3);
   EXPECT_GT(dx, 0.0);  // single precision really ran
@@ -179,24 +157,19 @@ TEST(RigidBatch, FloatStaysCloseToDouble) {
 TEST(RigidBatch, EligibilitySaysWhatExcludesABodyType) {
   const Scene s = rigid_scene(Shape::box(0.06, 0.04, 4e-4), 600, 1);
   const FluidField field = wind_grid(1.5e-5);
-  std::string why;
-  const std::vector<std::pair<std::function<void(Scene&)>, std::string>> cases = {
-      {[](Scene& e) { e.bodies[0].shape = Shape::sphere(0.01); },
-       "an isotropic generalized mass (the sphere step's)"},
-      {[](Scene& e) { e.bodies[0].mass_offset = Vec3(0, 0, -1e-4); },
-       "the generalized mass is not diagonal"},
-      {[](Scene& e) { e.integrator = Integrator::RK4; }, "the integrator is not splitting"},
-      {[](Scene& e) { e.effects.add(Effect::Magnus); }, "effect magnus"},
-      {[](Scene& e) { e.turbulence_model = TurbulenceModel::Body; }, "the body turbulence model"},
-      {[](Scene& e) { e.batched = false; }, "the scene turns the batched step off"},
-  };
-  for (const auto& [change, reason] : cases) {
-    Scene e = s;
-    change(e);
-    const Model m = test::compile(e, field);
-    EXPECT_FALSE(rigid_batch_eligible(m, m.types[0], &why)) << reason;
-    EXPECT_EQ(why, reason);
-  }
+  batch_test::expect_exclusions(
+      s, field, rigid_batch_eligible,
+      {
+          {[](Scene& e) { e.bodies[0].shape = Shape::sphere(0.01); },
+           "an isotropic generalized mass (the sphere step's)"},
+          {[](Scene& e) { e.bodies[0].mass_offset = Vec3(0, 0, -1e-4); },
+           "the generalized mass is not diagonal"},
+          {[](Scene& e) { e.integrator = Integrator::RK4; }, "the integrator is not splitting"},
+          {[](Scene& e) { e.effects.add(Effect::Magnus); }, "effect magnus"},
+          {[](Scene& e) { e.turbulence_model = TurbulenceModel::Body; },
+           "the body turbulence model"},
+          {[](Scene& e) { e.batched = false; }, "the scene turns the batched step off"},
+      });
 }
 
 }  // namespace

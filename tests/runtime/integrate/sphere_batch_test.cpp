@@ -1,6 +1,8 @@
 // The batched sphere step (integrate/sphere_batch.h) against the scalar step it replaces: the
 // same scene run with model.batched on and off gives the same statuses, stop times and reasons,
 // and states that differ by rounding only (double), or by what single precision costs (float).
+#include "integrate/sphere_batch.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -10,7 +12,6 @@
 #include <vector>
 
 #include "integrate/simulation.h"
-#include "integrate/sphere_batch.h"
 #include "support/batch_compare.h"
 #include "support/fixture.h"
 
@@ -25,22 +26,11 @@ using batch_test::run;
 using batch_test::scalar_and_batched;
 using batch_test::wind_grid;
 
-
 Scene bead_scene(double radius, double density, int count) {
   Scene s = test::sphere_scene(radius, density, 1.2, 1.5e-5, count);
   s.effects = test::effects({Effect::Gravity, Effect::Buoyancy, Effect::Drag, Effect::AddedMass,
                              Effect::MeanFlow, Effect::Turbulence});
-  s.uniform_field = false;
-  s.integrator = Integrator::Splitting;
-  s.dt = 2e-3;
-  s.duration = 1.0;
-  s.seed = 7;
-  s.has_ground = true;
-  s.ground_z = 0;
-  s.bodies[0].spawn_in_box = true;
-  s.bodies[0].box_lo = Vec3(-5, -3, 0.3);
-  s.bodies[0].box_hi = Vec3(-1.5, 3, 3);
-  s.bodies[0].random_orientation = true;
+  batch_test::release_in_wind_grid(&s, 7);
   return s;
 }
 
@@ -107,8 +97,7 @@ TEST(SphereBatch, LightSpheresInWaterWithAddedMassMatchTheScalarStep) {
 
 TEST(SphereBatch, SpheresInFluidAtRestMatchTheScalarStep) {
   // no effect samples the field (gravity and drag, or nothing at all): the fluid is at rest
-  for (const EffectSet& e :
-       {test::effects({Effect::Gravity, Effect::Drag}), test::effects({})}) {
+  for (const EffectSet& e : {test::effects({Effect::Gravity, Effect::Drag}), test::effects({})}) {
     Scene s = test::sphere_scene(0.01, 500, 1000, 1e-6, 40);
     s.effects = e;
     s.integrator = Integrator::Splitting;
@@ -116,8 +105,8 @@ TEST(SphereBatch, SpheresInFluidAtRestMatchTheScalarStep) {
     s.duration = 1.0;
     s.bodies[0].velocity = Vec3(0.3, 0.0, -0.2);
     s.bodies[0].angular_velocity = Vec3(1.0, 2.0, 0.5);
-    const FluidField field = FluidField::uniform(Vec3::Zero(), 0, 0, s.kinematic_viscosity,
-                                                 s.drift);
+    const FluidField field =
+        FluidField::uniform(Vec3::Zero(), 0, 0, s.kinematic_viscosity, s.drift);
     const auto [scalar, batched, d] = scalar_and_batched(s, field);
     EXPECT_LT(d.x, 1e-12);
     EXPECT_LT(d.v, 1e-12);
@@ -178,16 +167,7 @@ TEST(SphereBatch, FloatCostsLittleAccuracy) {
   const Outcome flt = run(s, field, true, Precision::Float);
   // the same bodies keep moving; positions after 1 s (of up to ~5 m travel) agree to well
   // below a millimetre where both still move
-  double dx = 0;
-  size_t same = 0;
-  for (size_t i = 0; i < dbl.state.size(); ++i) {
-    if (dbl.state.status[i] != flt.state.status[i]) continue;
-    ++same;
-    if (dbl.state.status[i] == BodyStatus::Moving)
-      dx = std::max(dx, (dbl.state.x[i] - flt.state.x[i]).norm());
-  }
-  std::printf("float vs double: %zu of %zu bodies with the same status, max |dx| = %.3g m\n",
-              same, dbl.state.size(), dx);
+  const auto [same, dx] = batch_test::float_vs_double(dbl, flt, true);
   EXPECT_GE(same, dbl.state.size() - 3);
   EXPECT_LT(dx, 1e-4);
   EXPECT_GT(dx, 0.0);  // single precision really ran
@@ -199,21 +179,17 @@ TEST(SphereBatch, EligibilitySaysWhatExcludesABodyType) {
   std::string why;
   const Model ok = test::compile(s, field);
   EXPECT_TRUE(sphere_batch_eligible(ok, ok.types[0], &why));
-  const std::vector<std::pair<std::function<void(Scene&)>, std::string>> cases = {
-      {[](Scene& e) { e.bodies[0].shape = Shape::ellipsoid(3e-4, 2.5e-4, 2e-4); },
-       "not a sphere"},
-      {[](Scene& e) { e.integrator = Integrator::RK4; }, "the integrator is not splitting"},
-      {[](Scene& e) { e.effects.add(Effect::Basset); }, "effect basset"},
-      {[](Scene& e) { e.turbulence_model = TurbulenceModel::Body; }, "the body turbulence model"},
-      {[](Scene& e) { e.batched = false; }, "the scene turns the batched step off"},
-  };
-  for (const auto& [change, reason] : cases) {
-    Scene e = s;
-    change(e);
-    const Model m = test::compile(e, field);
-    EXPECT_FALSE(sphere_batch_eligible(m, m.types[0], &why)) << reason;
-    EXPECT_EQ(why, reason);
-  }
+  batch_test::expect_exclusions(
+      s, field, sphere_batch_eligible,
+      {
+          {[](Scene& e) { e.bodies[0].shape = Shape::ellipsoid(3e-4, 2.5e-4, 2e-4); },
+           "not a sphere"},
+          {[](Scene& e) { e.integrator = Integrator::RK4; }, "the integrator is not splitting"},
+          {[](Scene& e) { e.effects.add(Effect::Basset); }, "effect basset"},
+          {[](Scene& e) { e.turbulence_model = TurbulenceModel::Body; },
+           "the body turbulence model"},
+          {[](Scene& e) { e.batched = false; }, "the scene turns the batched step off"},
+      });
 }
 
 }  // namespace
