@@ -366,7 +366,8 @@ def write_doc(path, m, rows, acc, peers, mujoco, quick, leaves=None):
         "mask; a lane that needs a Newton iteration (stiff drag, a Kirchhoff iteration that "
         "does not contract) hands its step to the scalar step. The physics is the scalar "
         "splitting step's, term for term; `tests/runtime/integrate/sphere_batch_test.cpp` and "
-        "`rigid_batch_test.cpp` hold them to the scalar step to 1e-9. "
+        "`rigid_batch_test.cpp` hold them to the scalar step to 1e-9 (1e-8 for "
+        "tumbling leaves, whose chaos amplifies rounding). "
         "Scenes choose a step per body type automatically (`lrigid explain` says which); "
         "`\"integrator\": {\"batched\": false}` turns them off and `\"precision\": "
         "\"float\"` runs them in single precision (docs/scene-format.md).",
