@@ -159,7 +159,7 @@ LRIGID_IVDEP
     return;
   }
   const float* rec = k.records;
-  // 32-bit float offsets of the 8 corners' records (sphere_batch_eligible bounds the grid)
+  // 32-bit float offsets of the 8 corners' records (batch_exclusion bounds the grid)
   const int sy = int(k.sy), sz = int(k.sz);
   const int off[8] = {
       0, 8, 8 * sy, 8 * (1 + sy), 8 * sz, 8 * (1 + sz), 8 * (sy + sz), 8 * (1 + sy + sz)};

@@ -1,5 +1,5 @@
-// When a body stops moving: the rules the scalar loop (simulation.cpp) and the batched sphere
-// step (sphere_batch.cpp) share.
+// When a body stops moving: the rules the scalar loop (simulation.cpp) and the batched steps
+// (batch_lanes.h) share.
 #pragma once
 #include <string>
 

@@ -104,8 +104,8 @@ struct Model {
   Vec3 gravity = Vec3(0, 0, -9.81);
   FluidField field;
   Integrator integrator = Integrator::Splitting;
-  // spheres take the batched step (integrate/sphere_batch.h) unless the scene says otherwise,
-  // in double or single precision
+  // spheres, plates and ellipsoids take the batched steps (integrate/sphere_batch.h,
+  // rigid_batch.h) unless the scene says otherwise, in double or single precision
   bool batched = true;
   Precision precision = Precision::Double;
   double dt = 1e-3;              // s

@@ -1,5 +1,5 @@
-// Elementary functions for the normal generator (util/rng.h) and the batched sphere step
-// (integrate/sphere_batch.h) as straight-line polynomials:
+// Elementary functions for the normal generator (util/rng.h) and the batched steps
+// (integrate/batch_lanes.h) as straight-line polynomials:
 // no table, no library call, no branch, so a loop over them vectorizes, and the results do not
 // depend on the C library. Accurate to a few ulp over the ranges they are used on (tested in
 // tests/runtime/util/rng_test.cpp against std::log, std::sin, std::cos).
