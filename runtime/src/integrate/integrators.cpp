@@ -151,9 +151,6 @@ StepOutcome impulse_step(const Model& model, const BodyType& type, double t, Bod
 //      drag changes the relative velocity by more than kStiffChange in the step;
 //   3. x by the trapezoidal rule on the world velocity.
 // The field is sampled once, at the start of the step.
-constexpr double kStiffChange = 0.1;  // relative change of the relative velocity (energy norm)
-constexpr int kDragMaxNewton = 12;
-constexpr double kDragTol = 1e-10;    // Newton update / relative velocity (energy norm)
 
 StepOutcome split_deterministic_step(const Model& model, const BodyType& type, double t,
                                      BodyState* s) {

@@ -44,6 +44,14 @@ void store_body(const BodyState& b, size_t i, State* st);
 
 enum class StepOutcome { Ok, Exited, Failed };
 
+// The splitting step's implicit drag (the batched steps follow the same rule): one linearly
+// implicit step, iterated by Newton to the backward Euler solution when it changes the relative
+// velocity by more than kStiffChange (energy norm), at most kDragMaxNewton times, until the
+// update is below kDragTol of the relative velocity.
+constexpr double kStiffChange = 0.1;
+constexpr int kDragMaxNewton = 12;
+constexpr double kDragTol = 1e-10;
+
 // Advances `s` from time t by model.dt. Random numbers are keyed by (seed, body, step).
 // On Exited/Failed `s` is left at its value before the step and `reason` says why.
 StepOutcome step_body(const Model& model, const BodyType& type, uint32_t body, uint64_t step,

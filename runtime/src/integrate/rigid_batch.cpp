@@ -40,9 +40,10 @@ struct Consts : FieldConsts {
   bool plate = false;  // flat: plate drag and lift (with turb, the step's template switches)
   double M[6] = {0, 0, 0, 0, 0, 0}, Mi[6] = {0, 0, 0, 0, 0, 0};  // M's diagonal and its inverse
   double K[3] = {0, 0, 0};    // K's linear diagonal (0 without added mass)
-  double F[3] = {0, 0, 0};    // gravity and buoyancy, world frame, N
   double drag = 0, lift = 0;  // the effects as factors 1 or 0
-  double rho = 0, nu = 0;
+  // the fluid (rho, nu) and the drag of bodies that are not flat (with l, the equivalent
+  // ellipsoid)
+  DragLaw law;
   // plate (effects/drag.cpp plate_drag_wrench, effects/lift.cpp lift_wrench with r_cob = 0):
   // the normal n and the in-plane axes e1, e2 as unit vectors (component index na, i1, i2)
   double n[3] = {0, 0, 0}, e1[3] = {0, 0, 0}, e2[3] = {0, 0, 0};
@@ -52,8 +53,7 @@ struct Consts : FieldConsts {
   double sf[3] = {0, 0, 0}, c_visc = 0;  // mu k_i, mu max k_i (Stokes force)
   double st[3] = {0, 0, 0}, st_in = 0;   // mu r_i; mu max r_i over the in-plane axes
   double rot_n = 0;                      // out-of-roundness drag of the spin about n
-  // ellipsoid (effects/drag.cpp drag_wrench with r_cob = 0)
-  double l[3] = {0, 0, 0}, area_max = 0, c_ang0 = 0, rot[3] = {0, 0, 0}, rot_max = 0;
+  double l[3] = {0, 0, 0};               // semi-axes of the equivalent ellipsoid, m
 };
 
 Consts make_consts(const Model& model, const BodyType& type) {
@@ -66,15 +66,10 @@ Consts make_consts(const Model& model, const BodyType& type) {
     k.Mi[a] = type.M_inv_diagonal[a];
   }
   for (int a = 0; a < 3; ++a) k.K[a] = e.has(Effect::AddedMass) ? type.K_fluid(a, a) : 0.0;
-  Vec3 F = Vec3::Zero();
-  if (e.has(Effect::Gravity)) F += type.mass * model.gravity;
-  if (e.has(Effect::Buoyancy)) F -= model.fluid_density * type.volume * model.gravity;
-  for (int a = 0; a < 3; ++a) k.F[a] = F[a];
   k.drag = e.has(Effect::Drag) ? 1.0 : 0.0;
   k.lift = e.has(Effect::Lift) && type.flat ? 1.0 : 0.0;
-  k.rho = model.fluid_density;
-  k.nu = model.nu;
-  const double mu = k.rho * k.nu;
+  k.law = drag_law(model, type);
+  const double mu = k.law.rho * k.law.nu;
   const int na = type.normal_axis, i1 = (na + 1) % 3, i2 = (na + 2) % 3;
   k.n[na] = k.e1[i1] = k.e2[i2] = 1.0;
   k.S = type.plate_area;
@@ -88,15 +83,10 @@ Consts make_consts(const Model& model, const BodyType& type) {
     k.sf[a] = mu * type.stokes_force[a];
     k.st[a] = mu * type.stokes_torque[a];
     k.l[a] = type.ell[a];
-    k.rot[a] = 0.5 * k.rho * kDragRotation * type.rot_drag_len5[a];
   }
   k.c_visc = mu * type.stokes_force.maxCoeff();
   k.st_in = mu * std::max(type.stokes_torque[i1], type.stokes_torque[i2]);
-  k.rot_n = k.rot[na];
-  k.area_max = type.area_max;
-  const double r_m = type.ell.mean();
-  k.c_ang0 = 8.0 * M_PI * k.rho * k.nu * r_m * r_m * r_m;
-  k.rot_max = k.rho * kDragRotation * type.rot_drag_len5.maxCoeff();
+  k.rot_n = k.law.rot[na];
   return k;
 }
 
@@ -188,20 +178,11 @@ LRIGID_LANE void gyro(const Consts& k, const T* Y, T* g) {
   }
 }
 
-// Drag (and lift) on relative velocity u and spin w, body frame, and the stiffness the implicit
-// step needs (effects/drag.h DragStiffness).
-template <typename T>
-struct Forces {
-  T f[3], tq[3];
-  T c_lin, p, c_ang;
-  T u_hat[3];
-};
-
 // Plate drag and torque (plate_drag_wrench) and lift (lift_wrench), r_cob = 0
 template <typename T>
-LRIGID_LANE Forces<T> plate_forces(const Consts& k, const T* u, const T* w) {
-  Forces<T> d;
-  const T rho = T(k.rho);
+LRIGID_LANE LaneDrag<T> plate_forces(const Consts& k, const T* u, const T* w) {
+  LaneDrag<T> d;
+  const T rho = T(k.law.rho);
   const T n[3] = {T(k.n[0]), T(k.n[1]), T(k.n[2])};
   const T e1[3] = {T(k.e1[0]), T(k.e1[1]), T(k.e1[2])},
           e2[3] = {T(k.e2[0]), T(k.e2[1]), T(k.e2[2])};
@@ -237,7 +218,7 @@ LRIGID_LANE Forces<T> plate_forces(const Consts& k, const T* u, const T* w) {
   const T span = T(k.S) / (T(2) * c);
   const T Uv = k.apw_speed > 0 ? T(k.apw_speed) : speed;
   const T kk = T(M_PI) * rho * (c * c) * (c * c) * span;
-  const T re_w = speed * T(k.width / k.nu);
+  const T re_w = speed * T(k.width / k.law.nu);
   const T re = re_w > T(kPlateTorqueReMin) ? re_w : T(kPlateTorqueReMin);
   const T mu1 = T(kPlateTorqueMu1) * std::sqrt(T(kPlateTorqueFitRe) / re);
   const T pitch = spinning ? kk * (mu1 * Uv / c + T(kPlateTorqueMu2) * wp_norm) : T(0);
@@ -273,40 +254,23 @@ LRIGID_LANE Forces<T> plate_forces(const Consts& k, const T* u, const T* w) {
 }
 
 // Drag of a body that is not flat (drag_wrench): the equivalent ellipsoid's projected area
-// across u, Schiller-Naumann on its diameter, and the rotational drag
+// across u, times the drag effect's factor (0 without it)
 template <typename T>
-LRIGID_LANE Forces<T> ellipsoid_forces(const Consts& k, const T* u, const T* w) {
-  Forces<T> d;
-  const T speed = std::sqrt(dot3(u, u));
-  const bool moving = speed > T(0);
-  const T inv = T(1) / (moving ? speed : T(1));
-  T uh[3];
-#pragma GCC unroll 3
-  for (int a = 0; a < 3; ++a) uh[a] = moving ? u[a] * inv : T(0);
-  const T p0 = T(k.l[1] * k.l[2]) * uh[0], p1 = T(k.l[0] * k.l[2]) * uh[1];
-  const T p2 = T(k.l[0] * k.l[1]) * uh[2];
-  const T a_perp = T(M_PI) * std::sqrt(p0 * p0 + p1 * p1 + p2 * p2);
-  const T d_perp = T(2) * std::sqrt(a_perp * T(1.0 / M_PI));
-  const T re = speed * d_perp / T(k.nu);
-  const T re_safe = moving ? re : T(1);
-  const T s = T(0.15 * exp_fast(0.687 * log_fast(double(re_safe))));
-  const bool newton_regime = re >= T(1000);
-  const T cd = newton_regime ? T(0.44) : T(24) / re_safe * (T(1) + s);
-  const T p = newton_regime ? T(1) : T(0.687) * s / (T(1) + s);
-  const T c_moving =
-      T(0.5 * k.rho) * speed * (cd * a_perp + T(kDragEdgewise) * (T(k.area_max) - a_perp));
+LRIGID_LANE LaneDrag<T> ellipsoid_forces(const Consts& k, const T* u, const T* w) {
+  LaneDrag<T> d = lane_drag(k.law, u, w, [&k](const T* uh, T* a_perp, T* d_perp) {
+    const T p0 = T(k.l[1] * k.l[2]) * uh[0], p1 = T(k.l[0] * k.l[2]) * uh[1];
+    const T p2 = T(k.l[0] * k.l[1]) * uh[2];
+    *a_perp = T(M_PI) * std::sqrt(p0 * p0 + p1 * p1 + p2 * p2);
+    *d_perp = T(2) * std::sqrt(*a_perp * T(1.0 / M_PI));
+  });
   const T dr = T(k.drag);
-  const T c_lin = moving ? dr * c_moving : T(0);
-  const T w_norm = std::sqrt(dot3(w, w));
 #pragma GCC unroll 3
   for (int a = 0; a < 3; ++a) {
-    d.f[a] = -c_lin * u[a];
-    d.tq[a] = -dr * (T(k.c_ang0) + T(k.rot[a]) * w_norm) * w[a];
-    d.u_hat[a] = uh[a];
+    d.f[a] *= dr;
+    d.tq[a] *= dr;
   }
-  d.c_lin = c_lin;
-  d.p = moving ? p : T(0);
-  d.c_ang = dr * (T(k.c_ang0) + T(k.rot_max) * w_norm);
+  d.c_lin *= dr;
+  d.c_ang *= dr;
   return d;
 }
 
@@ -314,7 +278,6 @@ LRIGID_LANE Forces<T> ellipsoid_forces(const Consts& k, const T* u, const T* w) 
 // round-off
 template <typename T>
 constexpr double kLaneKirchhoffTol = std::is_same_v<T, float> ? 1e-5 : kKirchhoffTol;
-constexpr double kStiffChange = 0.1;  // as integrators.cpp
 
 // Advances every lane of L by one step (see rigid_batch.h); lanes that are not kOk keep their
 // state at the start of the step. landed: the lane is on or below the ground after the step.
@@ -458,7 +421,7 @@ LRIGID_IVDEP
       w[a] = T(k.Mi[3 + a]) * y[3 + a];
       vr[a] = v[a] - ufb[a];
     }
-    const Forces<T> d = Plate ? plate_forces(k, vr, w) : ellipsoid_forces(k, vr, w);
+    const LaneDrag<T> d = Plate ? plate_forces(k, vr, w) : ellipsoid_forces(k, vr, w);
     const T F[3] = {T(k.F[0]), T(k.F[1]), T(k.F[2])};
     T Fb[3], u_end[3], ufb_end[3];
     mul_t(R, F, Fb);

@@ -34,10 +34,9 @@ namespace {
 struct Consts : FieldConsts {
   bool drag = false;  // with turb, the step's two template switches
   double m = 0, ma = 0, J = 0;  // M's linear and angular diagonal; K's linear diagonal (0 without)
-  double F[3] = {0, 0, 0};      // gravity and buoyancy, world frame, N
-  // sphere drag (effects/drag.cpp drag_wrench with r_cob = 0)
-  double rho = 0, nu = 0, a_perp = 0, d_perp = 0, edge = 0, c_ang0 = 0, rot[3] = {0, 0, 0};
-  double rot_max = 0;
+  // sphere drag (effects/drag.cpp drag_wrench with r_cob = 0): the law and the sphere's area
+  DragLaw law;
+  double a_perp = 0, d_perp = 0;
 };
 
 Consts make_consts(const Model& model, const BodyType& type) {
@@ -48,20 +47,10 @@ Consts make_consts(const Model& model, const BodyType& type) {
   k.m = type.M(0, 0);
   k.ma = e.has(Effect::AddedMass) ? type.K_fluid(0, 0) : 0.0;
   k.J = type.M(3, 3);
-  Vec3 F = Vec3::Zero();
-  if (e.has(Effect::Gravity)) F += type.mass * model.gravity;
-  if (e.has(Effect::Buoyancy)) F -= model.fluid_density * type.volume * model.gravity;
-  for (int a = 0; a < 3; ++a) k.F[a] = F[a];
-  k.rho = model.fluid_density;
-  k.nu = model.nu;
+  k.law = drag_law(model, type);
   const double r = type.ell.x();
   k.a_perp = M_PI * r * r;
   k.d_perp = 2.0 * std::sqrt(k.a_perp / M_PI);
-  k.edge = kDragEdgewise * (type.area_max - k.a_perp);
-  const double r_m = type.ell.mean();
-  k.c_ang0 = 8.0 * M_PI * k.rho * k.nu * r_m * r_m * r_m;
-  for (int a = 0; a < 3; ++a) k.rot[a] = 0.5 * k.rho * kDragRotation * type.rot_drag_len5[a];
-  k.rot_max = k.rho * kDragRotation * type.rot_drag_len5.maxCoeff();
   return k;
 }
 
@@ -101,55 +90,25 @@ struct Lanes : Samples<T> {
 };
 
 // Sphere drag (effects/drag.cpp drag_wrench, centre of buoyancy at the centre of mass): force
-// and torque on relative velocity u and spin w, and the stiffness the implicit step needs.
+// and torque on relative velocity u and spin w, and the stiffness the implicit step needs; the
+// projected area is the same in every direction.
 template <typename T>
-struct Drag {
-  T f[3], tq[3];
-  T c_lin, p, c_ang;
-  T u_hat[3];
-};
-
-template <typename T>
-LRIGID_LANE Drag<T> sphere_drag(const Consts& k, const T* u, const T* w) {
-  Drag<T> d;
-  const T speed = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
-  const bool moving = speed > T(0);
-  const T inv = T(1) / (moving ? speed : T(1));
-  const T re = speed * T(k.d_perp / k.nu);
-  const T re_safe = moving ? re : T(1);
-  // C_D Re = 24 (1 + 0.15 Re^0.687) below Re = 1000, 0.44 above
-  const T s = T(0.15 * exp_fast(0.687 * log_fast(double(re_safe))));
-  const bool newton_regime = re >= T(1000);
-  const T cd = newton_regime ? T(0.44) : T(24) / re_safe * (T(1) + s);
-  const T p = newton_regime ? T(1) : T(0.687) * s / (T(1) + s);
-  const T c_moving = T(0.5 * k.rho) * speed * (cd * T(k.a_perp) + T(k.edge));
-  const T c_lin = moving ? c_moving : T(0);
-  d.c_lin = c_lin;
-  d.p = moving ? p : T(0);
-#pragma GCC unroll 3
-  for (int a = 0; a < 3; ++a) {
-    d.u_hat[a] = moving ? u[a] * inv : T(0);
-    d.f[a] = -c_lin * u[a];
-  }
-  const T w_norm = std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
-#pragma GCC unroll 3
-  for (int a = 0; a < 3; ++a) d.tq[a] = -(T(k.c_ang0) + T(k.rot[a]) * w_norm) * w[a];
-  d.c_ang = T(k.c_ang0) + T(k.rot_max) * w_norm;
-  return d;
+LRIGID_LANE LaneDrag<T> sphere_drag(const Consts& k, const T* u, const T* w) {
+  const T a_perp = T(k.a_perp), d_perp = T(k.d_perp);
+  return lane_drag(k.law, u, w, [&](const T*, T* a, T* d) {
+    *a = a_perp;
+    *d = d_perp;
+  });
 }
 
 // y = (m I + h c_lin (I + p u u^T))^-1 b (Sherman-Morrison), times m: the impulse change
 template <typename T>
-LRIGID_LANE void implicit_linear(const Consts& k, const Drag<T>& d, const T* b, T* dP) {
+LRIGID_LANE void implicit_linear(const Consts& k, const LaneDrag<T>& d, const T* b, T* dP) {
   const T a = T(k.m) + T(k.h) * d.c_lin, c = T(k.h) * d.c_lin * d.p;
   const T ub = d.u_hat[0] * b[0] + d.u_hat[1] * b[1] + d.u_hat[2] * b[2];
   const T g = c / (a + c);
   for (int i = 0; i < 3; ++i) dP[i] = T(k.m) * (b[i] - g * d.u_hat[i] * ub) / a;
 }
-
-constexpr double kStiffChange = 0.1;  // as integrators.cpp
-constexpr int kDragMaxNewton = 12;
-constexpr double kDragTol = 1e-10;
 
 // Advances every lane of L by one step; lanes that are not kOk keep their state at the start of
 // the step. landed: the lane is on or below the ground after the step.
@@ -206,7 +165,7 @@ LRIGID_IVDEP
     T vr[3];
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) vr[a] = V[a] - u_f[a];
-    Drag<T> d = {};
+    LaneDrag<T> d = {};
     if constexpr (WithDrag) d = sphere_drag(k, vr, w);
     T b[3], P[3], dPj[3], dLj[3], Vnew[3], wnew[3], u_end[3];
 #pragma GCC unroll 3
@@ -258,7 +217,7 @@ LRIGID_IVDEP
           vr[a] = Vn[a][j] - uf[a][j];
           w[a] = wn[a][j];
         }
-        const Drag<T> d = sphere_drag(k, vr, w);
+        const LaneDrag<T> d = sphere_drag(k, vr, w);
         T res[3], dd[3];
 #pragma GCC unroll 3
         for (int a = 0; a < 3; ++a) res[a] = dP[a][j] - h * (T(k.F[a]) + d.f[a]);
