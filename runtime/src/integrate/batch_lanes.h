@@ -10,7 +10,9 @@
 #include <string>
 #include <type_traits>
 
+#include "effects/basset.h"
 #include "effects/drag.h"
+#include "effects/magnus.h"
 #include "integrate/dynamics.h"
 #include "integrate/integrators.h"
 #include "integrate/sphere_batch.h"
@@ -61,6 +63,11 @@ struct FieldConsts {
   double mf = 0, wm = 0, gu = 0;
   double mean_flow_scale = 1, turbulence_scale = 1;
   double F[3] = {0, 0, 0};  // gravity and buoyancy, world frame, N
+  // the effects with memory or spin (the steps' third template switch, `Extra`): the Basset
+  // history's current interval as a mass on the left-hand side (BassetKernel::implicit_mass, kg;
+  // 0 without) and its history force Samples::fb; the Magnus factor C_M rho V (0 without), kg
+  bool basset = false;
+  double basset_mass = 0, magnus = 0;
   // grid
   double origin[3] = {0, 0, 0}, spacing[3] = {1, 1, 1}, upper_index[3] = {0, 0, 0};
   int n[3] = {0, 0, 0};
@@ -87,6 +94,9 @@ void set_field_consts(const Model& model, const BodyType& type, FieldConsts* k) 
   if (e.has(Effect::Gravity)) F += type.mass * model.gravity;
   if (e.has(Effect::Buoyancy)) F -= model.fluid_density * type.volume * model.gravity;
   for (int a = 0; a < 3; ++a) k->F[a] = F[a];
+  k->basset = type.plan.basset;
+  k->basset_mass = k->basset ? type.basset.implicit_mass : 0.0;
+  k->magnus = e.has(Effect::Magnus) ? kMagnus * model.fluid_density * type.volume : 0.0;
   if (k->grid) {
     const GridGeometry& g = model.field.geometry();
     for (int a = 0; a < 3; ++a) {
@@ -203,9 +213,26 @@ struct Samples {
   // second half step of one step and the first of the next the same ones
   alignas(64) T decay[kBatch];  // exp(-alpha h/2)
   alignas(64) T noise[kBatch];  // beta sqrt((1 - exp(-alpha h)) / (2 alpha)), m/s
+  // Basset: the history force of the past intervals, world frame, N (basset_history_force), and
+  // where each lane's history lives in the State
+  alignas(64) T fb[3][kBatch];
+  double* history[kBatch];
   uint32_t body[kBatch];
   bool live[kBatch];
 };
+
+// Whether the step needs its third switch (`Extra`): the Basset history or the Magnus force.
+inline bool extra_effects(const FieldConsts& k) { return k.basset || k.magnus != 0; }
+
+// The Magnus force C_M rho V w x u on one lane (effects/magnus.h, centre of buoyancy at the
+// centre of mass): spin w and velocity u relative to the fluid in one frame, N.
+template <typename T>
+LRIGID_LANE void lane_magnus(const FieldConsts& k, const T* w, const T* u, T* f) {
+  const T c = T(k.magnus);
+  f[0] = c * (w[1] * u[2] - w[2] * u[1]);
+  f[1] = c * (w[2] * u[0] - w[0] * u[2]);
+  f[2] = c * (w[0] * u[1] - w[1] * u[0]);
+}
 
 // Fills the sample arrays of L at positions x (may be L.x itself), lanes [lo, hi).
 template <typename T>
@@ -478,13 +505,27 @@ LRIGID_IVDEP
   }
 }
 
+// Calls f(A, B, C) with the std::bool_constant of each of a, b and c.
+template <class F>
+void with_switches(bool a, bool b, bool c, F f) {
+  auto pick = [](bool x, auto g) {
+    if (x)
+      g(std::true_type{});
+    else
+      g(std::false_type{});
+  };
+  pick(a, [&](auto A) { pick(b, [&](auto B) { pick(c, [&](auto C) { f(A, B, C); }); }); });
+}
+
 // Runs a block of count bodies (indices body[0..count)) of one type through steps [first, last)
 // with the scalar loop's statuses, stop times and reasons. Lanes (derived from Samples<T>) holds
 // the block's state and provides load(j, BodyState), store(j, BodyState*), rest(j) (set at rest
-// after landing) and velocity(); step(A, B, &lanes, step, outcome, landed), called with
-// std::bool_constant<a> and <b> (the step's two template switches), advances every lane by one
-// step, keeping the start state of lanes that are not kOk, and leaves the samples at the new
-// positions (end_step).
+// after landing), velocity() and world_velocity(j, double[3]); step(A, B, C, &lanes, step,
+// outcome, landed), called with std::bool_constant<a>, <b> and <extra_effects(k)> (the step's
+// template switches), advances every lane by one step, keeping the start state of lanes that are
+// not kOk, and leaves the samples at the new positions (end_step). The Basset history is the
+// driver's: it sets each lane's history force before the step (Samples::fb) and appends the step
+// to the history of the lanes that took it (as step_body does at its end).
 template <typename T, class Lanes, class Step>
 BlockStats drive_block(const Model& model, const BodyType& type, const FieldConsts& k, bool a,
                        bool b, State* state, const uint32_t* body, int count, uint64_t first,
@@ -499,6 +540,7 @@ BlockStats drive_block(const Model& model, const BodyType& type, const FieldCons
     L->load(j, load_body(st, i));
     L->body[j] = static_cast<uint32_t>(i);
     L->live[j] = j < count && st.status[i] == BodyStatus::Moving;
+    L->history[j] = st.history_of(i);
   }
   auto resample = [&](int lo, int hi) {
     if (k.sample) sample_lanes(k, L->x, L, lo, hi);
@@ -512,14 +554,28 @@ BlockStats drive_block(const Model& model, const BodyType& type, const FieldCons
     for (int j = 0; j < count; ++j) any = any || L->live[j];
     if (!any) break;
     const double t = static_cast<double>(s) * model.dt;
-    if (a && b)
-      step(std::true_type{}, std::true_type{}, L, s, outcome, landed);
-    else if (a)
-      step(std::true_type{}, std::false_type{}, L, s, outcome, landed);
-    else if (b)
-      step(std::false_type{}, std::true_type{}, L, s, outcome, landed);
-    else
-      step(std::false_type{}, std::false_type{}, L, s, outcome, landed);
+    if (k.basset) {
+      for (int j = 0; j < kBatch; ++j) {
+        const Vec3 f = L->history[j] ? basset_history_force(type.basset, L->history[j])
+                                     : Vec3::Zero();
+#pragma GCC unroll 3
+        for (int c = 0; c < 3; ++c) L->fb[c][j] = T(f[c]);
+      }
+    }
+    with_switches(a, b, extra_effects(k),
+                  [&](auto A, auto B, auto C) { step(A, B, C, L, s, outcome, landed); });
+    if (k.basset) {
+      // the relative velocity g = u_f - V at the end of the step enters the history
+      for (int j = 0; j < count; ++j) {
+        if (!L->live[j] || outcome[j] != kOk || !L->history[j]) continue;
+        double V[3];
+        L->world_velocity(j, V);
+        Vec3 g;
+        for (int c = 0; c < 3; ++c)
+          g[c] = k.mf * double(L->U[c][j]) + (k.turb ? double(L->us[c][j]) : 0.0) - V[c];
+        basset_push(type.basset, g, model.dt, L->history[j]);
+      }
+    }
     for (int j = 0; j < count; ++j) {
       if (!L->live[j]) continue;
       const size_t i = L->body[j];
@@ -529,6 +585,7 @@ BlockStats drive_block(const Model& model, const BodyType& type, const FieldCons
       bool land = landed[j] != 0;
       if (outcome[j] == kScalar) {
         L->store(j, &b);
+        b.history = L->history[j];  // step_body appends to it
         ++stats.scalar_steps;
         out = step_body(model, type, L->body[j], s, t, &b, &reason);
         if (out == StepOutcome::Ok) {

@@ -27,7 +27,8 @@ bool rigid_batch_eligible(const Model& model, const BodyType& type, std::string*
     const Effect e = info.effect;
     if (!type.effects.has(e)) continue;
     if (e != Effect::Gravity && e != Effect::Buoyancy && e != Effect::Drag && e != Effect::Lift &&
-        e != Effect::AddedMass && e != Effect::MeanFlow && e != Effect::Turbulence)
+        e != Effect::AddedMass && e != Effect::MeanFlow && e != Effect::Turbulence &&
+        e != Effect::Basset && e != Effect::Magnus)
       return no(std::string("effect ") + info.name);
   }
   return true;
@@ -121,6 +122,7 @@ struct Lanes : Samples<T> {
     for (int a = 0; a < 3; ++a) v[a][j] = w[a][j] = T(0);
   }
   T (*velocity())[kBatch] { return v; }  // the velocity a lane keeps (end_step)
+  void world_velocity(int j, double* Vw) const;
 };
 
 // ---- small vector algebra on one lane's values -------------------------------------------------
@@ -159,6 +161,15 @@ template <typename T>
 LRIGID_LANE void mul_t(const T* R, const T* a, T* b) {  // b = R^T a
 #pragma GCC unroll 3
   for (int i = 0; i < 3; ++i) b[i] = R[i] * a[0] + R[3 + i] * a[1] + R[6 + i] * a[2];
+}
+
+template <typename T>
+void Lanes<T>::world_velocity(int j, double* Vw) const {
+  const double qj[4] = {double(q[0][j]), double(q[1][j]), double(q[2][j]), double(q[3][j])};
+  const double vj[3] = {double(v[0][j]), double(v[1][j]), double(v[2][j])};
+  double R[9];
+  rotation(qj, R);
+  mul(R, vj, Vw);
 }
 
 // The free Kirchhoff flow's right-hand side with its sign: dY/dt = -gyro(Y),
@@ -281,7 +292,7 @@ constexpr double kLaneKirchhoffTol = std::is_same_v<T, float> ? 1e-5 : kKirchhof
 
 // Advances every lane of L by one step (see rigid_batch.h); lanes that are not kOk keep their
 // state at the start of the step. landed: the lane is on or below the ground after the step.
-template <typename T, bool Turb, bool Plate>
+template <typename T, bool Turb, bool Plate, bool Extra>
 LRIGID_MULTIVERSION void step_lanes(const Consts& k, Lanes<T>* L, uint64_t step, int* outcome,
                                     int* landed) {
   const T h = T(k.h), hh = T(0.5 * k.h), wm = T(k.wm);
@@ -422,18 +433,32 @@ LRIGID_IVDEP
       vr[a] = v[a] - ufb[a];
     }
     const LaneDrag<T> d = Plate ? plate_forces(k, vr, w) : ellipsoid_forces(k, vr, w);
-    const T F[3] = {T(k.F[0]), T(k.F[1]), T(k.F[2])};
-    T Fb[3], u_end[3], ufb_end[3];
+    T F[3] = {T(k.F[0]), T(k.F[1]), T(k.F[2])};
+    T Fb[3], u_end[3], ufb_end[3], fx[3] = {0, 0, 0}, ab[3] = {0, 0, 0};
+    if constexpr (Extra) {
+      // the Basset history force (world) joins the weight; Magnus (body frame) and the
+      // current interval's b_B h a_fluid (body frame, below) join the rest
+      T acc[3];
+#pragma GCC unroll 3
+      for (int a = 0; a < 3; ++a) {
+        F[a] += L->fb[a][j];
+        acc[a] = T(k.gu) * L->acc[a][j];
+      }
+      lane_magnus(k, w, vr, fx);
+      mul_t(R, acc, ab);
+    }
     mul_t(R, F, Fb);
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) u_end[a] = u_f[a] + h * T(k.gu) * L->acc[a][j];
     mul_t(R, u_end, ufb_end);
-    // linear block: (diag(M) + h c (I + p u u^T)) x = b by Sherman-Morrison; angular: diagonal
+    // linear block: (diag(M) + h c (I + p u u^T) + b_B I) x = b by Sherman-Morrison (b_B the
+    // Basset history's current interval, 0 without); angular: diagonal
     T b[3], Dinv_b[3], Dinv_u[3];
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
-      b[a] = h * (Fb[a] + d.f[a]);
-      const T Dinv = T(1) / (T(k.M[a]) + h * d.c_lin);
+      b[a] = Extra ? h * (Fb[a] + d.f[a] + fx[a]) + T(k.basset_mass) * h * ab[a]
+                   : h * (Fb[a] + d.f[a]);
+      const T Dinv = T(1) / (T(k.M[a]) + T(k.basset_mass) + h * d.c_lin);
       Dinv_b[a] = Dinv * b[a];
       Dinv_u[a] = Dinv * d.u_hat[a];
     }
@@ -474,8 +499,10 @@ template <typename T>
 BlockStats advance(const Model& model, const BodyType& type, State* state, const uint32_t* body,
                    int count, uint64_t first, uint64_t last) {
   const Consts k = make_consts(model, type);
-  auto step = [&k](auto turb, auto plate, Lanes<T>* lanes, uint64_t s, int* outcome, int* landed) {
-    step_lanes<T, decltype(turb)::value, decltype(plate)::value>(k, lanes, s, outcome, landed);
+  auto step = [&k](auto turb, auto plate, auto extra, Lanes<T>* lanes, uint64_t s, int* outcome,
+                   int* landed) {
+    step_lanes<T, decltype(turb)::value, decltype(plate)::value, decltype(extra)::value>(
+        k, lanes, s, outcome, landed);
   };
   return drive_block<T, Lanes<T>>(model, type, k, k.turb, k.plate, state, body, count, first, last,
                                   step);

@@ -22,7 +22,8 @@ bool sphere_batch_eligible(const Model& model, const BodyType& type, std::string
     const Effect e = info.effect;
     if (!type.effects.has(e)) continue;
     if (e != Effect::Gravity && e != Effect::Buoyancy && e != Effect::Drag &&
-        e != Effect::AddedMass && e != Effect::MeanFlow && e != Effect::Turbulence)
+        e != Effect::AddedMass && e != Effect::MeanFlow && e != Effect::Turbulence &&
+        e != Effect::Basset && e != Effect::Magnus)
       return no(std::string("effect ") + info.name);
   }
   return true;
@@ -87,7 +88,20 @@ struct Lanes : Samples<T> {
     for (int a = 0; a < 3; ++a) V[a][j] = w[a][j] = T(0);
   }
   T (*velocity())[kBatch] { return V; }  // the velocity a lane keeps (end_step)
+  void world_velocity(int j, double* Vw) const {
+    for (int a = 0; a < 3; ++a) Vw[a] = double(V[a][j]);
+  }
 };
+
+// b = q a q^-1: the vector a (body frame) in the world frame, q = (w, x, y, z) unit
+template <typename T>
+LRIGID_LANE void rotate_by(const T* q, const T* a, T* b) {
+  const T t[3] = {T(2) * (q[2] * a[2] - q[3] * a[1]), T(2) * (q[3] * a[0] - q[1] * a[2]),
+                  T(2) * (q[1] * a[1] - q[2] * a[0])};
+  b[0] = a[0] + q[0] * t[0] + (q[2] * t[2] - q[3] * t[1]);
+  b[1] = a[1] + q[0] * t[1] + (q[3] * t[0] - q[1] * t[2]);
+  b[2] = a[2] + q[0] * t[2] + (q[1] * t[1] - q[2] * t[0]);
+}
 
 // Sphere drag (effects/drag.cpp drag_wrench, centre of buoyancy at the centre of mass): force
 // and torque on relative velocity u and spin w, and the stiffness the implicit step needs; the
@@ -101,10 +115,11 @@ LRIGID_LANE LaneDrag<T> sphere_drag(const Consts& k, const T* u, const T* w) {
   });
 }
 
-// y = (m I + h c_lin (I + p u u^T))^-1 b (Sherman-Morrison), times m: the impulse change
+// y = (m I + h c_lin (I + p u u^T) + b_B I)^-1 b (Sherman-Morrison), times m: the impulse
+// change; b_B the Basset history's current interval (0 without)
 template <typename T>
 LRIGID_LANE void implicit_linear(const Consts& k, const LaneDrag<T>& d, const T* b, T* dP) {
-  const T a = T(k.m) + T(k.h) * d.c_lin, c = T(k.h) * d.c_lin * d.p;
+  const T a = T(k.m) + T(k.basset_mass) + T(k.h) * d.c_lin, c = T(k.h) * d.c_lin * d.p;
   const T ub = d.u_hat[0] * b[0] + d.u_hat[1] * b[1] + d.u_hat[2] * b[2];
   const T g = c / (a + c);
   for (int i = 0; i < 3; ++i) dP[i] = T(k.m) * (b[i] - g * d.u_hat[i] * ub) / a;
@@ -112,7 +127,7 @@ LRIGID_LANE void implicit_linear(const Consts& k, const LaneDrag<T>& d, const T*
 
 // Advances every lane of L by one step; lanes that are not kOk keep their state at the start of
 // the step. landed: the lane is on or below the ground after the step.
-template <typename T, bool Turb, bool WithDrag>
+template <typename T, bool Turb, bool WithDrag, bool Extra>
 LRIGID_MULTIVERSION void step_lanes(const Consts& k, Lanes<T>* L, uint64_t step, int* outcome,
                                     int* landed) {
   const T h = T(k.h), hh = T(0.5 * k.h), wm = T(k.wm);
@@ -128,6 +143,7 @@ LRIGID_MULTIVERSION void step_lanes(const Consts& k, Lanes<T>* L, uint64_t step,
   for (int j = 0; j < kBatch; ++j) n.scalar[j] = 0;
   // what the Newton iteration of stiff drag needs
   alignas(64) T uf[3][kBatch], Pi[3][kBatch], dP[3][kBatch], dL[3][kBatch], V0[3][kBatch];
+  alignas(64) T G[3][kBatch];  // h times the forces other than drag (Extra)
   alignas(64) T norm_r[kBatch];
   int stiff[kBatch];
   int any_stiff = 0;
@@ -161,16 +177,32 @@ LRIGID_IVDEP
       const T inv = T(1) / std::sqrt(nw * nw + nx * nx + ny * ny + nz * nz);
       qn[0][j] = nw * inv, qn[1][j] = nx * inv, qn[2][j] = ny * inv, qn[3][j] = nz * inv;
     }
-    // 3. the forces, drag implicit: (M + h J) M^-1 dPi = h G
+    // 3. the forces, drag implicit: (M + h J + b_B P) M^-1 dPi = h G + b_B h a_fluid
     T vr[3];
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) vr[a] = V[a] - u_f[a];
     LaneDrag<T> d = {};
     if constexpr (WithDrag) d = sphere_drag(k, vr, w);
+    T Gj[3];
+#pragma GCC unroll 3
+    for (int a = 0; a < 3; ++a) Gj[a] = T(k.F[a]);
+    if constexpr (Extra) {
+      // Magnus on the world spin (the flow rotates q about w, so either orientation gives it)
+      const T qj[4] = {qn[0][j], qn[1][j], qn[2][j], qn[3][j]};
+      T wW[3], fm[3];
+      rotate_by(qj, w, wW);
+      lane_magnus(k, wW, vr, fm);
+#pragma GCC unroll 3
+      for (int a = 0; a < 3; ++a) Gj[a] = h * (Gj[a] + L->fb[a][j] + fm[a]) +
+                                        T(k.basset_mass) * h * T(k.gu) * L->acc[a][j];
+    } else {
+#pragma GCC unroll 3
+      for (int a = 0; a < 3; ++a) Gj[a] = h * Gj[a];
+    }
     T b[3], P[3], dPj[3], dLj[3], Vnew[3], wnew[3], u_end[3];
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
-      b[a] = h * (T(k.F[a]) + d.f[a]);
+      b[a] = Extra ? Gj[a] + h * d.f[a] : h * (T(k.F[a]) + d.f[a]);
       P[a] = T(k.m) * V[a] - T(k.ma) * u_f[a];
       // the fluid velocity at the end of the step enters through the added mass
       u_end[a] = u_f[a] + h * T(k.gu) * L->acc[a][j];
@@ -196,14 +228,15 @@ LRIGID_IVDEP
       Pi[a][j] = P[a];
       dP[a][j] = dPj[a];
       dL[a][j] = dLj[a];
+      G[a][j] = Gj[a];
       V0[a][j] = V[a];
       Vn[a][j] = Vnew[a];
       wn[a][j] = wnew[a];
       usn[a][j] = us[a];
     }
   }
-  // stiff drag: Newton on R(dPi) = dPi - h (G_other + F_drag(xi(dPi))), lanes drop out as they
-  // converge
+  // stiff drag: Newton on R(dPi) = dPi - h (G_other + F_drag(xi(dPi))) - b_B (h a - dV), lanes
+  // drop out as they converge
   if (WithDrag && any_stiff) {
     for (int it = 0; it < kDragMaxNewton; ++it) {
       int any = 0;
@@ -220,7 +253,9 @@ LRIGID_IVDEP
         const LaneDrag<T> d = sphere_drag(k, vr, w);
         T res[3], dd[3];
 #pragma GCC unroll 3
-        for (int a = 0; a < 3; ++a) res[a] = dP[a][j] - h * (T(k.F[a]) + d.f[a]);
+        for (int a = 0; a < 3; ++a)
+          res[a] = Extra ? dP[a][j] - G[a][j] - h * d.f[a] + T(k.basset_mass / k.m) * dP[a][j]
+                         : dP[a][j] - h * (T(k.F[a]) + d.f[a]);
         implicit_linear(k, d, res, dd);
         const T ja = T(k.J) + h * d.c_ang;
         T conv = 0;
@@ -256,8 +291,10 @@ template <typename T>
 BlockStats advance(const Model& model, const BodyType& type, State* state, const uint32_t* body,
                    int count, uint64_t first, uint64_t last) {
   const Consts k = make_consts(model, type);
-  auto step = [&k](auto turb, auto drag, Lanes<T>* lanes, uint64_t s, int* outcome, int* landed) {
-    step_lanes<T, decltype(turb)::value, decltype(drag)::value>(k, lanes, s, outcome, landed);
+  auto step = [&k](auto turb, auto drag, auto extra, Lanes<T>* lanes, uint64_t s, int* outcome,
+                   int* landed) {
+    step_lanes<T, decltype(turb)::value, decltype(drag)::value, decltype(extra)::value>(
+        k, lanes, s, outcome, landed);
   };
   return drive_block<T, Lanes<T>>(model, type, k, k.turb, k.drag, state, body, count, first, last,
                                   step);

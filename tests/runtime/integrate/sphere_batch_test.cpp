@@ -5,9 +5,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <functional>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -93,6 +95,40 @@ TEST(SphereBatch, LightSpheresInWaterWithAddedMassMatchTheScalarStep) {
   EXPECT_LT(d.u, 1e-10);
   // they rise (buoyancy beats gravity 20 to 1)
   EXPECT_GT(batched.state.v[0].norm(), 0.05);
+}
+
+TEST(SphereBatch, BassetHistoryAndMagnusMatchTheScalarStep) {
+  // all the sphere's effects: spinning beads in the wind grid (Magnus), and the same with stiff
+  // drag (20 um droplets at 20 ms: the Newton iteration with the history's implicit mass)
+  for (const bool stiff : {false, true}) {
+    Scene s = stiff ? bead_scene(2e-5, 1000, 100) : bead_scene(2.5e-4, 2500, 150);
+    if (stiff) s.dt = 0.02;
+    s.effects.add(Effect::Basset);
+    s.effects.add(Effect::Magnus);
+    s.bodies[0].angular_velocity = Vec3(300, -150, 80);
+    const FluidField field = wind_grid(1.5e-5);
+    const Model m = test::compile(s, field);
+    std::string why;
+    ASSERT_TRUE(sphere_batch_eligible(m, m.types[0], &why)) << why;
+    const auto [scalar, batched, d] = scalar_and_batched(s, field);
+    EXPECT_EQ(scalar.stats.body_steps, batched.stats.body_steps) << stiff;
+    EXPECT_LT(d.x, 1e-9) << stiff;
+    EXPECT_LT(d.v, 1e-9) << stiff;
+    EXPECT_LT(d.w, 1e-9) << stiff;
+    EXPECT_LT(d.u, 1e-9) << stiff;
+    // the two effects moved the beads: without them they end elsewhere
+    Scene plain = s;
+    plain.effects.remove(Effect::Basset);
+    plain.effects.remove(Effect::Magnus);
+    const Outcome without = run(plain, field, true, Precision::Double);
+    double moved = 0;
+    for (size_t i = 0; i < batched.state.size(); ++i)
+      if (batched.state.status[i] == BodyStatus::Moving)
+        moved = std::max(moved, (batched.state.x[i] - without.state.x[i]).norm());
+    EXPECT_GT(moved, 1e-6) << stiff;
+    std::printf("%s: Basset and Magnus move the beads by up to %.3g m\n",
+                stiff ? "droplets" : "beads", moved);
+  }
 }
 
 TEST(SphereBatch, SpheresInFluidAtRestMatchTheScalarStep) {
@@ -185,7 +221,7 @@ TEST(SphereBatch, EligibilitySaysWhatExcludesABodyType) {
           {[](Scene& e) { e.bodies[0].shape = Shape::ellipsoid(3e-4, 2.5e-4, 2e-4); },
            "not a sphere"},
           {[](Scene& e) { e.integrator = Integrator::RK4; }, "the integrator is not splitting"},
-          {[](Scene& e) { e.effects.add(Effect::Basset); }, "effect basset"},
+          {[](Scene& e) { e.effects.add(Effect::Lift); }, "effect lift"},
           {[](Scene& e) { e.turbulence_model = TurbulenceModel::Body; },
            "the body turbulence model"},
           {[](Scene& e) { e.batched = false; }, "the scene turns the batched step off"},
