@@ -17,7 +17,8 @@
 // The initial jump g(0) (a body released with a velocity relative to the fluid) is not counted:
 // the history starts at t = 0.
 // History of one body (BassetKernel::stride() doubles): g_n (3), the cached history force of
-// the next step per unit C (3), the window (3 W, newest first), the tail modes (3 modes), count.
+// the next step per unit C (3), the window (W x 3, newest first), the tail modes (3 x modes, per
+// component; padded to a multiple of 4 with modes of weight 0), the count of windowed intervals.
 #pragma once
 #include "effects/wrench.h"
 #include "model/model.h"
@@ -27,6 +28,7 @@ namespace lrigid {
 constexpr int kBassetWindow = 8;          // steps kept exactly
 constexpr double kBassetModeStep = 0.5;   // du of the exponential sum
 constexpr double kBassetTailTolerance = 1e-3;  // relative truncation at s_max
+constexpr double kBassetMergeSlow = 0.05;      // modes with lambda s_max below it become one
 
 // Kernel of a body type for step h and memory up to s_max (s).
 BassetKernel make_basset_kernel(double coef, double h, int window, double s_max);

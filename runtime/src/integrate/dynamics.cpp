@@ -77,9 +77,6 @@ EvalResult impulse_rates(const Model& model, const BodyType& type, const Kinemat
 
 namespace {
 
-constexpr int kKirchhoffMaxNewton = 16;
-constexpr double kKirchhoffRefactor = 0.25;  // contraction per Newton step that keeps J
-
 // One implicit-midpoint step of the free Kirchhoff flow from Y0 (see kirchhoff_flow): false
 // when Newton did not converge. w_mid: the angular velocity at the midpoint.
 bool kirchhoff_midpoint(const BodyType& type, double h, const Vec6& Y0, Vec6* Y1, Vec3* w_mid,

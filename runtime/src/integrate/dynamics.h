@@ -115,6 +115,10 @@ constexpr int kKirchhoffMaxSubsteps = 64;
 constexpr int kKirchhoffMaxFixedPoint = 40;
 constexpr double kKirchhoffSlowContraction = 0.25;  // squared: contraction factor above 0.5
 constexpr double kKirchhoffTol = 1e-13;             // update / |Y|, energy norm
+// Newton (simplified: the Jacobian is kept while each step contracts by kKirchhoffRefactor),
+// at most kKirchhoffMaxNewton iterations, before substeps
+constexpr int kKirchhoffMaxNewton = 16;
+constexpr double kKirchhoffRefactor = 0.25;
 int kirchhoff_flow(const BodyType& type, const Vec3& u_fluid, double h, Quat* q, Vec3* v,
                    Vec3* w);
 

@@ -189,6 +189,67 @@ LRIGID_LANE void gyro(const Consts& k, const T* Y, T* g) {
   }
 }
 
+// The free flow's Newton matrix I + h/2 d(gyro)/dY at the midpoint ym (dynamics.cpp
+// kirchhoff_midpoint): d(gyro)/dY = [w^ 0; v^ w^] + [0 -P^; -P^ -L^] M^-1, row major
+template <typename T>
+LRIGID_LANE void kirchhoff_jacobian(const Consts& k, const T* ym, T h2, T* A) {
+  const T v[3] = {T(k.Mi[0]) * ym[0], T(k.Mi[1]) * ym[1], T(k.Mi[2]) * ym[2]};
+  const T w[3] = {T(k.Mi[3]) * ym[3], T(k.Mi[4]) * ym[4], T(k.Mi[5]) * ym[5]};
+  const T* P = ym;
+  const T* L = ym + 3;
+  // a^ (r, c): 0 on the diagonal, -a[3 - r - c] above it in cyclic order, + below
+  auto sk = [](const T* a, int r, int c) {
+    return r == c ? T(0) : ((c - r + 3) % 3 == 1 ? -a[3 - r - c] : a[3 - r - c]);
+  };
+#pragma GCC unroll 3
+  for (int r = 0; r < 3; ++r)
+#pragma GCC unroll 3
+    for (int c = 0; c < 3; ++c) {
+      const T one = r == c ? T(1) : T(0);
+      A[r * 6 + c] = one + h2 * sk(w, r, c);
+      A[r * 6 + 3 + c] = -h2 * sk(P, r, c) * T(k.Mi[3 + c]);
+      A[(3 + r) * 6 + c] = h2 * (sk(v, r, c) - sk(P, r, c) * T(k.Mi[c]));
+      A[(3 + r) * 6 + 3 + c] = one + h2 * (sk(w, r, c) - sk(L, r, c) * T(k.Mi[3 + c]));
+    }
+}
+
+// LU of the 6 x 6 row-major A in place, without pivoting (the Newton matrix has a unit
+// diagonal); 0 when a pivot is zero or not finite
+template <typename T>
+LRIGID_LANE int lu6(T* A) {
+  int ok = 1;
+#pragma GCC unroll 6
+  for (int p = 0; p < 6; ++p) {
+    const T piv = A[p * 6 + p];
+    ok &= int(piv != T(0)) & int(std::isfinite(piv));
+    const T inv = T(1) / (piv != T(0) ? piv : T(1));
+#pragma GCC unroll 6
+    for (int i = p + 1; i < 6; ++i) {
+      const T l = A[i * 6 + p] * inv;
+      A[i * 6 + p] = l;
+#pragma GCC unroll 6
+      for (int j = p + 1; j < 6; ++j) A[i * 6 + j] -= l * A[p * 6 + j];
+    }
+  }
+  return ok;
+}
+
+// x = A^-1 b for A factored by lu6, in place
+template <typename T>
+LRIGID_LANE void lu6_solve(const T* A, T* b) {
+#pragma GCC unroll 6
+  for (int p = 0; p < 6; ++p)
+#pragma GCC unroll 6
+    for (int i = p + 1; i < 6; ++i) b[i] -= A[i * 6 + p] * b[p];
+#pragma GCC unroll 6
+  for (int i = 5; i >= 0; --i) {
+    T s = b[i];
+#pragma GCC unroll 6
+    for (int j = i + 1; j < 6; ++j) s -= A[i * 6 + j] * b[j];
+    b[i] = s / A[i * 6 + i];
+  }
+}
+
 // Plate drag and torque (plate_drag_wrench) and lift (lift_wrench), r_cob = 0
 template <typename T>
 LRIGID_LANE LaneDrag<T> plate_forces(const Consts& k, const T* u, const T* w) {
@@ -391,6 +452,101 @@ LRIGID_IVDEP
       any |= more;
     }
     if (!any) break;
+  }
+  // lanes whose fixed point stopped (slow contraction, divergence, or no convergence): Newton
+  // from where it stopped, as kirchhoff_midpoint does (simplified: the Jacobian kept while each
+  // step contracts by kKirchhoffRefactor); a lane that does not converge goes to the scalar
+  // step (its substeps)
+  {
+    alignas(64) T lu[36][kBatch], last_step[kBatch];
+    int newton[kBatch], refactor[kBatch];
+    int any_newton = 0;
+LRIGID_IVDEP
+    for (int j = 0; j < kBatch; ++j) {
+      const int nt = scalar[j] | active[j];
+      newton[j] = nt;
+      refactor[j] = 1;
+      last_step[j] = T(0);
+      any_newton |= nt;
+      // the start: where the fixed point stopped, or Y0 if that is not finite or far off
+      T dist = 0, norm0 = 0;
+      int fin = 1;
+#pragma GCC unroll 6
+      for (int a = 0; a < 6; ++a) {
+        const T d = Y[a][j] - Y0[a][j];
+        dist += d * d * T(k.Mi[a]);
+        norm0 += Y0[a][j] * Y0[a][j] * T(k.Mi[a]);
+        fin &= int(std::isfinite(Y[a][j]));
+      }
+      const int reset = nt & ((1 - fin) | int(dist > T(4) * norm0));
+#pragma GCC unroll 6
+      for (int a = 0; a < 6; ++a) Y[a][j] = reset ? Y0[a][j] : Y[a][j];
+    }
+    if (any_newton)
+      for (int e = 0; e < 36; ++e)
+        for (int j = 0; j < kBatch; ++j) lu[e][j] = T(0);
+    for (int it = 0; any_newton && it < kKirchhoffMaxNewton; ++it) {
+      // a new factorization at the current iterate for the lanes that need one (all of them in
+      // the first iteration), the kept one for the others
+      int any_ref = 0;
+      for (int j = 0; j < kBatch; ++j) any_ref |= newton[j] & refactor[j];
+      if (any_ref) {
+LRIGID_IVDEP
+        for (int j = 0; j < kBatch; ++j) {
+          T ym[6], A[36];
+#pragma GCC unroll 6
+          for (int a = 0; a < 6; ++a) ym[a] = T(0.5) * (Y0[a][j] + Y[a][j]);
+          kirchhoff_jacobian(k, ym, hh, A);
+          const int ok = lu6(A);
+          const int ref = newton[j] & refactor[j];
+#pragma GCC unroll 36
+          for (int e = 0; e < 36; ++e) lu[e][j] = ref ? A[e] : lu[e][j];
+          // a singular matrix: the lane goes to the scalar step
+          newton[j] = ref & (1 - ok) ? 0 : newton[j];
+        }
+      }
+      int any = 0;
+LRIGID_IVDEP
+      for (int j = 0; j < kBatch; ++j) {
+        const int act = newton[j];
+        T y0[6], y[6], ym[6], g[6], r[6], A[36];
+#pragma GCC unroll 6
+        for (int a = 0; a < 6; ++a) {
+          y0[a] = Y0[a][j];
+          y[a] = Y[a][j];
+          ym[a] = T(0.5) * (y0[a] + y[a]);
+        }
+        gyro(k, ym, g);
+#pragma GCC unroll 6
+        for (int a = 0; a < 6; ++a) r[a] = -(y[a] - y0[a] + h * g[a]);
+#pragma GCC unroll 36
+        for (int e = 0; e < 36; ++e) A[e] = lu[e][j];
+        lu6_solve(A, r);
+        T step2 = 0;
+        int fin = 1;
+#pragma GCC unroll 6
+        for (int a = 0; a < 6; ++a) {
+          step2 += r[a] * r[a] * T(k.Mi[a]);
+          y[a] += r[a];
+          fin &= int(std::isfinite(y[a]));
+        }
+        const int good = act & fin;
+#pragma GCC unroll 6
+        for (int a = 0; a < 6; ++a) Y[a][j] = good ? y[a] : Y[a][j];
+        const int conv = good & int(step2 <= tol2[j]);
+        // converged: the loops take the lane again; failed: it stays with the scalar step
+        scalar[j] = conv ? 0 : scalar[j];
+        active[j] = conv ? 0 : active[j];
+        const int more = good & (1 - conv);
+        refactor[j] = int(it > 0) &
+                      int(step2 > T(kKirchhoffRefactor * kKirchhoffRefactor) * last_step[j]);
+        last_step[j] = step2;
+        newton[j] = more;
+        any |= more;
+      }
+      if (!any) break;
+    }
+    // lanes still in Newton after kKirchhoffMaxNewton iterations go to the scalar step
   }
   // 3. the forces at the new orientation, drag implicit: (M + h J) M^-1 dPi = h G; 4. x by the
   //    trapezoidal rule
