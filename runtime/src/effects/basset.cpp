@@ -64,45 +64,70 @@ void basset_reset(const BassetKernel& k, const Vec3& g0, double* history) {
   for (int a = 0; a < 3; ++a) history[a] = g0[a];
 }
 
+namespace {
+
+// Four doubles in one vector register (GCC and Clang vector extension): the push works on
+// whole (x, y, z, pad) vectors. Such vectors never cross a function boundary (the helpers are
+// always inlined), so the ABI GCC warns about without AVX (-Wpsabi) never applies.
+typedef double V4 __attribute__((vector_size(32)));
+
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wpsabi"
+inline __attribute__((always_inline)) V4 load4(const double* p) {
+  V4 v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+
+inline __attribute__((always_inline)) void store4(double* p, V4 v) {
+  std::memcpy(p, &v, sizeof v);
+}
+
+}  // namespace
+
 // GCC builds the push for AVX-512, AVX2 and the baseline and picks the best at load time, as the
-// batched steps do (integrate/batch_lanes.h): with all effects it is a large part of a batched
-// body-step.
+// batched steps do (integrate/batch_lanes.h).
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
 __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
 #endif
 void basset_push(const BassetKernel& k, const Vec3& g, double h, double* history) {
   const int W = k.window;
-  const int M = static_cast<int>(k.decay.size());  // a multiple of 4 (make_basset_kernel)
-  double* win = history + 6;    // [W][3], newest first
-  double* modes = win + 3 * W;  // [3][M]
+  const int M = static_cast<int>(k.decay.size());  // even (make_basset_kernel)
+  double* hist = history;         // g_n, cache
+  double* win = history + 8;      // [W] vectors, newest first
+  double* modes = win + 4 * W;    // [M] vectors
   const double* decay = k.decay.data();
   const double* inject = k.inject.data();
+  const double* ww = k.window_w.data();
   // the oldest windowed interval moves to the tail (zero until the window has filled)
-  double leaving[3];
-  for (int a = 0; a < 3; ++a) leaving[a] = win[3 * (W - 1) + a];
-  std::memmove(win + 3, win, sizeof(double) * 3 * (W - 1));
-  for (int a = 0; a < 3; ++a) {
-    win[a] = (g[a] - history[a]) / h;
-    history[a] = g[a];
+  const V4 leave = load4(win + 4 * (W - 1));
+  // the window moves on by one interval; its part of the next step's history integral
+  V4 sw = {0, 0, 0, 0};
+  for (int m = W - 1; m > 0; --m) {
+    const V4 x = load4(win + 4 * (m - 1));
+    store4(win + 4 * m, x);
+    sw += ww[m] * x;
   }
-  // window part of the next step's history integral: three sums, one per component
-  double sw[3] = {0, 0, 0};
-  for (int m = 0; m < W; ++m)
-    for (int a = 0; a < 3; ++a) sw[a] += k.window_w[m] * win[3 * m + a];
-  for (int a = 0; a < 3; ++a) {
-    double* ma = modes + a * M;
-    const double la = leaving[a];
-    // four partial sums: independent chains the compiler can put in one vector
-    double s[4] = {0, 0, 0, 0};
-    for (int i = 0; i < M; i += 4)
-      for (int r = 0; r < 4; ++r) {
-        ma[i + r] = decay[i + r] * ma[i + r] + inject[i + r] * la;
-        s[r] += ma[i + r];
-      }
-    // cache: the history integral at the end of the next step, per unit coefficient
-    history[3 + a] = ((s[0] + s[1]) + (s[2] + s[3])) + sw[a];
+  const V4 gn = {g[0], g[1], g[2], 0.0};
+  const V4 newest = (gn - load4(hist)) * (1.0 / h);
+  store4(win, newest);
+  store4(hist, gn);
+  sw += ww[0] * newest;
+  // the tail modes, with two partial sums (independent dependency chains)
+  V4 s0 = {0, 0, 0, 0}, s1 = {0, 0, 0, 0};
+  for (int i = 0; i < M; i += 2) {
+    const V4 m0 = decay[i] * load4(modes + 4 * i) + inject[i] * leave;
+    const V4 m1 = decay[i + 1] * load4(modes + 4 * i + 4) + inject[i + 1] * leave;
+    store4(modes + 4 * i, m0);
+    store4(modes + 4 * i + 4, m1);
+    s0 += m0;
+    s1 += m1;
   }
-  modes[3 * M] = std::min(modes[3 * M] + 1.0, double(W));  // intervals in the window
+  // cache: the history integral at the end of the next step, per unit coefficient
+  store4(hist + 4, (s0 + s1) + sw);
+  double& count = modes[4 * M];  // intervals in the window
+  count = count < W ? count + 1.0 : count;
 }
+#pragma GCC diagnostic pop
 
 }  // namespace lrigid

@@ -16,9 +16,10 @@
 //     accurate to ~1e-4 relative for du = 0.5, plus the truncation at small lambda (<= 1e-3).
 // The initial jump g(0) (a body released with a velocity relative to the fluid) is not counted:
 // the history starts at t = 0.
-// History of one body (BassetKernel::stride() doubles): g_n (3), the cached history force of
-// the next step per unit C (3), the window (W x 3, newest first), the tail modes (3 x modes, per
-// component; padded to a multiple of 4 with modes of weight 0), the count of windowed intervals.
+// History of one body (BassetKernel::stride() doubles), vectors of 4 doubles (x, y, z and a pad,
+// so that the push works on whole vector registers): g_n, the cached history force of the next
+// step per unit C, the window (W vectors, newest first), the tail modes (one vector per mode;
+// padded to a multiple of 4 modes of weight 0), and the count of windowed intervals.
 #pragma once
 #include "effects/wrench.h"
 #include "model/model.h"
@@ -38,7 +39,7 @@ double basset_tail_kernel(const BassetKernel& k, double s);
 
 // History force from the past intervals at the end of the current step, world frame, N.
 inline Vec3 basset_history_force(const BassetKernel& k, const double* history) {
-  return k.coef * Vec3(history[3], history[4], history[5]);
+  return k.coef * Vec3(history[4], history[5], history[6]);
 }
 
 // Body frame wrench of the past history (at the centre of mass), N.

@@ -38,7 +38,8 @@ struct BassetKernel {
   std::vector<double> inject;      // (modes) weight of an interval leaving the window, s^0.5
   double implicit_mass = 0;        // 2 coef sqrt(dt): current interval on the left-hand side, kg
   Mat6 implicit_inv = Mat6::Zero();  // (M + implicit P_lin)^-1 for the rk4 correction
-  size_t stride() const { return 3 * (2 + size_t(window) + decay.size()) + 1; }
+  // doubles of one body's history (effects/basset.h): 4 per vector (3 and a pad)
+  size_t stride() const { return 4 * (2 + size_t(window) + decay.size()) + 1; }
 };
 
 struct BodyType {
