@@ -166,6 +166,7 @@ void bench(const BenchArgs& a) {
         j["body_steps_per_cpu_s"] = cpu_rate;  // per core-second of CPU time
         j["state_bytes_per_body"] = bpb;
         j["scalar_handoffs"] = r.scalar_handoffs;
+        j["newton_steps"] = r.newton_steps;
         j["exited"] = r.exited + r.failed;
         j["landed"] = r.landed;
         out["runs"].push_back(j);

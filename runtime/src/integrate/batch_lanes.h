@@ -216,9 +216,11 @@ struct Samples {
   // Basset: the history force of the past intervals, world frame, N (basset_history_force), and
   // where each lane's history lives in the State
   alignas(64) T fb[3][kBatch];
+  alignas(64) T gb[3][kBatch];  // u_f - V at the end of the step (end_step), m/s
   double* history[kBatch];
   uint32_t body[kBatch];
   bool live[kBatch];
+  uint64_t newton = 0;  // steps of live lanes the step solved by Newton (BlockStats)
 };
 
 // Whether the step needs its third switch (`Extra`): the Basset history or the Magnus force.
@@ -490,6 +492,15 @@ LRIGID_IVDEP
     landed[j] = lane_landed(k, q, x[2]);
   }
   for (int j = 0; j < kBatch; ++j) outcome[j] = decode_outcome(outcome[j]);
+  if (k.basset) {
+    // what the Basset history takes in: the relative velocity at the end of the step
+    const T mf = T(k.mf);
+LRIGID_IVDEP
+    for (int j = 0; j < kBatch; ++j)
+#pragma GCC unroll 3
+      for (int a = 0; a < 3; ++a)
+        L->gb[a][j] = mf * L->U[a][j] + (Turb ? n->us[a][j] : T(0)) - V[a][j];
+  }
   T(*vel)[kBatch] = L->velocity();
   for (int j = 0; j < kBatch; ++j) {
     if (outcome[j] != kOk || !L->live[j]) continue;
@@ -520,7 +531,7 @@ void with_switches(bool a, bool b, bool c, F f) {
 // Runs a block of count bodies (indices body[0..count)) of one type through steps [first, last)
 // with the scalar loop's statuses, stop times and reasons. Lanes (derived from Samples<T>) holds
 // the block's state and provides load(j, BodyState), store(j, BodyState*), rest(j) (set at rest
-// after landing), velocity() and world_velocity(j, double[3]); step(A, B, C, &lanes, step,
+// after landing) and velocity(); step(A, B, C, &lanes, step,
 // outcome, landed), called with std::bool_constant<a>, <b> and <extra_effects(k)> (the step's
 // template switches), advances every lane by one step, keeping the start state of lanes that are
 // not kOk, and leaves the samples at the new positions (end_step). The Basset history is the
@@ -568,11 +579,7 @@ BlockStats drive_block(const Model& model, const BodyType& type, const FieldCons
       // the relative velocity g = u_f - V at the end of the step enters the history
       for (int j = 0; j < count; ++j) {
         if (!L->live[j] || outcome[j] != kOk || !L->history[j]) continue;
-        double V[3];
-        L->world_velocity(j, V);
-        Vec3 g;
-        for (int c = 0; c < 3; ++c)
-          g[c] = k.mf * double(L->U[c][j]) + (k.turb ? double(L->us[c][j]) : 0.0) - V[c];
+        const Vec3 g(double(L->gb[0][j]), double(L->gb[1][j]), double(L->gb[2][j]));
         basset_push(type.basset, g, model.dt, L->history[j]);
       }
     }
@@ -618,6 +625,7 @@ BlockStats drive_block(const Model& model, const BodyType& type, const FieldCons
     L->store(j, &b);
     store_body(b, body[j], &st);
   }
+  stats.newton_steps = L->newton;
   return stats;
 }
 

@@ -122,7 +122,6 @@ struct Lanes : Samples<T> {
     for (int a = 0; a < 3; ++a) v[a][j] = w[a][j] = T(0);
   }
   T (*velocity())[kBatch] { return v; }  // the velocity a lane keeps (end_step)
-  void world_velocity(int j, double* Vw) const;
 };
 
 // ---- small vector algebra on one lane's values -------------------------------------------------
@@ -161,15 +160,6 @@ template <typename T>
 LRIGID_LANE void mul_t(const T* R, const T* a, T* b) {  // b = R^T a
 #pragma GCC unroll 3
   for (int i = 0; i < 3; ++i) b[i] = R[i] * a[0] + R[3 + i] * a[1] + R[6 + i] * a[2];
-}
-
-template <typename T>
-void Lanes<T>::world_velocity(int j, double* Vw) const {
-  const double qj[4] = {double(q[0][j]), double(q[1][j]), double(q[2][j]), double(q[3][j])};
-  const double vj[3] = {double(v[0][j]), double(v[1][j]), double(v[2][j])};
-  double R[9];
-  rotation(qj, R);
-  mul(R, vj, Vw);
 }
 
 // The free Kirchhoff flow's right-hand side with its sign: dY/dt = -gyro(Y),
@@ -250,9 +240,9 @@ LRIGID_LANE void lu6_solve(const T* A, T* b) {
   }
 }
 
-// Plate drag and torque (plate_drag_wrench) and lift (lift_wrench), r_cob = 0
+// Plate drag and torque (plate_drag_wrench), and the lift force (lift_wrench, no torque), r_cob = 0
 template <typename T>
-LRIGID_LANE LaneDrag<T> plate_forces(const Consts& k, const T* u, const T* w) {
+LRIGID_LANE LaneDrag<T> plate_forces(const Consts& k, const T* u, const T* w, T* lift) {
   LaneDrag<T> d;
   const T rho = T(k.law.rho);
   const T n[3] = {T(k.n[0]), T(k.n[1]), T(k.n[2])};
@@ -312,8 +302,8 @@ LRIGID_LANE LaneDrag<T> plate_forces(const Consts& k, const T* u, const T* w) {
   const T dr = T(k.drag);
 #pragma GCC unroll 3
   for (int a = 0; a < 3; ++a) {
-    d.f[a] =
-        dr * (-c_lin * u[a] - T(k.sf[a]) * u[a]) + lt * (ut2 * n[a] - un * ut[a]) + lr * wxu[a];
+    d.f[a] = dr * (-c_lin * u[a] - T(k.sf[a]) * u[a]);
+    lift[a] = lt * (ut2 * n[a] - un * ut[a]) + lr * wxu[a];
     d.tq[a] = dr * (-pitch * wp[a] - T(k.st[a]) * wp[a] - c_n * wn * n[a]);
     d.u_hat[a] = moving ? u[a] * inv : T(0);
   }
@@ -350,6 +340,7 @@ LRIGID_LANE LaneDrag<T> ellipsoid_forces(const Consts& k, const T* u, const T* w
 // round-off
 template <typename T>
 constexpr double kLaneKirchhoffTol = std::is_same_v<T, float> ? 1e-5 : kKirchhoffTol;
+constexpr int kLaneKirchhoffNewton = kKirchhoffMaxNewton / 2;
 
 // Advances every lane of L by one step (see rigid_batch.h); lanes that are not kOk keep their
 // state at the start of the step. landed: the lane is on or below the ground after the step.
@@ -455,8 +446,10 @@ LRIGID_IVDEP
   }
   // lanes whose fixed point stopped (slow contraction, divergence, or no convergence): Newton
   // from where it stopped, as kirchhoff_midpoint does (simplified: the Jacobian kept while each
-  // step contracts by kKirchhoffRefactor); a lane that does not converge goes to the scalar
-  // step (its substeps)
+  // step contracts by kKirchhoffRefactor). A lane that has not converged within half the scalar
+  // step's iterations goes to the scalar step: where Newton struggles, rounding alone (these
+  // loops factor without pivoting) could decide between converging and the scalar step's
+  // substeps, and the results must be the scalar step's.
   {
     alignas(64) T lu[36][kBatch], last_step[kBatch];
     int newton[kBatch], refactor[kBatch];
@@ -482,10 +475,11 @@ LRIGID_IVDEP
 #pragma GCC unroll 6
       for (int a = 0; a < 6; ++a) Y[a][j] = reset ? Y0[a][j] : Y[a][j];
     }
+    for (int j = 0; j < kBatch; ++j) L->newton += uint64_t(newton[j] != 0) & uint64_t(L->live[j]);
     if (any_newton)
       for (int e = 0; e < 36; ++e)
         for (int j = 0; j < kBatch; ++j) lu[e][j] = T(0);
-    for (int it = 0; any_newton && it < kKirchhoffMaxNewton; ++it) {
+    for (int it = 0; any_newton && it < kLaneKirchhoffNewton; ++it) {
       // a new factorization at the current iterate for the lanes that need one (all of them in
       // the first iteration), the kept one for the others
       int any_ref = 0;
@@ -546,15 +540,22 @@ LRIGID_IVDEP
       }
       if (!any) break;
     }
-    // lanes still in Newton after kKirchhoffMaxNewton iterations go to the scalar step
+    // lanes still in Newton after kLaneKirchhoffNewton iterations go to the scalar step
   }
-  // 3. the forces at the new orientation, drag implicit: (M + h J) M^-1 dPi = h G; 4. x by the
-  //    trapezoidal rule
+  // 3. the forces at the new orientation, drag implicit: (M + h J + b_B P) M^-1 dPi = h G +
+  //    b_B h a_fluid, from one linearly implicit step, or Newton (below) for stiff drag
   T(&xn)[3][kBatch] = n.x;
   T(&qn)[4][kBatch] = n.q;
   T(&vn)[3][kBatch] = n.vel;
   T(&wn)[3][kBatch] = n.w;
-  alignas(64) T Vn[3][kBatch];  // the world velocity at the end
+  // what Newton needs: the impulse P (linear, relative to the fluid's added-mass impulse) and L
+  // before the forces, their changes dP and dL, h times the forces other than drag G (linear;
+  // none of them has a torque), the fluid velocity (body frame) at the end, and the norm of the
+  // relative velocity
+  alignas(64) T Pl[6][kBatch], dPL[6][kBatch], G[3][kBatch], ufe[3][kBatch], ufs[3][kBatch];
+  alignas(64) T norm_r[kBatch];
+  int stiff[kBatch];
+  int any_stiff = 0;
 LRIGID_IVDEP
   for (int j = 0; j < kBatch; ++j) {
     T y0[6], y[6];
@@ -588,7 +589,8 @@ LRIGID_IVDEP
       w[a] = T(k.Mi[3 + a]) * y[3 + a];
       vr[a] = v[a] - ufb[a];
     }
-    const LaneDrag<T> d = Plate ? plate_forces(k, vr, w) : ellipsoid_forces(k, vr, w);
+    T lift[3] = {0, 0, 0};
+    const LaneDrag<T> d = Plate ? plate_forces(k, vr, w, lift) : ellipsoid_forces(k, vr, w);
     T F[3] = {T(k.F[0]), T(k.F[1]), T(k.F[2])};
     T Fb[3], u_end[3], ufb_end[3], fx[3] = {0, 0, 0}, ab[3] = {0, 0, 0};
     if constexpr (Extra) {
@@ -609,43 +611,112 @@ LRIGID_IVDEP
     mul_t(R, u_end, ufb_end);
     // linear block: (diag(M) + h c (I + p u u^T) + b_B I) x = b by Sherman-Morrison (b_B the
     // Basset history's current interval, 0 without); angular: diagonal
-    T b[3], Dinv_b[3], Dinv_u[3];
+    T Gj[3], b[3], Dinv_b[3], Dinv_u[3];
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
-      b[a] = Extra ? h * (Fb[a] + d.f[a] + fx[a]) + T(k.basset_mass) * h * ab[a]
-                   : h * (Fb[a] + d.f[a]);
+      Gj[a] = Extra ? h * (Fb[a] + lift[a] + fx[a]) + T(k.basset_mass) * h * ab[a]
+                    : h * (Fb[a] + lift[a]);
+      b[a] = Gj[a] + h * d.f[a];
       const T Dinv = T(1) / (T(k.M[a]) + T(k.basset_mass) + h * d.c_lin);
       Dinv_b[a] = Dinv * b[a];
       Dinv_u[a] = Dinv * d.u_hat[a];
     }
     const T cp = h * d.c_lin * d.p;
     const T g = cp * dot3(d.u_hat, Dinv_b) / (T(1) + cp * dot3(d.u_hat, Dinv_u));
-    T e_new = 0, e_r = 0, vnew[3], wnew[3];
+    T e_new = 0, e_r = 0;
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
       const T dP = T(k.M[a]) * (Dinv_b[a] - g * Dinv_u[a]);
       const T dL = T(k.M[3 + a]) * (h * d.tq[a]) / (T(k.M[3 + a]) + h * d.c_ang);
       const T P = T(k.M[a]) * v[a] - T(k.K[a]) * ufb[a];
       const T Lm = T(k.M[3 + a]) * w[a];
-      vnew[a] = T(k.Mi[a]) * (P + dP + T(k.K[a]) * ufb_end[a]);
-      wnew[a] = T(k.Mi[3 + a]) * (Lm + dL);
+      vn[a][j] = T(k.Mi[a]) * (P + dP + T(k.K[a]) * ufb_end[a]);
+      wn[a][j] = T(k.Mi[3 + a]) * (Lm + dL);
       e_new += dP * dP * T(k.Mi[a]) + dL * dL * T(k.Mi[3 + a]);
       e_r += T(k.M[a]) * vr[a] * vr[a] + T(k.M[3 + a]) * w[a] * w[a];
+      Pl[a][j] = P;
+      Pl[3 + a][j] = Lm;
+      dPL[a][j] = dP;
+      dPL[3 + a][j] = dL;
+      G[a][j] = Gj[a];
+      ufe[a][j] = ufb_end[a];
+      ufs[a][j] = ufb[a];
     }
-    // drag that changes the relative velocity by more than kStiffChange: the scalar step's Newton
-    const int stiff = int(k.drag != 0) & int(e_new > T(kStiffChange * kStiffChange) * e_r);
-    scalar[j] |= stiff | active[j];
-    T Vend[3];
-    mul(R, vnew, Vend);
+    // drag that changes the relative velocity by more than kStiffChange: Newton, as the scalar
+    // step (lanes the scalar step takes anyway need none)
+    const int st = int(k.drag != 0) & int(e_new > T(kStiffChange * kStiffChange) * e_r) &
+                   (1 - (scalar[j] | active[j]));
+    stiff[j] = st;
+    any_stiff |= st;
+    norm_r[j] = e_r;
+    scalar[j] |= active[j];
+#pragma GCC unroll 4
+    for (int a = 0; a < 4; ++a) qn[a][j] = q[a];
+  }
+  // stiff drag: Newton on R(dPi) = dPi - h (G_other + F_drag(xi(dPi))) - b_B (h a - dv), lanes
+  // drop out as they converge (integrators.cpp split_deterministic_step)
+  if (k.drag != 0 && any_stiff) {
+    for (int j = 0; j < kBatch; ++j) L->newton += uint64_t(stiff[j] != 0) & uint64_t(L->live[j]);
+    for (int it = 0; it < kDragMaxNewton; ++it) {
+      int any = 0;
+LRIGID_IVDEP
+      for (int j = 0; j < kBatch; ++j) {
+        const int act = stiff[j];
+        T vr[3], w[3], lift[3];
+#pragma GCC unroll 3
+        for (int a = 0; a < 3; ++a) {
+          vr[a] = vn[a][j] - ufs[a][j];
+          w[a] = wn[a][j];
+        }
+        const LaneDrag<T> d = Plate ? plate_forces(k, vr, w, lift) : ellipsoid_forces(k, vr, w);
+        // the Newton step d = -M (M + h J + b_B P)^-1 res, J the drag's stiffness here
+        T res[3], Dinv_r[3], Dinv_u[3];
+#pragma GCC unroll 3
+        for (int a = 0; a < 3; ++a) {
+          res[a] = dPL[a][j] - G[a][j] - h * d.f[a] +
+                   T(k.basset_mass) * T(k.Mi[a]) * dPL[a][j];
+          const T Dinv = T(1) / (T(k.M[a]) + T(k.basset_mass) + h * d.c_lin);
+          Dinv_r[a] = Dinv * res[a];
+          Dinv_u[a] = Dinv * d.u_hat[a];
+        }
+        const T cp = h * d.c_lin * d.p;
+        const T g = cp * dot3(d.u_hat, Dinv_r) / (T(1) + cp * dot3(d.u_hat, Dinv_u));
+        T conv = 0;
+#pragma GCC unroll 3
+        for (int a = 0; a < 3; ++a) {
+          const T ddP = -T(k.M[a]) * (Dinv_r[a] - g * Dinv_u[a]);
+          const T ddL =
+              -T(k.M[3 + a]) * (dPL[3 + a][j] - h * d.tq[a]) / (T(k.M[3 + a]) + h * d.c_ang);
+          const T dP = dPL[a][j] + ddP, dL = dPL[3 + a][j] + ddL;
+          const T v = T(k.Mi[a]) * (Pl[a][j] + dP + T(k.K[a]) * ufe[a][j]);
+          const T wa = T(k.Mi[3 + a]) * (Pl[3 + a][j] + dL);
+          dPL[a][j] = act ? dP : dPL[a][j];
+          dPL[3 + a][j] = act ? dL : dPL[3 + a][j];
+          vn[a][j] = act ? v : vn[a][j];
+          wn[a][j] = act ? wa : wn[a][j];
+          conv += ddP * ddP * T(k.Mi[a]) + ddL * ddL * T(k.Mi[3 + a]);
+        }
+        const int more = act & int(conv > T(kDragTol * kDragTol) * norm_r[j]);
+        stiff[j] = more;
+        any |= more;
+      }
+      if (!any) break;
+    }
+  }
+  // 4. x by the trapezoidal rule on the world velocity
+  alignas(64) T Vn[3][kBatch];  // the world velocity at the end
+LRIGID_IVDEP
+  for (int j = 0; j < kBatch; ++j) {
+    const T q[4] = {qn[0][j], qn[1][j], qn[2][j], qn[3][j]};
+    const T v[3] = {vn[0][j], vn[1][j], vn[2][j]};
+    T R[9], Vend[3];
+    rotation(q, R);
+    mul(R, v, Vend);
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
       xn[a][j] = L->x[a][j] + hh * (V0[a][j] + Vend[a]);
-      vn[a][j] = vnew[a];
-      wn[a][j] = wnew[a];
       Vn[a][j] = Vend[a];
     }
-#pragma GCC unroll 4
-    for (int a = 0; a < 4; ++a) qn[a][j] = q[a];
   }
   // 5. the second OU half step at the new position
   end_step<T, Turb>(k, z2, Vn, &n, L, outcome, landed);

@@ -125,12 +125,12 @@ RunStats simulate(const Model& model, State* state, const RunOptions& options) {
     const uint64_t next_output = (first / stride + 1) * stride;
     const uint64_t last = stream_stretch_end(model, first, std::min(total_steps, next_output));
     model.field.prepare(static_cast<double>(first) * model.dt, stream_window_end(model, last));
-    uint64_t body_steps = 0, handoffs = 0;
+    uint64_t body_steps = 0, handoffs = 0, newton = 0;
     const auto t0 = std::chrono::steady_clock::now();
     const WorkList work = work_list(model, st, batched, n0, n);
     const auto nblocks = static_cast<int64_t>(work.blocks.size());
     const auto nscalar = static_cast<int64_t>(work.scalar.size());
-#pragma omp parallel num_threads(threads) reduction(+ : body_steps, handoffs)
+#pragma omp parallel num_threads(threads) reduction(+ : body_steps, handoffs, newton)
     {
 #pragma omp for schedule(dynamic, 4) nowait
       for (int64_t k = 0; k < nblocks; ++k) {
@@ -142,6 +142,7 @@ RunStats simulate(const Model& model, State* state, const RunOptions& options) {
                                      static_cast<int>(blk.size()), first, last);
         body_steps += b.body_steps;
         handoffs += b.scalar_steps;
+        newton += b.newton_steps;
       }
 #pragma omp for schedule(static)
       for (int64_t k = 0; k < nscalar; ++k)
@@ -150,6 +151,7 @@ RunStats simulate(const Model& model, State* state, const RunOptions& options) {
     wall += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     stats.body_steps += body_steps;
     stats.scalar_handoffs += handoffs;
+    stats.newton_steps += newton;
     st.step = last;
     st.t = static_cast<double>(last) * model.dt;
     if (last % stride == 0 || last == total_steps) {

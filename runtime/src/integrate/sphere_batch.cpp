@@ -88,9 +88,6 @@ struct Lanes : Samples<T> {
     for (int a = 0; a < 3; ++a) V[a][j] = w[a][j] = T(0);
   }
   T (*velocity())[kBatch] { return V; }  // the velocity a lane keeps (end_step)
-  void world_velocity(int j, double* Vw) const {
-    for (int a = 0; a < 3; ++a) Vw[a] = double(V[a][j]);
-  }
 };
 
 // b = q a q^-1: the vector a (body frame) in the world frame, q = (w, x, y, z) unit
@@ -238,6 +235,7 @@ LRIGID_IVDEP
   // stiff drag: Newton on R(dPi) = dPi - h (G_other + F_drag(xi(dPi))) - b_B (h a - dV), lanes
   // drop out as they converge
   if (WithDrag && any_stiff) {
+    for (int j = 0; j < kBatch; ++j) L->newton += uint64_t(stiff[j] != 0) & uint64_t(L->live[j]);
     for (int it = 0; it < kDragMaxNewton; ++it) {
       int any = 0;
 LRIGID_IVDEP

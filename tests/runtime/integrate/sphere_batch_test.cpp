@@ -66,6 +66,7 @@ TEST(SphereBatch, StiffDragTakesTheNewtonPathLikeTheScalarStep) {
   EXPECT_LT(d.x, 1e-9);
   EXPECT_LT(d.v, 1e-9);
   EXPECT_LT(d.u, 1e-9);
+  EXPECT_GT(batched.stats.newton_steps, batched.stats.body_steps / 2);  // the loops' Newton
   // stiff and stable: the droplets move with the air (|v| of order the wind, not blown up)
   for (size_t i = 0; i < batched.state.size(); ++i) {
     if (batched.state.status[i] == BodyStatus::Moving) {
