@@ -7,6 +7,7 @@
 #pragma once
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <string>
 #include <type_traits>
 
@@ -264,66 +265,99 @@ LRIGID_IVDEP
   const int off[8] = {
       0, 8, 8 * sy, 8 * (1 + sy), 8 * sz, 8 * (1 + sz), 8 * (sy + sz), 8 * (1 + sy + sz)};
   const T mfs = T(k.mean_flow_scale), ts = T(k.turbulence_scale), ts2 = ts * ts;
+  // One lane at a time, a corner's whole record (8 floats, one vector) at once: the sums of the
+  // trilinear weights times the record (the 6 values and, in slot 6, the valid weight W), and of
+  // the weights' derivatives times the record (the gradients). Across lanes these would be 56
+  // gathers per lane, which cost more than the arithmetic.
+  typedef T V8 __attribute__((vector_size(8 * sizeof(T))));
+  typedef float F8 __attribute__((vector_size(32)));
+  alignas(64) T val[8][kBatch], grad[3][8][kBatch], allv[kBatch], frac[3][kBatch];
+  alignas(64) int base[kBatch], inbox[kBatch];
+  // the cells first (across lanes), so that their records can be fetched ahead
 LRIGID_IVDEP
   for (int j = lo; j < hi; ++j) {
-    T f[3];
-    int idx = 0;
-    bool in = true;
+    int idx = 0, in = 1;
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
       T s = (x[a][j] - T(k.origin[a])) / T(k.spacing[a]);
-      in = in & (s >= T(0)) & (s <= T(k.upper_index[a]));
+      in &= int(s >= T(0)) & int(s <= T(k.upper_index[a]));
       // clamped so that every lane reads inside the grid, also lanes outside it
       s = s > T(0) ? s : T(0);
       s = s < T(k.upper_index[a]) ? s : T(k.upper_index[a]);
       int i = static_cast<int>(s);
       i = i < k.n[a] - 2 ? i : k.n[a] - 2;
-      f[a] = s - T(i);
+      frac[a][j] = s - T(i);
       idx += 8 * (a == 0 ? 1 : (a == 1 ? sy : sz)) * i;
     }
+    base[j] = idx;
+    inbox[j] = in;
+  }
+  // the grid is larger than the caches: the 4 pairs of corner records of a lane a few lanes
+  // ahead are prefetched (each pair is 64 bytes, which may straddle two cache lines)
+  constexpr int kAhead = 6;
+  auto prefetch = [&](int j) {
+#pragma GCC unroll 4
+    for (int c = 0; c < 8; c += 2) {
+      const float* r = rec + base[j] + off[c];
+      __builtin_prefetch(r);
+      __builtin_prefetch(r + 15);
+    }
+  };
+  for (int j = lo; j < hi && j < lo + kAhead; ++j) prefetch(j);
+  for (int j = lo; j < hi; ++j) {
+    if (j + kAhead < hi) prefetch(j + kAhead);
+    const T f[3] = {frac[0][j], frac[1][j], frac[2][j]};
+    const int idx = base[j];
+    bool in = inbox[j] != 0;
     const T gx[2] = {T(1) - f[0], f[0]}, gy[2] = {T(1) - f[1], f[1]}, gz[2] = {T(1) - f[2], f[2]};
-    T W = 0, v[6] = {0, 0, 0, 0, 0, 0}, dv[4][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
+    V8 v = {}, d0 = {}, d1 = {}, d2 = {};
     int nvalid = 0;
 #pragma GCC unroll 8
     for (int c = 0; c < 8; ++c) {
       const int cx = c & 1, cy = (c >> 1) & 1, cz = c >> 2;
-      const int r = idx + off[c];
-      const T valid = T(rec[r + 6]);
+      F8 gf;
+      std::memcpy(&gf, rec + idx + off[c], sizeof gf);
+      const V8 g = __builtin_convertvector(gf, V8);
+      const T valid = g[6];
       nvalid += valid != T(0);
-      const T wc = valid * (gx[cx] * gy[cy] * gz[cz]);
-      const T dw[3] = {(cx ? T(1) : T(-1)) * gy[cy] * gz[cz], gx[cx] * (cy ? T(1) : T(-1)) * gz[cz],
-                       gx[cx] * gy[cy] * (cz ? T(1) : T(-1))};
-      W += wc;
-      const T g[6] = {T(rec[r]),     T(rec[r + 1]), T(rec[r + 2]),
-                      T(rec[r + 3]), T(rec[r + 4]), T(rec[r + 5])};
-#pragma GCC unroll 6
-      for (int p = 0; p < 6; ++p) v[p] += wc * g[p];
-      const T gv[4] = {g[0], g[1], g[2], g[5]};
-#pragma GCC unroll 4
-      for (int p = 0; p < 4; ++p)
-#pragma GCC unroll 3
-        for (int a = 0; a < 3; ++a) dv[p][a] += dw[a] * gv[p];
+      v += (valid * (gx[cx] * gy[cy] * gz[cz])) * g;
+      d0 += ((cx ? T(1) : T(-1)) * gy[cy] * gz[cz]) * g;
+      d1 += (gx[cx] * (cy ? T(1) : T(-1)) * gz[cz]) * g;
+      d2 += (gx[cx] * gy[cy] * (cz ? T(1) : T(-1))) * g;
     }
-    in = in & (nvalid > 0) & (W >= T(0.5));
+    // slot 6 of v: the weight W of the valid corners
+    in = in & (nvalid > 0) & (v[6] >= T(0.5));
+    allv[j] = nvalid == 8 ? T(1) : T(0);
+    L->inside[j] = in ? T(1) : T(0);
+#pragma GCC unroll 8
+    for (int p = 0; p < 8; ++p) {
+      val[p][j] = v[p];
+      grad[0][p][j] = d0[p];
+      grad[1][p][j] = d1[p];
+      grad[2][p][j] = d2[p];
+    }
+  }
+LRIGID_IVDEP
+  for (int j = lo; j < hi; ++j) {
+    const T W = val[6][j];
     const T inv = T(1) / (W > T(0) ? W : T(1));
     // gradients only where all 8 corners are valid (as FluidField::sample)
-    const T all = nvalid == 8 ? T(1) : T(0);
+    const T all = allv[j];
     T gu[3][3];
 #pragma GCC unroll 3
     for (int p = 0; p < 3; ++p) {
-      L->U[p][j] = mfs * v[p] * inv;
+      L->U[p][j] = mfs * val[p][j] * inv;
 #pragma GCC unroll 3
-      for (int a = 0; a < 3; ++a) gu[p][a] = mfs * all * dv[p][a] / T(k.spacing[a]);
+      for (int a = 0; a < 3; ++a) gu[p][a] = mfs * all * grad[a][p][j] / T(k.spacing[a]);
     }
-    L->alpha[j] = v[3] * inv;
-    L->beta[j] = ts * v[4] * inv;
-    L->sigma2[j] = ts2 * v[5] * inv;
+    L->alpha[j] = val[3][j] * inv;
+    L->beta[j] = ts * val[4][j] * inv;
+    L->sigma2[j] = ts2 * val[5][j] * inv;
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
-      L->gs[a][j] = ts2 * all * dv[3][a] / T(k.spacing[a]);
+      L->gs[a][j] = ts2 * all * grad[a][5][j] / T(k.spacing[a]);
       L->acc[a][j] = gu[a][0] * L->U[0][j] + gu[a][1] * L->U[1][j] + gu[a][2] * L->U[2][j];
     }
-    L->inside[j] = in ? T(1) : T(0);
   }
 }
 
