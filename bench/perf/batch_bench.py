@@ -24,7 +24,9 @@ The same for the full leaves model: scenes/leaves_wind.json (leaves, paper sheet
 the scene's own effects) with 0.5 s of warm-up before the timed steps (the start, bodies at rest
 in the wind, hands more steps to the scalar step), against the same OpenFOAM parcels and MuJoCo
 stepping the scene's seed pods (mujoco_harness's default body), and its float cost on landing
-points without turbulence (art.turbulence_scale = 0).
+points without turbulence (art.turbulence_scale = 0). And the full effect set (all nine effects on
+every type, Basset history and Magnus included) on the leaves scene: N = 10^4 on one thread and
+300,000 bodies on two, double and float.
 About 10 minutes on 2 cores.
 """
 import argparse
@@ -39,7 +41,7 @@ import time
 
 import numpy as np
 
-ALL_BATCHED = "gravity,buoyancy,drag,lift,added_mass,mean_flow,turbulence"
+ALL_EFFECTS = "all"  # lrigid bench --effects all: all nine effects on every body type
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
 
@@ -79,7 +81,8 @@ def bench(lrigid, scene, n, threads, json_out, quick, warmup=2, effects="auto"):
         if best is None or run["body_steps_per_s"] > best["body_steps_per_s"]:
             best = run
     return (best["body_steps_per_s"], best["body_steps_per_cpu_s"], best["state_bytes_per_body"],
-            best.get("scalar_handoffs", 0) / max(best["body_steps"], 1))
+            best.get("scalar_handoffs", 0) / max(best["body_steps"], 1),
+            best.get("newton_steps", 0) / max(best["body_steps"], 1))
 
 
 def mujoco_peer(harness, body, label, quick):
@@ -162,7 +165,7 @@ def main():
                 for t in (1, 2):
                     print(f"batch_bench.py: {tag}, {label}, N = {n}, {t} thread(s)",
                           file=sys.stderr)
-                    rate, cpu_rate, bpb, handoff = bench(
+                    rate, cpu_rate, bpb, handoff, _ = bench(
                         lrigid, scene, n, t, os.path.join(args.out, f"{name}_{n}_{t}.json"),
                         args.quick, warmup)
                     rows.append({"variant": label, "n": n, "threads": t, "rate": rate,
@@ -173,18 +176,27 @@ def main():
     rows = throughput(base, "beads", 2)
     leaves = os.path.join(ROOT, "scenes/leaves_wind.json")
     leaf_rows = throughput(leaves, "leaves", 250)
-    # every batched effect on every type (added mass and buoyancy for the seed pods too, which
-    # the scene's "auto" leaves out): N = 10^4, one thread, double
-    leaf_all = {"effects": ALL_BATCHED, "n": 10000, "threads": 1}
-    for key, names in (("all", None), ("plates", ("leaf", "paper")), ("pods", ("seed_pod",))):
-        print(f"batch_bench.py: leaves, all seven batched effects, bodies: {key}",
-              file=sys.stderr)
-        scene = scene_variant(leaves, args.out, f"tp_leaves_all7_{key}", bodies=names)
+    # the full effect set: all nine effects on every type (Basset history and Magnus too, and
+    # added mass and buoyancy for the seed pods, which the scene's "auto" leaves out): N = 10^4
+    # on one thread and the issue's 300,000 bodies on two, double and float
+    leaf_all = {"effects": ALL_EFFECTS, "runs": []}
+    for key, names, prec, n, t in (
+            ("all", None, "double", 10000, 1), ("all", None, "float", 10000, 1),
+            ("plates", ("leaf", "paper"), "double", 10000, 1),
+            ("pods", ("seed_pod",), "double", 10000, 1),
+            ("all", None, "double", 300000, 2), ("all", None, "float", 300000, 2)):
+        print(f"batch_bench.py: leaves, all nine effects, bodies: {key}, {prec}, N = {n}, "
+              f"{t} thread(s)", file=sys.stderr)
         # (not the scene's own name: bench's JSON would overwrite the scene)
-        out = os.path.join(args.out, f"tp_leaves_all7_{key}_10000_1.json")
-        rate, cpu_rate, _, handoff = bench(lrigid, scene, 10000, 1, out, args.quick, 250,
-                                           ALL_BATCHED)
-        leaf_all[key] = {"rate": rate, "cpu_rate": cpu_rate, "scalar_handoff_fraction": handoff}
+        name = f"tp_leaves_all9_{key}_{prec}"
+        scene = scene_variant(leaves, args.out, name, bodies=names, precision=prec)
+        out = os.path.join(args.out, f"{name}_{n}_{t}.json")
+        rate, cpu_rate, bpb, handoff, newton = bench(lrigid, scene, n, t, out, args.quick, 250,
+                                                     ALL_EFFECTS)
+        leaf_all["runs"].append({"bodies": key, "precision": prec, "n": n, "threads": t,
+                                 "rate": rate, "cpu_rate": cpu_rate, "bytes_per_body": bpb,
+                                 "scalar_handoff_fraction": handoff,
+                                 "newton_fraction": newton})
 
     peers = None
     if not args.no_peers:
@@ -237,7 +249,7 @@ def main():
         mujoco_pod = mujoco_peer(harness, [], "the seed pods", args.quick)
     json.dump({"machine": m, "throughput": rows, "accuracy": acc, "peers": peers,
                "mujoco": mujoco, "leaves": {"throughput": leaf_rows, "accuracy": leaf_acc,
-                                            "mujoco": mujoco_pod, "all_batched": leaf_all}},
+                                            "mujoco": mujoco_pod, "all_effects": leaf_all}},
               open(os.path.join(args.out, "batch.json"), "w"), indent=1)
     write_doc(args.doc, m, rows, acc, peers, mujoco, args.quick,
               (leaf_rows, leaf_acc, mujoco_pod, leaf_all))
@@ -297,7 +309,7 @@ def peer_lines(d, f, peers, of_label, mujoco, mj_label):
 
 
 def leaves_section(leaves, peers):
-    rows, acc, mujoco_pod, all7 = leaves
+    rows, acc, mujoco_pod, all9 = leaves
     lines = [
         "",
         "## The full leaves model",
@@ -313,16 +325,21 @@ def leaves_section(leaves, peers):
         "",
     ]
     lines += throughput_table(rows, handoffs=True)
-    lines += ["", f"With every batched effect on every type (`--effects {all7['effects']}`: the "
-              "seed pods get added mass and buoyancy too, which `auto` leaves out as below 1 % "
-              "of their forces), N = 10^4, one thread, double, and the same for the scene's "
-              "plates alone and its seed pods alone (a lane whose Kirchhoff fixed point does not "
-              "contract hands its step to the scalar Newton iteration, about 1 us):", "",
-              "| bodies | body-steps/s | steps handed to the scalar step |", "|---|---|---|"]
-    for key, label in (("all", "the whole scene"), ("plates", "leaves and paper only"),
-                       ("pods", "seed pods only")):
-        r = all7[key]
-        lines.append(f"| {label} | {r['rate'] / 1e6:.2f} M | "
+    lines += ["", f"The full effect set: all nine effects on every type (`--effects "
+              f"{all9['effects']}`: the Basset history and the Magnus force too, and added mass "
+              "and buoyancy for the seed pods, which `auto` leaves out as below 1 % of their "
+              "forces). Body-steps per second (wall clock; per CPU second in brackets), the "
+              "faster of two runs after 250 steps of warm-up; the steps the loops solved by "
+              "Newton themselves (stiff drag, or a free Kirchhoff flow whose fixed point does "
+              "not contract), and those they handed to the scalar step:", "",
+              "| bodies | precision | N | threads | body-steps/s | history and state, bytes/body "
+              "| Newton steps | handed to the scalar step |", "|---|---|---|---|---|---|---|---|"]
+    labels = {"all": "the whole scene", "plates": "leaves and paper only",
+              "pods": "seed pods only"}
+    for r in all9["runs"]:
+        lines.append(f"| {labels[r['bodies']]} | {r['precision']} | {r['n']} | {r['threads']} | "
+                     f"{r['rate'] / 1e6:.2f} M ({r['cpu_rate'] / 1e6:.2f} M) | "
+                     f"{r['bytes_per_body']:.0f} | {100 * r['newton_fraction']:.2f} % | "
                      f"{100 * r['scalar_handoff_fraction']:.2f} % |")
     d = find_rate(rows, "batched, double", 10000, 1, "cpu_rate")
     f = find_rate(rows, "batched, float", 10000, 1, "cpu_rate")
@@ -363,8 +380,12 @@ def write_doc(path, m, rows, acc, peers, mujoco, quick, leaves=None):
         "field sampled once per step. Plates and ellipsoids (a diagonal mass matrix: leaves, "
         "paper, seed pods) take a second one (`runtime/src/integrate/rigid_batch.h`) built the "
         "same way, with the Kirchhoff implicit midpoint iterated per lane under a convergence "
-        "mask; a lane that needs a Newton iteration (stiff drag, a Kirchhoff iteration that "
-        "does not contract) hands its step to the scalar step. The physics is the scalar "
+        "mask. Both take every effect, the Basset history (kept by the block driver, its current "
+        "interval a mass in the implicit solve) and the Magnus force included. The loops run "
+        "the scalar step's Newton iterations themselves (stiff drag; a Kirchhoff fixed point "
+        "that does not contract); a lane hands its step to the scalar step only where Newton "
+        "struggles (the scalar step then substeps) or the scene rules the batched step out. "
+        "The physics is the scalar "
         "splitting step's, term for term; `tests/runtime/integrate/sphere_batch_test.cpp` and "
         "`rigid_batch_test.cpp` hold them to the scalar step to 1e-9 (1e-8 for "
         "tumbling leaves, whose chaos amplifies rounding). "

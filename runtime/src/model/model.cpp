@@ -265,14 +265,18 @@ double estimated_batched_cost_ns(EffectSet set, Precision precision, bool rigid)
   // mass cost next to nothing; the baseline x86-64 loops take about 4 times longer.
   // Plates and ellipsoids (rigid): scenes/leaves_wind.json (N = 10^4, one thread, after 250
   // steps, best of 2, 2026-12-01): gravity and drag 23.5 ns, the scene's own effects 85.5 ns,
-  // about 6 ns and 19 ns above the sphere fit. Lanes handed to the scalar step are not in it
-  // (none on that scene; with added mass, its seed pods hand 18 % of their steps over: the
-  // Kirchhoff fixed point does not contract for small, fast ellipsoids).
+  // about 6 ns and 19 ns above the sphere fit. The Basset history adds about 20 ns to either
+  // (its push, 840 B of history per body at dt = 2 ms over 20 s), Magnus about 1 ns (leaves and
+  // beads scenes, --effects with and without them, N = 10^4, after 100 steps, best of 3,
+  // 2026-12-01). Lanes handed to the scalar step (about 1.5 us each) are not in it: none on
+  // those scenes, where the loops solve stiff drag and slow free flows by Newton themselves.
   double ns = 10;
   if (set.has(Effect::Drag)) ns += 8;
   const bool sampled = set.has(Effect::MeanFlow) || set.has(Effect::Turbulence);
   if (sampled) ns += 34;
   if (set.has(Effect::Turbulence)) ns += 15;
+  if (set.has(Effect::Basset)) ns += 20;
+  if (set.has(Effect::Magnus)) ns += 1;
   if (rigid) ns += sampled ? 19 : 6;
   if (precision == Precision::Float) ns *= 0.78;
   return ns;
