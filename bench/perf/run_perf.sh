@@ -106,7 +106,9 @@ echo "run_perf.sh: kernels" >&2
 "$bin/roofline_bench" --benchmark_min_time=0.5 --benchmark_out="$out/roofline.json" \
   --benchmark_out_format=json > /dev/null
 
-# instructions per body-step inside step_body (callgrind), and the top self costs of splitting
+# instructions per body-step inside the step (callgrind: step_body, and the batched blocks that
+# take most bodies' steps; under valgrind their loops run the AVX2 build), and the top self
+# costs of splitting
 echo "run_perf.sh: callgrind" >&2
 py='import json,sys; print(json.load(open(sys.argv[1]))["runs"][0]["body_steps"])'
 cgjson="{\"per_body_step\": {"
@@ -114,6 +116,7 @@ sep=""
 for integ in euler rk4 splitting; do
   f="$out/callgrind.$integ.out"
   valgrind --tool=callgrind --callgrind-out-file="$f" --toggle-collect='lrigid::step_body*' \
+    --toggle-collect='lrigid::advance_*_block*' \
     "$bin/lrigid" bench $scene --n 1000 --integrators $integ --threads 1 --body-steps 4000 \
     --min-steps 4 --warmup 0 --quiet --json "$out/cg.$integ.json" 2> "$out/callgrind.$integ.log"
   ir=$(callgrind_annotate "$f" 2>/dev/null | awk '/PROGRAM TOTALS/ {gsub(",", "", $1); print $1}')
@@ -134,24 +137,27 @@ echo "$cgjson" > "$out/callgrind.json"
 # runs that differ only in the number of steps (set-up cancels)
 if [ $flops = 1 ]; then
 echo "run_perf.sh: flop counts (lackey)" >&2
-flops() {  # integrator steps -> F64 and V128 operations (lackey's AluOps column)
+flops() {  # integrator steps -> F64, V128 and V256 operations (lackey's AluOps column)
   valgrind --tool=lackey --detailed-counts=yes "$bin/lrigid" bench $scene --n 200 \
     --integrators "$1" --threads 1 --body-steps 1 --min-steps "$2" --warmup 0 --quiet 2>&1 |
-    awk '$2 == "F64" || $2 == "V128" {v = $5; gsub(",", "", v); c[$2] = v}
-         END {print c["F64"] + 0, c["V128"] + 0}'
+    awk '$2 == "F64" || $2 == "V128" || $2 == "V256" {v = $5; gsub(",", "", v); c[$2] = v}
+         END {print c["F64"] + 0, c["V128"] + 0, c["V256"] + 0}'
 }
 fjson="{"
 sep=""
 for integ in euler rk4 splitting; do
-  read -r a64 a128 <<< "$(flops $integ 2)"
-  read -r b64 b128 <<< "$(flops $integ 6)"
-  # flops ~ scalar F64 operations + 2 per 128-bit vector operation (an upper bound: V128 also
-  # counts integer and logic vector operations)
+  read -r a64 a128 a256 <<< "$(flops $integ 2)"
+  read -r b64 b128 b256 <<< "$(flops $integ 6)"
+  # flops ~ scalar F64 operations + 2 per 128-bit and 4 per 256-bit vector operation (an upper
+  # bound: the vector counts include integer and logic operations)
   fjson+="$sep\"$integ\": $(awk -v a="$a64" -v b="$b64" -v c="$a128" -v d="$b128" \
-    'BEGIN {printf "%.1f", ((b - a) + 2 * (d - c)) / (4 * 200)}')"
+    -v e="$a256" -v f="$b256" \
+    'BEGIN {printf "%.1f", ((b - a) + 2 * (d - c) + 4 * (f - e)) / (4 * 200)}')"
   sep=", "
 done
-fjson+=", \"samples_per_step\": {\"euler\": 3, \"rk4\": 6, \"splitting\": 4}}"
+# field samples per body-step: the scalar euler and rk4 steps; the batched splitting step samples
+# once (at the end of the step, which the next step and the Basset history reuse)
+fjson+=", \"samples_per_step\": {\"euler\": 3, \"rk4\": 6, \"splitting\": 1}}"
 echo "$fjson" > "$out/flops.json"
 fi
 

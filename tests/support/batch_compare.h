@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <initializer_list>
 #include <string>
 #include <utility>
 #include <vector>
@@ -96,6 +97,19 @@ inline Both scalar_and_batched(const Scene& s, const FluidField& field) {
   Both b{run(s, field, false, Precision::Double), run(s, field, true, Precision::Double), {}};
   b.d = compare(b.scalar, b.batched);
   return b;
+}
+
+// How far the effects `drop` move the bodies: the largest distance between where the bodies of
+// `with` (the scene `s` run batched, double) end or stopped and where they do without them, m.
+inline double moved_by(const Scene& s, const FluidField& field, const Outcome& with,
+                       std::initializer_list<Effect> drop) {
+  Scene plain = s;
+  for (Effect e : drop) plain.effects.remove(e);
+  const Outcome without = run(plain, field, true, Precision::Double);
+  double moved = 0;
+  for (size_t i = 0; i < with.state.size(); ++i)
+    moved = std::max(moved, (with.state.x[i] - without.state.x[i]).norm());
+  return moved;
 }
 
 inline size_t count(const State& s, BodyStatus status) {

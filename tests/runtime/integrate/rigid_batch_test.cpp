@@ -115,13 +115,8 @@ TEST(RigidBatch, AllNineEffectsMatchTheScalarStep) {
       EXPECT_GT(batched.stats.newton_steps, 0u);
     }
     // the two effects change the motion: without them the bodies end (or stop) elsewhere
-    Scene plain = s;
-    plain.effects.remove(Effect::Basset);
-    plain.effects.remove(Effect::Magnus);
-    const Outcome without = run(plain, field, true, Precision::Double);
-    double moved = 0;
-    for (size_t i = 0; i < batched.state.size(); ++i)
-      moved = std::max(moved, (batched.state.x[i] - without.state.x[i]).norm());
+    const double moved =
+        batch_test::moved_by(s, field, batched, {Effect::Basset, Effect::Magnus});
     EXPECT_GT(moved, 1e-6);
     std::printf("all nine effects: %llu Newton steps, %llu of %llu steps handed to the scalar "
                 "step; Basset and Magnus move the bodies by up to %.3g m\n",

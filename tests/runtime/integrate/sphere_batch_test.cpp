@@ -117,15 +117,9 @@ TEST(SphereBatch, BassetHistoryAndMagnusMatchTheScalarStep) {
     EXPECT_LT(d.v, 1e-9) << stiff;
     EXPECT_LT(d.w, 1e-9) << stiff;
     EXPECT_LT(d.u, 1e-9) << stiff;
-    // the two effects moved the beads: without them they end elsewhere
-    Scene plain = s;
-    plain.effects.remove(Effect::Basset);
-    plain.effects.remove(Effect::Magnus);
-    const Outcome without = run(plain, field, true, Precision::Double);
-    double moved = 0;
-    for (size_t i = 0; i < batched.state.size(); ++i)
-      if (batched.state.status[i] == BodyStatus::Moving)
-        moved = std::max(moved, (batched.state.x[i] - without.state.x[i]).norm());
+    // the two effects moved the beads: without them they end (or stop) elsewhere
+    const double moved =
+        batch_test::moved_by(s, field, batched, {Effect::Basset, Effect::Magnus});
     EXPECT_GT(moved, 1e-6) << stiff;
     std::printf("%s: Basset and Magnus move the beads by up to %.3g m\n",
                 stiff ? "droplets" : "beads", moved);
