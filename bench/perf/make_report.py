@@ -297,19 +297,20 @@ def main():
             w("")
             txt = "The step "
             if fl:
-                txt += "runs at %.1f %% of the AVX2 + FMA arithmetic peak " \
-                       % (100 * rate * fl / p1 if p1 else 0)
+                txt += "runs at no more than %.0f %% of the AVX2 + FMA arithmetic peak (the " \
+                       "count is an upper bound: lackey's vector operations include the " \
+                       "integer, compare, blend and conversion ones; near 100 %% means the " \
+                       "vector units, not memory, set the pace) " % (100 * rate * fl / p1 if p1 else 0)
             txt += "%s %.1f %% of the memory bandwidth even if every grid corner missed " \
                    "the caches. " % ("and uses" if fl else "uses", 100 * rate * (grid_b + state_b / 50) / bw)
             ipb = cg.get("per_body_step", {}).get("splitting")
-            if ipb and mach.get("ghz"):
-                ipc = rate * ipb / (mach["ghz"] * 1e9)
-                txt += "With %.0f instructions per body-step (valgrind's AVX2 build of the loops) " \
-                       "it retires about %.2f instructions per cycle at the nominal %.1f GHz " \
-                       "(the core boosts above it). Neither the arithmetic peak nor the " \
-                       "bandwidth bounds it: what is left is the latency of the grid records " \
-                       "(prefetched a few bodies ahead), the divisions and square roots of the " \
-                       "drag laws, and the Basset history's update. " % (ipb, ipc, mach["ghz"])
+            if ipb:
+                txt += "The %.0f instructions per body-step above are valgrind's AVX2 build of " \
+                       "the loops; the run uses the AVX-512 build, which needs fewer, so no " \
+                       "instructions-per-cycle figure is derived from them. What is left to cut " \
+                       "is arithmetic per lane: the drag laws' divisions and square roots, the " \
+                       "normals' logarithms and sines, the Basset history's update, and float " \
+                       "(twice the lanes per vector). " % ipb
             w(txt)
         w("")
 
