@@ -221,7 +221,7 @@ struct Samples {
   double* history[kBatch];
   uint32_t body[kBatch];
   bool live[kBatch];
-  uint64_t newton = 0;  // steps of live lanes the step solved by Newton (BlockStats)
+  uint64_t newton = 0;  // steps of live lanes on which the loops ran Newton (BlockStats)
 };
 
 // Whether the step needs its third switch (`Extra`): the Basset history or the Magnus force.
@@ -266,8 +266,9 @@ LRIGID_IVDEP
       0, 8, 8 * sy, 8 * (1 + sy), 8 * sz, 8 * (1 + sz), 8 * (sy + sz), 8 * (1 + sy + sz)};
   const T mfs = T(k.mean_flow_scale), ts = T(k.turbulence_scale), ts2 = ts * ts;
   // One lane at a time, a corner's whole record (8 floats, one vector) at once: the sums of the
-  // trilinear weights times the record (the 6 values and, in slot 6, the valid weight W), and of
-  // the weights' derivatives times the record (the gradients). Across lanes these would be 56
+  // trilinear weights times the record (the 6 values and, in slot 6, the valid weight W: the
+  // valid flag is 1 or 0, so valid times valid is valid), and of the weights' derivatives times
+  // the record (the gradients). Across lanes these would be 56
   // gathers per lane, which cost more than the arithmetic.
   typedef T V8 __attribute__((vector_size(8 * sizeof(T))));
   typedef float F8 __attribute__((vector_size(32)));

@@ -13,7 +13,8 @@ struct RunStats {
   uint64_t body_steps = 0;     // steps taken by moving bodies
   // of them, steps a batched block handed to the scalar step (integrate/rigid_batch.h)
   uint64_t scalar_handoffs = 0;
-  // steps a batched block solved by Newton itself (stiff drag, or the free Kirchhoff flow)
+  // steps on which a batched block ran Newton itself (stiff drag, or the free Kirchhoff flow;
+  // counted per iteration kind, so a step can count twice)
   uint64_t newton_steps = 0;
   uint64_t steps = 0;          // time steps
   double wall_seconds = 0;     // integration only (no output)

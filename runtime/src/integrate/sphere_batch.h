@@ -34,7 +34,7 @@ bool sphere_batch_eligible(const Model& model, const BodyType& type, std::string
 struct BlockStats {
   uint64_t body_steps = 0;
   uint64_t scalar_steps = 0;  // of them, steps a lane handed to the scalar step
-  uint64_t newton_steps = 0;  // steps the loops solved by Newton themselves (stiff drag, free flow)
+  uint64_t newton_steps = 0;  // steps on which the loops ran Newton (stiff drag, the free flow)
 };
 
 // Advances up to kBatch bodies of one eligible type (indices body[0..count)) in `state` from
