@@ -240,6 +240,29 @@ LRIGID_LANE void lu6_solve(const T* A, T* b) {
   }
 }
 
+// The implicit force step on a diagonal M (integrators.cpp split_deterministic_step): the
+// impulse changes x = M (M + h J + b_B P)^-1 b for the linear part b_lin and the angular part
+// b_ang, where J is the drag's stiffness d (linear: diagonal plus rank one, by Sherman-Morrison;
+// angular: c_ang I) and b_B the Basset history's current interval (0 without)
+template <typename T>
+LRIGID_LANE void implicit_solve(const Consts& k, const LaneDrag<T>& d, T h, const T* b_lin,
+                                const T* b_ang, T* x_lin, T* x_ang) {
+  T Dinv_b[3], Dinv_u[3];
+#pragma GCC unroll 3
+  for (int a = 0; a < 3; ++a) {
+    const T Dinv = T(1) / (T(k.M[a]) + T(k.basset_mass) + h * d.c_lin);
+    Dinv_b[a] = Dinv * b_lin[a];
+    Dinv_u[a] = Dinv * d.u_hat[a];
+  }
+  const T cp = h * d.c_lin * d.p;
+  const T g = cp * dot3(d.u_hat, Dinv_b) / (T(1) + cp * dot3(d.u_hat, Dinv_u));
+#pragma GCC unroll 3
+  for (int a = 0; a < 3; ++a) {
+    x_lin[a] = T(k.M[a]) * (Dinv_b[a] - g * Dinv_u[a]);
+    x_ang[a] = T(k.M[3 + a]) * b_ang[a] / (T(k.M[3 + a]) + h * d.c_ang);
+  }
+}
+
 // Plate drag and torque (plate_drag_wrench), and the lift force (lift_wrench, no torque), r_cob = 0
 template <typename T>
 LRIGID_LANE LaneDrag<T> plate_forces(const Consts& k, const T* u, const T* w, T* lift) {
@@ -609,25 +632,19 @@ LRIGID_IVDEP
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) u_end[a] = u_f[a] + h * T(k.gu) * L->acc[a][j];
     mul_t(R, u_end, ufb_end);
-    // linear block: (diag(M) + h c (I + p u u^T) + b_B I) x = b by Sherman-Morrison (b_B the
-    // Basset history's current interval, 0 without); angular: diagonal
-    T Gj[3], b[3], Dinv_b[3], Dinv_u[3];
+    T Gj[3], b_lin[3], b_ang[3], dPj[3], dLj[3];
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
       Gj[a] = Extra ? h * (Fb[a] + lift[a] + fx[a]) + T(k.basset_mass) * h * ab[a]
                     : h * (Fb[a] + lift[a]);
-      b[a] = Gj[a] + h * d.f[a];
-      const T Dinv = T(1) / (T(k.M[a]) + T(k.basset_mass) + h * d.c_lin);
-      Dinv_b[a] = Dinv * b[a];
-      Dinv_u[a] = Dinv * d.u_hat[a];
+      b_lin[a] = Gj[a] + h * d.f[a];
+      b_ang[a] = h * d.tq[a];
     }
-    const T cp = h * d.c_lin * d.p;
-    const T g = cp * dot3(d.u_hat, Dinv_b) / (T(1) + cp * dot3(d.u_hat, Dinv_u));
+    implicit_solve(k, d, h, b_lin, b_ang, dPj, dLj);
     T e_new = 0, e_r = 0;
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
-      const T dP = T(k.M[a]) * (Dinv_b[a] - g * Dinv_u[a]);
-      const T dL = T(k.M[3 + a]) * (h * d.tq[a]) / (T(k.M[3 + a]) + h * d.c_ang);
+      const T dP = dPj[a], dL = dLj[a];
       const T P = T(k.M[a]) * v[a] - T(k.K[a]) * ufb[a];
       const T Lm = T(k.M[3 + a]) * w[a];
       vn[a][j] = T(k.Mi[a]) * (P + dP + T(k.K[a]) * ufb_end[a]);
@@ -669,24 +686,19 @@ LRIGID_IVDEP
           w[a] = wn[a][j];
         }
         const LaneDrag<T> d = Plate ? plate_forces(k, vr, w, lift) : ellipsoid_forces(k, vr, w);
-        // the Newton step d = -M (M + h J + b_B P)^-1 res, J the drag's stiffness here
-        T res[3], Dinv_r[3], Dinv_u[3];
+        // the Newton step -M (M + h J + b_B P)^-1 res, J the drag's stiffness here
+        T res_lin[3], res_ang[3], x_lin[3], x_ang[3];
 #pragma GCC unroll 3
         for (int a = 0; a < 3; ++a) {
-          res[a] = dPL[a][j] - G[a][j] - h * d.f[a] +
-                   T(k.basset_mass) * T(k.Mi[a]) * dPL[a][j];
-          const T Dinv = T(1) / (T(k.M[a]) + T(k.basset_mass) + h * d.c_lin);
-          Dinv_r[a] = Dinv * res[a];
-          Dinv_u[a] = Dinv * d.u_hat[a];
+          res_lin[a] = dPL[a][j] - G[a][j] - h * d.f[a] +
+                       T(k.basset_mass) * T(k.Mi[a]) * dPL[a][j];
+          res_ang[a] = dPL[3 + a][j] - h * d.tq[a];
         }
-        const T cp = h * d.c_lin * d.p;
-        const T g = cp * dot3(d.u_hat, Dinv_r) / (T(1) + cp * dot3(d.u_hat, Dinv_u));
+        implicit_solve(k, d, h, res_lin, res_ang, x_lin, x_ang);
         T conv = 0;
 #pragma GCC unroll 3
         for (int a = 0; a < 3; ++a) {
-          const T ddP = -T(k.M[a]) * (Dinv_r[a] - g * Dinv_u[a]);
-          const T ddL =
-              -T(k.M[3 + a]) * (dPL[3 + a][j] - h * d.tq[a]) / (T(k.M[3 + a]) + h * d.c_ang);
+          const T ddP = -x_lin[a], ddL = -x_ang[a];
           const T dP = dPL[a][j] + ddP, dL = dPL[3 + a][j] + ddL;
           const T v = T(k.Mi[a]) * (Pl[a][j] + dP + T(k.K[a]) * ufe[a][j]);
           const T wa = T(k.Mi[3 + a]) * (Pl[3 + a][j] + dL);

@@ -140,7 +140,7 @@ LRIGID_MULTIVERSION void step_lanes(const Consts& k, Lanes<T>* L, uint64_t step,
   for (int j = 0; j < kBatch; ++j) n.scalar[j] = 0;
   // what the Newton iteration of stiff drag needs
   alignas(64) T uf[3][kBatch], Pi[3][kBatch], dP[3][kBatch], dL[3][kBatch], V0[3][kBatch];
-  alignas(64) T G[3][kBatch];  // h times the forces other than drag (Extra)
+  alignas(64) T G[3][kBatch];  // h times the forces other than drag, + b_B h a_fluid
   alignas(64) T norm_r[kBatch];
   int stiff[kBatch];
   int any_stiff = 0;
@@ -182,24 +182,22 @@ LRIGID_IVDEP
     if constexpr (WithDrag) d = sphere_drag(k, vr, w);
     T Gj[3];
 #pragma GCC unroll 3
-    for (int a = 0; a < 3; ++a) Gj[a] = T(k.F[a]);
+    for (int a = 0; a < 3; ++a) Gj[a] = h * T(k.F[a]);
     if constexpr (Extra) {
-      // Magnus on the world spin (the flow rotates q about w, so either orientation gives it)
+      // Magnus on the world spin (the flow rotates q about w, so either orientation gives it),
+      // the Basset history force and its current interval's b_B h a_fluid
       const T qj[4] = {qn[0][j], qn[1][j], qn[2][j], qn[3][j]};
       T wW[3], fm[3];
       rotate_by(qj, w, wW);
       lane_magnus(k, wW, vr, fm);
 #pragma GCC unroll 3
-      for (int a = 0; a < 3; ++a) Gj[a] = h * (Gj[a] + L->fb[a][j] + fm[a]) +
-                                        T(k.basset_mass) * h * T(k.gu) * L->acc[a][j];
-    } else {
-#pragma GCC unroll 3
-      for (int a = 0; a < 3; ++a) Gj[a] = h * Gj[a];
+      for (int a = 0; a < 3; ++a)
+        Gj[a] += h * (L->fb[a][j] + fm[a]) + T(k.basset_mass) * h * T(k.gu) * L->acc[a][j];
     }
     T b[3], P[3], dPj[3], dLj[3], Vnew[3], wnew[3], u_end[3];
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
-      b[a] = Extra ? Gj[a] + h * d.f[a] : h * (T(k.F[a]) + d.f[a]);
+      b[a] = Gj[a] + h * d.f[a];
       P[a] = T(k.m) * V[a] - T(k.ma) * u_f[a];
       // the fluid velocity at the end of the step enters through the added mass
       u_end[a] = u_f[a] + h * T(k.gu) * L->acc[a][j];
@@ -252,8 +250,7 @@ LRIGID_IVDEP
         T res[3], dd[3];
 #pragma GCC unroll 3
         for (int a = 0; a < 3; ++a)
-          res[a] = Extra ? dP[a][j] - G[a][j] - h * d.f[a] + T(k.basset_mass / k.m) * dP[a][j]
-                         : dP[a][j] - h * (T(k.F[a]) + d.f[a]);
+          res[a] = dP[a][j] - G[a][j] - h * d.f[a] + T(k.basset_mass / k.m) * dP[a][j];
         implicit_linear(k, d, res, dd);
         const T ja = T(k.J) + h * d.c_ang;
         T conv = 0;
