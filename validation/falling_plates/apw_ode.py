@@ -12,41 +12,54 @@ y normal; lengths in units of the half chord a, velocities in U = sqrt((ρ_s/ρ_
     (I* + 1/2)/4 ω' = −u v − (μ1 + μ2|ω|) ω,      θ' = ω
     Γ = (2/π)(−C_T u v/|V| + C_R ω),   F = (1/π)(A − B (u² − v²)/|V|²)|V| (u, v)
 
-with C_T = 1.2, C_R = π, A = 1.4, B = 1.0, μ1 = μ2 = 0.2. Here I* = ρ_s b/(ρ_f a), the ellipse's
-thickness-to-width ratio times the density ratio. Integrated with classical RK4 (dt = 0.01 in
-units of a/U) from rest at 10° for 400 time units; the regime is read from the second half.
+with C_T = 1.2, C_R = π, A = 1.4, B = 1.0, μ1 = μ2 = 0.2. Here I* = ρ_s b/(ρ_f a) is the plate's
+mass over the fluid mass πρ_f a² of the circumscribed circle; a box of thickness h and width w has
+the mass ratio (4/π) ρ_s h/(ρ_f w). Integrated with classical RK4 (dt = 0.01 in units of a/U) from
+rest at 10° for 400 time units; the regime is read from the second half.
 """
+import collections
 import math
 
 import numpy as np
 
-C_T, C_R, A, B, MU1, MU2 = 1.2, math.pi, 1.4, 1.0, 0.2, 0.2
+# cop: apply the rotational circulation lift at Rayleigh's centre of pressure, a distance
+# (3/4) l cos α/(4 + π sin α) ahead of the centre (l = 2a the chord, α the angle of attack),
+# instead of at the centre. Not APW's model: the variant docs/physics/lift.md discusses.
+Coeffs = collections.namedtuple("Coeffs", "C_T C_R A B mu1 mu2 cop")
+APW = Coeffs(C_T=1.2, C_R=math.pi, A=1.4, B=1.0, mu1=0.2, mu2=0.2, cop=False)
 
 
-def rates(s, istar, mu_scale=1.0):
+def rates(s, istar, c=APW):
     u, v, w, th = s
     V = math.hypot(u, v) + 1e-9
-    G = (2 / math.pi) * (-C_T * u * v / V + C_R * w)
-    fd = (1 / math.pi) * (A - B * (u * u - v * v) / (V * V)) * V
+    G_rot = (2 / math.pi) * c.C_R * w
+    G = (2 / math.pi) * (-c.C_T * u * v / V) + G_rot
+    fd = (1 / math.pi) * (c.A - c.B * (u * u - v * v) / (V * V)) * V
     du = ((istar + 1) * w * v - G * v - math.sin(th) - fd * u) / istar
     dv = (-istar * w * u + G * u - math.cos(th) - fd * v) / (istar + 1)
-    dw = (-u * v - mu_scale * (MU1 + MU2 * abs(w)) * w) / (0.25 * (istar + 0.5))
+    torque = -u * v - (c.mu1 + c.mu2 * abs(w)) * w
+    if c.cop:
+        x_cp = 2 * 3 * abs(u) / V / (4 * (4 + math.pi * abs(v) / V))   # in units of a
+        torque += math.copysign(x_cp, u) * G_rot * u
+    dw = torque / (0.25 * (istar + 0.5))
     return np.array([du, dv, dw, w])
 
 
-def regime(istar, mu_scale=1.0, t_end=400.0, dt=0.01, theta0=math.radians(10.0)):
-    """("steady" | "flutter" | "chaotic" | "tumble", net turns and pitch peak-to-peak in degrees
-    over the second half)."""
+def regime(istar, c=APW, t_end=400.0, dt=0.01, theta0=math.radians(10.0)):
+    """("steady" | "flutter" | "chaotic" | "tumble" | "runaway", net turns and pitch peak-to-peak
+    in degrees over the second half); "runaway" when the state overflows."""
     s = np.array([0.0, 0.0, 0.0, theta0])
     n = int(round(t_end / dt))
     th = np.empty(n)
     for i in range(n):
-        k1 = rates(s, istar, mu_scale)
-        k2 = rates(s + 0.5 * dt * k1, istar, mu_scale)
-        k3 = rates(s + 0.5 * dt * k2, istar, mu_scale)
-        k4 = rates(s + dt * k3, istar, mu_scale)
+        k1 = rates(s, istar, c)
+        k2 = rates(s + 0.5 * dt * k1, istar, c)
+        k3 = rates(s + 0.5 * dt * k2, istar, c)
+        k4 = rates(s + dt * k3, istar, c)
         s = s + dt / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
         th[i] = s[3]
+        if not math.isfinite(s[0] + s[1] + s[2] + s[3]) or abs(s[2]) > 1e6:
+            return "runaway", math.nan, math.nan
     return classify_angle(th[n // 2:])
 
 
@@ -72,10 +85,26 @@ def classify_angle(phi):
     return reg, net, p2p
 
 
-def transition(istars=(0.2, 0.4, 0.6, 0.8, 1.0, 1.2, 1.5, 2.0, 3.0), mu_scale=1.0):
-    return [(i,) + regime(i, mu_scale) for i in istars]
+def transition(istars=(0.2, 0.4, 0.6, 0.8, 1.0, 1.2, 1.5, 2.0, 3.0), c=APW):
+    return [(i,) + regime(i, c) for i in istars]
+
+
+# One coefficient changed at a time, by factors well outside APW's fitting uncertainty: does any
+# single coefficient move the model's flutter-tumble boundary down to the experiments' I*?
+LEVERS = (("C_T x 0.5", APW._replace(C_T=0.6)), ("C_T x 2", APW._replace(C_T=2.4)),
+          ("C_T x 3", APW._replace(C_T=3.6)), ("C_R x 0.5", APW._replace(C_R=0.5 * math.pi)),
+          ("A, B x 0.5", APW._replace(A=0.7, B=0.5)),
+          ("mu1 = 0, mu2 x 0.25", APW._replace(mu1=0.0, mu2=0.05)),
+          ("rotational lift at the centre of pressure", APW._replace(cop=True)))
+
+
+def lever_sweep(istars=(0.2, 0.35, 0.5, 0.8, 1.5), levers=LEVERS, t_end=300.0):
+    """[(label, [regime at each I*])] for the coefficient variants in `levers`."""
+    return [(label, [regime(i, c, t_end=t_end)[0] for i in istars]) for label, c in levers]
 
 
 if __name__ == "__main__":
     for row in transition():
         print("I* = %.2f: %s (net %.1f turns, pitch peak-to-peak %.0f°)" % row)
+    for label, regs in lever_sweep():
+        print("%s: %s" % (label, " ".join(regs)))
