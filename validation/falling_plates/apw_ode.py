@@ -95,6 +95,9 @@ LEVERS = (("C_T x 0.5", APW._replace(C_T=0.6)), ("C_T x 2", APW._replace(C_T=2.4
           ("C_T x 3", APW._replace(C_T=3.6)), ("C_R x 0.5", APW._replace(C_R=0.5 * math.pi)),
           ("A, B x 0.5", APW._replace(A=0.7, B=0.5)),
           ("mu1 = 0, mu2 x 0.25", APW._replace(mu1=0.0, mu2=0.05)),
+          # a torque that drives rotation as autorotating plates show: net linear term
+          # pro-rotation, so a plate spinning in a stream settles at ω a/U = 0.15/0.2
+          ("mu1 = -0.15 (autorotation)", APW._replace(mu1=-0.15)),
           ("rotational lift at the centre of pressure", APW._replace(cop=True)))
 
 

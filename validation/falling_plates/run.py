@@ -31,9 +31,9 @@ not available to this project (physics-notes §4), so none is compared.
 Checks (2) at I* = 0.8 and 1.2 fail, and check (4) says why: APW's ODE with its published
 coefficients flutters up to a mass ratio of about 1.2 and is chaotic above, so the 3D model that
 follows it does too. The notes print two computations behind that: the ODE's own sweep, and the
-ODE with one coefficient at a time scaled by 0 to 3, or with the rotational lift moved to the
-centre of pressure (apw_ode.LEVERS); none of them tumbles where the experiments do
-(docs/physics/lift.md, "Where the boundary lies").
+ODE with one coefficient at a time scaled by 0 to 3, with a pro-rotation (autorotation) linear
+torque, or with the rotational lift moved to the centre of pressure (apw_ode.LEVERS); none of them
+tumbles where the experiments do (docs/physics/lift.md, "Where the boundary lies").
 
 The viscosities (1e-6 … 3e-4 m²/s) span Re ≈ 1 to a few thousand; the "Re ~ 10³" checks use the
 row whose measured Re is closest to 10³. The plate motion needs the plate lift model (effect
