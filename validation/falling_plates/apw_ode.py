@@ -89,8 +89,8 @@ def transition(istars=(0.2, 0.4, 0.6, 0.8, 1.0, 1.2, 1.5, 2.0, 3.0), c=APW):
     return [(i,) + regime(i, c) for i in istars]
 
 
-# One coefficient changed at a time, by factors well outside APW's fitting uncertainty: does any
-# single coefficient move the model's flutter-tumble boundary down to the experiments' I*?
+# One change at a time (coefficients scaled by 0 to 3, or a torque added): does any
+# of them move the model's flutter-tumble boundary down to the experiments' I*?
 LEVERS = (("C_T x 0.5", APW._replace(C_T=0.6)), ("C_T x 2", APW._replace(C_T=2.4)),
           ("C_T x 3", APW._replace(C_T=3.6)), ("C_R x 0.5", APW._replace(C_R=0.5 * math.pi)),
           ("A, B x 0.5", APW._replace(A=0.7, B=0.5)),
