@@ -18,7 +18,7 @@
 set -u
 SRC=$1
 WORK=$2
-export FOAM2GRID=$3
+export FOAM2GRID=$(realpath "$3")
 TEST=$4
 export WM_PROJECT_DIR=/usr/share/openfoam
 export PATH=/usr/bin:/bin:$PATH
