@@ -31,6 +31,18 @@ def _read_stl_binary(data, path):
     return tris
 
 
+def _point(w, path, lineno, line, extra=False):
+    """the 3 coordinates after the keyword w[0] of a vertex line (extra: more values may
+    follow, as OBJ's optional w or the vertex colours some exporters write)"""
+    if len(w) < 4 or (len(w) > 4 and not extra):
+        raise GeometryError('%s:%d: a vertex needs 3 coordinates: "%s"'
+                            % (path, lineno, line.strip()))
+    try:
+        return tuple(float(x) for x in w[1:4])
+    except ValueError:
+        raise GeometryError('%s:%d: not a number in "%s"' % (path, lineno, line.strip()))
+
+
 def _read_stl_ascii(text, path):
     tris, loop = [], []
     for lineno, line in enumerate(text.splitlines(), 1):
@@ -38,13 +50,7 @@ def _read_stl_ascii(text, path):
         if not w:
             continue
         if w[0] == 'vertex':
-            try:
-                loop.append(tuple(float(x) for x in w[1:4]))
-            except ValueError:
-                raise GeometryError('%s:%d: not a number in "%s"' % (path, lineno, line.strip()))
-            if len(w) != 4:
-                raise GeometryError('%s:%d: a vertex needs 3 coordinates: "%s"'
-                                    % (path, lineno, line.strip()))
+            loop.append(_point(w, path, lineno, line))
         elif w[0] == 'endloop':
             if len(loop) != 3:
                 raise GeometryError('%s:%d: a facet has %d vertices, STL needs 3'
@@ -63,12 +69,7 @@ def _read_obj(text, path):
         if not w or w[0].startswith('#'):
             continue
         if w[0] == 'v':
-            try:
-                verts.append(tuple(float(x) for x in w[1:4]))
-            except ValueError:
-                raise GeometryError('%s:%d: not a number in "%s"' % (path, lineno, line.strip()))
-            if len(verts[-1]) != 3:
-                raise GeometryError('%s:%d: a vertex needs 3 coordinates' % (path, lineno))
+            verts.append(_point(w, path, lineno, line, extra=True))
         elif w[0] == 'f':
             idx = []
             for tok in w[1:]:
