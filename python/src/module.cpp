@@ -7,7 +7,6 @@
 #include <pybind11/stl.h>
 
 #include <cmath>
-#include <limits>
 #include <memory>
 #include <string>
 #include <utility>
@@ -148,12 +147,12 @@ class Simulation {
     });
   }
   py::array_t<uint8_t> status() const {
-    py::array_t<uint8_t> a(py::ssize_t(size()));
+    py::array_t<uint8_t> a{py::ssize_t(size())};
     for (size_t i = 0; i < size(); ++i) a.mutable_data()[i] = uint8_t(state_.status[i]);
     return a;
   }
   py::array_t<int> types() const {
-    py::array_t<int> a(py::ssize_t(size()));
+    py::array_t<int> a{py::ssize_t(size())};
     for (size_t i = 0; i < size(); ++i) a.mutable_data()[i] = state_.type[i];
     return a;
   }
@@ -226,7 +225,7 @@ class Simulation {
     // simulate() runs to model.duration in stretches ending at outputs: one stretch to `last`
     model_->duration = static_cast<double>(last) * model_->dt;
     RunOptions opt;
-    opt.every = std::numeric_limits<double>::max();
+    opt.every = static_cast<double>(last + 1) * model_->dt;  // no output on the way
     opt.threads = threads_;
     RunStats s;
     {
@@ -259,9 +258,9 @@ class Grid {
     if (!p || p.ndim() != 2 || p.shape(1) != 3)
       bad_value("Grid.sample: points must be an array of shape (n, 3)");
     const size_t n = size_t(p.shape(0));
-    py::array_t<double> U({py::ssize_t(n), py::ssize_t(3)}), k(py::ssize_t(n)),
-        eps(py::ssize_t(n));
-    py::array_t<bool> valid(py::ssize_t(n));
+    py::array_t<double> U({py::ssize_t(n), py::ssize_t(3)}), k{py::ssize_t(n)},
+        eps{py::ssize_t(n)};
+    py::array_t<bool> valid{py::ssize_t(n)};
     {
       const double* x = p.data();
       double *u = U.mutable_data(), *kk = k.mutable_data(), *e = eps.mutable_data();
