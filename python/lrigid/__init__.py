@@ -12,6 +12,7 @@ from . import _lrigid
 
 __version__ = _lrigid.__version__
 Error = _lrigid.Error
+Error.__module__ = "lrigid"
 Error.__doc__ = ("Bad input (scene, shape, grid, arguments): the message names the file or "
                  "dict, the key and the value, as the lrigid command's does.")
 

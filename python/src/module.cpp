@@ -142,7 +142,7 @@ class Simulation {
   }
   py::array_t<double> angular_velocities() const {
     return per_body(3, [&](size_t i, double* r) {
-      const Vec3 w = state_.q[i] * state_.w[i];
+      const Vec3 w = state_.q[i].toRotationMatrix() * state_.w[i];  // as the writer does
       std::copy_n(w.data(), 3, r);
     });
   }
