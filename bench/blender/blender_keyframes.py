@@ -128,6 +128,7 @@ for k in (0, frames // 2, frames):
         mw = o.matrix_world
         dx = (mw.translation - Vector(x[i])).length
         dq = mw.to_quaternion().rotation_difference(Quaternion(q[i])).angle
+        dq = min(dq, 2 * math.pi - dq)  # q and -q are the same rotation
         check(dx <= 1e-6 * max(1.0, Vector(x[i]).length), "frame %d %s: position off by %g m"
               % (k, o.name, dx))
         check(dq <= 1e-5, "frame %d %s: rotation off by %g rad" % (k, o.name, dq))
