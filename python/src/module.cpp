@@ -102,7 +102,7 @@ class Simulation {
     }
     py::gil_scoped_release release;
     model_ = std::make_unique<Model>(compile_model(
-        scene_, load_scene_field(scene_, "auto", true), cached_added_mass));
+        scene_, load_scene_field(scene_, "auto", false), cached_added_mass));
     state_ = initial_state(*model_, scene_);
   }
 
@@ -367,10 +367,13 @@ PYBIND11_MODULE(_lrigid, m) {
   py::class_<Simulation>(m, "Simulation")
       .def(py::init<const PyScene&, py::object, py::object>(), py::arg("scene"),
            py::arg("seed") = py::none(), py::arg("threads") = py::none())
-      .def("step", &Simulation::step, py::arg("n") = 1)
-      .def("run", &Simulation::run, py::arg("until") = py::none())
+      .def("step", &Simulation::step, py::arg("n") = 1, "Advances n steps of dt.")
+      .def("run", &Simulation::run, py::arg("until") = py::none(),
+           "Advances to the time `until` (s, nearest whole step; default: the scene's duration).")
       .def("push", &Simulation::push, py::arg("body"), py::arg("impulse"),
-           py::arg("angular_impulse") = py::none(), py::arg("at") = py::none())
+           py::arg("angular_impulse") = py::none(), py::arg("at") = py::none(),
+           "Impulse (N s, world) at world point `at` (default: centre of mass) plus angular "
+           "impulse (N m s): the generalized momentum with added mass gains them.")
       .def_property_readonly("t", [](Simulation& s) { return s.state().t; })
       .def_property_readonly("n_steps", [](Simulation& s) { return s.state().step; })
       .def_property_readonly("dt", [](const Simulation& s) { return s.model().dt; })
