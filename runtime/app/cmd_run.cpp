@@ -1,5 +1,4 @@
 // lrigid run SCENE.json [-o DIR] [--seed S] [--threads T] [--stream-field M] [--quiet]
-
 #include <chrono>
 #include <cmath>
 #include <cstdio>

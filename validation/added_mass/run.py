@@ -5,10 +5,9 @@
 * prolate and oblate spheroids (analytic path, Lamb §114–115) vs Lamb's coefficients, here
   recomputed independently by numerical quadrature of the Lamb integrals α0, β0, γ0 (scipy-free
   numpy quadrature) and compared with the tabulated values of physics-notes §3;
-* BEM on tessellated icospheres and spheroids (lrigid added-mass --mesh) vs the exact values,
+* BEM on tessellated icospheres and spheroids (lrigid.added_mass, the Python module) vs the exact values,
   with the error's convergence rate in the number of panels.
 """
-import json
 import math
 import os
 import sys
@@ -54,14 +53,14 @@ def lamb_coefficients(a, b, c):
     return np.array(m), np.array(inert), (al, be, ga), V
 
 
-def lrigid_tensor(args, *opt):
-    r = vc.run([args.lrigid, "added-mass", *opt, "--fluid-density", str(RHO), "--json"])
-    d = json.loads(r.stdout)
-    return np.array(d["added_mass"]) / RHO, d
-
-
 def main():
     args = vc.parse_args()
+    lrigid = vc.import_lrigid(args)  # the Python module (docs/python.md)
+
+    def tensor(shape):
+        """K / ρ and the details (method, panels) of lrigid's added mass for a shape dict"""
+        d = lrigid.added_mass(shape, RHO, details=True)
+        return d["added_mass"] / RHO, d
     st = vc.Study("added_mass", "Added mass: Lamb's spheroids and BEM convergence", args)
 
     # quadrature sanity: α0+β0+γ0 = 2 (Lamb) and 2/3 each for a sphere
@@ -70,7 +69,7 @@ def main():
              "Lamb §114 identity")
 
     # sphere, analytic path
-    K, d = lrigid_tensor(args, "--sphere", "1")
+    K, d = tensor({"type": "sphere", "radius": 1})
     V = 4 / 3 * math.pi
     st.check("sphere m/(ρV)", K[0, 0] / V, 0.5, 1e-9, "exact (Lamb §92)")
     st.check("sphere rotational added inertia / (ρ V a²)", abs(K[3:, 3:]).max() / V, 0.0, 1e-9,
@@ -80,7 +79,7 @@ def main():
     table = {2: (0.2100, 0.7042, 0.2394), 5: (0.0591, 0.8943, 0.6999),
              10: (0.0207, 0.9602, 0.8835)}
     for ratio, ref in table.items():
-        K, d = lrigid_tensor(args, "--ellipsoid", str(ratio), "1", "1")
+        K, d = tensor({"type": "ellipsoid", "semi_axes": [ratio, 1, 1]})
         V = 4 / 3 * math.pi * ratio
         kr = K[4, 4] / (V * (ratio ** 2 + 1) / 5)
         got = (K[0, 0] / V, K[1, 1] / V, kr)
@@ -95,7 +94,7 @@ def main():
     # oblate spheroids a = b = 1, thickness c/a (per ρa³, ρa⁵): normal, edgewise, diametral
     otable = {0.5: (2.335, 0.648, 0.177), 0.1: (2.590, 0.031, 0.340), 0.01: (2.659, None, 0.355)}
     for ca, ref in otable.items():
-        K, d = lrigid_tensor(args, "--ellipsoid", "1", "1", str(ca))
+        K, d = tensor({"type": "ellipsoid", "semi_axes": [1, 1, ca]})
         got = (K[2, 2], K[0, 0], K[3, 3])
         m, inert, _, _ = lamb_coefficients(1.0, 1.0, ca)
         own = (m[2], m[0], inert[0])
@@ -122,7 +121,7 @@ def main():
         for lev in levels:
             obj = st.path("%s_%d.obj" % (sname.split()[0], lev))
             nf = meshes.ellipsoid_obj(obj, lev, a, b, c)
-            K, d = lrigid_tensor(args, "--mesh", obj, "--panels", str(nf))
+            K, d = tensor({"type": "mesh", "file": obj, "panels": nf})
             for cname, idx, ex in comps:
                 conv.setdefault((sname, cname), []).append((d["panels"], K[idx, idx] / ex - 1))
     tol = {"sphere": 0.01, "prolate 2:1": 0.02, "oblate c/a=0.1": 0.03}

@@ -37,6 +37,17 @@ def parse_args(extra=None):
     return a
 
 
+def import_lrigid(args):
+    """The Python module lrigid of the build (docs/python.md): <build>/python on sys.path."""
+    sys.path.insert(0, os.path.join(args.build, "python"))
+    try:
+        import lrigid
+    except ImportError as e:
+        sys.exit("cannot import lrigid from %s/python (%s): build the module (docs/python.md)"
+                 % (args.build, e))
+    return lrigid
+
+
 class Study:
     def __init__(self, key, title, args):
         self.key, self.title, self.args = key, title, args

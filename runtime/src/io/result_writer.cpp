@@ -29,9 +29,6 @@
 
 namespace lrigid {
 
-namespace {
-// world-frame velocity of body i: with the "body" turbulence model the turbulent velocity u'
-// moves the body directly and is part of its velocity
 Vec3 body_velocity(const Model& m, const State& st, size_t i, const Mat3& R) {
   Vec3 v = R * st.v[i];
   if (m.turbulence_model == TurbulenceModel::Body &&
@@ -39,6 +36,8 @@ Vec3 body_velocity(const Model& m, const State& st, size_t i, const Mat3& R) {
     v += st.u_seen[i];
   return v;
 }
+
+namespace {
 
 // one compressed .vtp file (appended binary, zlib), or ExitCode::Output naming the path
 void write_polydata(vtkPolyData* poly, const std::string& path) {

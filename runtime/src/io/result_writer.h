@@ -25,6 +25,11 @@ namespace lrigid {
 // tessellate(shape, target_faces) shifted by -com. m
 TriangleMesh body_surface(const BodyType& type, int target_faces);
 
+// World-frame velocity of body i's centre of mass as the outputs write it, R = q[i]'s matrix:
+// with the "body" turbulence model the turbulent velocity u' moves the body directly and is
+// part of its velocity. m/s
+Vec3 body_velocity(const Model& m, const State& st, size_t i, const Mat3& R);
+
 // Faces per body used for the shapes series: fewer for many bodies (docs/outputs.md).
 int shape_faces_for(size_t bodies);
 

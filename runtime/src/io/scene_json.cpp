@@ -396,6 +396,18 @@ Scene parse_scene(const std::string& text, const std::string& path) {
   }
 }
 
+Shape parse_shape(const std::string& text, const std::string& path, int* panels) {
+  try {
+    const json j = json::parse(text);
+    BodySpec b;
+    Shape s = read_shape(Obj(j, "shape", path), &b);
+    *panels = b.panels;
+    return s;
+  } catch (const json::exception& e) {
+    fail_input(path, "shape", std::string("invalid JSON: ") + e.what());
+  }
+}
+
 Scene read_scene(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   std::error_code ec;

@@ -1,0 +1,139 @@
+"""lrigid: rigid bodies in turbulent air and water, from Python (docs/python.md).
+
+The same library the ``lrigid`` command runs on: scenes (``Scene``), runs whose state is read
+and written as NumPy arrays (``Simulation``), the fluid Kirchhoff tensor of a shape
+(``added_mass``), what ``lrigid explain`` reports (``explain``) and the flow grids written by
+foam2grid (``Grid``). Units are SI everywhere. Bad input raises ``lrigid.Error`` (a
+``ValueError``) with the command's message, naming the file (or dict), key and value.
+"""
+import json as _json
+
+from . import _lrigid
+
+__version__ = _lrigid.__version__
+Error = _lrigid.Error
+Error.__module__ = "lrigid"
+Error.__doc__ = ("Bad input (scene, shape, grid, arguments): the message names the file or "
+                 "dict, the key and the value, as the lrigid command's does.")
+
+# status codes of Simulation.status (as in bodies.pvd's "status" array)
+MOVING, LANDED, EXITED, FAILED = 0, 1, 2, 3
+STATUS_NAMES = ("moving", "landed", "exited", "failed")
+
+
+def _dumps(d, what):
+    try:
+        return _json.dumps(d, allow_nan=False)
+    except (TypeError, ValueError) as e:
+        raise Error("%s: cannot be written as JSON: %s" % (what, e)) from None
+
+
+class Scene:
+    """A validated scene (docs/scene-format.md, schema v1).
+
+    Build it with ``Scene.load(path)`` or ``Scene.from_dict(d)``; read-only attributes:
+    ``file``, ``seed``, ``dt`` (s), ``duration`` (s), ``integrator``, ``body_count``.
+    """
+
+    def __init__(self, compiled):
+        self._s = compiled
+
+    @staticmethod
+    def load(path):
+        """Reads a scene file; relative paths in it resolve against its folder."""
+        return Scene(_lrigid.Scene.load(str(path)))
+
+    @staticmethod
+    def from_dict(d, name="<dict>"):
+        """A scene from a dict with the file's schema. Relative paths in it resolve against the
+        folder of ``name`` (default: the current directory); error messages name ``name``."""
+        return Scene(_lrigid.Scene.from_json(_dumps(d, name), str(name)))
+
+    def __getattr__(self, key):
+        if key in ("file", "seed", "dt", "duration", "integrator", "body_count"):
+            return getattr(self._s, key)
+        raise AttributeError(key)
+
+    def __repr__(self):
+        return "lrigid.Scene(%r, %d bodies, dt=%g s, duration=%g s)" % (
+            self.file, self.body_count, self.dt, self.duration)
+
+
+class Simulation(_lrigid.Simulation):
+    """A run of a scene, stepped exactly as ``lrigid run`` steps it.
+
+    ``Simulation(scene, seed=None, threads=None)``: ``seed`` overrides the scene's (as
+    ``lrigid run --seed``), ``threads`` the thread count (default: all cores; results do not
+    depend on it). Same seed: the same bits as ``lrigid run`` (tests/python/test_same_bits.py).
+
+    Stepping: ``step(n=1)`` takes n steps of ``dt``; ``run(until=None)`` steps to the time
+    ``until`` (s, rounded to a whole step; default the scene's duration). ``t`` (s) and
+    ``n_steps`` say where the run is; stepping past the scene's duration is allowed.
+
+    State (NumPy arrays, copies; one row per body, in the order of trajectories.csv):
+    ``positions`` (N, 3) centre of mass, m; ``orientations`` (N, 4) body -> world quaternion
+    w, x, y, z; ``velocities`` (N, 3) m/s and ``angular_velocities`` (N, 3) rad/s in world axes
+    (as trajectories.csv); ``status`` (N,) uint8 (MOVING, LANDED, EXITED, FAILED); ``types``
+    (N,) index into ``type_names``; ``stop_times`` (s) and ``reasons`` of stopped bodies.
+
+    Changing the state between steps: assign a whole array, e.g.
+    ``v = sim.velocities; v[3] += (0, 0, 1); sim.velocities = v`` (orientations are
+    normalized; world-frame velocities are stored in the body frame). ``push(body, impulse,
+    angular_impulse=None, at=None)`` applies an impulse (N s, world frame) at the world point
+    ``at`` (default the centre of mass) and an angular impulse (N m s): the body's generalized
+    momentum, with its added mass, gains them; a landed body pushed moves again.
+    """
+
+    def __init__(self, scene, seed=None, threads=None):
+        if not isinstance(scene, Scene):
+            raise Error("Simulation: scene must be an lrigid.Scene (Scene.load or "
+                        "Scene.from_dict), got %s" % type(scene).__name__)
+        super().__init__(scene._s, seed, threads)
+
+
+def added_mass(shape, fluid_density, details=False):
+    """The fluid Kirchhoff (added-mass) tensor of a shape, 6x6 NumPy array about the volume
+    centroid, order (vx vy vz wx wy wz), units kg | kg m | kg m^2 (``lrigid added-mass``).
+
+    ``shape`` is a dict as a body's "shape" in a scene file, e.g. ``{"type": "sphere",
+    "radius": 0.1}`` or ``{"type": "box", "size": [0.06, 0.04, 0.0004], "panels": 800}``;
+    ``fluid_density`` in kg/m^3. With ``details=True`` returns a dict with also ``method``
+    ("analytic" or "bem"), ``panels``, ``volume`` (m^3), ``centroid`` (m) and
+    ``inertia_per_unit_density`` (m^5). Boundary-element results use the command's disk cache.
+    """
+    r = _lrigid.added_mass_json(_dumps(shape, "<shape>"), float(fluid_density), "<shape>")
+    return r if details else r["added_mass"]
+
+
+def explain(scene):
+    """What ``lrigid explain`` prints, as a dict: fluid, flow scales, and per body type
+    (``body_types``) the dimensionless numbers, each effect's size with keep/skip and reason,
+    the effects simulated, the step taken and the estimated cost (ns per body-step).
+    ``scene``: an ``lrigid.Scene``, a path or a dict."""
+    if isinstance(scene, dict):
+        scene = Scene.from_dict(scene)
+    elif not isinstance(scene, Scene):
+        scene = Scene.load(scene)
+    return _lrigid.explain_scene(scene._s)
+
+
+class Grid(_lrigid.Grid):
+    """A grid written by foam2grid (.vti, or .pvd series), read whole (docs/grid-format.md).
+
+    ``Grid.load(path)``; ``shape`` (points per axis), ``origin``, ``spacing`` (m), ``times``
+    (s), ``kinematic_viscosity`` (m^2/s, 0 when the file has none).
+    ``sample(points, t=0)`` with points an (n, 3) array (m) returns a dict of NumPy arrays
+    ``U`` (n, 3) m/s, ``k`` (n,) m^2/s^2, ``epsilon`` (n,) m^2/s^3 and ``valid`` (n,) bool:
+    trilinear in space over the valid corners of the cell (the runtime's rule: a point is in
+    the fluid when valid corners carry at least half the weight; else NaN), linear in time
+    between frames, clamped to the first and last frame.
+    """
+
+    @staticmethod
+    def load(path):
+        """Reads a grid file (.vti or .pvd)."""
+        return Grid(str(path))
+
+
+__all__ = ["Error", "Scene", "Simulation", "Grid", "added_mass", "explain", "MOVING", "LANDED",
+           "EXITED", "FAILED", "STATUS_NAMES"]

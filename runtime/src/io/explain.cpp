@@ -1,0 +1,110 @@
+#include "io/explain.h"
+
+#include <cmath>
+#include <string>
+#include <utility>
+
+#include "integrate/simulation.h"
+#include "integrate/sphere_batch.h"
+#include "io/added_mass_cache.h"
+#include "io/field_loader.h"
+#include "model/model.h"
+
+namespace lrigid {
+
+namespace {
+
+nlohmann::json names(EffectSet s) { return effect_names(s); }
+
+const char* effect_name(Effect e) {
+  for (const auto& info : all_effects())
+    if (info.effect == e) return info.name;
+  return "?";
+}
+
+nlohmann::json body_type(const Scene& scene, const Model& model, const FlowScales& flow,
+                         size_t ti) {
+  const BodyType& t = model.types[ti];
+  const EffectAnalysis a = analyze_effects(scene, t, flow, scene.bodies[t.spec]);
+  nlohmann::json j;
+  j["index"] = ti;
+  j["name"] = t.name;
+  j["shape"] = shape_type_name(t.shape.type);
+  j["count"] = t.count;
+  j["mass"] = t.mass;
+  j["volume"] = t.volume;
+  j["density"] = t.density;
+  j["density_ratio"] = a.density_ratio;
+  j["aspect_ratio"] = a.aspect_ratio;
+  j["flat"] = t.flat;
+  j["normal_axis"] = t.normal_axis;
+  j["size"] = a.size;
+  j["terminal_speed"] = a.terminal_speed;
+  j["relative_speed"] = a.speed;
+  j["reynolds"] = a.reynolds;
+  j["tau_p"] = a.tau_p;
+  j["stokes_k_eps"] = a.stokes_k_eps;
+  j["stokes_kolmogorov"] = a.stokes_kolmogorov;
+  j["spin_ratio"] = a.spin_ratio;
+  j["effects"] = nlohmann::json::array();
+  for (const auto& [e, size] : a.size_rel) {
+    nlohmann::json r = {{"name", effect_name(e)}, {"size", size}, {"keep", true},
+                        {"reason", ""}};
+    for (const auto& [se, why] : a.skipped)
+      if (se == e) r["keep"] = false, r["reason"] = why;
+    j["effects"].push_back(r);
+  }
+  j["auto_chooses"] = names(a.chosen);
+  j["scene_lists"] = scene.effects_auto ? nlohmann::json() : names(t.effects);
+  j["simulated"] = names(t.effects);
+  // which step it takes (integrate/simulation.h step_kind), and why not batched
+  std::string why;
+  const StepKind kind = step_kind(model, t, &why);
+  const bool sphere = kind == StepKind::SphereBlock, rigid = kind == StepKind::RigidBlock;
+  j["step"] = {{"batched", sphere || rigid},
+               {"kind", sphere ? "spheres" : rigid ? "plates and ellipsoids" : "scalar"},
+               {"block", kBatch},
+               {"isa", sphere_batch_isa()},
+               {"precision", model.precision == Precision::Float ? "float" : "double"},
+               {"reason", sphere || rigid ? "" : why}};
+  j["cost_ns"] = sphere || rigid ? estimated_batched_cost_ns(t.effects, model.precision, rigid)
+                                 : estimated_cost_ns(t.effects, scene.integrator,
+                                                     !scene.uniform_field, t.M_isotropic);
+  return j;
+}
+
+}  // namespace
+
+nlohmann::json explain_scene(const Scene& scene) {
+  FluidField field = load_field(scene, StreamMode::Off, true);
+  const FlowScales flow = flow_scales(scene, field);
+  const Model model = compile_model(scene, std::move(field), cached_added_mass);
+  const double nu = scene.kinematic_viscosity;
+  nlohmann::json j;
+  j["scene"] = scene.file;
+  j["fluid"] = {{"density", scene.fluid_density},
+                {"kinematic_viscosity", nu},
+                {"gravity", scene.gravity.norm()}};
+  j["flow"] = {{"source", flow.source}, {"U", flow.U}, {"k", flow.k}, {"epsilon", flow.eps}};
+  if (flow.k > 0 && flow.eps > 0) {
+    j["flow"]["k_over_epsilon"] = flow.k / flow.eps;
+    j["flow"]["tau_eta"] = std::sqrt(nu / flow.eps);
+  }
+  j["art"] = {{"mean_flow_scale", scene.mean_flow_scale},
+              {"turbulence_scale", scene.turbulence_scale}};
+  j["integrator"] = integrator_name(scene.integrator);
+  j["dt"] = scene.dt;
+  j["effects_auto"] = scene.effects_auto;
+  j["body_types"] = nlohmann::json::array();
+  double total_ns = 0;
+  for (size_t ti = 0; ti < model.types.size(); ++ti) {
+    j["body_types"].push_back(body_type(scene, model, flow, ti));
+    total_ns += j["body_types"].back()["cost_ns"].get<double>() * double(model.types[ti].count);
+  }
+  const double steps = std::round(scene.duration / scene.dt);
+  j["total"] = {{"body_steps", steps * double(model.body_count)},
+                {"seconds_one_core", total_ns * steps * 1e-9}};
+  return j;
+}
+
+}  // namespace lrigid
