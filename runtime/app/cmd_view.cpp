@@ -93,7 +93,7 @@ const char* kControls =
 class ViewStyle : public vtkInteractorStyleTrackballCamera {
  public:
   static ViewStyle* New();
-  vtkTypeMacro(ViewStyle, vtkInteractorStyleTrackballCamera);
+  vtkTypeMacro(ViewStyle, vtkInteractorStyleTrackballCamera)
   std::function<bool(const std::string&)> on_key;
   void OnChar() override {
     vtkRenderWindowInteractor* rwi = this->Interactor;

@@ -70,7 +70,11 @@ void ViewSimulation::stop() {
 void ViewSimulation::toggle_pause() {
   std::lock_guard<std::mutex> lk(mu_);
   paused_ = !paused_;
+  // the published frame says so at once (the worker may be busy with a stretch)
+  frame_.paused = paused_;
+  ++frame_.version;
   cv_.notify_all();
+  done_cv_.notify_all();
 }
 
 void ViewSimulation::scale_mean_flow(double factor) {
@@ -95,7 +99,12 @@ void ViewSimulation::set_pace(Pace p) {
   std::lock_guard<std::mutex> lk(mu_);
   pace_ = p;
   pending_steps_ = 0;
+  served_ = requested_;
+  frame_.pace = p;
+  frame_.behind = false;
+  ++frame_.version;
   cv_.notify_all();
+  done_cv_.notify_all();
 }
 
 void ViewSimulation::advance_and_wait(double secs) {
