@@ -174,8 +174,21 @@ class Viewer {
     });
     iren->AddObserver(vtkCommand::TimerEvent, tick);
     iren->CreateRepeatingTimer(unsigned(std::max(1.0, std::floor(1000.0 / a_.fps))));
+    const auto start = Clock::now();
     if (!done_) iren->Start();
     sim_->stop();
+    // what the run achieved, as a whole (docs/viewer.md quotes these lines)
+    const double wall = std::chrono::duration<double>(Clock::now() - start).count();
+    const ViewSimulation::Totals t = sim_->totals();
+    std::fprintf(stderr,
+                 "lrigid: view: %d frames in %.2f s (%.2f frames/s); simulated %.3f s (x%.3f of "
+                 "real time); %llu body-steps, %.3g body-steps/s while stepping, stepping %.0f%% "
+                 "of the time\n",
+                 drawn_ - 1, wall, wall > 0 ? (drawn_ - 1) / wall : 0.0, t.simulated_seconds,
+                 wall > 0 ? t.simulated_seconds / wall : 0.0,
+                 static_cast<unsigned long long>(t.body_steps),
+                 t.integrate_seconds > 0 ? double(t.body_steps) / t.integrate_seconds : 0.0,
+                 wall > 0 ? 100 * t.integrate_seconds / wall : 0.0);
     sim_->rethrow_failure();
     if (!a_.screenshot.empty()) {
       write_png(win_, a_.screenshot);

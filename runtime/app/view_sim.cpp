@@ -271,6 +271,9 @@ void ViewSimulation::loop() {
     model_.duration = double(total_steps_) * model_.dt;
     const uint64_t taken = state_.step - step;
     if (st.wall_seconds > 0) steps_per_second_ = double(taken) / st.wall_seconds;
+    totals_.body_steps += st.body_steps;
+    totals_.integrate_seconds += st.wall_seconds;
+    totals_.simulated_seconds += double(taken) * model_.dt;
     window_integrate_ += st.wall_seconds;
     window_body_steps_ += st.body_steps;
     const auto now = Clock::now();

@@ -71,6 +71,13 @@ class ViewSimulation {
 
   // Copies the newest frame into *f when it is newer than f->version; true when it did.
   bool latest(ViewFrame* f);
+  // Totals since start(), for the summary at exit (read after stop()).
+  struct Totals {
+    uint64_t body_steps = 0;
+    double integrate_seconds = 0;  // wall time inside the step
+    double simulated_seconds = 0;  // simulated time advanced (over restarts)
+  };
+  Totals totals() const { return totals_; }
   // The worker's failure, rethrown on the caller's thread (nothing when it did not fail).
   void rethrow_failure();
 
@@ -114,6 +121,7 @@ class ViewSimulation {
   double window_t0_ = 0, window_integrate_ = 0;
   uint64_t window_body_steps_ = 0;
   double rate_body_steps_ = 0, rate_busy_ = 0, rate_speed_ = 0;
+  Totals totals_;
 };
 
 }  // namespace lrigid::app
