@@ -69,6 +69,7 @@ struct ViewArgs {
   std::string slice = "none";
   double slice_z = NAN;             // m
   double body_scale = 0;            // 0: enlarge tiny bodies to ~5 px
+  int multisamples = 0;             // OpenGL antialiasing samples (costly in software OpenGL)
   bool loop = false;
   bool hud = true;
   bool log = false;                 // print the heads-up line of every frame to stdout
@@ -142,6 +143,7 @@ class Viewer {
     ren_->SetBackground(0.93, 0.94, 0.96);
     ren_->SetBackground2(0.62, 0.68, 0.78);
     win_->SetSize(a.width, a.height);
+    win_->SetMultiSamples(a.multisamples);
     win_->AddRenderer(ren_);
     win_->SetWindowName(("lrigid view " + scene.file).c_str());
     build_context(scene, model);
@@ -584,6 +586,10 @@ void add_view_command(CLI::App& app) {
   cmd->add_option("--body-scale", args->body_scale,
                   "Draw bodies this many times larger (default: enlarge tiny ones to ~5 px)")
       ->check(CLI::PositiveNumber);
+  cmd->add_option("--multisamples", args->multisamples,
+                  "OpenGL antialiasing samples per pixel (default 0: software OpenGL draws "
+                  "several times slower with 8)")
+      ->check(CLI::Range(0, 16));
   cmd->add_flag("--loop", args->loop, "At the scene's end restart with the next seed");
   cmd->add_flag("!--no-hud", args->hud, "Hide the heads-up text");
   cmd->add_flag("--log", args->log, "Print the heads-up line of every drawn frame to stdout");
