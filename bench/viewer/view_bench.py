@@ -63,7 +63,7 @@ def main():
     ap.add_argument("--uniform", action="store_true")
     ap.add_argument("--n", default="1000,10000,100000")
     ap.add_argument("--threads", type=int, default=1)
-    ap.add_argument("--frames", default="120,60,12", help="frames drawn per body count")
+    ap.add_argument("--frames", default="150,60,8", help="frames drawn per body count")
     ap.add_argument("--lrigid", default=os.path.join(ROOT, "build/bin/lrigid"))
     ap.add_argument("--out")
     a = ap.parse_args()
@@ -76,19 +76,20 @@ def main():
             out = run([a.lrigid, "bench", scene, "--n", str(n), "--threads", str(a.threads),
                        "--integrators", scheme])
             line = [l for l in out.splitlines() if l.split()[:1] == [str(n)]][-1].split()
-            alone = float(line[5])
+            alone, alone_cpu = float(line[5]), float(line[7])
             fast = view(a.lrigid, scene, "fast", f, a.threads)
             real = view(a.lrigid, scene, "realtime", f, a.threads)
-            rows.append((n, n / dt, alone, fast, real))
+            rows.append((n, n / dt, alone, alone_cpu, fast, real, os.getloadavg()[0]))
             print(f"{n}: alone {alone:.3g} body-steps/s (x{alone * dt / n:.2f} real time); "
                   f"fast {fast}; realtime {real}", file=sys.stderr)
-    lines = ["| bodies | needed for real time | simulation alone | view fast: frames/s | "
-             "view fast: body-steps/s (x real time) | view realtime: frames/s | "
-             "view realtime: x real time |",
-             "|---:|---:|---:|---:|---:|---:|---:|"]
-    for n, need, alone, fast, real in rows:
-        lines.append(f"| {n:,} | {need:.3g} | {alone:.3g} (x{alone / need:.2f}) | {fast['fps']:.1f} | "
-                     f"{fast['rate']:.3g} (x{fast['x']:.2f}) | {real['fps']:.1f} | x{real['x']:.2f} |")
+    lines = ["| bodies | body-steps/s for real time | simulation alone: body-steps/s wall (per CPU s) | "
+             "view fast: frames/s | view fast: body-steps/s while stepping, x real time | "
+             "view realtime: frames/s | view realtime: x real time (stepping % of wall) | load avg |",
+             "|---:|---:|---:|---:|---:|---:|---:|---:|"]
+    for n, need, alone, alone_cpu, fast, real, load in rows:
+        lines.append(f"| {n:,} | {need:.3g} | {alone:.3g} (x{alone / need:.2f}) ({alone_cpu:.3g}) | "
+                     f"{fast['fps']:.1f} | {fast['rate']:.3g}, x{fast['x']:.2f} | {real['fps']:.1f} | "
+                     f"x{real['x']:.2f} ({real['busy']} %) | {load:.1f} |")
     text = "\n".join(lines) + "\n"
     print(text)
     if a.out:

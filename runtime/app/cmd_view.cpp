@@ -410,18 +410,20 @@ class Viewer {
   void on_timer() {
     try {
       sim_->rethrow_failure();
-      for (auto it = presses_.find(drawn_); it != presses_.end() && it->first == drawn_;
-           it = presses_.erase(it))
-        key(it->second);
+      // keys pressed by script before frame drawn_ (frame 0 is drawn before the first tick)
+      while (!presses_.empty() && presses_.begin()->first <= drawn_) {
+        const std::string k = presses_.begin()->second;
+        presses_.erase(presses_.begin());
+        key(k);
+      }
       if (done_) return;
       if (frame_.pace == Pace::Fixed) sim_->advance_and_wait(1.0 / a_.fps);
       const bool fresh = sim_->latest(&frame_);
       // the simulation comes first: when it cannot keep the wall clock, draw less often
       const auto now = Clock::now();
-      if (frame_.behind)
-        interval_ = std::min(1.0, std::max(interval_, 1.0 / a_.fps) * 1.25);
-      else
-        interval_ = 1.0 / a_.fps;
+      // (one frame a second while it is behind: drawing many bodies in software OpenGL costs
+      // more CPU per frame than a stretch of steps, docs/viewer.md)
+      interval_ = frame_.behind ? std::max(1.0, 1.0 / a_.fps) : 1.0 / a_.fps;
       const bool due = std::chrono::duration<double>(now - last_draw_).count() >= 0.9 * interval_;
       const bool scripted = a_.frames > 0;
       if (!due && !scripted) return;
