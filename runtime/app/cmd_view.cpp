@@ -148,7 +148,7 @@ class Viewer {
     win_->SetWindowName(("lrigid view " + scene.file).c_str());
     build_context(scene, model);
     build_glyphs(model);
-    hud_->GetTextProperty()->SetFontSize(std::max(12, a.height / 42));
+    hud_->GetTextProperty()->SetFontSize(std::max(12, a.height / 46));
     hud_->GetTextProperty()->SetColor(0.08, 0.08, 0.12);
     hud_->GetTextProperty()->SetFontFamilyToCourier();
     hud_->SetPosition(10, 8);
@@ -362,16 +362,16 @@ class Viewer {
     std::string pace = pace_name(f.pace);
     if (f.pace == Pace::RealTime && f.behind) {
       char s[48];
-      std::snprintf(s, sizeof s, "realtime: BEHIND (x%.2f)", f.sim_speed);
+      std::snprintf(s, sizeof s, "realtime BEHIND x%.2f", f.sim_speed);
       pace = s;
     } else if (f.pace != Pace::Fixed) {
       char s[48];
-      std::snprintf(s, sizeof s, "%s (x%.2f)", pace.c_str(), f.sim_speed);
+      std::snprintf(s, sizeof s, "%s x%.2f", pace.c_str(), f.sim_speed);
       pace = s;
     }
     std::snprintf(b, sizeof b,
-                  "t = %.2f / %.2f s  flying %zu  resting %zu  exited %zu  |  %s body-steps/s "
-                  "(sim busy %.0f%%)  %.1f frames/s  |  %s%s%s",
+                  "t = %.2f / %.2f s  flying %zu  resting %zu  exited %zu | %s body-steps/s, "
+                  "busy %.0f%% | %.1f frames/s | %s%s%s",
                   f.t, f.duration, f.flying, f.resting, f.exited,
                   si(f.body_steps_per_second).c_str(), 100 * f.busy, fps_, pace.c_str(),
                   f.paused ? "  PAUSED" : "", f.finished ? "  END (r restarts)" : "");
@@ -426,7 +426,7 @@ class Viewer {
       interval_ = frame_.behind ? std::max(1.0, 1.0 / a_.fps) : 1.0 / a_.fps;
       const bool due = std::chrono::duration<double>(now - last_draw_).count() >= 0.9 * interval_;
       const bool scripted = a_.frames > 0;
-      if (!due && !scripted) return;
+      if (!due) return;
       if (!fresh && !scripted && !recording_ &&
           std::chrono::duration<double>(now - last_draw_).count() < 0.5)
         return;  // nothing new (paused): keep the HUD fresh twice a second
