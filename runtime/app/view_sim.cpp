@@ -211,7 +211,9 @@ void ViewSimulation::loop() {
           served_ = requested_;  // nothing to take (finished)
           done_cv_.notify_all();
         }
-        was_running = false;
+        // paused or at the end: the clock and the rates start afresh on resuming (not between
+        // the frames of the fixed pace)
+        if (paused_ || finished_) was_running = false;
         const bool stale = changed || frame_.paused != paused_ || frame_.pace != pace_;
         lk.unlock();
         if (stale) publish();
