@@ -1,22 +1,14 @@
 // lrigid render RESULTS_DIR [-o preview.png] [--frames N --gif out.gif]
 // Draws the bodies of a finished run with VTK (offscreen; needs an X display: xvfb-run -a),
 // over a slice of k (or streamlines of U) from the run's grid, the ground otherwise.
-#include <dlfcn.h>
 #include <unistd.h>
 #include <vtkActor.h>
-#include <vtkCamera.h>
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
-#include <vtkContourFilter.h>
-#include <vtkCutter.h>
 #include <vtkDataArray.h>
 #include <vtkImageData.h>
 #include <vtkLineSource.h>
-#include <vtkLookupTable.h>
 #include <vtkNew.h>
-#include <vtkPNGWriter.h>
-#include <vtkPlane.h>
-#include <vtkPlaneSource.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
@@ -24,27 +16,22 @@
 #include <vtkProperty.h>
 #include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
-#include <vtkScalarBarActor.h>
 #include <vtkSmartPointer.h>
 #include <vtkStreamTracer.h>
 #include <vtkTextActor.h>
 #include <vtkTextProperty.h>
 #include <vtkUnsignedCharArray.h>
-#include <vtkWindowToImageFilter.h>
-#include <vtkXMLImageDataReader.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
-#include <regex>
-#include <sstream>
 
 #include "commands.h"
 #include "io/result_writer.h"
 #include "util/error.h"
+#include "vtk_draw.h"
 
 namespace lrigid::app {
 
@@ -63,36 +50,6 @@ struct RenderArgs {
   double body_scale = 0;  // 0: enlarge tiny bodies so they stay visible
   bool quiet = false;
 };
-
-// VTK's X window aborts the process when it cannot open a display: check first
-void require_display() {
-  const char* d = std::getenv("DISPLAY");
-  const std::string hint =
-      "lrigid render draws with VTK/OpenGL and needs an X display; without one run it under a "
-      "virtual display: xvfb-run -a lrigid render ...";
-  if (!d || !*d) throw Error(ExitCode::Runtime, "no X display (DISPLAY is not set). " + hint);
-  void* x11 = dlopen("libX11.so.6", RTLD_LAZY | RTLD_LOCAL);
-  if (!x11) return;  // let VTK try
-  using OpenFn = void* (*)(const char*);
-  using CloseFn = int (*)(void*);
-  auto open = reinterpret_cast<OpenFn>(dlsym(x11, "XOpenDisplay"));
-  auto close = reinterpret_cast<CloseFn>(dlsym(x11, "XCloseDisplay"));
-  bool ok = true;
-  if (open && close) {
-    void* dpy = open(nullptr);
-    ok = dpy != nullptr;
-    if (dpy) close(dpy);
-  }
-  dlclose(x11);
-  if (!ok)
-    throw Error(ExitCode::Runtime, std::string("cannot open X display \"") + d + "\". " + hint);
-}
-
-void type_colour(size_t i, unsigned char rgb[3]) {
-  static const unsigned char kPalette[][3] = {{230, 140, 50}, {60, 130, 220}, {110, 190, 80},
-                                              {210, 80, 110}, {150, 110, 210}, {220, 200, 80}};
-  for (int k = 0; k < 3; ++k) rgb[k] = kPalette[i % 6][k];
-}
 
 // all bodies of frame f as one surface, coloured by type
 vtkSmartPointer<vtkPolyData> bodies_at(const GltfAnimation& a, size_t f,
@@ -128,43 +85,16 @@ vtkSmartPointer<vtkPolyData> bodies_at(const GltfAnimation& a, size_t f,
   return poly;
 }
 
-// the grid's first (or only) .vti: a .pvd names its files relative to itself
-std::string first_vti(const std::string& field) {
-  if (fs::path(field).extension() != ".pvd") return field;
-  std::ifstream in(field);
-  if (!in) fail_input(field, "", "cannot be read (summary.json \"field\")");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  std::smatch m;
-  const std::string text = ss.str();
-  if (!std::regex_search(text, m, std::regex("file=\"([^\"]+)\"")))
-    fail_input(field, "", "no DataSet file in the collection");
-  return (fs::path(field).parent_path() / m[1].str()).string();
-}
-
-struct Bounds {
-  Vec3 lo = Vec3::Constant(1e300), hi = Vec3::Constant(-1e300);
-  void add(const Vec3& p) { lo = lo.cwiseMin(p), hi = hi.cwiseMax(p); }
-  double diag() const { return (hi - lo).norm(); }
-};
-
 class Renderer {
  public:
   Renderer(const RenderArgs& args, const Results& r) : args_(args), r_(r) {
     const GltfAnimation& a = r.frames;
     for (const Vec3& x : a.x) box_.add(x);
     // per body type: keep at least ~5 pixels per body unless told otherwise
-    const double extent = std::max(box_.diag(), 1e-9);
+    std::vector<const TriangleMesh*> surfaces;
+    for (const auto& t : a.types) surfaces.push_back(&t.surface);
     double reach = 0;
-    for (const auto& t : a.types) {
-      Bounds b;
-      for (const Vec3& v : t.surface.vertices) b.add(v);
-      const double size = std::max(b.diag(), 1e-12);
-      const double k = args.body_scale > 0 ? args.body_scale
-                                           : std::max(1.0, 5.0 * extent / (args.width * size));
-      scale_.push_back(k);
-      reach = std::max(reach, 0.5 * k * size);
-    }
+    scale_ = body_draw_scales(surfaces, box_.diag(), args.width, args.body_scale, &reach);
     box_.lo -= Vec3::Constant(reach);
     box_.hi += Vec3::Constant(reach);
 
@@ -185,17 +115,8 @@ class Renderer {
     text_->SetPosition(12, 10);
     ren_->AddActor2D(text_);
     // fixed camera over the whole run: bodies move, the view does not
-    vtkCamera* cam = ren_->GetActiveCamera();
-    const Vec3 c = 0.5 * (box_.lo + box_.hi);
-    cam->SetFocalPoint(c.data());
-    const Vec3 eye = c + Vec3(0.9, -1.6, 0.8).normalized();
-    cam->SetPosition(eye.data());
-    cam->SetViewUp(0, 0, 1);
-    double b[6] = {box_.lo.x(), box_.hi.x(), box_.lo.y(), box_.hi.y(), box_.lo.z(), box_.hi.z()};
-    ren_->ResetCamera(b);
-    cam->Zoom(1.3);
+    aim_camera(ren_, box_);
   }
-
 
   void draw(size_t f, const std::string& png) {
     const GltfAnimation& a = r_.frames;
@@ -211,23 +132,7 @@ class Renderer {
       }
     text_->SetInput(label.c_str());
     win_->Render();
-    vtkNew<vtkWindowToImageFilter> grab;
-    grab->SetInput(win_);
-    grab->ReadFrontBufferOff();
-    grab->Update();
-    const std::string tmp = png + ".tmp" + std::to_string(::getpid()) + ".png";
-    vtkNew<vtkPNGWriter> w;
-    w->SetFileName(tmp.c_str());
-    w->SetInputConnection(grab->GetOutputPort());
-    w->Write();
-    std::error_code ec;
-    if (!fs::exists(tmp) || fs::file_size(tmp, ec) == 0) {
-      fs::remove(tmp, ec);
-      throw Error(ExitCode::Output, where(png, "", "cannot write the image"));
-    }
-    fs::rename(tmp, png, ec);
-    if (ec)
-      throw Error(ExitCode::Output, where(png, "", "cannot move into place: " + ec.message()));
+    write_png(win_, png);
   }
 
  private:
@@ -241,104 +146,29 @@ class Renderer {
                   where((fs::path(args_.dir) / "summary.json").string(), "field",
                         "--context " + mode + " needs a grid run (uniform flow has none)"));
     if (mode == "k" || mode == "streamlines") {
-      const std::string vti = first_vti(s["field"].get<std::string>());
-      if (!fs::exists(vti)) fail_input(vti, "", "grid file not found (summary.json \"field\")");
-      reader_->SetFileName(vti.c_str());
-      reader_->Update();
-      vtkImageData* img = reader_->GetOutput();
+      vtkSmartPointer<vtkImageData> img =
+          read_grid_image(s["field"].get<std::string>(), "summary.json \"field\"");
+      grid_ = img;
       double gb[6];
       img->GetBounds(gb);
       // the camera frames the bodies (and the floor below them), not the whole grid
       box_.add(Vec3(box_.lo.x(), box_.lo.y(), gb[4]));
-      add_obstacles(img);
-      if (mode == "k") add_k_slice(img, gb);
-      else add_streamlines(img, gb);
+      add_solids(ren_, img);
+      // just above the grid's floor: a map under the bodies (obstacles show as k = 0, the value
+      // the grid keeps at invalid points)
+      if (mode == "k")
+        add_slice(ren_, img, "k", gb[4] + 0.04 * (gb[5] - gb[4]), "k (m^2/s^2)", args_.height / 2);
+      else
+        add_streamlines(img, gb);
       return;
     }
     if (mode == "ground" && s.contains("ground_z") && s["ground_z"].is_number()) {
-      const double z = s["ground_z"].get<double>();
-      const Vec3 d = box_.hi - box_.lo;
-      const double m = 0.15 * std::max(d.x(), d.y());
-      vtkNew<vtkPlaneSource> plane;
-      plane->SetOrigin(box_.lo.x() - m, box_.lo.y() - m, z);
-      plane->SetPoint1(box_.hi.x() + m, box_.lo.y() - m, z);
-      plane->SetPoint2(box_.lo.x() - m, box_.hi.y() + m, z);
-      plane->SetResolution(10, 10);
-      vtkNew<vtkPolyDataMapper> pm;
-      pm->SetInputConnection(plane->GetOutputPort());
-      vtkNew<vtkActor> pa;
-      pa->SetMapper(pm);
-      pa->GetProperty()->SetColor(0.78, 0.80, 0.74);
-      pa->GetProperty()->LightingOff();
-      pa->GetProperty()->EdgeVisibilityOn();
-      pa->GetProperty()->SetEdgeColor(0.62, 0.64, 0.58);
-      ren_->AddActor(pa);
-      box_.add(Vec3(box_.lo.x() - m, box_.lo.y() - m, z));
-      box_.add(Vec3(box_.hi.x() + m, box_.hi.y() + m, z));
+      add_ground(ren_, s["ground_z"].get<double>(), &box_);
     } else if (mode != "ground" && mode != "none") {
       throw Error(
           ExitCode::Usage,
           "--context must be auto, k, streamlines, ground or none, got \"" + args_.context + "\"");
     }
-  }
-
-  // solids (buildings, tank walls) as the surface where the grid's `valid` mask drops to 0
-  void add_obstacles(vtkImageData* img) {
-    if (!img->GetPointData()->GetArray("valid")) return;
-    vtkNew<vtkContourFilter> c;
-    c->SetInputData(img);
-    c->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "valid");
-    c->SetValue(0, 0.5);
-    c->ComputeScalarsOff();
-    vtkNew<vtkPolyDataMapper> m;
-    m->SetInputConnection(c->GetOutputPort());
-    m->ScalarVisibilityOff();
-    vtkNew<vtkActor> a;
-    a->SetMapper(m);
-    a->GetProperty()->SetColor(0.72, 0.70, 0.66);
-    ren_->AddActor(a);
-  }
-
-  // horizontal slice of k just above the grid's floor: a map under the bodies (obstacles show
-  // as k = 0, the value the grid keeps at invalid points)
-  void add_k_slice(vtkImageData* img, const double gb[6]) {
-    if (!img->GetPointData()->GetArray("k")) return;
-    vtkNew<vtkPlane> plane;
-    plane->SetOrigin(0.5 * (gb[0] + gb[1]), 0.5 * (gb[2] + gb[3]), gb[4] + 0.04 * (gb[5] - gb[4]));
-    plane->SetNormal(0, 0, 1);
-    vtkNew<vtkCutter> cut;
-    cut->SetCutFunction(plane);
-    cut->SetInputData(img);
-    cut->Update();
-    cut->GetOutput()->GetPointData()->SetActiveScalars("k");
-    double range[2];
-    img->GetPointData()->GetArray("k")->GetRange(range);
-    vtkNew<vtkLookupTable> lut;
-    // pale to deep blue: the body colours (orange, green, red) stay readable on top
-    lut->SetHueRange(0.58, 0.62);
-    lut->SetSaturationRange(0.05, 0.85);
-    lut->SetValueRange(0.97, 0.5);
-    lut->SetTableRange(range);
-    lut->Build();
-    vtkNew<vtkPolyDataMapper> m;
-    m->SetInputConnection(cut->GetOutputPort());
-    m->SetLookupTable(lut);
-    m->SetScalarRange(range);
-    m->SetScalarModeToUsePointData();
-    vtkNew<vtkActor> actor;
-    actor->SetMapper(m);
-    actor->GetProperty()->SetOpacity(0.85);
-    actor->GetProperty()->LightingOff();
-    ren_->AddActor(actor);
-    vtkNew<vtkScalarBarActor> bar;
-    bar->SetLookupTable(lut);
-    bar->SetTitle("k (m^2/s^2)");
-    bar->SetNumberOfLabels(4);
-    bar->SetMaximumWidthInPixels(90);
-    bar->SetMaximumHeightInPixels(args_.height / 2);
-    bar->GetTitleTextProperty()->SetColor(0.1, 0.1, 0.15);
-    bar->GetLabelTextProperty()->SetColor(0.1, 0.1, 0.15);
-    ren_->AddActor2D(bar);
   }
 
   // streamlines of U seeded along a line across the inflow side
@@ -372,7 +202,7 @@ class Renderer {
   std::vector<double> scale_;  // (ntype) drawing scale of each body type
   vtkNew<vtkRenderer> ren_;
   vtkNew<vtkRenderWindow> win_;
-  vtkNew<vtkXMLImageDataReader> reader_;
+  vtkSmartPointer<vtkImageData> grid_;  // kept alive for the streamlines' pipeline
   vtkNew<vtkPolyDataMapper> body_mapper_;
   vtkNew<vtkActor> body_actor_;
   vtkNew<vtkTextActor> text_;
@@ -406,7 +236,7 @@ void render(RenderArgs a) {
       throw Error(ExitCode::Runtime, "--gif needs ImageMagick's convert (Debian package "
                                      "imagemagick; scripts/install-deps installs it)");
   }
-  require_display();
+  require_display("render");
   const Results r = read_results(a.dir, 80);
   Renderer ren(a, r);
   const auto& times = r.frames.times;

@@ -47,23 +47,6 @@ void apply_tolerance(const RunArgs& a, Scene* scene) {
   if (!a.quiet) std::fprintf(stderr, "lrigid: %s; from %s\n", c.explanation.c_str(), path.c_str());
 }
 
-// bytes of state per body (State arrays plus the writer's per-frame buffers)
-constexpr double kBytesPerBody = 4 * sizeof(Vec3) + sizeof(Quat) + sizeof(Vec3) + 64;
-
-void check_memory(const Scene& scene) {
-  size_t n = 0;
-  for (const auto& b : scene.bodies) n += size_t(b.count);
-  const double need = double(n) * kBytesPerBody;
-  const double have = physical_memory();
-  if (need > 0.8 * have) {
-    char buf[200];
-    std::snprintf(buf, sizeof buf,
-                  "%zu bodies need about %.1f GiB of memory; this machine has %.1f GiB", n,
-                  need / (1 << 30), have / (1 << 30));
-    throw Error(ExitCode::Resource, where(scene.file, "bodies", buf));
-  }
-}
-
 void run(const RunArgs& a, const Ranks& ranks) {
   Scene scene = read_scene(a.scene);
   if (a.tolerance > 0) apply_tolerance(a, &scene);

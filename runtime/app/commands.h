@@ -10,5 +10,6 @@ void add_explain_command(CLI::App& app);     // cmd_explain.cpp
 void add_export_gltf_command(CLI::App& app);  // cmd_export_gltf.cpp
 void add_render_command(CLI::App& app);       // cmd_render.cpp
 void add_bench_command(CLI::App& app);        // cmd_bench.cpp
+void add_view_command(CLI::App& app);         // cmd_view.cpp
 
 }  // namespace lrigid::app

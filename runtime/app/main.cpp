@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
   lrigid::app::add_export_gltf_command(app);
   lrigid::app::add_render_command(app);
   lrigid::app::add_bench_command(app);
+  lrigid::app::add_view_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -1,13 +1,7 @@
 // lrigid render (label render): a real run drawn offscreen under xvfb-run; the PNG must have the
 // requested size, not be blank, and show body pixels in the body types' colours.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 #include <unistd.h>
-#include <vtkImageData.h>
-#include <vtkNew.h>
-#include <vtkPNGReader.h>
-#include <vtkPointData.h>
-#include <vtkUnsignedCharArray.h>
 
 #include <cmath>
 #include <cstdio>
@@ -15,23 +9,17 @@
 #include <fstream>
 #include <string>
 
+#include "support/shell_png.h"
+
 namespace {
 
 namespace fs = std::filesystem;
 
 const std::string kLrigid = std::string(LRIGID_BINARY_DIR) + "/bin/lrigid";
 
-// runs a shell command; returns its exit status and stdout+stderr
-int sh(const std::string& cmd, std::string* out = nullptr) {
-  std::string text;
-  FILE* p = popen((cmd + " 2>&1").c_str(), "r");
-  if (!p) return -1;
-  char buf[512];
-  while (fgets(buf, sizeof buf, p)) text += buf;
-  const int st = pclose(p);
-  if (out) *out = text;
-  return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-}
+using lrigid::test::Image;
+using lrigid::test::read_png;
+using lrigid::test::sh;
 
 class Render : public ::testing::Test {
  protected:
@@ -67,26 +55,6 @@ class Render : public ::testing::Test {
 };
 std::string Render::dir_, Render::run_log_;
 int Render::run_status_ = -1;
-
-struct Image {
-  int w = 0, h = 0, comps = 0;
-  std::vector<unsigned char> px;
-};
-
-Image read_png(const std::string& path) {
-  vtkNew<vtkPNGReader> r;
-  r->SetFileName(path.c_str());
-  r->Update();
-  Image im;
-  int dims[3];
-  r->GetOutput()->GetDimensions(dims);
-  im.w = dims[0], im.h = dims[1];
-  auto* a = vtkUnsignedCharArray::SafeDownCast(r->GetOutput()->GetPointData()->GetScalars());
-  if (!a) return im;
-  im.comps = a->GetNumberOfComponents();
-  im.px.assign(a->GetPointer(0), a->GetPointer(0) + a->GetNumberOfValues());
-  return im;
-}
 
 TEST_F(Render, PreviewHasSizeContentAndBodies) {
   ASSERT_EQ(run_status_, 0) << run_log_;

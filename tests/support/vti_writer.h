@@ -24,6 +24,8 @@ struct VtiGrid {
   double time = 0;
   double nu = 1.5e-5;  // m^2/s
   bool with_epsilon = true;
+  // points where it returns true are solid (valid = 0); empty: all points are fluid
+  std::function<bool(const std::array<double, 3>& x)> solid;
 };
 
 using VtiFill = std::function<void(int p, const std::array<double, 3>& x, float U[3], float* k,
@@ -56,7 +58,7 @@ inline bool write_vti(const std::string& path, const VtiGrid& g, const VtiFill& 
     U->SetTypedTuple(p, u);
     k->SetValue(p, kv);
     eps->SetValue(p, ev);
-    valid->SetValue(p, 1);
+    valid->SetValue(p, g.solid && g.solid(x) ? 0 : 1);
   }
   img->GetPointData()->AddArray(U);
   img->GetPointData()->AddArray(k);

@@ -61,4 +61,20 @@ FluidField load_field(const Scene& scene, StreamMode stream, bool quiet) {
                           scene.time_mode);
 }
 
+void check_memory(const Scene& scene) {
+  // bytes of state per body (State arrays plus the writer's per-frame buffers)
+  constexpr double kBytesPerBody = 4 * sizeof(Vec3) + sizeof(Quat) + sizeof(Vec3) + 64;
+  size_t n = 0;
+  for (const auto& b : scene.bodies) n += size_t(b.count);
+  const double need = double(n) * kBytesPerBody;
+  const double have = physical_memory();
+  if (need > 0.8 * have) {
+    char buf[200];
+    std::snprintf(buf, sizeof buf,
+                  "%zu bodies need about %.1f GiB of memory; this machine has %.1f GiB", n,
+                  need / (1 << 30), have / (1 << 30));
+    throw Error(ExitCode::Resource, where(scene.file, "bodies", buf));
+  }
+}
+
 }  // namespace lrigid

@@ -21,4 +21,8 @@ FluidField load_field(const Scene& scene, StreamMode stream = StreamMode::Auto, 
 // physical memory of this machine, bytes
 double physical_memory();
 
+// Throws lrigid::Error(ExitCode::Resource) naming the scene when its bodies would not fit in
+// 80 % of the physical memory (lrigid run, lrigid view).
+void check_memory(const Scene& scene);
+
 }  // namespace lrigid
