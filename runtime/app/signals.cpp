@@ -139,6 +139,9 @@ void install_signal_cleanup() {
   sigemptyset(&sa.sa_mask);
   for (int sig : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&sa.sa_mask, sig);
   for (int sig : {SIGINT, SIGTERM, SIGHUP}) sigaction(sig, &sa, nullptr);
+  // a file-size limit (ulimit -f) must end in a failed write, exit 4 and a clean directory,
+  // not in a core dump that leaves the temporaries behind
+  signal(SIGXFSZ, SIG_IGN);
 }
 
 }  // namespace lrigid::app

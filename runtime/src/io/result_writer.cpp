@@ -79,16 +79,6 @@ void make_dir(const std::string& d) {
   if (ec) throw Error(ExitCode::Output, where(d, "", "cannot create: " + ec.message()));
 }
 
-// renames a finished temporary directory over `final_dir`
-void move_dir(const std::string& tmp, const fs::path& final_dir) {
-  std::error_code ec;
-  fs::remove_all(final_dir, ec);
-  fs::rename(tmp, final_dir, ec);
-  if (ec)
-    throw Error(ExitCode::Output,
-                where(final_dir.string(), "", "cannot move into place: " + ec.message()));
-}
-
 void write_pvd(const fs::path& path, const char* stem,
                const std::vector<std::pair<double, std::string>>& frames) {
   write_file_atomically(path.string(), [&](std::ostream& o) {
@@ -148,6 +138,8 @@ void ResultWriter::cleanup() {
   if (!csv_tmp_.empty()) fs::remove(csv_tmp_, ec);
   if (!vtp_tmp_dir_.empty()) fs::remove_all(vtp_tmp_dir_, ec);
   if (!shapes_tmp_dir_.empty()) fs::remove_all(shapes_tmp_dir_, ec);
+  for (const StagedPath& p : staged_) fs::remove_all(p.tmp, ec);
+  staged_.clear();
 }
 
 void ResultWriter::write_frame(const State& st) {
@@ -276,9 +268,17 @@ void ResultWriter::write_vtp(const State& st, const std::string& path) const {
 
 void ResultWriter::finish(const State& st, const RunStats& stats, const nlohmann::json& extra) {
   using nlohmann::json;
-  // landings
+  // Every file is first written completely under a temporary name; only then are they all
+  // renamed into place, summary.json last (commit_staged). A failure anywhere before that
+  // leaves no final-looking file; a failing rename puts back what was there before.
+  const fs::path d(dir_);
+  auto staged = [&](const std::string& name, bool is_dir = false) {
+    const std::string tmp = (d / (name + tag_)).string();
+    staged_.push_back({tmp, (d / name).string(), is_dir});
+    return tmp;
+  };
   if (model_.has_ground) {
-    write_file_atomically((fs::path(dir_) / "landings.csv").string(), [&](std::ostream& o) {
+    write_file_atomically(staged("landings.csv"), [&](std::ostream& o) {
       o << "body,type,t,x,y,z\n" << std::setprecision(9);
       for (size_t i = 0; i < st.size(); ++i)
         if (st.status[i] == BodyStatus::Landed)
@@ -287,24 +287,24 @@ void ResultWriter::finish(const State& st, const RunStats& stats, const nlohmann
     });
   }
   if (csv_) {
-    const bool bad = std::fclose(csv_) != 0;
+    const bool bad = std::fflush(csv_) != 0 || std::ferror(csv_) || std::fclose(csv_) != 0;
     csv_ = nullptr;
     if (bad) throw Error(ExitCode::Output, where(csv_tmp_, "", "write failed (disk full?)"));
-    fs::rename(csv_tmp_, fs::path(dir_) / "trajectories.csv");
+    staged_.push_back({csv_tmp_, (d / "trajectories.csv").string(), false});
     csv_tmp_.clear();
   }
   if (spec_.pvd) {
-    move_dir(vtp_tmp_dir_, fs::path(dir_) / "bodies");
+    staged_.push_back({vtp_tmp_dir_, (d / "bodies").string(), true});
     vtp_tmp_dir_.clear();
-    write_pvd(fs::path(dir_) / "bodies.pvd", "bodies", frames_);
-    move_dir(shapes_tmp_dir_, fs::path(dir_) / "shapes");
+    write_pvd(staged("bodies.pvd"), "bodies", frames_);
+    staged_.push_back({shapes_tmp_dir_, (d / "shapes").string(), true});
     shapes_tmp_dir_.clear();
     auto shape_frames = frames_;
     for (size_t i = 0; i < shape_frames.size(); ++i)
       shape_frames[i].second = frame_name("shapes", i);
-    write_pvd(fs::path(dir_) / "shapes.pvd", "shapes", shape_frames);
+    write_pvd(staged("shapes.pvd"), "shapes", shape_frames);
   }
-  if (spec_.glb) write_gltf((fs::path(dir_) / "animation.glb").string(), gltf_);
+  if (spec_.glb) write_gltf(staged("animation.glb"), gltf_);
   json s;
   s["bodies"] = st.size();
   s["body_steps"] = stats.body_steps;
@@ -360,8 +360,9 @@ void ResultWriter::finish(const State& st, const RunStats& stats, const nlohmann
   s["field"] = nullptr;  // the grid (.vti/.pvd) the run sampled; cmd_run fills it in
   s["ground_z"] = model_.has_ground ? json(model_.ground_z) : json(nullptr);
   s.update(extra);
-  write_file_atomically((fs::path(dir_) / "summary.json").string(),
-                        [&](std::ostream& o) { o << s.dump(2) << '\n'; });
+  write_file_atomically(staged("summary.json"), [&](std::ostream& o) { o << s.dump(2) << '\n'; });
+  commit_staged(staged_);  // summary.json is the last one
+  staged_.clear();
   finished_ = true;
 }
 

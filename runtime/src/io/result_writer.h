@@ -7,7 +7,10 @@
 //   landings.csv       body,type,t,x,y,z of bodies that reached the ground (scenes with ground)
 //   summary.json       counts, timing, effects, stopped bodies and why
 // Nothing appears under its final name until the run completed: files are written under
-// temporary names and renamed at finish(); a writer destroyed before finish() removes them.
+// temporary names, and finish() renames them into place only once every one of them is
+// complete, summary.json last (io/atomic_file.h, commit_staged); if a rename fails, what was
+// renamed is put back, so either all results appear or none. A writer destroyed before
+// finish() removes its temporaries.
 #pragma once
 #include <cstdio>
 #include <memory>
@@ -15,6 +18,7 @@
 #include <vector>
 
 #include "integrate/simulation.h"
+#include "io/atomic_file.h"
 #include "io/gltf_writer.h"
 #include "model/state.h"
 #include "nlohmann/json.hpp"
@@ -67,6 +71,7 @@ class ResultWriter {
   std::vector<TriangleMesh> surfaces_;  // (ntype) for the shapes series
   GltfAnimation gltf_;                  // frames kept for animation.glb
   std::vector<std::pair<double, std::string>> frames_;
+  std::vector<StagedPath> staged_;      // complete temporaries waiting for commit_staged
   bool finished_ = false;
 };
 
