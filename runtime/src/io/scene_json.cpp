@@ -391,9 +391,15 @@ Scene parse_scene_unchecked(const std::string& text, const std::string& path) {
     a.finish();
   }
   if (top.has("output")) {
-    Obj o = top.object("output", {"dir", "every", "formats"});
+    Obj o = top.object("output", {"dir", "every", "formats", "checkpoint_every"});
     if (o.has("dir")) s.output.dir = o.string("dir");  // relative to the working directory
     s.output.every = o.positive_or("every", s.output.every);
+    if (o.has("checkpoint_every")) {
+      s.output.checkpoint_every = o.number("checkpoint_every");
+      if (!(s.output.checkpoint_every >= 0))
+        o.fail("checkpoint_every", "must be >= 0 (0: no checkpoints), got " +
+                                       Obj::dump(o.get("checkpoint_every")));
+    }
     if (const json* f = o.find("formats")) {
       if (!f->is_array()) o.fail("formats", "must be a list of \"csv\", \"pvd\", \"glb\"");
       s.output.csv = s.output.pvd = s.output.glb = false;
