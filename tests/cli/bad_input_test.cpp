@@ -127,6 +127,17 @@ class Cli : public ::testing::Test {
     return r;
   }
 
+  // waits (up to 30 s) until a run in dir_/out is writing: its temporary trajectories exist
+  bool wait_until_writing() {
+    for (int i = 0; i < 600; ++i) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+      if (fs::exists(dir_ / "out"))
+        for (const auto& e : fs::directory_iterator(dir_ / "out"))
+          if (e.path().filename().string().rfind("trajectories.csv.", 0) == 0) return true;
+    }
+    return false;
+  }
+
   Result run(const std::vector<std::string>& args, const Limits& lim = {}) {
     return wait_for(start(args, lim));
   }
@@ -562,14 +573,7 @@ TEST_F(LateFailure, AFolderMadeReadOnlyMidRunLeavesNoResult) {
   fs::permissions(dir_ / "scene.json", fs::perms::all);
   const pid_t pid = start({"run", "scene.json", "--quiet", "--threads", "1"},
                           Limits{RLIM_INFINITY, RLIM_INFINITY, true});
-  bool writing = false;
-  for (int i = 0; i < 600 && !writing; ++i) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    if (fs::exists(dir_ / "out"))
-      for (const auto& e : fs::directory_iterator(dir_ / "out"))
-        writing |= e.path().filename().string().rfind("trajectories.csv.", 0) == 0;
-  }
-  ASSERT_TRUE(writing) << "the run never started writing";
+  ASSERT_TRUE(wait_until_writing()) << "the run never started writing";
   const auto read_only = fs::perms::owner_read | fs::perms::owner_exec | fs::perms::group_read |
                          fs::perms::group_exec | fs::perms::others_read | fs::perms::others_exec;
   fs::permissions(dir_ / "out", read_only);
@@ -592,14 +596,7 @@ TEST_P(Interrupted, LeavesNothingFinalLooking) {
   put(dir_ / "scene.json", s);
   const pid_t pid = start({"run", "scene.json", "--threads", "1"});
   // wait until the run is writing (its temporary trajectories file exists), then interrupt
-  bool writing = false;
-  for (int i = 0; i < 600 && !writing; ++i) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
-    if (fs::exists(dir_ / "out"))
-      for (const auto& e : fs::directory_iterator(dir_ / "out"))
-        writing |= e.path().filename().string().rfind("trajectories.csv.", 0) == 0;
-  }
-  EXPECT_TRUE(writing) << "the run never started writing";
+  EXPECT_TRUE(wait_until_writing()) << "the run never started writing";
   std::this_thread::sleep_for(std::chrono::milliseconds(300));
   kill(pid, GetParam());
   const Result r = wait_for(pid);

@@ -4,6 +4,7 @@
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
 #include <vtkDoubleArray.h>
+#include <vtkErrorCode.h>
 #include <vtkIntArray.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
@@ -47,7 +48,10 @@ void write_polydata(vtkPolyData* poly, const std::string& path) {
   w->SetInputData(poly);
   w->SetDataModeToAppended();
   w->SetCompressorTypeToZLib();
-  if (w->Write() != 1) throw Error(ExitCode::Output, where(path, "", "cannot write .vtp frame"));
+  // Write() can return 1 when the file could not be written whole (a full disk, a file-size
+  // limit): the writer's error code says so
+  if (w->Write() != 1 || w->GetErrorCode() != vtkErrorCode::NoError)
+    throw Error(ExitCode::Output, where(path, "", "cannot write .vtp frame (disk full?)"));
 }
 }  // namespace
 

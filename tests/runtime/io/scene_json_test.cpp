@@ -319,6 +319,7 @@ TEST(SceneJson, ATypoInAnyKeyIsNamed) {
   full["integrator"]["batched"] = true;
   full["integrator"]["precision"] = "double";
   full["art"] = {{"mean_flow_scale", 1.0}, {"turbulence_scale", 0.5}};
+  full["output"]["checkpoint_every"] = 60;
   auto& b = full["bodies"][0];
   b["mass_offset"] = {0, 0, 0};
   b["orientation"] = "random";
