@@ -17,7 +17,7 @@
 #include "integrate/simulation.h"
 #include "io/added_mass_cache.h"
 #include "io/atomic_file.h"
-#include "io/grid_reader.h"
+#include "io/field_loader.h"
 #include "io/scene_json.h"
 #include "model/state.h"
 #include "util/error.h"
@@ -100,15 +100,7 @@ void scale_bodies(Scene* scene, long long n) {
 
 void bench(const BenchArgs& a) {
   const Scene base = read_scene(a.scene);
-  FluidField field;
-  if (base.uniform_field) {
-    field = FluidField::uniform(base.uniform_U, base.uniform_k, base.uniform_epsilon,
-                                base.kinematic_viscosity, base.drift);
-  } else {
-    const GridFile g = read_grid(base.field_path);
-    field = FluidField::grid(g.geometry, g.frames, base.kinematic_viscosity, base.drift,
-                             base.time_mode);
-  }
+  const FluidField field = load_field(base, StreamMode::Auto, a.quiet);
   bool eff_auto = false;
   const EffectSet effects = effects_from(a.effects, &eff_auto);
   nlohmann::json out;

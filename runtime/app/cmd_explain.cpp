@@ -7,10 +7,10 @@
 
 #include "commands.h"
 #include "effects/basset.h"
-#include "integrate/rigid_batch.h"
+#include "integrate/simulation.h"
 #include "integrate/sphere_batch.h"
 #include "io/added_mass_cache.h"
-#include "io/grid_reader.h"
+#include "io/field_loader.h"
 #include "io/scene_json.h"
 #include "model/model.h"
 
@@ -26,15 +26,7 @@ std::string list(EffectSet s) {
 
 void explain(const std::string& path) {
   const Scene scene = read_scene(path);
-  FluidField field;
-  if (scene.uniform_field) {
-    field = FluidField::uniform(scene.uniform_U, scene.uniform_k, scene.uniform_epsilon,
-                                scene.kinematic_viscosity, scene.drift);
-  } else {
-    GridFile g = read_grid(scene.field_path);
-    field = FluidField::grid(g.geometry, g.frames, scene.kinematic_viscosity, scene.drift,
-                             scene.time_mode);
-  }
+  FluidField field = load_field(scene);
   const FlowScales flow = flow_scales(scene, field);
   const Model model = compile_model(scene, std::move(field), cached_added_mass);
   const double nu = scene.kinematic_viscosity;
@@ -82,10 +74,9 @@ void explain(const std::string& path) {
     }
     std::printf("  auto chooses: %s\n", list(a.chosen).c_str());
     if (!scene.effects_auto) std::printf("  the scene lists: %s\n", list(t.effects).c_str());
-    // a sphere takes the sphere step or none; anything else the plates-and-ellipsoids step
     std::string why;
-    const bool sphere = t.M_isotropic && sphere_batch_eligible(model, t, &why);
-    const bool rigid = !t.M_isotropic && rigid_batch_eligible(model, t, &why);
+    const StepKind kind = step_kind(model, t, &why);
+    const bool sphere = kind == StepKind::SphereBlock, rigid = kind == StepKind::RigidBlock;
     const double ns = sphere || rigid
                           ? estimated_batched_cost_ns(t.effects, model.precision, rigid)
                           : estimated_cost_ns(t.effects, scene.integrator, !scene.uniform_field,

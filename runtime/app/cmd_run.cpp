@@ -16,6 +16,7 @@
 #include "ranks.h"
 #include "integrate/simulation.h"
 #include "io/added_mass_cache.h"
+#include "io/field_loader.h"
 #include "io/grid_reader.h"
 #include "io/progress.h"
 #include "io/result_writer.h"
@@ -72,47 +73,6 @@ void apply_tolerance(const RunArgs& a, Scene* scene) {
 // bytes of state per body (State arrays plus the writer's per-frame buffers)
 constexpr double kBytesPerBody = 4 * sizeof(Vec3) + sizeof(Quat) + sizeof(Vec3) + 64;
 
-double physical_memory() {
-  return double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGE_SIZE));
-}
-
-// a .pvd series is streamed (only the frames bracketing the current time in memory) with
-// --stream-field on, or with auto when all its frames would take more than half the memory
-FluidField load_field(const Scene& scene, const std::string& stream, bool quiet) {
-  if (scene.uniform_field)
-    return FluidField::uniform(scene.uniform_U, scene.uniform_k, scene.uniform_epsilon,
-                               scene.kinematic_viscosity, scene.drift);
-  RawGridFrame first;
-  auto series = std::make_shared<GridSeries>(open_grid_series(scene.field_path, &first));
-  const GridSeries& g = *series;
-  if (g.kinematic_viscosity > 0 &&
-      std::abs(g.kinematic_viscosity - scene.kinematic_viscosity) > 0.01 * g.kinematic_viscosity &&
-      !quiet)
-    std::cerr << "lrigid: warning: " << scene.file << ": fluid.kinematic_viscosity = "
-              << scene.kinematic_viscosity << " m^2/s differs from the grid's "
-              << g.kinematic_viscosity << " m^2/s (" << scene.field_path << ")\n";
-  const double all_bytes =
-      double(g.times.size()) * double(g.geometry.points()) * sizeof(GridRecord);
-  const bool streamed =
-      g.times.size() > 2 &&
-      (stream == "on" || (stream == "auto" && all_bytes > 0.5 * physical_memory()));
-  if (streamed) {
-    if (!quiet)
-      std::fprintf(stderr,
-                   "lrigid: streaming %s: %zu frames of %.3g MB, 2 or 3 in memory at once\n",
-                   scene.field_path.c_str(), g.times.size(), all_bytes / g.times.size() / 1e6);
-    // frame 0 was read with the series header: handed over, not read again
-    return FluidField::streamed(g.geometry, g.times, [series](size_t i) { return series->load(i); },
-                                scene.kinematic_viscosity, scene.drift, scene.time_mode, {},
-                                &first);
-  }
-  std::vector<RawGridFrame> frames;
-  frames.push_back(std::move(first));
-  for (size_t i = 1; i < g.times.size(); ++i) frames.push_back(g.load(i));
-  return FluidField::grid(g.geometry, frames, scene.kinematic_viscosity, scene.drift,
-                          scene.time_mode);
-}
-
 void check_memory(const Scene& scene) {
   size_t n = 0;
   for (const auto& b : scene.bodies) n += size_t(b.count);
@@ -148,7 +108,7 @@ void run(const RunArgs& a, const Ranks& ranks) {
   if (a.checkpoint_every >= 0) scene.output.checkpoint_every = a.checkpoint_every;
   check_memory(scene);
   const auto load0 = std::chrono::steady_clock::now();
-  FluidField field = load_field(scene, a.stream, a.quiet);
+  FluidField field = load_field(scene, stream_mode_from(a.stream), a.quiet);
   // s: reading the grid (all frames, or the header and first frame when streamed)
   const double load_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - load0).count();

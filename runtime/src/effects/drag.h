@@ -8,8 +8,12 @@
 // the sphere of mean radius plus quadratic pressure drag from the body's out-of-roundness
 // (L5_a = l_a |l_b^4 - l_c^4|, zero for a sphere; 1/2 rho C_D w^2 a b^4 for a flat plate).
 #pragma once
+#include <cmath>
+
 #include "effects/wrench.h"
 #include "model/model.h"
+#include "util/fast_math.h"
+#include "util/lane.h"
 
 namespace lrigid {
 
@@ -25,6 +29,85 @@ struct DragStiffness {
   double c_lin = 0, p = 0, c_ang = 0;
   Vec3 u_hat = Vec3::Zero();
 };
+
+// ---- the kernel, written once: the scalar step (drag_wrench) and the batched steps' loops
+// (integrate/sphere_batch.cpp, rigid_batch.cpp) call it -----------------------------------------
+
+// What the drag law needs of a body type and the fluid, built once per body type.
+struct DragParams {
+  double rho = 0, nu = 0;  // fluid density (kg/m^3) and kinematic viscosity (m^2/s)
+  double area_max = 0;     // largest projected area, m^2
+  double c_ang0 = 0;       // Stokes rotational drag 8 pi mu r_m^3, N m s
+  // 1/2 rho C_rot int r^3 dA per axis, N m s^2; rho C_rot times the largest
+  double rot[3] = {0, 0, 0}, rot_max = 0;
+  // products of the equivalent ellipsoid's semi-axes l1 l2, l0 l2, l0 l1 (projected area), m^2
+  double l12 = 0, l02 = 0, l01 = 0;
+};
+DragParams drag_params(const BodyType& type, double rho, double nu);
+
+// A drag (or plate) kernel's result: force and torque about the point where u is taken, and
+// the stiffness the implicit step needs (DragStiffness).
+template <typename T>
+struct DragOut {
+  T f[3], tq[3];
+  T c_lin, p, c_ang;
+  T u_hat[3];
+};
+
+// The projected area of the equivalent ellipsoid across the unit direction uh, m^2, and the
+// diameter of the disk of that area, m.
+template <typename T>
+LRIGID_LANE void ellipsoid_projected_area(const DragParams& k, const T* uh, T* a_perp,
+                                          T* d_perp) {
+  const T p0 = T(k.l12) * uh[0], p1 = T(k.l02) * uh[1], p2 = T(k.l01) * uh[2];
+  *a_perp = T(M_PI) * std::sqrt(p0 * p0 + p1 * p1 + p2 * p2);
+  *d_perp = T(2) * std::sqrt(*a_perp * T(1.0 / M_PI));
+}
+
+// The drag law on relative velocity u (of the volume centroid) and spin w, both in the body
+// frame: Schiller-Naumann on the projected area area(u_hat, &a_perp, &d_perp) (m^2, and the
+// diameter of the disk of that area, m) across the flow, the edgewise skin drag and the
+// rotational drag. The torque is about the centroid.
+template <typename T, class Area>
+LRIGID_LANE DragOut<T> drag_kernel(const DragParams& k, const T* u, const T* w, Area area) {
+  DragOut<T> d;
+  const T speed = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+  const bool moving = speed > T(0);
+  const T inv = T(1) / (moving ? speed : T(1));
+#pragma GCC unroll 3
+  for (int a = 0; a < 3; ++a) d.u_hat[a] = moving ? u[a] * inv : T(0);
+  T a_perp, d_perp;
+  area(d.u_hat, &a_perp, &d_perp);
+  const T re = speed * d_perp / T(k.nu);
+  const T re_safe = moving ? re : T(1);
+  // C_D Re = 24 (1 + 0.15 Re^0.687) below Re = 1000, 0.44 above; force ~ speed^(1 + p)
+  const T s = T(0.15 * exp_fast(0.687 * log_fast(double(re_safe))));
+  const bool newton_regime = re >= T(1000);
+  const T cd = newton_regime ? T(0.44) : T(24) / re_safe * (T(1) + s);
+  const T p = newton_regime ? T(1) : T(0.687) * s / (T(1) + s);
+  const T c_moving =
+      T(0.5 * k.rho) * speed * (cd * a_perp + T(kDragEdgewise) * (T(k.area_max) - a_perp));
+  const T c_lin = moving ? c_moving : T(0);
+  d.c_lin = c_lin;
+  d.p = moving ? p : T(0);
+#pragma GCC unroll 3
+  for (int a = 0; a < 3; ++a) d.f[a] = -c_lin * u[a];
+  const T w_norm = std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
+#pragma GCC unroll 3
+  for (int a = 0; a < 3; ++a) d.tq[a] = -(T(k.c_ang0) + T(k.rot[a]) * w_norm) * w[a];
+  d.c_ang = T(k.c_ang0) + T(k.rot_max) * w_norm;
+  return d;
+}
+
+// drag_kernel with the equivalent ellipsoid's projected area (any body that is not flat)
+template <typename T>
+LRIGID_LANE DragOut<T> ellipsoid_drag_kernel(const DragParams& k, const T* u, const T* w) {
+  return drag_kernel(k, u, w, [&k](const T* uh, T* a_perp, T* d_perp) {
+    ellipsoid_projected_area(k, uh, a_perp, d_perp);
+  });
+}
+
+// ---- the scalar step's wrappers (Eigen, the centre of buoyancy anywhere) -----------------------
 
 // u_rel: velocity of the centre of mass relative to the fluid (body frame), w: angular velocity
 // relative to the fluid (body frame).

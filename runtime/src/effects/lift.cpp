@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "effects/plate.h"
+
 namespace lrigid {
 
 double plate_chord(const BodyType& type, const Vec3& d) {
@@ -23,29 +25,15 @@ double plate_width(const BodyType& type) {
   return 2.0 * std::min(h[i1], h[i2]);
 }
 
-double circulation_factor(double re) {
-  const double x = std::pow(re / kLiftReCritical, kLiftReExponent);
-  return x / (1.0 + x);
-}
+double circulation_factor(double re) { return circulation_gate(re); }
 
-Wrench lift_wrench(const BodyType& type, const Vec3& u_rel, const Vec3& w, double rho,
-                   double nu) {
+Wrench lift_wrench(const BodyType& type, const Vec3& u_rel, const Vec3& w, double rho, double nu) {
   const Vec3 u = u_rel + w.cross(type.r_cob);
-  const double speed = u.norm();
-  if (!(speed > 0)) return Wrench::Zero();
-  const Vec3 n = Vec3::Unit(type.normal_axis);
-  const double un = u[type.normal_axis];
-  const Vec3 ut = u - un * n;
-  const double S = type.plate_area;
-  const double gate = circulation_factor(speed * plate_width(type) / nu);
-  if (!(gate > 0)) return Wrench::Zero();
-  Vec3 f = -rho * gate * kLiftTranslational * S * (un / speed) * (ut.squaredNorm() * n - un * ut);
-  const Vec3 wp = w - w[type.normal_axis] * n;
-  const double wp_norm = wp.norm();
-  if (wp_norm > 0) {
-    const double chord = plate_chord(type, n.cross(wp) / wp_norm);
-    f += 0.5 * rho * gate * kLiftRotational * chord * S * wp.cross(u);
-  }
+  const PlateParams k = plate_params(type, rho, nu, false, true);
+  DragOut<double> d;
+  double lift[3];
+  plate_kernel<double, false, true>(k, u.data(), w.data(), &d, lift);
+  const Vec3 f(lift[0], lift[1], lift[2]);
   return make_wrench(f, type.r_cob.cross(f));
 }
 

@@ -25,7 +25,7 @@ constexpr double kLiftRotational = M_PI;    // C_R, APW 2005
 // boundary of validation/falling_plates, measured with the mean descent speed as Field et al.
 // do, lies near Re = 100 (docs/physics/lift.md): f(100) = 0.06, f(200) = 0.5, f(400) = 0.94.
 constexpr double kLiftReCritical = 200.0;
-constexpr double kLiftReExponent = 4.0;
+constexpr int kLiftReExponent = 4;
 
 // chord of the plate's planform (equivalent ellipse) along the in-plane unit direction d, m
 double plate_chord(const BodyType& type, const Vec3& d);
@@ -33,11 +33,13 @@ double plate_chord(const BodyType& type, const Vec3& d);
 // width of the planform (its smallest in-plane extent: a disk's diameter), m
 double plate_width(const BodyType& type);
 
-// share of APW's circulation present at Re = |u| width / nu (0 ... 1)
+// share of APW's circulation present at Re = |u| width / nu (0 ... 1): effects/plate.h
+// circulation_gate
 double circulation_factor(double re);
 
-// u_rel: velocity of the centre of mass relative to the fluid, w: angular velocity (body frame),
-// rho: fluid density (kg/m^3), nu: kinematic viscosity (m^2/s)
+// The scalar step's wrapper of effects/plate.h plate_kernel (the lift alone, the centre of
+// buoyancy anywhere). u_rel: velocity of the centre of mass relative to the fluid, w: angular
+// velocity (body frame), rho: fluid density (kg/m^3), nu: kinematic viscosity (m^2/s)
 Wrench lift_wrench(const BodyType& type, const Vec3& u_rel, const Vec3& w, double rho, double nu);
 
 }  // namespace lrigid

@@ -6,14 +6,31 @@
 #pragma once
 #include "effects/wrench.h"
 #include "model/model.h"
+#include "util/lane.h"
 
 namespace lrigid {
 
 constexpr double kMagnus = 0.5;  // C_M
 
+// The kernel, written once (the scalar step's magnus_wrench and the batched loops call it):
+// f = c w x u for spin w and relative velocity u in one frame, c = magnus_factor(), N.
+template <typename T>
+LRIGID_LANE void magnus_kernel(T c, const T* w, const T* u, T* f) {
+  T wxu[3];
+  cross3(w, u, wxu);
+#pragma GCC unroll 3
+  for (int a = 0; a < 3; ++a) f[a] = c * wxu[a];
+}
+
+// C_M rho V, kg
+inline double magnus_factor(const BodyType& type, double rho) {
+  return kMagnus * rho * type.volume;
+}
+
 inline Wrench magnus_wrench(const BodyType& type, const Vec3& u_rel, const Vec3& w, double rho) {
   const Vec3 u = u_rel + w.cross(type.r_cob);
-  const Vec3 f = kMagnus * rho * type.volume * w.cross(u);
+  Vec3 f;
+  magnus_kernel(magnus_factor(type, rho), w.data(), u.data(), f.data());
   return make_wrench(f, type.r_cob.cross(f));
 }
 

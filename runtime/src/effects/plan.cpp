@@ -76,7 +76,7 @@ void build_effect_plan(BodyType* type, TurbulenceModel turbulence_model) {
     }
   }
   p.mean_flow = e.has(Effect::MeanFlow);
-  p.sample_field = e.has(Effect::MeanFlow) || e.has(Effect::Turbulence);
+  p.sample_field = needs_field_sample(e);
   p.gradients = e.has(Effect::AddedMass) && e.has(Effect::MeanFlow);
   p.basset = e.has(Effect::Basset);
   p.seen = e.has(Effect::Turbulence) && turbulence_model == TurbulenceModel::Seen;

@@ -17,6 +17,8 @@
 #include <cmath>
 
 #include "fluid/field.h"
+#include "util/fast_math.h"
+#include "util/lane.h"
 #include "util/types.h"
 
 namespace lrigid {
@@ -27,14 +29,39 @@ struct OUStep {
   double noise_std = 0;  // beta sqrt((1 - exp(-2 alpha h)) / (2 alpha)), m/s
 };
 
+// The exact update's coefficients, written once (ou_exact and the batched steps' loops call it):
+// decay = exp(-alpha h), noise = beta sqrt((1 - exp(-2 alpha h)) / (2 alpha)), m/s, with
+// 1 - exp(-y) kept precise for small y; the alpha -> 0 limit is beta sqrt(h). alpha in 1/s, beta
+// in m/s^1.5, h in s.
+LRIGID_LANE void ou_exact_kernel(double alpha, double beta, double h, double* decay,
+                                 double* noise) {
+  const double ah = alpha * h;
+  const double a_safe = alpha > 0 ? alpha : 1.0;
+  *decay = exp_fast(-ah);
+  *noise = beta * (ah > 1e-12 ? std::sqrt(one_minus_exp_neg(2.0 * ah) / (2.0 * a_safe))
+                              : std::sqrt(h));
+}
+
 inline OUStep ou_exact(double alpha, double beta, double h) {
   OUStep s;
-  const double ah = alpha * h;
-  s.decay = std::exp(-ah);
-  // -expm1(-2 a h) / (2 a) keeps its precision for small a h; the a -> 0 limit is h
-  s.noise_std = ah > 1e-12 ? beta * std::sqrt(-std::expm1(-2.0 * ah) / (2.0 * alpha))
-                           : beta * std::sqrt(h);
+  ou_exact_kernel(alpha, beta, h, &s.decay, &s.noise_std);
   return s;
+}
+
+// One update of the seen fluctuation us (world frame, m/s) over h with Thomson's well-mixed
+// drift (well_mixed_drift) along a path of world velocity V: us <- decay us + h a + noise z,
+// a = 1/2 grad sigma2 + us (V . grad sigma2) / (2 sigma2) (0 where sigma2 <= 0), z three standard
+// normals. wm: 1 with the drift, 0 without (a factor: no branch in the loops across lanes).
+// Written once: the scalar step (integrators.cpp) and the batched loops call it.
+template <typename T>
+LRIGID_LANE void ou_update(T wm, T decay, T noise, T sigma2, const T* V, const T* gs, const T* z,
+                           T h, T* us) {
+  const T s_safe = sigma2 > T(0) ? sigma2 : T(1);
+  const T proj = (V[0] * gs[0] + V[1] * gs[1] + V[2] * gs[2]) / (T(2) * s_safe);
+  const T on = sigma2 > T(0) ? wm : T(0);
+#pragma GCC unroll 3
+  for (int a = 0; a < 3; ++a)
+    us[a] = decay * us[a] + h * (on * (T(0.5) * gs[a] + us[a] * proj)) + noise * z[a];
 }
 
 // Thomson's well-mixed drift correction for the seen fluctuation u' (world frame), m/s^2, for u'

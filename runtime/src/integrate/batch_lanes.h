@@ -14,6 +14,7 @@
 #include "effects/basset.h"
 #include "effects/drag.h"
 #include "effects/magnus.h"
+#include "effects/turbulence.h"
 #include "integrate/dynamics.h"
 #include "integrate/integrators.h"
 #include "integrate/sphere_batch.h"
@@ -21,6 +22,7 @@
 #include "model/model.h"
 #include "model/state.h"
 #include "util/fast_math.h"
+#include "util/lane.h"
 #include "util/rng.h"
 
 namespace lrigid {
@@ -43,7 +45,6 @@ namespace {  // NOLINT(build/namespaces): internal to the two batched-step files
 // makes the versions above, and the AVX-512 and AVX2 versions then stay scalar (measured: 4.9
 // against 13 M body-steps/s per core). The per-body helpers are inlined into each version (a call
 // would run the baseline one).
-#define LRIGID_LANE inline __attribute__((always_inline))
 #if defined(__GNUC__) && !defined(__clang__)
 #define LRIGID_IVDEP _Pragma("GCC ivdep")
 #else
@@ -97,7 +98,7 @@ void set_field_consts(const Model& model, const BodyType& type, FieldConsts* k) 
   for (int a = 0; a < 3; ++a) k->F[a] = F[a];
   k->basset = type.plan.basset;
   k->basset_mass = k->basset ? type.basset.implicit_mass : 0.0;
-  k->magnus = e.has(Effect::Magnus) ? kMagnus * model.fluid_density * type.volume : 0.0;
+  k->magnus = e.has(Effect::Magnus) ? magnus_factor(type, model.fluid_density) : 0.0;
   if (k->grid) {
     const GridGeometry& g = model.field.geometry();
     for (int a = 0; a < 3; ++a) {
@@ -128,75 +129,13 @@ std::string batch_exclusion(const Model& model, const BodyType& type) {
     return "the body turbulence model";
   if (model.noise_substeps > 1) return "noise substeps";
   if (model.field.is_streamed() || model.field.frame_count() > 1) return "a time-dependent field";
+  // the registry (effects/registry.cpp) says which effects the loops implement
+  if (const EffectInfo* e = first_unbatched(type.effects))
+    return std::string("effect ") + e->name + " has no batched kernel";
   // the steps address grid records with 32-bit float offsets
   if (!model.field.is_uniform() && model.field.geometry().points() >= (size_t(1) << 28))
     return "a grid of 2^28 points or more";
   return "";
-}
-
-// The drag law of effects/drag.cpp drag_wrench (centre of buoyancy at the centre of mass) for a
-// body that is not flat, apart from its projected area across the flow.
-struct DragLaw {
-  double rho = 0, nu = 0;  // fluid density (kg/m^3) and kinematic viscosity (m^2/s)
-  double area_max = 0;     // largest projected area, m^2
-  double c_ang0 = 0;       // Stokes rotational drag 8 pi mu r_m^3, N m s
-  // 1/2 rho C_rot int r^3 dA per axis, N m s^2; rho C_rot times the largest
-  double rot[3] = {0, 0, 0}, rot_max = 0;
-};
-
-DragLaw drag_law(const Model& model, const BodyType& type) {
-  DragLaw k;
-  k.rho = model.fluid_density;
-  k.nu = model.nu;
-  k.area_max = type.area_max;
-  const double r_m = type.ell.mean();
-  k.c_ang0 = 8.0 * M_PI * k.rho * k.nu * r_m * r_m * r_m;
-  for (int a = 0; a < 3; ++a) k.rot[a] = 0.5 * k.rho * kDragRotation * type.rot_drag_len5[a];
-  k.rot_max = k.rho * kDragRotation * type.rot_drag_len5.maxCoeff();
-  return k;
-}
-
-// A lane's drag (and lift): force and torque, and the stiffness the implicit step needs
-// (effects/drag.h DragStiffness).
-template <typename T>
-struct LaneDrag {
-  T f[3], tq[3];
-  T c_lin, p, c_ang;
-  T u_hat[3];
-};
-
-// drag_wrench on one lane: relative velocity u and spin w; area(u_hat, &a_perp, &d_perp) gives
-// the projected area across the flow (m^2) and the diameter of the disk of that area (m).
-// Schiller-Naumann on that diameter, the edgewise skin drag and the rotational drag.
-template <typename T, class Area>
-LRIGID_LANE LaneDrag<T> lane_drag(const DragLaw& k, const T* u, const T* w, Area area) {
-  LaneDrag<T> d;
-  const T speed = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
-  const bool moving = speed > T(0);
-  const T inv = T(1) / (moving ? speed : T(1));
-#pragma GCC unroll 3
-  for (int a = 0; a < 3; ++a) d.u_hat[a] = moving ? u[a] * inv : T(0);
-  T a_perp, d_perp;
-  area(d.u_hat, &a_perp, &d_perp);
-  const T re = speed * d_perp / T(k.nu);
-  const T re_safe = moving ? re : T(1);
-  // C_D Re = 24 (1 + 0.15 Re^0.687) below Re = 1000, 0.44 above
-  const T s = T(0.15 * exp_fast(0.687 * log_fast(double(re_safe))));
-  const bool newton_regime = re >= T(1000);
-  const T cd = newton_regime ? T(0.44) : T(24) / re_safe * (T(1) + s);
-  const T p = newton_regime ? T(1) : T(0.687) * s / (T(1) + s);
-  const T c_moving =
-      T(0.5 * k.rho) * speed * (cd * a_perp + T(kDragEdgewise) * (T(k.area_max) - a_perp));
-  const T c_lin = moving ? c_moving : T(0);
-  d.c_lin = c_lin;
-  d.p = moving ? p : T(0);
-#pragma GCC unroll 3
-  for (int a = 0; a < 3; ++a) d.f[a] = -c_lin * u[a];
-  const T w_norm = std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
-#pragma GCC unroll 3
-  for (int a = 0; a < 3; ++a) d.tq[a] = -(T(k.c_ang0) + T(k.rot[a]) * w_norm) * w[a];
-  d.c_ang = T(k.c_ang0) + T(k.rot_max) * w_norm;
-  return d;
 }
 
 // The fluid sample at a block's positions, structure of arrays, and the block's bookkeeping.
@@ -226,16 +165,6 @@ struct Samples {
 
 // Whether the step needs its third switch (`Extra`): the Basset history or the Magnus force.
 inline bool extra_effects(const FieldConsts& k) { return k.basset || k.magnus != 0; }
-
-// The Magnus force C_M rho V w x u on one lane (effects/magnus.h, centre of buoyancy at the
-// centre of mass): spin w and velocity u relative to the fluid in one frame, N.
-template <typename T>
-LRIGID_LANE void lane_magnus(const FieldConsts& k, const T* w, const T* u, T* f) {
-  const T c = T(k.magnus);
-  f[0] = c * (w[1] * u[2] - w[2] * u[1]);
-  f[1] = c * (w[2] * u[0] - w[0] * u[2]);
-  f[2] = c * (w[0] * u[1] - w[1] * u[0]);
-}
 
 // Fills the sample arrays of L at positions x (may be L.x itself), lanes [lo, hi).
 template <typename T>
@@ -369,27 +298,11 @@ LRIGID_MULTIVERSION void ou_coefficients(const FieldConsts& k, Samples<T>* L, in
   const double hh = 0.5 * k.h;
 LRIGID_IVDEP
   for (int j = lo; j < hi; ++j) {
-    const double alpha = double(L->alpha[j]), ah = alpha * hh;
-    const double a_safe = alpha > 0 ? alpha : 1.0;
-    L->decay[j] = T(exp_fast(-ah));
-    L->noise[j] =
-        T(double(L->beta[j]) *
-          (ah > 1e-12 ? std::sqrt(one_minus_exp_neg(2.0 * ah) / (2.0 * a_safe)) : std::sqrt(hh)));
+    double decay, noise;
+    ou_exact_kernel(double(L->alpha[j]), double(L->beta[j]), hh, &decay, &noise);
+    L->decay[j] = T(decay);
+    L->noise[j] = T(noise);
   }
-}
-
-// One exact Ornstein-Uhlenbeck half step of the seen fluctuation us (effects/turbulence.h) with
-// Thomson's drift along the body's path (world velocity V), for one lane; wm: 1 with the drift,
-// 0 without (Consts::wm, passed in: a load under a lane's condition would not vectorize).
-template <typename T>
-LRIGID_LANE void ou_half(T wm, T decay, T noise, T sigma2, const T* V, const T* gs, const T* z,
-                         T hh, T* us) {
-  const T s_safe = sigma2 > T(0) ? sigma2 : T(1);
-  const T proj = (V[0] * gs[0] + V[1] * gs[1] + V[2] * gs[2]) / (T(2) * s_safe);
-  const T on = sigma2 > T(0) ? wm : T(0);
-#pragma GCC unroll 3
-  for (int a = 0; a < 3; ++a)
-    us[a] = decay * us[a] + hh * (on * (T(0.5) * gs[a] + us[a] * proj)) + noise * z[a];
 }
 
 // Normals of step `step` for every lane: the Strang half-step increments of the linear noise,
@@ -513,7 +426,7 @@ LRIGID_IVDEP
       const T Vj[3] = {V[0][j], V[1][j], V[2][j]};
       const T gs[3] = {L->gs[0][j], L->gs[1][j], L->gs[2][j]};
       const T z[3] = {z2[0][j], z2[1][j], z2[2][j]};
-      ou_half(wm, L->decay[j], L->noise[j], L->sigma2[j], Vj, gs, z, hh, us);
+      ou_update(wm, L->decay[j], L->noise[j], L->sigma2[j], Vj, gs, z, hh, us);
     }
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) n->us[a][j] = us[a];

@@ -2,6 +2,7 @@
 
 #include "effects/mean_flow.h"
 #include "effects/wrench.h"
+#include "util/lane.h"
 #include "util/small_lu.h"
 
 namespace lrigid {
@@ -148,7 +149,11 @@ bool kirchhoff_midpoint(const BodyType& type, double h, const Vec6& Y0, Vec6* Y1
 // q cay(theta): the rotation by the Cayley map of the body-frame vector theta (rad), the
 // quaternion (1, theta/2) normalized (angle 2 atan(|theta|/2))
 Quat rotate_cayley(const Quat& q, const Vec3& theta) {
-  return (q * Quat(1.0, 0.5 * theta.x(), 0.5 * theta.y(), 0.5 * theta.z())).normalized();
+  const double q0[4] = {q.w(), q.x(), q.y(), q.z()};
+  const double a[3] = {0.5 * theta.x(), 0.5 * theta.y(), 0.5 * theta.z()};
+  double qn[4];
+  cayley_rotate(q0, a, qn);
+  return Quat(qn[0], qn[1], qn[2], qn[3]);
 }
 
 // kirchhoff_flow on the relative impulse Y over h, split into n equal substeps

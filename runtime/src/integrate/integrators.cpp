@@ -68,10 +68,8 @@ StepOutcome turbulence_update(const Model& model, const BodyType& type, double t
   // The drift follows the body's path: its velocity x'.
   Vec3 path_velocity = s->q * s->v;
   if (!seen) path_velocity += s->u_seen;
-  const Vec3 drift = model.well_mixed_correction
-                         ? well_mixed_drift(s->u_seen, path_velocity, fs)
-                         : Vec3::Zero();
-  s->u_seen = decay * s->u_seen + h * drift + noise * xi1;
+  ou_update(model.well_mixed_correction ? 1.0 : 0.0, decay, noise, fs.sigma2,
+            path_velocity.data(), fs.grad_sigma2.data(), z, h, s->u_seen.data());
   if (!seen) {
     const Vec3 xi2(z[3], z[4], z[5]);
     s->w = decay * s->w + (noise / type.r_eq) * xi2;

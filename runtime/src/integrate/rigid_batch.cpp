@@ -6,6 +6,7 @@
 
 #include "effects/drag.h"
 #include "effects/lift.h"
+#include "effects/plate.h"
 #include "integrate/batch_lanes.h"
 #include "integrate/dynamics.h"
 
@@ -23,14 +24,6 @@ bool rigid_batch_eligible(const Model& model, const BodyType& type, std::string*
   if (type.effects.has(Effect::AddedMass) &&
       Mat6(type.K_fluid.diagonal().asDiagonal()) != type.K_fluid)
     return no("the added-mass tensor is not diagonal");
-  for (const EffectInfo& info : all_effects()) {
-    const Effect e = info.effect;
-    if (!type.effects.has(e)) continue;
-    if (e != Effect::Gravity && e != Effect::Buoyancy && e != Effect::Drag && e != Effect::Lift &&
-        e != Effect::AddedMass && e != Effect::MeanFlow && e != Effect::Turbulence &&
-        e != Effect::Basset && e != Effect::Magnus)
-      return no(std::string("effect ") + info.name);
-  }
   return true;
 }
 
@@ -41,20 +34,10 @@ struct Consts : FieldConsts {
   bool plate = false;  // flat: plate drag and lift (with turb, the step's template switches)
   double M[6] = {0, 0, 0, 0, 0, 0}, Mi[6] = {0, 0, 0, 0, 0, 0};  // M's diagonal and its inverse
   double K[3] = {0, 0, 0};    // K's linear diagonal (0 without added mass)
-  double drag = 0, lift = 0;  // the effects as factors 1 or 0
-  // the fluid (rho, nu) and the drag of bodies that are not flat (with l, the equivalent
-  // ellipsoid)
-  DragLaw law;
-  // plate (effects/drag.cpp plate_drag_wrench, effects/lift.cpp lift_wrench with r_cob = 0):
-  // the normal n and the in-plane axes e1, e2 as unit vectors (component index na, i1, i2)
-  double n[3] = {0, 0, 0}, e1[3] = {0, 0, 0}, e2[3] = {0, 0, 0};
-  double S = 0, box = 0;  // planform area; 1 for a rectangle, 0 for an ellipse
-  double c1 = 0, c2 = 0;  // half extents (box) or semi-axes (ellipse) along e1, e2
-  double width = 0, apw_speed = 0;
-  double sf[3] = {0, 0, 0}, c_visc = 0;  // mu k_i, mu max k_i (Stokes force)
-  double st[3] = {0, 0, 0}, st_in = 0;   // mu r_i; mu max r_i over the in-plane axes
-  double rot_n = 0;                      // out-of-roundness drag of the spin about n
-  double l[3] = {0, 0, 0};               // semi-axes of the equivalent ellipsoid, m
+  double drag = 0;  // the drag effect as a factor 1 or 0 (bodies that are not flat)
+  // the drag of bodies that are not flat (effects/drag.h) and the plate model (effects/plate.h)
+  DragParams law;
+  PlateParams plate_model;
 };
 
 Consts make_consts(const Model& model, const BodyType& type) {
@@ -68,26 +51,10 @@ Consts make_consts(const Model& model, const BodyType& type) {
   }
   for (int a = 0; a < 3; ++a) k.K[a] = e.has(Effect::AddedMass) ? type.K_fluid(a, a) : 0.0;
   k.drag = e.has(Effect::Drag) ? 1.0 : 0.0;
-  k.lift = e.has(Effect::Lift) && type.flat ? 1.0 : 0.0;
-  k.law = drag_law(model, type);
-  const double mu = k.law.rho * k.law.nu;
-  const int na = type.normal_axis, i1 = (na + 1) % 3, i2 = (na + 2) % 3;
-  k.n[na] = k.e1[i1] = k.e2[i2] = 1.0;
-  k.S = type.plate_area;
-  k.box = type.shape.type == ShapeType::Box ? 1.0 : 0.0;
-  const Vec3& ext = type.shape.type == ShapeType::Box ? type.half_extents : type.ell;
-  k.c1 = ext[i1];
-  k.c2 = ext[i2];
-  if (type.flat) k.width = plate_width(type);
-  k.apw_speed = type.apw_speed;
-  for (int a = 0; a < 3; ++a) {
-    k.sf[a] = mu * type.stokes_force[a];
-    k.st[a] = mu * type.stokes_torque[a];
-    k.l[a] = type.ell[a];
-  }
-  k.c_visc = mu * type.stokes_force.maxCoeff();
-  k.st_in = mu * std::max(type.stokes_torque[i1], type.stokes_torque[i2]);
-  k.rot_n = k.law.rot[na];
+  k.law = drag_params(type, model.fluid_density, model.nu);
+  if (type.flat)
+    k.plate_model = plate_params(type, model.fluid_density, model.nu, e.has(Effect::Drag),
+                             e.has(Effect::Lift));
   return k;
 }
 
@@ -125,42 +92,6 @@ struct Lanes : Samples<T> {
 };
 
 // ---- small vector algebra on one lane's values -------------------------------------------------
-
-template <typename T>
-LRIGID_LANE T dot3(const T* a, const T* b) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
-template <typename T>
-LRIGID_LANE void cross3(const T* a, const T* b, T* c) {
-  c[0] = a[1] * b[2] - a[2] * b[1];
-  c[1] = a[2] * b[0] - a[0] * b[2];
-  c[2] = a[0] * b[1] - a[1] * b[0];
-}
-
-// R (row major) of the unit quaternion q = (w, x, y, z), as Eigen's toRotationMatrix
-template <typename T>
-LRIGID_LANE void rotation(const T* q, T* R) {
-  const T w = q[0], x = q[1], y = q[2], z = q[3];
-  const T tx = T(2) * x, ty = T(2) * y, tz = T(2) * z;
-  const T twx = tx * w, twy = ty * w, twz = tz * w, txx = tx * x, txy = ty * x, txz = tz * x;
-  const T tyy = ty * y, tyz = tz * y, tzz = tz * z;
-  R[0] = T(1) - (tyy + tzz), R[1] = txy - twz, R[2] = txz + twy;
-  R[3] = txy + twz, R[4] = T(1) - (txx + tzz), R[5] = tyz - twx;
-  R[6] = txz - twy, R[7] = tyz + twx, R[8] = T(1) - (txx + tyy);
-}
-
-template <typename T>
-LRIGID_LANE void mul(const T* R, const T* a, T* b) {  // b = R a
-#pragma GCC unroll 3
-  for (int i = 0; i < 3; ++i) b[i] = R[3 * i] * a[0] + R[3 * i + 1] * a[1] + R[3 * i + 2] * a[2];
-}
-
-template <typename T>
-LRIGID_LANE void mul_t(const T* R, const T* a, T* b) {  // b = R^T a
-#pragma GCC unroll 3
-  for (int i = 0; i < 3; ++i) b[i] = R[i] * a[0] + R[3 + i] * a[1] + R[6 + i] * a[2];
-}
 
 // The free Kirchhoff flow's right-hand side with its sign: dY/dt = -gyro(Y),
 // gyro = (w x P, w x L + v x P) with (v, w) = M^-1 Y (effects/wrench.h kirchhoff_gyro)
@@ -245,7 +176,7 @@ LRIGID_LANE void lu6_solve(const T* A, T* b) {
 // b_ang, where J is the drag's stiffness d (linear: diagonal plus rank one, by Sherman-Morrison;
 // angular: c_ang I) and b_B the Basset history's current interval (0 without)
 template <typename T>
-LRIGID_LANE void implicit_solve(const Consts& k, const LaneDrag<T>& d, T h, const T* b_lin,
+LRIGID_LANE void implicit_solve(const Consts& k, const DragOut<T>& d, T h, const T* b_lin,
                                 const T* b_ang, T* x_lin, T* x_ang) {
   T Dinv_b[3], Dinv_u[3];
 #pragma GCC unroll 3
@@ -263,91 +194,11 @@ LRIGID_LANE void implicit_solve(const Consts& k, const LaneDrag<T>& d, T h, cons
   }
 }
 
-// Plate drag and torque (plate_drag_wrench), and the lift force (lift_wrench, no torque), r_cob = 0
+// The forces of a body that is not flat: the drag (effects/drag.h, the equivalent ellipsoid's
+// projected area across u) times the drag effect's factor (0 without it)
 template <typename T>
-LRIGID_LANE LaneDrag<T> plate_forces(const Consts& k, const T* u, const T* w, T* lift) {
-  LaneDrag<T> d;
-  const T rho = T(k.law.rho);
-  const T n[3] = {T(k.n[0]), T(k.n[1]), T(k.n[2])};
-  const T e1[3] = {T(k.e1[0]), T(k.e1[1]), T(k.e1[2])},
-          e2[3] = {T(k.e2[0]), T(k.e2[1]), T(k.e2[2])};
-  const T s2 = dot3(u, u);
-  const T speed = std::sqrt(s2);
-  const bool moving = speed > T(0);
-  const T inv = T(1) / (moving ? speed : T(1));
-  const T un = dot3(n, u);
-  const T cos2a = (s2 - T(2) * un * un) * (inv * inv);
-  const T c_lin =
-      moving ? T(0.5) * rho * T(k.S) * (T(kPlateDragA) - T(kPlateDragB) * cos2a) * speed : T(0);
-  // the in-plane part of the spin and the chord across it
-  const T wn = dot3(n, w);
-  T wp[3];
-#pragma GCC unroll 3
-  for (int a = 0; a < 3; ++a) wp[a] = w[a] - wn * n[a];
-  const T wp_norm = std::sqrt(dot3(wp, wp));
-  const bool spinning = wp_norm > T(0);
-  T dir[3];
-  cross3(n, wp, dir);
-  const T winv = T(1) / (spinning ? wp_norm : T(1));
-  const T d1 = dot3(e1, dir) * winv, d2 = dot3(e2, dir) * winv;
-  const T tiny = T(std::is_same_v<T, float> ? 1e-30 : 1e-300);
-  const T a1 = std::abs(d1) > tiny ? std::abs(d1) : tiny,
-          a2 = std::abs(d2) > tiny ? std::abs(d2) : tiny;
-  const T r1 = T(k.c1) / a1, r2 = T(k.c2) / a2;
-  const T chord_box = T(2) * (r1 < r2 ? r1 : r2);
-  const T q1 = d1 / T(k.c1), q2 = d2 / T(k.c2);
-  const T chord_ell = T(2) / std::sqrt(q1 * q1 + q2 * q2 + (spinning ? T(0) : T(1)));
-  const T chord = k.box != 0 ? chord_box : chord_ell;
-  // APW's pitching torque, its viscous coefficient scaled as a laminar boundary layer
-  const T c = T(0.5) * (spinning ? chord : T(1));
-  const T span = T(k.S) / (T(2) * c);
-  const T Uv = k.apw_speed > 0 ? T(k.apw_speed) : speed;
-  const T kk = T(M_PI) * rho * (c * c) * (c * c) * span;
-  const T re_w = speed * T(k.width / k.law.nu);
-  const T re = re_w > T(kPlateTorqueReMin) ? re_w : T(kPlateTorqueReMin);
-  const T mu1 = T(kPlateTorqueMu1) * std::sqrt(T(kPlateTorqueFitRe) / re);
-  const T pitch = spinning ? kk * (mu1 * Uv / c + T(kPlateTorqueMu2) * wp_norm) : T(0);
-  const T c_pitch = spinning ? kk * (mu1 * Uv / c + T(2 * kPlateTorqueMu2) * wp_norm) : T(0);
-  const T c_n = T(k.st[0]) * T(k.n[0]) + T(k.st[1]) * T(k.n[1]) + T(k.st[2]) * T(k.n[2]) +
-                T(k.rot_n) * std::abs(wn);
-  // lift: translational (circulation gate (Re/Re_c)^4 / (1 + ...)) and rotational
-  static_assert(kLiftReExponent == 4.0, "the gate below is written for the exponent 4");
-  const T rg = re_w * T(1.0 / kLiftReCritical), rg2 = rg * rg, x4 = rg2 * rg2;
-  const T gate = T(k.lift) * (x4 / (T(1) + x4));
-  T ut[3];
-#pragma GCC unroll 3
-  for (int a = 0; a < 3; ++a) ut[a] = u[a] - un * n[a];
-  const T ut2 = dot3(ut, ut);
-  const T lt = moving ? -rho * gate * T(kLiftTranslational * k.S) * (un * inv) : T(0);
-  const T lr = spinning ? T(0.5) * rho * gate * T(kLiftRotational) * chord * T(k.S) : T(0);
-  T wxu[3];
-  cross3(wp, u, wxu);
-  const T dr = T(k.drag);
-#pragma GCC unroll 3
-  for (int a = 0; a < 3; ++a) {
-    d.f[a] = dr * (-c_lin * u[a] - T(k.sf[a]) * u[a]);
-    lift[a] = lt * (ut2 * n[a] - un * ut[a]) + lr * wxu[a];
-    d.tq[a] = dr * (-pitch * wp[a] - T(k.st[a]) * wp[a] - c_n * wn * n[a]);
-    d.u_hat[a] = moving ? u[a] * inv : T(0);
-  }
-  const T c_tot = c_lin + T(k.c_visc);
-  d.c_lin = dr * c_tot;
-  d.p = c_tot > T(0) ? c_lin / c_tot : T(0);
-  const T ca = c_pitch + T(k.st_in), cn2 = T(2) * c_n;
-  d.c_ang = dr * (ca > cn2 ? ca : cn2);
-  return d;
-}
-
-// Drag of a body that is not flat (drag_wrench): the equivalent ellipsoid's projected area
-// across u, times the drag effect's factor (0 without it)
-template <typename T>
-LRIGID_LANE LaneDrag<T> ellipsoid_forces(const Consts& k, const T* u, const T* w) {
-  LaneDrag<T> d = lane_drag(k.law, u, w, [&k](const T* uh, T* a_perp, T* d_perp) {
-    const T p0 = T(k.l[1] * k.l[2]) * uh[0], p1 = T(k.l[0] * k.l[2]) * uh[1];
-    const T p2 = T(k.l[0] * k.l[1]) * uh[2];
-    *a_perp = T(M_PI) * std::sqrt(p0 * p0 + p1 * p1 + p2 * p2);
-    *d_perp = T(2) * std::sqrt(*a_perp * T(1.0 / M_PI));
-  });
+LRIGID_LANE DragOut<T> ellipsoid_forces(const Consts& k, const T* u, const T* w) {
+  DragOut<T> d = ellipsoid_drag_kernel(k.law, u, w);
   const T dr = T(k.drag);
 #pragma GCC unroll 3
   for (int a = 0; a < 3; ++a) {
@@ -357,6 +208,18 @@ LRIGID_LANE LaneDrag<T> ellipsoid_forces(const Consts& k, const T* u, const T* w
   d.c_lin *= dr;
   d.c_ang *= dr;
   return d;
+}
+
+// A lane's drag (and, for plates, lift: effects/plate.h) on relative velocity u and spin w
+template <typename T, bool Plate>
+LRIGID_LANE DragOut<T> body_forces(const Consts& k, const T* u, const T* w, T* lift) {
+  if constexpr (Plate) {
+    DragOut<T> d;
+    plate_kernel(k.plate_model, u, w, &d, lift);
+    return d;
+  } else {
+    return ellipsoid_forces(k, u, w);
+  }
 }
 
 // the scalar step's Kirchhoff tolerance (integrate/dynamics.h); float converges to its own
@@ -396,7 +259,7 @@ LRIGID_IVDEP
     if constexpr (Turb) {
       const T gs[3] = {L->gs[0][j], L->gs[1][j], L->gs[2][j]};
       const T z[3] = {z1[0][j], z1[1][j], z1[2][j]};
-      ou_half(wm, L->decay[j], L->noise[j], L->sigma2[j], V, gs, z, hh, us);
+      ou_update(wm, L->decay[j], L->noise[j], L->sigma2[j], V, gs, z, hh, us);
     }
     T u_f[3], ufb[3];
 #pragma GCC unroll 3
@@ -590,16 +453,11 @@ LRIGID_IVDEP
     // q <- q cay(h w_mid)
     T q[4];
     {
-      const T ax = hh * T(k.Mi[3]) * (T(0.5) * (y0[3] + y[3]));
-      const T ay = hh * T(k.Mi[4]) * (T(0.5) * (y0[4] + y[4]));
-      const T az = hh * T(k.Mi[5]) * (T(0.5) * (y0[5] + y[5]));
-      const T qw = L->q[0][j], qx = L->q[1][j], qy = L->q[2][j], qz = L->q[3][j];
-      const T nw = qw - (qx * ax + qy * ay + qz * az);
-      const T nx = qw * ax + qx + (qy * az - qz * ay);
-      const T ny = qw * ay + qy + (qz * ax - qx * az);
-      const T nz = qw * az + qz + (qx * ay - qy * ax);
-      const T inv = T(1) / std::sqrt(nw * nw + nx * nx + ny * ny + nz * nz);
-      q[0] = nw * inv, q[1] = nx * inv, q[2] = ny * inv, q[3] = nz * inv;
+      const T q0[4] = {L->q[0][j], L->q[1][j], L->q[2][j], L->q[3][j]};
+      const T a[3] = {hh * T(k.Mi[3]) * (T(0.5) * (y0[3] + y[3])),
+                      hh * T(k.Mi[4]) * (T(0.5) * (y0[4] + y[4])),
+                      hh * T(k.Mi[5]) * (T(0.5) * (y0[5] + y[5]))};
+      cayley_rotate(q0, a, q);
     }
     T R[9];
     rotation(q, R);
@@ -613,7 +471,7 @@ LRIGID_IVDEP
       vr[a] = v[a] - ufb[a];
     }
     T lift[3] = {0, 0, 0};
-    const LaneDrag<T> d = Plate ? plate_forces(k, vr, w, lift) : ellipsoid_forces(k, vr, w);
+    const DragOut<T> d = body_forces<T, Plate>(k, vr, w, lift);
     T F[3] = {T(k.F[0]), T(k.F[1]), T(k.F[2])};
     T Fb[3], u_end[3], ufb_end[3], fx[3] = {0, 0, 0}, ab[3] = {0, 0, 0};
     if constexpr (Extra) {
@@ -625,7 +483,7 @@ LRIGID_IVDEP
         F[a] += L->fb[a][j];
         acc[a] = T(k.gu) * L->acc[a][j];
       }
-      lane_magnus(k, w, vr, fx);
+      magnus_kernel(T(k.magnus), w, vr, fx);
       mul_t(R, acc, ab);
     }
     mul_t(R, F, Fb);
@@ -685,7 +543,7 @@ LRIGID_IVDEP
           vr[a] = vn[a][j] - ufs[a][j];
           w[a] = wn[a][j];
         }
-        const LaneDrag<T> d = Plate ? plate_forces(k, vr, w, lift) : ellipsoid_forces(k, vr, w);
+        const DragOut<T> d = body_forces<T, Plate>(k, vr, w, lift);
         // the Newton step -M (M + h J + b_B P)^-1 res, J the drag's stiffness here
         T res_lin[3], res_ang[3], x_lin[3], x_ang[3];
 #pragma GCC unroll 3

@@ -66,9 +66,6 @@ uint64_t advance_body(const Model& model, State& st, int64_t i, uint64_t first, 
   return body_steps;
 }
 
-// how a body type is advanced
-enum StepKind : char { kScalarBody = 0, kSphereBlock = 1, kRigidBlock = 2 };
-
 // The bodies a stretch advances: those still moving in [n0, n), the batched step's types in
 // blocks of kBatch bodies of one type, the others one by one. Rebuilt for every stretch, so
 // bodies that stopped leave the blocks.
@@ -77,14 +74,14 @@ struct WorkList {
   std::vector<int64_t> scalar;
 };
 
-WorkList work_list(const Model& model, const State& st, const std::vector<char>& batched,
+WorkList work_list(const Model& model, const State& st, const std::vector<StepKind>& kinds,
                    int64_t n0, int64_t n) {
   WorkList w;
   std::vector<std::vector<uint32_t>> open(model.types.size());
   for (int64_t i = n0; i < n; ++i) {
     if (st.status[i] != BodyStatus::Moving) continue;
     const uint16_t t = st.type[i];
-    if (!batched[t]) {
+    if (kinds[t] == StepKind::Scalar) {
       w.scalar.push_back(i);
       continue;
     }
@@ -101,6 +98,25 @@ WorkList work_list(const Model& model, const State& st, const std::vector<char>&
 
 }  // namespace
 
+StepKind step_kind(const Model& model, const BodyType& type, std::string* why_not_batched) {
+  // a sphere takes the sphere step or none; anything else the plates-and-ellipsoids step
+  std::string why;
+  if (type.M_isotropic ? sphere_batch_eligible(model, type, &why)
+                       : rigid_batch_eligible(model, type, &why))
+    return type.M_isotropic ? StepKind::SphereBlock : StepKind::RigidBlock;
+  if (why_not_batched) *why_not_batched = why;
+  return StepKind::Scalar;
+}
+
+const char* step_kind_name(StepKind kind) {
+  switch (kind) {
+    case StepKind::SphereBlock: return "batched spheres";
+    case StepKind::RigidBlock: return "batched plates and ellipsoids";
+    case StepKind::Scalar: return "scalar";
+  }
+  return "scalar";
+}
+
 RunStats simulate(const Model& model, State* state, const RunOptions& options) {
   RunStats stats;
   if (options.live_stats) stats = *options.live_stats;
@@ -115,11 +131,9 @@ RunStats simulate(const Model& model, State* state, const RunOptions& options) {
   double wall = stats.wall_seconds;
   // body types that take a batched step: spheres (integrate/sphere_batch.h), plates and
   // ellipsoids (integrate/rigid_batch.h)
-  std::vector<char> batched(model.types.size());
+  std::vector<StepKind> kinds(model.types.size());
   for (size_t t = 0; t < model.types.size(); ++t)
-    batched[t] = sphere_batch_eligible(model, model.types[t])  ? kSphereBlock
-                 : rigid_batch_eligible(model, model.types[t]) ? kRigidBlock
-                                                                : kScalarBody;
+    kinds[t] = step_kind(model, model.types[t], nullptr);
 
   while (st.step < total_steps) {
     const uint64_t first = st.step;
@@ -128,7 +142,7 @@ RunStats simulate(const Model& model, State* state, const RunOptions& options) {
     model.field.prepare(static_cast<double>(first) * model.dt, stream_window_end(model, last));
     uint64_t body_steps = 0, handoffs = 0, newton = 0;
     const auto t0 = std::chrono::steady_clock::now();
-    const WorkList work = work_list(model, st, batched, n0, n);
+    const WorkList work = work_list(model, st, kinds, n0, n);
     const auto nblocks = static_cast<int64_t>(work.blocks.size());
     const auto nscalar = static_cast<int64_t>(work.scalar.size());
 #pragma omp parallel num_threads(threads) reduction(+ : body_steps, handoffs, newton)
@@ -137,7 +151,7 @@ RunStats simulate(const Model& model, State* state, const RunOptions& options) {
       for (int64_t k = 0; k < nblocks; ++k) {
         const std::vector<uint32_t>& blk = work.blocks[k];
         const uint16_t t = st.type[blk[0]];
-        const auto advance = batched[t] == kSphereBlock ? advance_sphere_block
+        const auto advance = kinds[t] == StepKind::SphereBlock ? advance_sphere_block
                                                         : advance_rigid_block;
         const BlockStats b = advance(model, model.types[t], &st, blk.data(),
                                      static_cast<int>(blk.size()), first, last);

@@ -4,6 +4,7 @@
 #pragma once
 #include <cstdint>
 #include <functional>
+#include <string>
 
 #include "model/state.h"
 
@@ -39,6 +40,12 @@ struct RunOptions {
 };
 
 RunStats simulate(const Model& model, State* state, const RunOptions& options);
+
+// Which step a body type takes: "batched spheres" (integrate/sphere_batch.h), "batched plates
+// and ellipsoids" (integrate/rigid_batch.h) or "scalar"; for the scalar step, why not batched.
+enum class StepKind { SphereBlock, RigidBlock, Scalar };
+StepKind step_kind(const Model& model, const BodyType& type, std::string* why_not_batched);
+const char* step_kind_name(StepKind kind);
 
 // Steps between outputs for a given output interval.
 uint64_t output_stride(const Model& model, double every);

@@ -18,14 +18,6 @@ bool sphere_batch_eligible(const Model& model, const BodyType& type, std::string
   if (type.shape.type != ShapeType::Sphere) return no("not a sphere");
   if (!type.M_isotropic || !type.r_cob.isZero(0.0))
     return no("the centre of mass is off the centroid");
-  for (const EffectInfo& info : all_effects()) {
-    const Effect e = info.effect;
-    if (!type.effects.has(e)) continue;
-    if (e != Effect::Gravity && e != Effect::Buoyancy && e != Effect::Drag &&
-        e != Effect::AddedMass && e != Effect::MeanFlow && e != Effect::Turbulence &&
-        e != Effect::Basset && e != Effect::Magnus)
-      return no(std::string("effect ") + info.name);
-  }
   return true;
 }
 
@@ -35,8 +27,8 @@ namespace {
 struct Consts : FieldConsts {
   bool drag = false;  // with turb, the step's two template switches
   double m = 0, ma = 0, J = 0;  // M's linear and angular diagonal; K's linear diagonal (0 without)
-  // sphere drag (effects/drag.cpp drag_wrench with r_cob = 0): the law and the sphere's area
-  DragLaw law;
+  // sphere drag (effects/drag.h drag_kernel, r_cob = 0): the law and the sphere's area
+  DragParams law;
   double a_perp = 0, d_perp = 0;
 };
 
@@ -48,7 +40,7 @@ Consts make_consts(const Model& model, const BodyType& type) {
   k.m = type.M(0, 0);
   k.ma = e.has(Effect::AddedMass) ? type.K_fluid(0, 0) : 0.0;
   k.J = type.M(3, 3);
-  k.law = drag_law(model, type);
+  k.law = drag_params(type, model.fluid_density, model.nu);
   const double r = type.ell.x();
   k.a_perp = M_PI * r * r;
   k.d_perp = 2.0 * std::sqrt(k.a_perp / M_PI);
@@ -90,23 +82,13 @@ struct Lanes : Samples<T> {
   T (*velocity())[kBatch] { return V; }  // the velocity a lane keeps (end_step)
 };
 
-// b = q a q^-1: the vector a (body frame) in the world frame, q = (w, x, y, z) unit
-template <typename T>
-LRIGID_LANE void rotate_by(const T* q, const T* a, T* b) {
-  const T t[3] = {T(2) * (q[2] * a[2] - q[3] * a[1]), T(2) * (q[3] * a[0] - q[1] * a[2]),
-                  T(2) * (q[1] * a[1] - q[2] * a[0])};
-  b[0] = a[0] + q[0] * t[0] + (q[2] * t[2] - q[3] * t[1]);
-  b[1] = a[1] + q[0] * t[1] + (q[3] * t[0] - q[1] * t[2]);
-  b[2] = a[2] + q[0] * t[2] + (q[1] * t[1] - q[2] * t[0]);
-}
-
-// Sphere drag (effects/drag.cpp drag_wrench, centre of buoyancy at the centre of mass): force
+// Sphere drag (effects/drag.h drag_kernel, centre of buoyancy at the centre of mass): force
 // and torque on relative velocity u and spin w, and the stiffness the implicit step needs; the
 // projected area is the same in every direction.
 template <typename T>
-LRIGID_LANE LaneDrag<T> sphere_drag(const Consts& k, const T* u, const T* w) {
+LRIGID_LANE DragOut<T> sphere_drag(const Consts& k, const T* u, const T* w) {
   const T a_perp = T(k.a_perp), d_perp = T(k.d_perp);
-  return lane_drag(k.law, u, w, [&](const T*, T* a, T* d) {
+  return drag_kernel(k.law, u, w, [&](const T*, T* a, T* d) {
     *a = a_perp;
     *d = d_perp;
   });
@@ -115,7 +97,7 @@ LRIGID_LANE LaneDrag<T> sphere_drag(const Consts& k, const T* u, const T* w) {
 // y = (m I + h c_lin (I + p u u^T) + b_B I)^-1 b (Sherman-Morrison), times m: the impulse
 // change; b_B the Basset history's current interval (0 without)
 template <typename T>
-LRIGID_LANE void implicit_linear(const Consts& k, const LaneDrag<T>& d, const T* b, T* dP) {
+LRIGID_LANE void implicit_linear(const Consts& k, const DragOut<T>& d, const T* b, T* dP) {
   const T a = T(k.m) + T(k.basset_mass) + T(k.h) * d.c_lin, c = T(k.h) * d.c_lin * d.p;
   const T ub = d.u_hat[0] * b[0] + d.u_hat[1] * b[1] + d.u_hat[2] * b[2];
   const T g = c / (a + c);
@@ -153,7 +135,7 @@ LRIGID_IVDEP
     if constexpr (Turb) {
       const T z[3] = {z1[0][j], z1[1][j], z1[2][j]};
       const T V[3] = {L->V[0][j], L->V[1][j], L->V[2][j]};
-      ou_half(wm, L->decay[j], L->noise[j], L->sigma2[j], V, gs, z, hh, us);
+      ou_update(wm, L->decay[j], L->noise[j], L->sigma2[j], V, gs, z, hh, us);
     }
     // 2. the free Kirchhoff flow: for isotropic M the world velocity is unchanged and
     //    q <- q cay(h w) (integrate/dynamics.cpp kirchhoff_flow)
@@ -165,20 +147,18 @@ LRIGID_IVDEP
       w[a] = L->w[a][j];
     }
     {
-      const T qw = L->q[0][j], qx = L->q[1][j], qy = L->q[2][j], qz = L->q[3][j];
-      const T ax = hh * w[0], ay = hh * w[1], az = hh * w[2];
-      T nw = qw - (qx * ax + qy * ay + qz * az);
-      T nx = qw * ax + qx + (qy * az - qz * ay);
-      T ny = qw * ay + qy + (qz * ax - qx * az);
-      T nz = qw * az + qz + (qx * ay - qy * ax);
-      const T inv = T(1) / std::sqrt(nw * nw + nx * nx + ny * ny + nz * nz);
-      qn[0][j] = nw * inv, qn[1][j] = nx * inv, qn[2][j] = ny * inv, qn[3][j] = nz * inv;
+      const T q0[4] = {L->q[0][j], L->q[1][j], L->q[2][j], L->q[3][j]};
+      const T a[3] = {hh * w[0], hh * w[1], hh * w[2]};
+      T q[4];
+      cayley_rotate(q0, a, q);
+#pragma GCC unroll 4
+      for (int c = 0; c < 4; ++c) qn[c][j] = q[c];
     }
     // 3. the forces, drag implicit: (M + h J + b_B P) M^-1 dPi = h G + b_B h a_fluid
     T vr[3];
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) vr[a] = V[a] - u_f[a];
-    LaneDrag<T> d = {};
+    DragOut<T> d = {};
     if constexpr (WithDrag) d = sphere_drag(k, vr, w);
     T Gj[3];
 #pragma GCC unroll 3
@@ -189,7 +169,7 @@ LRIGID_IVDEP
       const T qj[4] = {qn[0][j], qn[1][j], qn[2][j], qn[3][j]};
       T wW[3], fm[3];
       rotate_by(qj, w, wW);
-      lane_magnus(k, wW, vr, fm);
+      magnus_kernel(T(k.magnus), wW, vr, fm);
 #pragma GCC unroll 3
       for (int a = 0; a < 3; ++a)
         Gj[a] += h * (L->fb[a][j] + fm[a]) + T(k.basset_mass) * h * T(k.gu) * L->acc[a][j];
@@ -246,7 +226,7 @@ LRIGID_IVDEP
           vr[a] = Vn[a][j] - uf[a][j];
           w[a] = wn[a][j];
         }
-        const LaneDrag<T> d = sphere_drag(k, vr, w);
+        const DragOut<T> d = sphere_drag(k, vr, w);
         T res[3], dd[3];
 #pragma GCC unroll 3
         for (int a = 0; a < 3; ++a)

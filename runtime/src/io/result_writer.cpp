@@ -24,6 +24,7 @@
 
 #include "body/tessellate.h"
 #include "io/atomic_file.h"
+#include "integrate/simulation.h"
 #include "io/checkpoint.h"
 #include "io/mesh_io.h"
 #include "util/error.h"
@@ -408,13 +409,18 @@ void ResultWriter::finish(const State& st, const RunStats& stats, const nlohmann
       stats.wall_seconds > 0 ? double(stats.body_steps) / stats.wall_seconds : 0.0;
   s["effects"] = effect_names(model_.union_effects());
   json types = json::array();
-  for (const BodyType& t : model_.types)
+  for (const BodyType& t : model_.types) {
+    std::string why_not_batched;
+    const StepKind kind = step_kind(model_, t, &why_not_batched);
     types.push_back(
         {{"name", t.name},
          {"count", t.count},
          {"mass", t.mass},
          {"volume", t.volume},
          {"effects", effect_names(t.effects)},
+         // which step it took (integrate/simulation.h) and, for the scalar one, why not batched
+         {"step", step_kind_name(kind)},
+         {"not_batched_because", why_not_batched},
          {"added_mass_method", t.added_mass_method},
          {"added_mass_panels", t.added_mass_panels},
          {"first_body", t.first_body},
@@ -425,6 +431,7 @@ void ResultWriter::finish(const State& st, const RunStats& stats, const nlohmann
             {t.shape.half_extents.x(), t.shape.half_extents.y(), t.shape.half_extents.z()}},
            {"source", t.shape.source}}},
          {"com", {t.com.x(), t.com.y(), t.com.z()}}});
+  }
   s["body_types"] = types;
   s["integrator"] = integrator_name(model_.integrator);
   s["dt"] = model_.dt;

@@ -7,8 +7,6 @@
 #include "body/mass_properties.h"
 #include "effects/basset.h"
 #include "effects/drag.h"
-#include "effects/lift.h"
-#include "effects/magnus.h"
 #include "effects/plan.h"
 #include "util/error.h"
 #include "util/rng_uniform.h"
@@ -134,19 +132,6 @@ FlowScales flow_scales(const Scene& scene, const FluidField& field) {
   return f;
 }
 
-namespace {
-constexpr double kKeep = 1e-2;        // force (or inertia) / reference below which an effect goes
-constexpr double kKeepBasset = 0.1;   // history force / quasi-steady drag
-constexpr double kBassetMaxRe = 100;  // the t^-1/2 kernel is a low-Re result (Mei & Adrian 1992)
-constexpr double kTurbulenceMaxStokes = 1e4;
-
-std::string fmt(double x) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%.3g", x);
-  return b;
-}
-}  // namespace
-
 EffectAnalysis analyze_effects(const Scene& scene, const BodyType& t, const FlowScales& flow,
                                const BodySpec& spec) {
   EffectAnalysis a;
@@ -182,104 +167,41 @@ EffectAnalysis analyze_effects(const Scene& scene, const BodyType& t, const Flow
   const double spin = spec.angular_velocity.norm() + std::max(spec.spin_min, spec.spin_max);
   a.spin_ratio = U > 0 ? t.r_eq * spin / U : 0;
   const double F_drag = c * U;
-  const double F_ref = std::max({std::abs(W - B), F_drag, 1e-300});
-
-  auto decide = [&](Effect e, double size, bool keep, const std::string& why) {
-    a.size_rel.emplace_back(e, size);
-    if (keep) a.chosen.add(e);
-    else a.skipped.emplace_back(e, why);
-  };
-  const std::string ref = " of max(|W - B|, drag)";
-  decide(Effect::Gravity, W / F_ref, W / F_ref >= kKeep,
-         "weight = " + fmt(W / F_ref) + ref + " < " + fmt(kKeep));
-  decide(Effect::Buoyancy, B / F_ref, B / F_ref >= kKeep,
-         "buoyancy = " + fmt(B / F_ref) + ref + " < " + fmt(kKeep));
-  decide(Effect::AddedMass, m_a / t.mass, m_a / t.mass >= kKeep,
-         "largest added mass / mass = " + fmt(m_a / t.mass) + " < " + fmt(kKeep));
-  decide(Effect::Drag, F_drag / F_ref, F_drag / F_ref >= kKeep,
-         "drag = " + fmt(F_drag / F_ref) + ref + " < " + fmt(kKeep));
-  const double F_mean = c * flow.U;
-  decide(Effect::MeanFlow, F_mean / F_ref, flow.U > 0 && F_mean / F_ref >= kKeep,
-         flow.U > 0 ? "drag of the mean flow = " + fmt(F_mean / F_ref) + ref + " < " + fmt(kKeep)
-                    : "the field's U is zero");
-  const double u_seen = u_turb / std::sqrt(1.0 + a.stokes_k_eps);
-  const double F_turb = c * u_seen;
-  std::string why_t;
-  if (!(flow.k > 0)) why_t = "the field's k is zero";
-  else if (a.stokes_k_eps > kTurbulenceMaxStokes)
-    why_t = "St = tau_p eps/k = " + fmt(a.stokes_k_eps) + " > " + fmt(kTurbulenceMaxStokes);
-  else why_t = "turbulent drag = " + fmt(F_turb / F_ref) + ref + " < " + fmt(kKeep);
-  decide(Effect::Turbulence, F_turb / F_ref,
-         flow.k > 0 && a.stokes_k_eps <= kTurbulenceMaxStokes && F_turb / F_ref >= kKeep, why_t);
-  const double F_lift = t.flat ? 0.5 * rho * kLiftTranslational * t.plate_area * U * U : 0;
-  decide(Effect::Lift, F_lift / F_ref, t.flat && F_lift / F_ref >= kKeep,
-         t.flat ? "lift = " + fmt(F_lift / F_ref) + ref + " < " + fmt(kKeep)
-                : "not flat: thickness/width = " + fmt(sorted[0] / sorted[1]) + " > " +
-                      fmt(kFlatRatio));
-  const double F_mag = kMagnus * rho * t.volume * spin * U;
-  decide(Effect::Magnus, F_mag / F_ref, F_mag / F_ref >= kKeep,
-         spin > 0 ? "Magnus force = " + fmt(F_mag / F_ref) + ref + " < " + fmt(kKeep)
-                  : "no initial spin");
-  // history force at the response time scale, relative to the quasi-steady drag
-  const double coef = 6.0 * t.r_eq * t.r_eq * rho * std::sqrt(M_PI * nu);
-  const double basset = (a.tau_p > 0 && c > 0) ? coef / (std::sqrt(a.tau_p) * c) : 0;
-  decide(Effect::Basset, basset, basset >= kKeepBasset && a.reynolds <= kBassetMaxRe,
-         a.reynolds > kBassetMaxRe
-             ? "Re = " + fmt(a.reynolds) + " > " + fmt(kBassetMaxRe) +
-                   " (the memory decays faster than t^-1/2)"
-             : "history force / drag = " + fmt(basset) + " < " + fmt(kKeepBasset));
+  // the quantities the registry's rules weigh (model/effects.h AutoInputs)
+  AutoInputs in;
+  in.weight = W;
+  in.buoyancy = B;
+  in.F_ref = std::max({std::abs(W - B), F_drag, 1e-300});
+  in.drag_per_speed = c;
+  in.speed = U;
+  in.mass = t.mass;
+  in.added_mass_max = m_a;
+  in.flow_U = flow.U;
+  in.flow_k = flow.k;
+  in.u_turb = u_turb;
+  in.stokes_k_eps = a.stokes_k_eps;
+  in.spin = spin;
+  in.rho = rho;
+  in.nu = nu;
+  in.volume = t.volume;
+  in.r_eq = t.r_eq;
+  in.tau_p = a.tau_p;
+  in.reynolds = a.reynolds;
+  in.flat = t.flat;
+  in.plate_area = t.plate_area;
+  in.thickness_ratio = sorted[0] / sorted[1];
+  for (const EffectInfo& info : all_effects()) {
+    const AutoDecision d = info.rule(in);
+    a.size_rel.emplace_back(info.effect, d.size);
+    if (d.keep) a.chosen.add(info.effect);
+    else a.skipped.emplace_back(info.effect, d.why_not);
+  }
   return a;
 }
 
 EffectSet auto_effects(const Scene& scene, const BodyType& type, const FlowScales& flow,
                        const BodySpec& spec) {
   return analyze_effects(scene, type, flow, spec).chosen;
-}
-
-double estimated_cost_ns(EffectSet set, Integrator integrator, bool grid, bool isotropic_mass) {
-  // additive fit to bench/effects_bench (docs/effects.md: splitting, uniform field, one core,
-  // idle machine, 2026-12-01); sampling a grid costs more than the uniform field and is not
-  // included. A mass matrix that is not a multiple of the identity per block (anything but a
-  // uniform sphere) needs the iterated Kirchhoff flow instead of its closed form.
-  (void)grid;
-  double ns = 305;
-  if (!isotropic_mass) ns += 240;
-  if (set.has(Effect::Gravity)) ns += 5;
-  if (set.has(Effect::Buoyancy)) ns += 5;
-  if (set.has(Effect::AddedMass)) ns += 15;
-  if (set.has(Effect::Drag)) ns += 100;
-  if (set.has(Effect::MeanFlow) || set.has(Effect::Turbulence)) ns += 40;
-  if (set.has(Effect::Turbulence)) ns += 100;
-  if (set.has(Effect::Lift)) ns += 80;
-  if (set.has(Effect::Magnus)) ns += 10;
-  if (set.has(Effect::Basset)) ns += 90;
-  if (integrator == Integrator::Euler) ns *= 0.55;
-  if (integrator == Integrator::RK4) ns *= 1.65;
-  return ns;
-}
-
-double estimated_batched_cost_ns(EffectSet set, Precision precision, bool rigid) {
-  // additive fit to lrigid bench on scenes/beads_wind.json with --effects subsets (N = 10^4,
-  // one thread, AVX-512 loops, best of 3, 2026-12-01): gravity 9.7 ns, + drag 17.5, + mean flow
-  // 51.8 (the grid sample), all six effects 67.2; float 0.78 of that. Gravity, buoyancy and added
-  // mass cost next to nothing; the baseline x86-64 loops take about 4 times longer.
-  // Plates and ellipsoids (rigid): scenes/leaves_wind.json (N = 10^4, one thread, after 250
-  // steps, best of 2, 2026-12-01): gravity and drag 23.5 ns, the scene's own effects 85.5 ns,
-  // about 6 ns and 19 ns above the sphere fit. The Basset history adds about 20 ns to either
-  // (its push, 840 B of history per body at dt = 2 ms over 20 s), Magnus about 1 ns (leaves and
-  // beads scenes, --effects with and without them, N = 10^4, after 100 steps, best of 3,
-  // 2026-12-01). Lanes handed to the scalar step (about 1.5 us each) are not in it: none on
-  // those scenes, where the loops solve stiff drag and slow free flows by Newton themselves.
-  double ns = 10;
-  if (set.has(Effect::Drag)) ns += 8;
-  const bool sampled = set.has(Effect::MeanFlow) || set.has(Effect::Turbulence);
-  if (sampled) ns += 34;
-  if (set.has(Effect::Turbulence)) ns += 15;
-  if (set.has(Effect::Basset)) ns += 20;
-  if (set.has(Effect::Magnus)) ns += 1;
-  if (rigid) ns += sampled ? 19 : 6;
-  if (precision == Precision::Float) ns *= 0.78;
-  return ns;
 }
 
 namespace {

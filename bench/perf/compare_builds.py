@@ -1,0 +1,110 @@
+#!/usr/bin/python3
+"""Two builds of lrigid side by side: body-steps per CPU-second of every scene in scenes/ (the
+scene's own effects, N bodies, one thread), for each integrator, measured alternately in one run
+so that a noisy machine slows both alike. For a change that must not cost speed (issue 22: every
+scene within 3 % of before):
+
+    bench/perf/compare_builds.py OLD_LRIGID NEW_LRIGID [--n 10000] [--rounds 3]
+        [--integrators splitting,euler,rk4] [--scenes a.json,b.json] [--json OUT]
+
+The best of --rounds runs of each build is kept (other jobs only ever slow a run down). Scenes
+whose field file is missing (results/grids/ from ./Allrun, ./Allrun -all) are skipped and listed.
+
+--icount: instead of CPU time, instructions per body-step under valgrind's callgrind (the
+difference of a 40-step and a 10-step run, so that setup cancels; N = --n). Repeatable to the
+instruction whatever else the machine does, so it works on a loaded machine; but valgrind has no
+AVX-512, so the batched loops run their AVX2 version, and instructions are not cycles.
+"""
+import argparse
+import glob
+import json
+import os
+import subprocess
+import sys
+import tempfile
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+
+
+def field_present(scene):
+    s = json.load(open(scene))
+    f = s.get("fluid", {}).get("field")
+    if not f:
+        return True
+    return os.path.exists(os.path.join(os.path.dirname(scene), f))
+
+
+def rate(lrigid, scene, n, integrator, body_steps):
+    with tempfile.NamedTemporaryFile(suffix=".json") as out:
+        subprocess.run([lrigid, "bench", scene, "--n", str(n), "--threads", "1",
+                        "--integrators", integrator, "--effects", "auto", "--body-steps",
+                        str(body_steps), "--min-steps", "10", "--warmup", "2", "--quiet",
+                        "--json", out.name], check=True)
+        return json.load(open(out.name))["runs"][0]["body_steps_per_cpu_s"]
+
+
+def icount(lrigid, scene, n, integrator):
+    def count(steps):
+        env = dict(os.environ, OMP_NUM_THREADS="1")
+        r = subprocess.run(["valgrind", "--tool=callgrind", "--callgrind-out-file=/dev/null",
+                            lrigid, "bench", scene, "--n", str(n), "--threads", "1",
+                            "--integrators", integrator, "--effects", "auto", "--body-steps", "1",
+                            "--min-steps", str(steps), "--warmup", "0", "--quiet"],
+                           env=env, capture_output=True, text=True, check=True)
+        for line in r.stderr.splitlines():
+            if "Collected :" in line:
+                return int(line.split()[-1])
+        raise RuntimeError("no callgrind total in: " + r.stderr[-500:])
+    # per body-step; a higher rate is better, as for the CPU-time mode
+    return 1.0 / ((count(40) - count(10)) / (30.0 * n))
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("old")
+    ap.add_argument("new")
+    ap.add_argument("--n", type=int, default=10000)
+    ap.add_argument("--rounds", type=int, default=3)
+    ap.add_argument("--integrators", default="splitting")
+    ap.add_argument("--scenes", default="")
+    ap.add_argument("--body-steps", type=float, default=1e6)
+    ap.add_argument("--json", default="")
+    ap.add_argument("--icount", action="store_true",
+                    help="body-steps per instruction under callgrind instead of per CPU-second")
+    a = ap.parse_args()
+    scenes = a.scenes.split(",") if a.scenes else sorted(glob.glob(os.path.join(ROOT, "scenes",
+                                                                                "*.json")))
+    rows, skipped = [], []
+    unit = "instr/step" if a.icount else "/cpu-s"
+    print(f"{'scene':28s} {'integrator':10s} {'old ' + unit:>16s} {'new ' + unit:>16s} "
+          f"{'new/old speed':>14s}")
+    for scene in scenes:
+        if not field_present(scene):
+            skipped.append(os.path.basename(scene))
+            continue
+        for integ in a.integrators.split(","):
+            best = {"old": 0.0, "new": 0.0}
+            if a.icount:
+                best = {"old": icount(a.old, scene, a.n, integ),
+                        "new": icount(a.new, scene, a.n, integ)}
+            for _ in range(0 if a.icount else a.rounds):
+                for which in ("old", "new"):
+                    exe = a.old if which == "old" else a.new
+                    best[which] = max(best[which], rate(exe, scene, a.n, integ, a.body_steps))
+            ratio = best["new"] / best["old"] if best["old"] > 0 else float("nan")
+            rows.append({"scene": os.path.basename(scene), "integrator": integ,
+                         "old": best["old"], "new": best["new"], "ratio": ratio})
+            shown = {w: (1.0 / best[w] if a.icount else best[w]) for w in best}
+            print(f"{os.path.basename(scene):28s} {integ:10s} {shown['old']:16.4g} "
+                  f"{shown['new']:16.4g} {ratio:14.3f}", flush=True)
+    if skipped:
+        print("skipped (field file missing): " + ", ".join(skipped))
+    if a.json:
+        json.dump({"n": a.n, "rounds": a.rounds, "icount": a.icount, "rows": rows,
+                   "skipped": skipped},
+                  open(a.json, "w"), indent=1)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

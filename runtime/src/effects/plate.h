@@ -1,0 +1,141 @@
+// The plate model of flat bodies (BodyType::flat), written once: Andersen, Pesavento & Wang's
+// (2005) drag, dissipative pitching torque and circulation lift in 3D (docs/physics/lift.md;
+// the equations and constants are stated in effects/drag.h and effects/lift.h). The scalar
+// step's wrappers plate_drag_wrench (effects/drag.cpp) and lift_wrench (effects/lift.cpp) and
+// the batched loops of integrate/rigid_batch.cpp all call plate_kernel.
+#pragma once
+#include <cmath>
+#include <type_traits>
+
+#include "effects/drag.h"
+#include "effects/lift.h"
+#include "util/lane.h"
+
+namespace lrigid {
+
+// x^N for a whole N >= 1, by multiplications (the lift's circulation gate)
+template <int N, typename T>
+LRIGID_LANE T ipow(T x) {
+  static_assert(N >= 1, "ipow takes a positive whole exponent");
+  if constexpr (N == 1) {
+    return x;
+  } else if constexpr (N % 2 == 0) {
+    const T h = ipow<N / 2>(x);
+    return h * h;
+  } else {
+    return x * ipow<N - 1>(x);
+  }
+}
+
+// The share of APW's circulation present at Re = |u| width / nu: x / (1 + x), x = (Re/Re_c)^n
+template <typename T>
+LRIGID_LANE T circulation_gate(T re) {
+  const T x = ipow<kLiftReExponent>(re * T(1.0 / kLiftReCritical));
+  return x / (T(1) + x);
+}
+
+// What the plate model needs of a flat body type and the fluid, built once per body type.
+struct PlateParams {
+  double rho = 0, nu = 0;  // kg/m^3, m^2/s
+  // the plate normal n and the in-plane axes e1, e2 as unit vectors of the body frame
+  double n[3] = {0, 0, 0}, e1[3] = {0, 0, 0}, e2[3] = {0, 0, 0};
+  double S = 0, box = 0;     // planform area, m^2; 1 for a rectangle, 0 for an ellipse
+  double c1 = 0, c2 = 0;     // half extents (rectangle) or semi-axes (ellipse) along e1, e2, m
+  double width_over_nu = 0;  // planform width / nu (the Reynolds number per speed), s/m
+  double apw_speed = 0;      // APW's velocity scale (0: the speed itself), m/s
+  double sf[3] = {0, 0, 0}, c_visc = 0;  // mu k_i, mu max k_i (Stokes force), N s/m
+  double st[3] = {0, 0, 0}, st_in = 0;   // mu r_i; mu max r_i over the in-plane axes, N m s
+  double rot_n = 0;                      // out-of-roundness drag of the spin about n, N m s^2
+  double drag = 0, lift = 0;             // the effects as factors 1 or 0
+};
+// drag, lift: whether the drag (and torque) and the lift are computed
+PlateParams plate_params(const BodyType& type, double rho, double nu, bool drag, bool lift);
+
+// The plate's drag force and torque (times PlateParams::drag) with their stiffness in d, and
+// its lift force (times PlateParams::lift; no torque about the centroid) in lift, for relative
+// velocity u of the centroid and spin w, body frame.
+// Drag, Lift: whether the kernel computes the drag (d) and the lift (lift) at all; the scalar
+// step's wrappers ask for one each, the batched loops for both (PlateParams' factors then say
+// which the body type has).
+template <typename T, bool Drag = true, bool Lift = true>
+LRIGID_LANE void plate_kernel(const PlateParams& k, const T* u, const T* w, DragOut<T>* d,
+                              T* lift) {
+  const T rho = T(k.rho);
+  const T n[3] = {T(k.n[0]), T(k.n[1]), T(k.n[2])};
+  const T e1[3] = {T(k.e1[0]), T(k.e1[1]), T(k.e1[2])},
+          e2[3] = {T(k.e2[0]), T(k.e2[1]), T(k.e2[2])};
+  const T s2 = dot3(u, u);
+  const T speed = std::sqrt(s2);
+  const bool moving = speed > T(0);
+  const T inv = T(1) / (moving ? speed : T(1));
+  const T un = dot3(n, u);
+  // APW's drag 1/2 rho S (A - B cos 2a) |u| u, cos 2a = (|u_t|^2 - u_n^2) / |u|^2
+  const T cos2a = (s2 - T(2) * un * un) * (inv * inv);
+  const T c_lin =
+      moving ? T(0.5) * rho * T(k.S) * (T(kPlateDragA) - T(kPlateDragB) * cos2a) * speed : T(0);
+  // the in-plane part of the spin and the chord across it (plate_chord)
+  const T wn = dot3(n, w);
+  T wp[3];
+#pragma GCC unroll 3
+  for (int a = 0; a < 3; ++a) wp[a] = w[a] - wn * n[a];
+  const T wp_norm = std::sqrt(dot3(wp, wp));
+  const bool spinning = wp_norm > T(0);
+  T dir[3];
+  cross3(n, wp, dir);
+  const T winv = T(1) / (spinning ? wp_norm : T(1));
+  const T d1 = dot3(e1, dir) * winv, d2 = dot3(e2, dir) * winv;
+  const T tiny = T(std::is_same_v<T, float> ? 1e-30 : 1e-300);
+  const T a1 = std::abs(d1) > tiny ? std::abs(d1) : tiny,
+          a2 = std::abs(d2) > tiny ? std::abs(d2) : tiny;
+  const T r1 = T(k.c1) / a1, r2 = T(k.c2) / a2;
+  const T chord_box = T(2) * (r1 < r2 ? r1 : r2);
+  const T q1 = d1 / T(k.c1), q2 = d2 / T(k.c2);
+  const T chord_ell = T(2) / std::sqrt(q1 * q1 + q2 * q2 + (spinning ? T(0) : T(1)));
+  const T chord = k.box != 0 ? chord_box : chord_ell;
+  // APW's pitching torque pi rho c^4 L (mu1 U / c + mu2 |w_p|) w_p, its viscous coefficient mu1
+  // scaled as a laminar boundary layer
+  const T c = T(0.5) * (spinning ? chord : T(1));
+  const T span = T(k.S) / (T(2) * c);
+  const T Uv = k.apw_speed > 0 ? T(k.apw_speed) : speed;
+  const T kk = T(M_PI) * rho * (c * c) * (c * c) * span;
+  const T re_w = speed * T(k.width_over_nu);
+  const T re = re_w > T(kPlateTorqueReMin) ? re_w : T(kPlateTorqueReMin);
+  const T mu1 = T(kPlateTorqueMu1) * std::sqrt(T(kPlateTorqueFitRe) / re);
+  const T pitch = spinning ? kk * (mu1 * Uv / c + T(kPlateTorqueMu2) * wp_norm) : T(0);
+  const T c_pitch = spinning ? kk * (mu1 * Uv / c + T(2 * kPlateTorqueMu2) * wp_norm) : T(0);
+  // spin about the normal: the Stokes torque plus the out-of-roundness drag
+  const T c_n = T(k.st[0]) * T(k.n[0]) + T(k.st[1]) * T(k.n[1]) + T(k.st[2]) * T(k.n[2]) +
+                T(k.rot_n) * std::abs(wn);
+  if constexpr (Drag) {
+    const T dr = T(k.drag);
+#pragma GCC unroll 3
+    for (int a = 0; a < 3; ++a) {
+      d->f[a] = dr * (-c_lin * u[a] - T(k.sf[a]) * u[a]);
+      d->tq[a] = dr * (-pitch * wp[a] - T(k.st[a]) * wp[a] - c_n * wn * n[a]);
+      d->u_hat[a] = moving ? u[a] * inv : T(0);
+    }
+    // stiffness: the quadratic part c_lin (I + u^ u^T) and the viscous part c_visc I
+    const T c_tot = c_lin + T(k.c_visc);
+    d->c_lin = dr * c_tot;
+    d->p = c_tot > T(0) ? c_lin / c_tot : T(0);
+    const T ca = c_pitch + T(k.st_in), cn2 = T(2) * c_n;
+    d->c_ang = dr * (ca > cn2 ? ca : cn2);
+  }
+  if constexpr (Lift) {
+    // translational -rho C_T S (u_n / |u|) (|u_t|^2 n - u_n u_t) and rotational
+    // 1/2 rho C_R l S w_p x u, both times the circulation gate
+    const T gate = T(k.lift) * circulation_gate(re_w);
+    T ut[3];
+#pragma GCC unroll 3
+    for (int a = 0; a < 3; ++a) ut[a] = u[a] - un * n[a];
+    const T ut2 = dot3(ut, ut);
+    const T lt = moving ? -rho * gate * T(kLiftTranslational * k.S) * (un * inv) : T(0);
+    const T lr = spinning ? T(0.5) * rho * gate * T(kLiftRotational) * chord * T(k.S) : T(0);
+    T wxu[3];
+    cross3(wp, u, wxu);
+#pragma GCC unroll 3
+    for (int a = 0; a < 3; ++a) lift[a] = lt * (ut2 * n[a] - un * ut[a]) + lr * wxu[a];
+  }
+}
+
+}  // namespace lrigid

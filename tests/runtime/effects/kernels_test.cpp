@@ -1,0 +1,258 @@
+// The physics kernels (effects/drag.h, plate.h, magnus.h, turbulence.h) called as the scalar
+// step calls them (the Eigen wrappers drag_wrench, plate_drag_wrench, lift_wrench,
+// magnus_wrench, ou_exact) and as a block of the batched steps calls them (a loop across 32
+// lanes of structure-of-arrays values, in double and in float), on the same inputs: they agree
+// to round-off. The kernels are also checked against closed forms written here independently.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "effects/drag.h"
+#include "effects/lift.h"
+#include "effects/magnus.h"
+#include "effects/plate.h"
+#include "effects/turbulence.h"
+#include "integrate/sphere_batch.h"
+#include "support/fixture.h"
+
+namespace lrigid {
+namespace {
+
+constexpr double kRho = 1.2, kNu = 1.5e-5;
+
+Model model_of(const Shape& shape, double density, EffectSet e) {
+  Scene s = test::sphere_scene(1, density, kRho, kNu);
+  s.bodies[0].shape = shape;
+  s.effects = e;
+  return test::compile(s);
+}
+
+// (no added mass: the kernels do not need it, and a box's comes from the slower BEM)
+EffectSet all_forces() {
+  return test::effects(
+      {Effect::Gravity, Effect::Buoyancy, Effect::Drag, Effect::Lift, Effect::Magnus});
+}
+
+// The body types the batched steps take: a sphere, an ellipsoid, a rectangular and an
+// elliptic plate (normal along z and along x); compiled once (a box's added mass is a BEM solve)
+const std::vector<Model>& models() {
+  static const std::vector<Model> m = [] {
+    std::vector<Model> v;
+    v.push_back(model_of(Shape::sphere(0.004), 2500, all_forces()));
+    v.push_back(model_of(Shape::ellipsoid(0.01, 0.006, 0.004), 900, all_forces()));
+    v.push_back(model_of(Shape::box(0.06, 0.04, 0.0004), 600, all_forces()));
+    v.push_back(model_of(Shape::ellipsoid(0.0005, 0.03, 0.02), 800, all_forces()));
+    return v;
+  }();
+  return m;
+}
+
+// Inputs for a block: relative velocities over four decades (and one at rest), spins.
+struct Block {
+  double u[3][kBatch], w[3][kBatch];
+};
+
+Block random_block(uint32_t seed) {
+  std::mt19937_64 g(seed);
+  std::normal_distribution<double> n(0, 1);
+  std::uniform_real_distribution<double> decade(-3, 1);
+  Block b;
+  for (int j = 0; j < kBatch; ++j) {
+    const double speed = std::pow(10.0, decade(g)), spin = std::pow(10.0, decade(g) + 1);
+    for (int a = 0; a < 3; ++a) {
+      b.u[a][j] = j == 0 ? 0.0 : speed * n(g);
+      b.w[a][j] = j == 1 ? 0.0 : spin * n(g);
+    }
+  }
+  return b;
+}
+
+template <typename T>
+struct BlockOut {
+  T f[3][kBatch], tq[3][kBatch], lift[3][kBatch], c_lin[kBatch], p[kBatch], c_ang[kBatch];
+};
+
+// the kernels across a block's lanes, as integrate/*_batch.cpp call them (r_cob = 0)
+template <typename T>
+BlockOut<T> run_block(const BodyType& type, const Block& in) {
+  const DragParams dk = drag_params(type, kRho, kNu);
+  PlateParams pk;
+  if (type.flat) pk = plate_params(type, kRho, kNu, true, true);
+  BlockOut<T> o;
+  for (int j = 0; j < kBatch; ++j) {
+    T u[3], w[3], lift[3] = {0, 0, 0};
+    for (int a = 0; a < 3; ++a) {
+      u[a] = T(in.u[a][j]);
+      w[a] = T(in.w[a][j]);
+    }
+    DragOut<T> d;
+    if (type.flat)
+      plate_kernel(pk, u, w, &d, lift);
+    else
+      d = ellipsoid_drag_kernel(dk, u, w);
+    for (int a = 0; a < 3; ++a) {
+      o.f[a][j] = d.f[a];
+      o.tq[a][j] = d.tq[a];
+      o.lift[a][j] = lift[a];
+    }
+    o.c_lin[j] = d.c_lin;
+    o.p[j] = d.p;
+    o.c_ang[j] = d.c_ang;
+  }
+  return o;
+}
+
+// |a - b| <= tol (|b| + scale)
+::testing::AssertionResult close(double a, double b, double tol, double scale) {
+  if (std::abs(a - b) <= tol * (std::abs(b) + scale)) return ::testing::AssertionSuccess();
+  return ::testing::AssertionFailure() << a << " vs " << b << " (tol " << tol << ")";
+}
+
+template <typename T>
+void expect_block_matches_scalar(const BodyType& type, const Block& in, double tol) {
+  const BlockOut<T> o = run_block<T>(type, in);
+  for (int j = 0; j < kBatch; ++j) {
+    const Vec3 u(in.u[0][j], in.u[1][j], in.u[2][j]), w(in.w[0][j], in.w[1][j], in.w[2][j]);
+    DragStiffness st;
+    const Wrench drag = type.flat ? plate_drag_wrench(type, u, w, kRho, kNu, &st)
+                                  : drag_wrench(type, u, w, kRho, kNu, &st);
+    const Wrench lift = type.flat ? lift_wrench(type, u, w, kRho, kNu) : Wrench::Zero();
+    const double fs = drag.head<3>().norm() + 1e-300, ts = drag.tail<3>().norm() + 1e-300;
+    const double ls = lift.head<3>().norm() + 1e-300;
+    for (int a = 0; a < 3; ++a) {
+      EXPECT_TRUE(close(double(o.f[a][j]), drag[a], tol, fs)) << type.name << " lane " << j;
+      EXPECT_TRUE(close(double(o.tq[a][j]), drag[3 + a], tol, ts)) << type.name << " lane " << j;
+      EXPECT_TRUE(close(double(o.lift[a][j]), lift[a], tol, ls)) << type.name << " lane " << j;
+    }
+    EXPECT_TRUE(close(double(o.c_lin[j]), st.c_lin, tol, 0)) << type.name << " lane " << j;
+    EXPECT_TRUE(close(double(o.p[j]), st.p, tol, 1e-300)) << type.name << " lane " << j;
+    EXPECT_TRUE(close(double(o.c_ang[j]), st.c_ang, tol, 0)) << type.name << " lane " << j;
+  }
+}
+
+TEST(Kernels, DragAndPlateBlockAgreesWithScalarStepInDouble) {
+  for (const Model& m : models()) {
+    ASSERT_TRUE(m.types[0].r_cob.isZero(0.0));
+    for (uint32_t seed : {1u, 2u, 3u})
+      expect_block_matches_scalar<double>(m.types[0], random_block(seed), 1e-13);
+  }
+}
+
+TEST(Kernels, DragAndPlateBlockAgreesWithScalarStepInFloat) {
+  for (const Model& m : models())
+    for (uint32_t seed : {4u, 5u})
+      expect_block_matches_scalar<float>(m.types[0], random_block(seed), 2e-4);
+}
+
+TEST(Kernels, SphereDragIsSchillerNaumann) {
+  // independent of the kernel: F = 1/2 rho C_D(Re) pi r^2 |u| u with std::pow
+  const Model m = model_of(Shape::sphere(0.004), 2500, test::effects({Effect::Drag}));
+  const DragParams k = drag_params(m.types[0], kRho, kNu);
+  const double r = 0.004;
+  for (double speed : {1e-4, 1e-2, 0.3, 2.0, 10.0}) {
+    const double u[3] = {0.6 * speed, 0, -0.8 * speed}, w[3] = {0, 0, 0};
+    const DragOut<double> d = ellipsoid_drag_kernel(k, u, w);
+    const double re = speed * 2 * r / kNu;
+    const double cd = re >= 1000 ? 0.44 : 24 / re * (1 + 0.15 * std::pow(re, 0.687));
+    const double f = 0.5 * kRho * cd * M_PI * r * r * speed * speed;
+    EXPECT_NEAR(std::hypot(d.f[0], d.f[2]), f, 1e-12 * f) << speed;
+    EXPECT_NEAR(d.f[0] / d.f[2], 0.6 / -0.8, 1e-14) << speed;
+  }
+}
+
+TEST(Kernels, PlateBroadsideAndEdgewiseDragAreApw) {
+  // inviscid limit: broadside 1/2 rho S (A + B) U^2, edgewise 1/2 rho S (A - B) U^2
+  const BodyType& box = models()[2].types[0];  // 6 x 4 cm, normal along z
+  PlateParams k = plate_params(box, kRho, kNu, true, false);
+  for (double& s : k.sf) s = 0;  // no Stokes part
+  const double S = 0.06 * 0.04, U = 2.0, w[3] = {0, 0, 0};
+  DragOut<double> d;
+  double lift[3];
+  const double broad[3] = {0, 0, -U}, edge[3] = {U, 0, 0};
+  plate_kernel(k, broad, w, &d, lift);
+  EXPECT_NEAR(d.f[2], 0.5 * kRho * S * (kPlateDragA + kPlateDragB) * U * U, 1e-12);
+  EXPECT_EQ(lift[0], 0.0);  // the lift factor is 0
+  plate_kernel(k, edge, w, &d, lift);
+  EXPECT_NEAR(d.f[0], -0.5 * kRho * S * (kPlateDragA - kPlateDragB) * U * U, 1e-12);
+}
+
+TEST(Kernels, CirculationGateIsTheCalibratedLaw) {
+  for (double re : {0.0, 50.0, 200.0, 400.0, 3000.0}) {
+    const double x = std::pow(re / kLiftReCritical, double(kLiftReExponent));
+    EXPECT_NEAR(circulation_gate(re), x / (1 + x), 1e-15) << re;
+    EXPECT_EQ(circulation_factor(re), circulation_gate(re));
+  }
+  EXPECT_EQ(ipow<5>(2.0), 32.0);
+  EXPECT_EQ(ipow<1>(3.0), 3.0);
+}
+
+TEST(Kernels, MagnusBlockAgreesWithScalarStep) {
+  const Model m = model_of(Shape::sphere(0.02), 300, test::effects({Effect::Magnus}));
+  const BodyType& t = m.types[0];
+  const Block in = random_block(7);
+  for (int j = 0; j < kBatch; ++j) {
+    const Vec3 u(in.u[0][j], in.u[1][j], in.u[2][j]), w(in.w[0][j], in.w[1][j], in.w[2][j]);
+    const Vec3 ref = magnus_wrench(t, u, w, kRho).head<3>();
+    double fd[3];
+    float ff[3];
+    const float uf[3] = {float(u[0]), float(u[1]), float(u[2])};
+    const float wf[3] = {float(w[0]), float(w[1]), float(w[2])};
+    magnus_kernel(magnus_factor(t, kRho), w.data(), u.data(), fd);
+    magnus_kernel(float(magnus_factor(t, kRho)), wf, uf, ff);
+    // closed form C_M rho V w x u
+    const Vec3 closed = kMagnus * kRho * t.volume * w.cross(u);
+    for (int a = 0; a < 3; ++a) {
+      EXPECT_EQ(fd[a], ref[a]);
+      EXPECT_TRUE(close(ff[a], ref[a], 1e-5, ref.norm()));
+      EXPECT_TRUE(close(ref[a], closed[a], 1e-14, closed.norm() + 1e-300));
+    }
+  }
+}
+
+TEST(Kernels, OrnsteinUhlenbeckCoefficientsAreExact) {
+  // independent of the kernel: exp and expm1 of the C library
+  for (double alpha : {0.0, 1e-14, 1e-3, 0.7, 40.0, 2e3}) {
+    for (double h : {1e-4, 1e-2}) {
+      const double beta = 0.8;
+      double decay, noise;
+      ou_exact_kernel(alpha, beta, h, &decay, &noise);
+      const double ah = alpha * h;
+      const double ref_noise =
+          ah > 1e-12 ? beta * std::sqrt(-std::expm1(-2 * ah) / (2 * alpha)) : beta * std::sqrt(h);
+      EXPECT_NEAR(decay, std::exp(-ah), 1e-15) << alpha << " " << h;
+      EXPECT_NEAR(noise, ref_noise, 1e-14 * ref_noise) << alpha << " " << h;
+    }
+  }
+}
+
+TEST(Kernels, OrnsteinUhlenbeckUpdateHasThomsonsDrift) {
+  // the update against decay u + h a + noise z with a from well_mixed_drift (the scalar
+  // step's reference form), and in float against double
+  FluidSample s;
+  s.sigma2 = 0.3;
+  s.grad_sigma2 = Vec3(0.02, -0.05, 0.11);
+  const Vec3 V(1.0, -0.4, 0.2), u0(0.3, -0.1, 0.25);
+  const double z[3] = {0.5, -1.2, 0.8}, h = 5e-3, decay = 0.97, noise = 0.04;
+  const Vec3 ref = decay * u0 + h * well_mixed_drift(u0, V, s) + noise * Vec3(z[0], z[1], z[2]);
+  Vec3 u = u0;
+  ou_update(1.0, decay, noise, s.sigma2, V.data(), s.grad_sigma2.data(), z, h, u.data());
+  float uf[3] = {float(u0[0]), float(u0[1]), float(u0[2])};
+  const float Vf[3] = {1.0f, -0.4f, 0.2f}, gf[3] = {0.02f, -0.05f, 0.11f};
+  const float zf[3] = {0.5f, -1.2f, 0.8f};
+  ou_update(1.0f, float(decay), float(noise), 0.3f, Vf, gf, zf, float(h), uf);
+  for (int a = 0; a < 3; ++a) {
+    EXPECT_NEAR(u[a], ref[a], 1e-15);
+    EXPECT_NEAR(uf[a], ref[a], 1e-6);
+  }
+  // without the drift, and where sigma2 = 0 (no drift whatever wm says)
+  Vec3 u_off = u0, u_zero = u0;
+  ou_update(0.0, decay, noise, s.sigma2, V.data(), s.grad_sigma2.data(), z, h, u_off.data());
+  ou_update(1.0, decay, noise, 0.0, V.data(), s.grad_sigma2.data(), z, h, u_zero.data());
+  const Vec3 plain = decay * u0 + noise * Vec3(z[0], z[1], z[2]);
+  EXPECT_TRUE(test::near(u_off, plain, 1e-15));
+  EXPECT_TRUE(test::near(u_zero, plain, 1e-15));
+}
+
+}  // namespace
+}  // namespace lrigid

@@ -1,0 +1,82 @@
+// A guard against silent de-vectorization: the leaves scene's body types (scenes/leaves_wind.json:
+// leaves, paper, seed pods) with the scene's effects, in the wind grid of the batched-step tests,
+// stepped on the batched step and on the scalar step in one run. The batched step must do at
+// least 4 times the body-steps per CPU-second of the scalar step. If a change made the loops stop
+// vectorizing, or sent the body types to the scalar step (a missing kernel, an eligibility rule),
+// the ratio falls towards 1 and this fails.
+//
+// Robust to a noisy machine: CPU time of this thread (time other jobs take is not counted), the
+// two steps measured alternately three times each, the best of each kept. Not a timing assertion
+// in seconds: a ratio of two measurements made side by side (docs/batched-step.md).
+#include <gtest/gtest.h>
+#include <time.h>
+
+#include <algorithm>
+#include <string>
+
+#include "integrate/simulation.h"
+#include "integrate/sphere_batch.h"
+#include "io/scene_json.h"
+#include "support/batch_compare.h"
+
+namespace lrigid {
+namespace {
+
+constexpr double kMinRatio = 4.0;
+
+double thread_cpu_seconds() {
+  timespec ts;
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
+}
+
+// body-steps per CPU-second of `steps` steps from `initial`, one thread
+double rate(Model m, const State& initial, int steps) {
+  State st = initial;
+  RunOptions opt;
+  opt.threads = 1;
+  opt.every = 1e9;
+  m.duration = double(steps) * m.dt;
+  const double t0 = thread_cpu_seconds();
+  const RunStats r = simulate(m, &st, opt);
+  const double cpu = thread_cpu_seconds() - t0;
+  EXPECT_GT(r.body_steps, uint64_t(steps) * st.size() / 2) << "most bodies must keep moving";
+  return double(r.body_steps) / cpu;
+}
+
+TEST(VectorizationGuard, BatchedStepIsAtLeastFourTimesTheScalarStepOnTheLeavesScene) {
+  Scene s = read_scene(std::string(LRIGID_SOURCE_DIR) + "/scenes/leaves_wind.json");
+  // the scene's bodies in the test wind grid (the shipped grid comes from OpenFOAM), 1024 of each
+  // type, with the effects "auto" keeps for leaves in the wind
+  batch_test::release_in_wind_grid(&s, 3);
+  s.effects_auto = false;
+  s.effects = test::effects({Effect::Gravity, Effect::Buoyancy, Effect::Drag, Effect::Lift,
+                             Effect::AddedMass, Effect::MeanFlow, Effect::Turbulence});
+  for (BodySpec& b : s.bodies) {
+    b.count = 1024;
+    b.spawn_in_box = true;
+    b.box_lo = Vec3(-5, -3, 2.5);
+    b.box_hi = Vec3(-1.5, 3, 3);
+  }
+  Model batched = test::compile(s, batch_test::wind_grid(s.kinematic_viscosity));
+  for (const BodyType& t : batched.types) {
+    std::string why;
+    EXPECT_NE(step_kind(batched, t, &why), StepKind::Scalar) << t.name << ": " << why;
+  }
+  Model scalar = batched;
+  scalar.batched = false;
+  const State initial = initial_state(batched, s);
+  double best_batched = 0, best_scalar = 0;
+  rate(batched, initial, 2);  // warm the caches
+  for (int round = 0; round < 3; ++round) {
+    best_scalar = std::max(best_scalar, rate(scalar, initial, 10));
+    best_batched = std::max(best_batched, rate(batched, initial, 40));
+  }
+  const double ratio = best_batched / best_scalar;
+  std::printf("batched %.3g, scalar %.3g body-steps per CPU-second: ratio %.2f (%s loops)\n",
+              best_batched, best_scalar, ratio, sphere_batch_isa());
+  EXPECT_GE(ratio, kMinRatio);
+}
+
+}  // namespace
+}  // namespace lrigid
