@@ -18,6 +18,7 @@
 #include "grid_io.h"
 #include "interpolate.h"
 #include "io/progress.h"
+#include "util/cli_suggest.h"
 
 #ifndef FOAM2GRID_VERSION
 #define FOAM2GRID_VERSION "unknown"
@@ -427,6 +428,10 @@ int main(int argc, char** argv) {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     const int rc = app.exit(e);
+    if (dynamic_cast<const CLI::ExtrasError*>(&e)) {
+      std::istringstream hints(lrigid::unknown_flag_hints(app, app.remaining(true)));
+      for (std::string line; std::getline(hints, line);) std::cerr << "foam2grid: " << line << "\n";
+    }
     return rc == 0 ? 0 : static_cast<int>(Exit::kUsage);
   }
   opt.spacing_given = spacing->count() > 0;

@@ -1,10 +1,17 @@
 // lrigid run SCENE.json [-o DIR] [--seed S] [--threads T] [--stream-field M] [--quiet]
+//            [--resume DIR] [--checkpoint-every S]
+#include <sys/resource.h>
+#include <unistd.h>
+
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
+#include <sstream>
 #include <iostream>
 #include <memory>
 
+#include "checkpoints.h"
 #include "commands.h"
 #include "ranks.h"
 #include "integrate/simulation.h"
@@ -32,7 +39,23 @@ struct RunArgs {
   double tolerance = 0;            // relative error; > 0: choose scheme and dt (docs/accuracy.md)
   std::string tolerance_table;     // empty: default_tolerance_table_path()
   std::string stream = "auto";     // --stream-field: auto, on, off
+  std::string resume;              // --resume DIR: continue the interrupted run in DIR
+  double checkpoint_every = -1;    // --checkpoint-every S (< 0: the scene's)
 };
+
+// what a checkpoint must match: the scene file's bytes and what overrides them
+std::string scene_fingerprint(const std::string& scene_file, const Scene& s) {
+  std::ifstream in(scene_file, std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  char buf[160];
+  std::snprintf(buf, sizeof buf, "\nseed=%llu integrator=%s dt=%.17g", (unsigned long long)s.seed,
+                s.integrator == Integrator::Euler ? "euler"
+                : s.integrator == Integrator::RK4 ? "rk4"
+                                                  : "splitting",
+                s.dt);
+  return text_fingerprint(text.str() + buf);
+}
 
 // --tolerance E: the cheapest measured integrator and dt reaching E for this kind of scene
 void apply_tolerance(const RunArgs& a, Scene* scene) {
@@ -52,6 +75,13 @@ void run(const RunArgs& a, const Ranks& ranks) {
   if (a.tolerance > 0) apply_tolerance(a, &scene);
   if (a.seed >= 0) scene.seed = static_cast<uint64_t>(a.seed);
   if (!a.out.empty()) scene.output.dir = a.out;
+  if (!a.resume.empty()) {
+    if (!a.out.empty() && a.out != a.resume)
+      throw Error(ExitCode::Usage, "--resume " + a.resume + " and -o " + a.out +
+                                       " name different directories");
+    scene.output.dir = a.resume;
+  }
+  if (a.checkpoint_every >= 0) scene.output.checkpoint_every = a.checkpoint_every;
   check_memory(scene);
   const auto load0 = std::chrono::steady_clock::now();
   FluidField field = load_field(scene, stream_mode_from(a.stream), a.quiet);
@@ -60,16 +90,37 @@ void run(const RunArgs& a, const Ranks& ranks) {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - load0).count();
   const Model model = compile_model(scene, std::move(field), cached_added_mass);
   State state = initial_state(model, scene);
+  // checkpoints (app/checkpoints.h): the build's fingerprint is only needed with them
+  const bool checkpoints = scene.output.checkpoint_every > 0 || !a.resume.empty();
+  CheckpointId id;
+  if (checkpoints) id = {build_fingerprint(), scene_fingerprint(a.scene, scene), ranks.size(), a.scene};
+  Checkpoints cps(scene.output.dir, id, ranks, scene.output.checkpoint_every);
+  std::string resume_tag;
+  if (!a.resume.empty()) resume_tag = cps.resume_tag();
+  else if (checkpoints) cps.refuse_to_overwrite();
   // with several MPI ranks, rank 0 alone writes, after gathering every rank's bodies
   std::unique_ptr<ResultWriter> writer;
-  if (ranks.root()) writer = std::make_unique<ResultWriter>(scene.output.dir, model, scene.output);
+  if (ranks.root())
+    writer = std::make_unique<ResultWriter>(scene.output.dir, model, scene.output, resume_tag);
+  RunStats live;
+  if (!a.resume.empty()) {
+    cps.load(&state, &live, writer.get());
+    if (!a.quiet && ranks.root())
+      std::fprintf(stderr, "lrigid: resuming %s at t = %.6g s (step %llu)\n",
+                   scene.output.dir.c_str(), state.t, (unsigned long long)state.step);
+  }
 
   RunOptions opt;
   opt.every = scene.output.every;
+  opt.live_stats = &live;
+  opt.output_at_start = a.resume.empty();
   opt.threads = a.threads;
   ranks.share(state.size(), &opt.body_begin, &opt.body_end);
   if (ranks.size() > 1) opt.on_sync = [&](State& s, bool last) { ranks.gather(&s, last); };
-  if (writer) opt.on_output = [&](const State& s) { writer->write_frame(s); };
+  opt.on_output = [&](const State& s) {
+    if (writer) writer->write_frame(s);
+    cps.maybe_save(s, live, writer.get());  // collective: every rank calls it
+  };
   const bool quiet = a.quiet || !ranks.root();
   Progress progress("lrigid", quiet ? Progress::Mode::Quiet : Progress::Mode::Auto);
   if (!quiet)
@@ -104,6 +155,7 @@ void run(const RunArgs& a, const Ranks& ranks) {
                              {"read_seconds", ss.load_seconds}};
   }
   writer->finish(state, stats, extra);
+  cps.remove();
   if (!a.quiet) {
     std::fprintf(stderr,
                  "lrigid: %zu bodies, %llu body-steps in %.3f s (%.3g body-steps/s); landed %zu, "
@@ -140,6 +192,14 @@ void add_run_command(CLI::App& app) {
                   "time in memory: on, off, or auto (when all frames would take more than half "
                   "the memory)")
       ->check(CLI::IsMember({"auto", "on", "off"}));
+  cmd->add_option("--resume", args->resume,
+                  "Continue the interrupted run whose output directory is DIR from its last "
+                  "checkpoint (same scene, options and build); results are identical to an "
+                  "uninterrupted run");
+  cmd->add_option("--checkpoint-every", args->checkpoint_every,
+                  "Seconds of wall time between checkpoints (overrides "
+                  "output.checkpoint_every; 0: none)")
+      ->check(CLI::NonNegativeNumber);
   cmd->callback([args] {
     const Ranks ranks;
     try {

@@ -1,8 +1,10 @@
 // lrigid: rigid bodies in turbulent flow. See README.md and docs/cli.md.
 #include <iostream>
+#include <sstream>
 
 #include "commands.h"
 #include "signals.h"
+#include "util/cli_suggest.h"
 #include "util/error.h"
 
 int main(int argc, char** argv) {
@@ -27,6 +29,10 @@ int main(int argc, char** argv) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
     app.exit(e);
+    if (dynamic_cast<const CLI::ExtrasError*>(&e)) {
+      std::istringstream hints(lrigid::unknown_flag_hints(app, app.remaining(true)));
+      for (std::string line; std::getline(hints, line);) std::cerr << "lrigid: " << line << "\n";
+    }
     return static_cast<int>(lrigid::ExitCode::Usage);
   } catch (const lrigid::Error& e) {
     std::cerr << "lrigid: error: " << e.what() << "\n";

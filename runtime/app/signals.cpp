@@ -22,6 +22,7 @@ namespace lrigid::app {
 namespace {
 
 char g_tag[32];       // ".tmp<pid>"
+volatile sig_atomic_t g_keep = 0;  // a checkpoint refers to the temporaries
 size_t g_tag_len = 0;
 
 struct Dirent64 {
@@ -85,7 +86,7 @@ void clean_directory(const char* dir) {
 }
 
 void on_signal(int sig) {
-  const int fds = open("/proc/self/fd", O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  const int fds = g_keep ? -1 : open("/proc/self/fd", O_RDONLY | O_DIRECTORY | O_CLOEXEC);
   if (fds >= 0) {
     for_each_entry(fds, [fds](const char* name, unsigned char) {
       char path[4096];
@@ -132,6 +133,8 @@ void make_tag() {
 
 }  // namespace
 
+void keep_temporaries_on_signal() { g_keep = 1; }
+
 void install_signal_cleanup() {
   make_tag();
   struct sigaction sa = {};
@@ -139,6 +142,9 @@ void install_signal_cleanup() {
   sigemptyset(&sa.sa_mask);
   for (int sig : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&sa.sa_mask, sig);
   for (int sig : {SIGINT, SIGTERM, SIGHUP}) sigaction(sig, &sa, nullptr);
+  // a file-size limit (ulimit -f) must end in a failed write, exit 4 and a clean directory,
+  // not in a core dump that leaves the temporaries behind
+  signal(SIGXFSZ, SIG_IGN);
 }
 
 }  // namespace lrigid::app

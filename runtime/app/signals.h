@@ -7,4 +7,8 @@ namespace lrigid::app {
 // atomic_file); the handler finds the output directory from the process's open files.
 void install_signal_cleanup();
 
+// From now on the handlers leave the temporaries alone: a checkpoint refers to them
+// (lrigid run --resume).
+void keep_temporaries_on_signal();
+
 }  // namespace lrigid::app

@@ -6,6 +6,7 @@
 // An interrupted run (SIGINT, SIGTERM) must not leave final-looking files either.
 #include <gtest/gtest.h>
 #include <signal.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -70,6 +71,13 @@ std::string replace(std::string s, const std::string& from, const std::string& t
   return s.replace(p, from.size(), to);
 }
 
+// limits the child runs under (issue 27): set by the test, not by the machine
+struct Limits {
+  rlim_t file_size = RLIM_INFINITY;     // RLIMIT_FSIZE, bytes (ulimit -f)
+  rlim_t address_space = RLIM_INFINITY;  // RLIMIT_AS, bytes (ulimit -v)
+  bool unprivileged = false;             // as root: run as nobody, so permissions apply
+};
+
 struct Result {
   int code = -1;       // exit code, or 128 + signal
   std::string err;     // stderr
@@ -88,13 +96,18 @@ class Cli : public ::testing::Test {
   }
 
   // Starts lrigid with `args` in dir_, stderr to a file; returns the child's pid.
-  pid_t start(const std::vector<std::string>& args) {
+  pid_t start(const std::vector<std::string>& args, const Limits& lim = {}) {
     const pid_t pid = fork();
     if (pid == 0) {
       if (chdir(dir_.c_str()) != 0) _exit(126);
       const std::string err = (dir_ / "stderr.txt").string();
       if (!freopen(err.c_str(), "w", stderr)) _exit(126);
       if (!freopen("/dev/null", "w", stdout)) _exit(126);
+      if (lim.unprivileged && getuid() == 0 && (setgid(65534) != 0 || setuid(65534) != 0))
+        _exit(126);
+      const struct rlimit fs = {lim.file_size, lim.file_size};
+      const struct rlimit as = {lim.address_space, lim.address_space};
+      if (setrlimit(RLIMIT_FSIZE, &fs) != 0 || setrlimit(RLIMIT_AS, &as) != 0) _exit(126);
       std::vector<char*> argv;
       argv.push_back(const_cast<char*>(kLrigid.c_str()));
       for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
@@ -114,7 +127,20 @@ class Cli : public ::testing::Test {
     return r;
   }
 
-  Result run(const std::vector<std::string>& args) { return wait_for(start(args)); }
+  // waits (up to 30 s) until a run in dir_/out is writing: its temporary trajectories exist
+  bool wait_until_writing() {
+    for (int i = 0; i < 600; ++i) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+      if (fs::exists(dir_ / "out"))
+        for (const auto& e : fs::directory_iterator(dir_ / "out"))
+          if (e.path().filename().string().rfind("trajectories.csv.", 0) == 0) return true;
+    }
+    return false;
+  }
+
+  Result run(const std::vector<std::string>& args, const Limits& lim = {}) {
+    return wait_for(start(args, lim));
+  }
 
   // Writes `scene` as scene.json and runs `lrigid run scene.json`.
   Result run_scene(const std::string& scene, const std::string& name = "scene.json") {
@@ -130,6 +156,8 @@ class Cli : public ::testing::Test {
       EXPECT_NE(n, "trajectories.csv") << e.path();
       EXPECT_NE(n, "bodies.pvd") << e.path();
       EXPECT_NE(n, "landings.csv") << e.path();
+      EXPECT_NE(n, "shapes.pvd") << e.path();
+      EXPECT_NE(n, "animation.glb") << e.path();
     }
   }
 
@@ -186,7 +214,29 @@ TEST_F(Cli, UnknownKeys) {
   expect_error(run_scene(replace(base_scene(), "\"seed\": 3,", "\"seed\": 3, \"colour\": 1,")), 3,
                {"scene.json", "colour", "unknown key"});
   expect_error(run_scene(replace(base_scene(), "\"density\": 30,", "\"density\": 30, \"mas\": 1,")),
-               3, {"scene.json", "bodies[0].mas"});
+               3, {"scene.json", "bodies[0]: unknown key \"mas\""});
+}
+
+TEST_F(Cli, TyposInRequiredKeysAreNamed) {
+  // issue 27: the key the user wrote is named, before any required key is found missing
+  expect_error(run_scene(replace(base_scene(), "\"density\": 30", "\"densty\": 30")), 3,
+               {"scene.json: bodies[0]: unknown key \"densty\" (did you mean \"density\"?)"});
+  expect_error(run_scene(replace(base_scene(), "\"kinematic_viscosity\"", "\"kinematic_viscocity\"")),
+               3, {"scene.json: fluid: unknown key \"kinematic_viscocity\" (did you mean "
+                   "\"kinematic_viscosity\"?)"});
+  expect_error(run_scene(replace(base_scene(), "\"position\": [0, 0, 1]",
+                                 "\"spawn_bx\": [[0, 0, 1], [1, 1, 2]]")),
+               3, {"bodies[0]: unknown key \"spawn_bx\" (did you mean \"spawn_box\"?)"});
+  expect_error(run_scene(replace(base_scene(), "\"seed\": 3,", "\"seed\": 3, \"art.turbulence_scale\": 2,")),
+               3, {"unknown key \"art.turbulence_scale\"", "nested", "\"art\": { \"turbulence_scale\""});
+}
+
+TEST_F(Cli, TyposInFlagsAreNamed) {
+  put(dir_ / "scene.json", base_scene());
+  expect_error(run({"run", "scene.json", "--sed", "4"}), 2,
+               {"unknown flag \"--sed\" (did you mean \"--seed\"?)"});
+  expect_error(run({"run", "scene.json", "--thread=2"}), 2,
+               {"unknown flag \"--thread\" (did you mean \"--threads\"?)"});
 }
 
 TEST_F(Cli, WrongTypes) {
@@ -396,13 +446,143 @@ TEST_F(Cli, TooManyBodiesForTheParser) {
 }
 
 TEST_F(Cli, MoreBodiesThanMemorySaysHowMuch) {
-  // the parser allows up to 1e8 bodies; lrigid run estimates 216 bytes per body and refuses to
-  // start when that exceeds 80 % of the physical memory
-  const double have = double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGE_SIZE));
-  if (1e8 * 216 < 0.8 * have)
-    GTEST_SKIP() << "this machine has " << have / (1 << 30) << " GiB: 1e8 bodies fit";
-  expect_error(run_scene(replace(base_scene(), "\"count\": 2", "\"count\": 100000000")), 5,
-               {"scene.json", "bodies", "100000000 bodies need about", "GiB", "this machine has"});
+  // lrigid run estimates 216 bytes per body and refuses to start when that exceeds 80 % of the
+  // memory it may use: the physical memory or, lower here on any machine, the address-space
+  // limit this test sets (4 GiB; 3e7 bodies need 6 GiB)
+  const Limits four_gib{RLIM_INFINITY, rlim_t(4) << 30, false};
+  put(dir_ / "scene.json", replace(base_scene(), "\"count\": 2", "\"count\": 30000000"));
+  expect_error(run({"run", "scene.json", "--quiet"}, four_gib), 5,
+               {"scene.json", "bodies", "30000000 bodies need about 6.0 GiB",
+                "the address-space limit (ulimit -v) is 4.0 GiB"});
+  // the same limit with few bodies runs: the refusal comes from the count
+  put(dir_ / "scene.json", base_scene());
+  const Result ok = run({"run", "scene.json", "--quiet"}, four_gib);
+  EXPECT_EQ(ok.code, 0) << ok.err;
+}
+
+// ---- a finish that fails late (issue 27) ----
+
+// a scene that writes every kind of result: csv, pvd (bodies and shapes), glb, landings
+std::string all_outputs_scene() {
+  std::string s = replace(base_scene(), "\"output\": { \"dir\": \"out\", \"every\": 0.01 }",
+                          "\"ground\": { \"z\": 0.99 },\n  \"output\": { \"dir\": \"out\", "
+                          "\"every\": 0.01, \"formats\": [\"csv\", \"pvd\", \"glb\"] }");
+  return replace(s, "\"duration\": 0.05", "\"duration\": 0.12");
+}
+
+const char* const kResultNames[] = {"trajectories.csv", "bodies.pvd", "shapes.pvd",
+                                    "animation.glb",    "landings.csv", "summary.json",
+                                    "bodies",           "shapes"};
+
+class LateFailure : public Cli {
+ protected:
+  // after a failed finish: none of the results under its final name (what the test put
+  // there itself excepted), and no temporaries left behind
+  void expect_nothing_final(const std::string& except = "") {
+    for (const char* n : kResultNames)
+      if (n != except) EXPECT_FALSE(fs::exists(dir_ / "out" / n)) << n << " appeared";
+    for (const auto& e : fs::recursive_directory_iterator(dir_ / "out"))
+      EXPECT_EQ(e.path().string().find(".tmp"), std::string::npos) << "left over: " << e.path();
+  }
+};
+
+TEST_F(LateFailure, AllResultsAppearTogether) {
+  put(dir_ / "scene.json", all_outputs_scene());
+  const Result r = run({"run", "scene.json", "--quiet"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  for (const char* n : kResultNames) EXPECT_TRUE(fs::exists(dir_ / "out" / n)) << n;
+  EXPECT_GT(fs::file_size(dir_ / "out" / "landings.csv"), 20u) << "the bodies landed";
+}
+
+TEST_F(LateFailure, APathTakenLeavesNoResult) {
+  // each result's final path taken by something of the other kind: a non-empty folder where a
+  // file goes, a file where a folder goes. The run fails with exit 4 naming the path, and
+  // none of the other results appears
+  put(dir_ / "scene.json", all_outputs_scene());
+  for (const char* n : kResultNames) {
+    SCOPED_TRACE(n);
+    fs::remove_all(dir_ / "out");
+    fs::create_directories(dir_ / "out");
+    const bool folder = std::string(n) == "bodies" || std::string(n) == "shapes";
+    if (folder) {
+      put(dir_ / "out" / n, "mine");
+    } else {
+      fs::create_directories(dir_ / "out" / n);
+      put(dir_ / "out" / n / "keep.txt", "mine");
+    }
+    const Result r = run({"run", "scene.json", "--quiet"});
+    EXPECT_EQ(r.code, 4) << r.err;
+    EXPECT_NE(r.err.find(std::string("out/") + n), std::string::npos) << r.err;
+    expect_nothing_final(n);
+    // and what was there is untouched
+    EXPECT_EQ(slurp(folder ? dir_ / "out" / n : dir_ / "out" / n / "keep.txt"), "mine");
+  }
+}
+
+TEST_F(LateFailure, AnEarlierRunIsReplacedWholeOrKept) {
+  // a second run into the same folder whose finish fails keeps the first run's results
+  put(dir_ / "scene.json", all_outputs_scene());
+  ASSERT_EQ(run({"run", "scene.json", "--quiet"}).code, 0);
+  const std::string summary = slurp(dir_ / "out" / "summary.json");
+  const std::string csv = slurp(dir_ / "out" / "trajectories.csv");
+  // the second run differs (another seed) and cannot write its animation
+  fs::permissions(dir_ / "out", fs::perms::all, fs::perm_options::add);
+  fs::remove(dir_ / "out" / "animation.glb");
+  fs::create_directories(dir_ / "out" / "animation.glb" / "x");
+  const Result r = run({"run", "scene.json", "--quiet", "--seed", "9"});
+  EXPECT_EQ(r.code, 4) << r.err;
+  EXPECT_EQ(slurp(dir_ / "out" / "summary.json"), summary);
+  EXPECT_EQ(slurp(dir_ / "out" / "trajectories.csv"), csv);
+}
+
+TEST_F(LateFailure, AFileSizeLimitLeavesNoResult) {
+  // ulimit -f below each result's size in turn (measured on a good run): every write, during
+  // the run or at its finish, fails in turn; each such run exits 4 and leaves nothing
+  put(dir_ / "scene.json", all_outputs_scene());
+  ASSERT_EQ(run({"run", "scene.json", "--quiet"}).code, 0);
+  std::vector<std::pair<std::string, uintmax_t>> sizes;
+  uintmax_t largest_frame = 0;
+  for (const auto& e : fs::recursive_directory_iterator(dir_ / "out"))
+    if (e.is_regular_file()) {
+      if (e.path().parent_path() == dir_ / "out")
+        sizes.emplace_back(e.path().filename().string(), e.file_size());
+      else
+        largest_frame = std::max<uintmax_t>(largest_frame, e.file_size());
+    }
+  sizes.emplace_back("largest .vtp frame", largest_frame);
+  ASSERT_EQ(sizes.size(), 7u);
+  for (const auto& [name, size] : sizes) {
+    SCOPED_TRACE(name + " of " + std::to_string(size) + " bytes");
+    fs::remove_all(dir_ / "out");
+    const Limits lim{rlim_t(size * 9 / 10), RLIM_INFINITY, false};
+    const Result r = run({"run", "scene.json", "--quiet"}, lim);
+    EXPECT_EQ(r.code, 4) << r.err;
+    if (fs::exists(dir_ / "out")) expect_nothing_final();
+  }
+}
+
+TEST_F(LateFailure, AFolderMadeReadOnlyMidRunLeavesNoResult) {
+  // the output folder becomes read-only while the run goes on (as root, the run is started as
+  // nobody so that the permission applies): its frames still go to the temporary folders it
+  // made, but nothing can be moved into place at the finish
+  std::string s = replace(base_scene(), "\"count\": 2", "\"count\": 4000");
+  s = replace(s, "\"duration\": 0.05", "\"duration\": 3");
+  s = replace(s, "\"every\": 0.01", "\"every\": 0.5");
+  put(dir_ / "scene.json", s);
+  fs::permissions(dir_, fs::perms::all);
+  fs::permissions(dir_ / "scene.json", fs::perms::all);
+  const pid_t pid = start({"run", "scene.json", "--quiet", "--threads", "1"},
+                          Limits{RLIM_INFINITY, RLIM_INFINITY, true});
+  ASSERT_TRUE(wait_until_writing()) << "the run never started writing";
+  const auto read_only = fs::perms::owner_read | fs::perms::owner_exec | fs::perms::group_read |
+                         fs::perms::group_exec | fs::perms::others_read | fs::perms::others_exec;
+  fs::permissions(dir_ / "out", read_only);
+  if (getuid() != 0) ASSERT_NE(::access((dir_ / "out").c_str(), W_OK), 0);
+  const Result r = wait_for(pid);
+  fs::permissions(dir_ / "out", fs::perms::all);
+  EXPECT_EQ(r.code, 4) << r.err;
+  EXPECT_NE(r.err.find("out/"), std::string::npos) << r.err;
+  for (const char* n : kResultNames) EXPECT_FALSE(fs::exists(dir_ / "out" / n)) << n;
 }
 
 // ---- interrupted runs ----
@@ -416,14 +596,7 @@ TEST_P(Interrupted, LeavesNothingFinalLooking) {
   put(dir_ / "scene.json", s);
   const pid_t pid = start({"run", "scene.json", "--threads", "1"});
   // wait until the run is writing (its temporary trajectories file exists), then interrupt
-  bool writing = false;
-  for (int i = 0; i < 600 && !writing; ++i) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
-    if (fs::exists(dir_ / "out"))
-      for (const auto& e : fs::directory_iterator(dir_ / "out"))
-        writing |= e.path().filename().string().rfind("trajectories.csv.", 0) == 0;
-  }
-  EXPECT_TRUE(writing) << "the run never started writing";
+  EXPECT_TRUE(wait_until_writing()) << "the run never started writing";
   std::this_thread::sleep_for(std::chrono::milliseconds(300));
   kill(pid, GetParam());
   const Result r = wait_for(pid);

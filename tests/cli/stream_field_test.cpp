@@ -79,6 +79,23 @@ TEST(CliStreamField, StreamedSeriesGivesTheInMemoryTrajectories) {
   // frames 1-4 are read while stepping; frame 0 comes from the read that opened the series
   const std::string summary = slurp(d / "str" / "summary.json");
   EXPECT_NE(summary.find("\"frames_read\": 4"), std::string::npos) << summary;
+
+  // issue 27: a streamed run stopped mid-way (a file-size limit of 30 KiB on its trajectories,
+  // exit 4) resumes from its last checkpoint, the stream picking up at the checkpoint's time,
+  // and ends with the same trajectories
+  const std::string cut = "(ulimit -f 30; exec " + kLrigid + " run " + scene + " -o " +
+                          (d / "res").string() +
+                          " --quiet --threads 2 --stream-field on --checkpoint-every 1e-9)"
+                          " > /dev/null 2>&1";
+  const int rc = std::system(("/bin/bash -c '" + cut + "'").c_str());
+  ASSERT_TRUE(WIFEXITED(rc)) << rc;
+  ASSERT_EQ(WEXITSTATUS(rc), 4);
+  ASSERT_TRUE(fs::exists(d / "res" / "checkpoint" / "latest.json"));
+  EXPECT_FALSE(fs::exists(d / "res" / "summary.json"));
+  const std::string resume = kLrigid + " run " + scene + " --resume " + (d / "res").string() +
+                             " --quiet --threads 1 --stream-field on > /dev/null 2>&1";
+  ASSERT_EQ(std::system(resume.c_str()), 0);
+  EXPECT_EQ(a, slurp(d / "res" / "trajectories.csv"));
   fs::remove_all(d);
 }
 

@@ -96,6 +96,8 @@ def main():
     for ca, ref in otable.items():
         K, d = tensor({"type": "ellipsoid", "semi_axes": [1, 1, ca]})
         got = (K[2, 2], K[0, 0], K[3, 3])
+        if ca == 0.01:
+            disk_normal = K[2, 2]
         m, inert, _, _ = lamb_coefficients(1.0, 1.0, ca)
         own = (m[2], m[0], inert[0])
         for name, g, r, o in zip(("m_normal/(ρa³)", "m_edge/(ρa³)", "I_diam/(ρa⁵)"), got, ref,
@@ -105,7 +107,8 @@ def main():
                          tol_text="±5e-4 (table's 3 decimals)")
             st.check("oblate c/a=%g %s vs own quadrature" % (ca, name), g, o, 1e-6,
                      "Lamb integrals, numpy quadrature", rel=True)
-    st.check("disk limit: c/a=0.01 normal → 8/3 ρa³", otable[0.01][0], 8 / 3, 0.01, LAMB,
+    # lrigid's own value (not the table's) against the thin-disk limit: a check that can fail
+    st.check("disk limit: lrigid's c/a=0.01 normal → 8/3 ρa³", disk_normal, 8 / 3, 0.01, LAMB,
              rel=True, tol_text="±1 % (c/a=0.01 vs c=0)")
 
     # BEM convergence on tessellated shapes (icosphere levels; 5120 faces only in full mode)

@@ -119,15 +119,16 @@ const char* step_kind_name(StepKind kind) {
 
 RunStats simulate(const Model& model, State* state, const RunOptions& options) {
   RunStats stats;
+  if (options.live_stats) stats = *options.live_stats;
   State& st = *state;
   const uint64_t total_steps =
       static_cast<uint64_t>(std::llround(model.duration / model.dt));
   const uint64_t stride = output_stride(model, options.every);
-  if (options.on_output) options.on_output(st);
+  if (options.on_output && options.output_at_start) options.on_output(st);
   const int threads = options.threads > 0 ? options.threads : omp_get_max_threads();
   const auto n = static_cast<int64_t>(std::min(st.size(), options.body_end));
   const auto n0 = static_cast<int64_t>(std::min(st.size(), options.body_begin));
-  double wall = 0;
+  double wall = stats.wall_seconds;
   // body types that take a batched step: spheres (integrate/sphere_batch.h), plates and
   // ellipsoids (integrate/rigid_batch.h)
   std::vector<StepKind> kinds(model.types.size());
@@ -168,6 +169,11 @@ RunStats simulate(const Model& model, State* state, const RunOptions& options) {
     stats.newton_steps += newton;
     st.step = last;
     st.t = static_cast<double>(last) * model.dt;
+    if (options.live_stats) {
+      *options.live_stats = stats;
+      options.live_stats->steps = last;
+      options.live_stats->wall_seconds = wall;
+    }
     if (last % stride == 0 || last == total_steps) {
       if (options.on_sync) options.on_sync(st, last == total_steps);
       if (options.on_output) options.on_output(st);

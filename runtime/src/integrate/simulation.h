@@ -33,6 +33,10 @@ struct RunOptions {
   size_t body_end = ~size_t(0);
   // called before each output (also where on_output is empty); `last` on the final one
   std::function<void(State&, bool last)> on_sync;  // may be empty
+  // a resumed run (app checkpoints): no output at the start (it was written before), and the
+  // counts go on from *live_stats; when set, *live_stats is kept up to date before each output
+  bool output_at_start = true;
+  RunStats* live_stats = nullptr;
 };
 
 RunStats simulate(const Model& model, State* state, const RunOptions& options);

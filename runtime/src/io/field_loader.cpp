@@ -1,5 +1,6 @@
 #include "io/field_loader.h"
 
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <cmath>
@@ -67,12 +68,19 @@ void check_memory(const Scene& scene) {
   size_t n = 0;
   for (const auto& b : scene.bodies) n += size_t(b.count);
   const double need = double(n) * kBytesPerBody;
-  const double have = physical_memory();
+  // the physical memory, or the address-space limit (ulimit -v) when that is lower
+  double have = physical_memory();
+  std::string what = "this machine has";
+  struct rlimit lim {};
+  if (getrlimit(RLIMIT_AS, &lim) == 0 && lim.rlim_cur != RLIM_INFINITY &&
+      double(lim.rlim_cur) < have) {
+    have = double(lim.rlim_cur);
+    what = "the address-space limit (ulimit -v) is";
+  }
   if (need > 0.8 * have) {
-    char buf[200];
-    std::snprintf(buf, sizeof buf,
-                  "%zu bodies need about %.1f GiB of memory; this machine has %.1f GiB", n,
-                  need / (1 << 30), have / (1 << 30));
+    char buf[240];
+    std::snprintf(buf, sizeof buf, "%zu bodies need about %.1f GiB of memory; %s %.1f GiB", n,
+                  need / (1 << 30), what.c_str(), have / (1 << 30));
     throw Error(ExitCode::Resource, where(scene.file, "bodies", buf));
   }
 }

@@ -4,6 +4,7 @@
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
 #include <vtkDoubleArray.h>
+#include <vtkErrorCode.h>
 #include <vtkIntArray.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
@@ -24,6 +25,7 @@
 #include "body/tessellate.h"
 #include "io/atomic_file.h"
 #include "integrate/simulation.h"
+#include "io/checkpoint.h"
 #include "io/mesh_io.h"
 #include "util/error.h"
 
@@ -46,7 +48,10 @@ void write_polydata(vtkPolyData* poly, const std::string& path) {
   w->SetInputData(poly);
   w->SetDataModeToAppended();
   w->SetCompressorTypeToZLib();
-  if (w->Write() != 1) throw Error(ExitCode::Output, where(path, "", "cannot write .vtp frame"));
+  // Write() can return 1 when the file could not be written whole (a full disk, a file-size
+  // limit): the writer's error code says so
+  if (w->Write() != 1 || w->GetErrorCode() != vtkErrorCode::NoError)
+    throw Error(ExitCode::Output, where(path, "", "cannot write .vtp frame (disk full?)"));
 }
 }  // namespace
 
@@ -66,6 +71,10 @@ int shape_faces_for(size_t bodies) {
 
 namespace {
 
+// the frames so far, inside the temporary folders (docs/outputs.md, "During the run")
+constexpr const char* kPartialBodies = "bodies.partial.pvd";
+constexpr const char* kPartialShapes = "shapes.partial.pvd";
+
 // <name>_NNNNNN.vtp
 std::string frame_name(const char* stem, size_t i) {
   std::ostringstream name;
@@ -79,40 +88,50 @@ void make_dir(const std::string& d) {
   if (ec) throw Error(ExitCode::Output, where(d, "", "cannot create: " + ec.message()));
 }
 
-// renames a finished temporary directory over `final_dir`
-void move_dir(const std::string& tmp, const fs::path& final_dir) {
-  std::error_code ec;
-  fs::remove_all(final_dir, ec);
-  fs::rename(tmp, final_dir, ec);
-  if (ec)
-    throw Error(ExitCode::Output,
-                where(final_dir.string(), "", "cannot move into place: " + ec.message()));
-}
-
-void write_pvd(const fs::path& path, const char* stem,
-               const std::vector<std::pair<double, std::string>>& frames) {
+// a ParaView collection of `frames`, each file named `prefix` + its name; a partial one (the
+// frames so far of a run that goes on, or was interrupted) says so in a comment
+void write_pvd(const fs::path& path, const std::string& prefix,
+               const std::vector<std::pair<double, std::string>>& frames, bool partial = false) {
   write_file_atomically(path.string(), [&](std::ostream& o) {
-    o << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n  <Collection>\n"
+    o << "<?xml version=\"1.0\"?>\n";
+    if (partial)
+      o << "<!-- PARTIAL: the frames written so far by a run that is still going on or was "
+           "interrupted; not a result (results appear only with summary.json) -->\n";
+    o << "<VTKFile type=\"Collection\" version=\"0.1\">\n  <Collection>\n"
       << std::setprecision(12);
     for (const auto& f : frames)
-      o << "    <DataSet timestep=\"" << f.first << "\" group=\"\" part=\"0\" file=\"" << stem
-        << "/" << f.second << "\"/>\n";
+      o << "    <DataSet timestep=\"" << f.first << "\" group=\"\" part=\"0\" file=\"" << prefix
+        << f.second << "\"/>\n";
     o << "  </Collection>\n</VTKFile>\n";
   });
 }
 
 }  // namespace
 
-ResultWriter::ResultWriter(const std::string& dir, const Model& model, const OutputSpec& spec)
+ResultWriter::ResultWriter(const std::string& dir, const Model& model, const OutputSpec& spec,
+                           const std::string& resume_tag)
     : dir_(dir), model_(model), spec_(spec), tag_(".tmp" + std::to_string(::getpid())) {
   ensure_writable_directory(dir_);
+  // a resumed run goes on with the interrupted one's temporaries, under their names (renaming
+  // them would leave the checkpoint pointing at nothing if this run were killed before its
+  // first checkpoint)
+  if (!resume_tag.empty()) tag_ = resume_tag;
+  auto take_over = [&](const std::string& name) {
+    const fs::path p = fs::path(dir_) / (name + tag_);
+    std::error_code ec;
+    if (!resume_tag.empty() && !fs::exists(p, ec))
+      fail_input(p.string(), "", "missing: the interrupted run's output so far is gone");
+  };
   if (spec_.csv) {
+    take_over("trajectories.csv");
     csv_tmp_ = (fs::path(dir_) / ("trajectories.csv" + tag_)).string();
-    csv_ = std::fopen(csv_tmp_.c_str(), "w");
+    csv_ = std::fopen(csv_tmp_.c_str(), resume_tag.empty() ? "w" : "r+");
     if (!csv_) throw Error(ExitCode::Output, where(csv_tmp_, "", "cannot open for writing"));
-    std::fputs("body,type,t,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz\n", csv_);
+    if (resume_tag.empty()) std::fputs("body,type,t,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz\n", csv_);
   }
   if (spec_.pvd) {
+    take_over("bodies");
+    take_over("shapes");
     vtp_tmp_dir_ = (fs::path(dir_) / ("bodies" + tag_)).string();
     make_dir(vtp_tmp_dir_);
     shapes_tmp_dir_ = (fs::path(dir_) / ("shapes" + tag_)).string();
@@ -138,7 +157,68 @@ ResultWriter::ResultWriter(const std::string& dir, const Model& model, const Out
 }
 
 ResultWriter::~ResultWriter() {
-  if (!finished_) cleanup();
+  if (finished_) return;
+  if (keep_) {
+    // a checkpoint refers to the temporaries: keep them for lrigid run --resume
+    if (csv_) std::fclose(csv_);
+    csv_ = nullptr;
+    return;
+  }
+  cleanup();
+}
+
+void ResultWriter::save(BinaryOut& out) {
+  uint64_t csv_bytes = 0;
+  if (csv_) {
+    if (std::fflush(csv_) != 0 || std::ferror(csv_))
+      throw Error(ExitCode::Output, where(csv_tmp_, "", "write failed (disk full?)"));
+    const long pos = std::ftell(csv_);
+    if (pos < 0) throw Error(ExitCode::Output, where(csv_tmp_, "", "cannot tell its length"));
+    csv_bytes = uint64_t(pos);
+  }
+  out.str(tag_);
+  out.pod(csv_bytes);
+  out.pod(uint64_t(frames_.size()));
+  for (const auto& f : frames_) {
+    out.pod(f.first);
+    out.str(f.second);
+  }
+  out.vec(gltf_.body_type);
+  out.vec(gltf_.times);
+  out.vec(gltf_.x);
+  out.vec(gltf_.q);
+}
+
+void ResultWriter::restore(BinaryIn& in) {
+  std::string old_tag;
+  in.str(&old_tag);
+  uint64_t csv_bytes = 0, nframes = 0;
+  in.pod(&csv_bytes);
+  in.pod(&nframes);
+  if (nframes > (uint64_t(1) << 32)) fail_input(in.file(), "", "corrupt checkpoint (frames)");
+  frames_.resize(nframes);
+  for (auto& f : frames_) {
+    in.pod(&f.first);
+    in.str(&f.second);
+  }
+  in.vec(&gltf_.body_type);
+  in.vec(&gltf_.times);
+  in.vec(&gltf_.x);
+  in.vec(&gltf_.q);
+  if (csv_) {
+    // lines written after the checkpoint are written again
+    if (std::fflush(csv_) != 0 || ::ftruncate(fileno(csv_), off_t(csv_bytes)) != 0 ||
+        std::fseek(csv_, 0, SEEK_END) != 0)
+      throw Error(ExitCode::Output, where(csv_tmp_, "", "cannot cut back to the checkpoint"));
+  }
+  if (spec_.pvd) write_partial_pvds();
+}
+
+void ResultWriter::write_partial_pvds() const {
+  write_pvd(fs::path(vtp_tmp_dir_) / kPartialBodies, "", frames_, true);
+  auto shape_frames = frames_;
+  for (size_t i = 0; i < shape_frames.size(); ++i) shape_frames[i].second = frame_name("shapes", i);
+  write_pvd(fs::path(shapes_tmp_dir_) / kPartialShapes, "", shape_frames, true);
 }
 
 void ResultWriter::cleanup() {
@@ -148,6 +228,8 @@ void ResultWriter::cleanup() {
   if (!csv_tmp_.empty()) fs::remove(csv_tmp_, ec);
   if (!vtp_tmp_dir_.empty()) fs::remove_all(vtp_tmp_dir_, ec);
   if (!shapes_tmp_dir_.empty()) fs::remove_all(shapes_tmp_dir_, ec);
+  for (const StagedPath& p : staged_) fs::remove_all(p.tmp, ec);
+  staged_.clear();
 }
 
 void ResultWriter::write_frame(const State& st) {
@@ -170,6 +252,7 @@ void ResultWriter::write_frame(const State& st) {
     write_vtp(st, (fs::path(vtp_tmp_dir_) / frame_name("bodies", i)).string());
     write_shapes_vtp(st, (fs::path(shapes_tmp_dir_) / frame_name("shapes", i)).string());
     frames_.emplace_back(st.t, frame_name("bodies", i));
+    write_partial_pvds();  // the frames so far, openable while the run goes on
   }
   if (spec_.glb) {
     if (gltf_.body_type.empty())
@@ -276,9 +359,17 @@ void ResultWriter::write_vtp(const State& st, const std::string& path) const {
 
 void ResultWriter::finish(const State& st, const RunStats& stats, const nlohmann::json& extra) {
   using nlohmann::json;
-  // landings
+  // Every file is first written completely under a temporary name; only then are they all
+  // renamed into place, summary.json last (commit_staged). A failure anywhere before that
+  // leaves no final-looking file; a failing rename puts back what was there before.
+  const fs::path d(dir_);
+  auto staged = [&](const std::string& name, bool is_dir = false) {
+    const std::string tmp = (d / (name + tag_)).string();
+    staged_.push_back({tmp, (d / name).string(), is_dir});
+    return tmp;
+  };
   if (model_.has_ground) {
-    write_file_atomically((fs::path(dir_) / "landings.csv").string(), [&](std::ostream& o) {
+    write_file_atomically(staged("landings.csv"), [&](std::ostream& o) {
       o << "body,type,t,x,y,z\n" << std::setprecision(9);
       for (size_t i = 0; i < st.size(); ++i)
         if (st.status[i] == BodyStatus::Landed)
@@ -287,24 +378,27 @@ void ResultWriter::finish(const State& st, const RunStats& stats, const nlohmann
     });
   }
   if (csv_) {
-    const bool bad = std::fclose(csv_) != 0;
+    const bool bad = std::fflush(csv_) != 0 || std::ferror(csv_) || std::fclose(csv_) != 0;
     csv_ = nullptr;
     if (bad) throw Error(ExitCode::Output, where(csv_tmp_, "", "write failed (disk full?)"));
-    fs::rename(csv_tmp_, fs::path(dir_) / "trajectories.csv");
+    staged_.push_back({csv_tmp_, (d / "trajectories.csv").string(), false});
     csv_tmp_.clear();
   }
   if (spec_.pvd) {
-    move_dir(vtp_tmp_dir_, fs::path(dir_) / "bodies");
+    std::error_code ec;
+    fs::remove(fs::path(vtp_tmp_dir_) / kPartialBodies, ec);
+    fs::remove(fs::path(shapes_tmp_dir_) / kPartialShapes, ec);
+    staged_.push_back({vtp_tmp_dir_, (d / "bodies").string(), true});
     vtp_tmp_dir_.clear();
-    write_pvd(fs::path(dir_) / "bodies.pvd", "bodies", frames_);
-    move_dir(shapes_tmp_dir_, fs::path(dir_) / "shapes");
+    write_pvd(staged("bodies.pvd"), "bodies/", frames_);
+    staged_.push_back({shapes_tmp_dir_, (d / "shapes").string(), true});
     shapes_tmp_dir_.clear();
     auto shape_frames = frames_;
     for (size_t i = 0; i < shape_frames.size(); ++i)
       shape_frames[i].second = frame_name("shapes", i);
-    write_pvd(fs::path(dir_) / "shapes.pvd", "shapes", shape_frames);
+    write_pvd(staged("shapes.pvd"), "shapes/", shape_frames);
   }
-  if (spec_.glb) write_gltf((fs::path(dir_) / "animation.glb").string(), gltf_);
+  if (spec_.glb) write_gltf(staged("animation.glb"), gltf_);
   json s;
   s["bodies"] = st.size();
   s["body_steps"] = stats.body_steps;
@@ -366,8 +460,9 @@ void ResultWriter::finish(const State& st, const RunStats& stats, const nlohmann
   s["field"] = nullptr;  // the grid (.vti/.pvd) the run sampled; cmd_run fills it in
   s["ground_z"] = model_.has_ground ? json(model_.ground_z) : json(nullptr);
   s.update(extra);
-  write_file_atomically((fs::path(dir_) / "summary.json").string(),
-                        [&](std::ostream& o) { o << s.dump(2) << '\n'; });
+  write_file_atomically(staged("summary.json"), [&](std::ostream& o) { o << s.dump(2) << '\n'; });
+  commit_staged(staged_);  // summary.json is the last one
+  staged_.clear();
   finished_ = true;
 }
 

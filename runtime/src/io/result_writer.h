@@ -7,7 +7,10 @@
 //   landings.csv       body,type,t,x,y,z of bodies that reached the ground (scenes with ground)
 //   summary.json       counts, timing, effects, stopped bodies and why
 // Nothing appears under its final name until the run completed: files are written under
-// temporary names and renamed at finish(); a writer destroyed before finish() removes them.
+// temporary names, and finish() renames them into place only once every one of them is
+// complete, summary.json last (io/atomic_file.h, commit_staged); if a rename fails, what was
+// renamed is put back, so either all results appear or none. A writer destroyed before
+// finish() removes its temporaries.
 #pragma once
 #include <cstdio>
 #include <memory>
@@ -15,6 +18,7 @@
 #include <vector>
 
 #include "integrate/simulation.h"
+#include "io/atomic_file.h"
 #include "io/gltf_writer.h"
 #include "model/state.h"
 #include "nlohmann/json.hpp"
@@ -43,9 +47,16 @@ struct Results {
 };
 Results read_results(const std::string& dir, int target_faces);
 
+class BinaryIn;
+class BinaryOut;
+
 class ResultWriter {
  public:
-  ResultWriter(const std::string& dir, const Model& model, const OutputSpec& spec);
+  // With `resume_tag` (the temporaries' suffix of an interrupted run, from its checkpoint) the
+  // writer goes on with that run's temporaries instead of starting new ones; restore() then
+  // brings them back to the checkpoint.
+  ResultWriter(const std::string& dir, const Model& model, const OutputSpec& spec,
+               const std::string& resume_tag = "");
   ~ResultWriter();
   ResultWriter(const ResultWriter&) = delete;
   ResultWriter& operator=(const ResultWriter&) = delete;
@@ -55,11 +66,21 @@ class ResultWriter {
   void finish(const State& state, const RunStats& stats, const nlohmann::json& extra);
 
   const std::string& dir() const { return dir_; }
+  // the suffix of this writer's temporary names (".tmp<pid>")
+  const std::string& tag() const { return tag_; }
+
+  // Checkpoints (io/checkpoint.h): what was written so far (the trajectories' length, the
+  // frames, the animation kept in memory). save() flushes the trajectories first.
+  void save(BinaryOut& out);
+  void restore(BinaryIn& in);
+  // once a checkpoint refers to them, the temporaries are kept when the run fails
+  void keep_temporaries() { keep_ = true; }
 
  private:
   void write_vtp(const State& state, const std::string& path) const;
   void write_shapes_vtp(const State& state, const std::string& path) const;
   void cleanup();
+  void write_partial_pvds() const;
 
   std::string dir_;
   const Model& model_;
@@ -72,7 +93,9 @@ class ResultWriter {
   std::vector<TriangleMesh> surfaces_;  // (ntype) for the shapes series
   GltfAnimation gltf_;                  // frames kept for animation.glb
   std::vector<std::pair<double, std::string>> frames_;
+  std::vector<StagedPath> staged_;      // complete temporaries waiting for commit_staged
   bool finished_ = false;
+  bool keep_ = false;
 };
 
 }  // namespace lrigid

@@ -3,11 +3,14 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <algorithm>
+#include <initializer_list>
 #include <set>
 #include <sstream>
 
 #include "io/mesh_io.h"
 #include "util/error.h"
+#include "util/suggest.h"
 
 namespace lrigid {
 
@@ -16,12 +19,20 @@ using json = nlohmann::json;
 
 namespace {
 
+using Keys = std::initializer_list<const char*>;
+
 // A JSON object being read: remembers which keys were used so the rest can be reported.
+// `keys` are all the keys this kind of object may hold: any other is reported at once, before
+// a required key is found missing, with the nearest valid key ("densty" -> "density").
 class Obj {
  public:
-  Obj(const json& j, std::string path, const std::string& file)
+  Obj(const json& j, std::string path, const std::string& file, Keys keys)
       : j_(j), path_(std::move(path)), file_(file) {
     if (!j_.is_object()) fail("", "must be an object, got " + dump(j_));
+    for (const char* k : keys) valid_.emplace_back(k);
+    for (auto it = j_.begin(); it != j_.end(); ++it)
+      if (std::find(valid_.begin(), valid_.end(), it.key()) == valid_.end())
+        fail_unknown(it.key());
   }
 
   bool has(const std::string& key) const { return j_.contains(key); }
@@ -56,7 +67,7 @@ class Obj {
   }
   Vec3 vec3(const std::string& key) { return as_vec3(get(key), key); }
   Vec3 vec3_or(const std::string& key, const Vec3& def) { return has(key) ? vec3(key) : def; }
-  Obj object(const std::string& key) { return Obj(get(key), sub(key), file_); }
+  Obj object(const std::string& key, Keys keys) { return Obj(get(key), sub(key), file_, keys); }
 
   double as_number(const json& v, const std::string& key) const {
     if (!v.is_number()) fail(key, "must be a number, got " + dump(v));
@@ -71,10 +82,21 @@ class Obj {
     return r;
   }
 
-  // unknown keys are errors (a typo must not silently fall back to a default)
+  // unknown keys are errors (a typo must not silently fall back to a default); here: valid
+  // keys that do not apply (a "radius" on a box)
   void finish() const {
     for (auto it = j_.begin(); it != j_.end(); ++it)
-      if (!used_.count(it.key())) fail(it.key(), "unknown key");
+      if (!used_.count(it.key())) {
+        std::vector<std::string> used(used_.begin(), used_.end());
+        fail("", "key \"" + it.key() + "\" does not apply here" + did_you_mean(it.key(), used));
+      }
+  }
+  [[noreturn]] void fail_unknown(const std::string& key) const {
+    const auto dot = key.find('.');
+    if (dot != std::string::npos && dot > 0)
+      fail("", "unknown key \"" + key + "\": keys are nested, not dotted; write \"" +
+                   key.substr(0, dot) + "\": { \"" + key.substr(dot + 1) + "\": ... }");
+    fail("", "unknown key \"" + key + "\"" + did_you_mean(key, valid_));
   }
 
   std::string sub(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
@@ -92,6 +114,7 @@ class Obj {
   std::string path_;
   const std::string& file_;
   std::set<std::string> used_;
+  std::vector<std::string> valid_;
 };
 
 std::string resolve(const std::string& rel, const std::string& scene_file) {
@@ -136,10 +159,14 @@ Shape read_shape(Obj o, BodySpec* b) {
   return s;
 }
 
+constexpr Keys kBodyKeys = {"name",     "shape",    "density",     "mass_offset",
+                            "count",    "position", "spawn_box",   "orientation",
+                            "velocity", "angular_velocity", "variation"};
+
 BodySpec read_body(Obj o) {
   BodySpec b;
   b.name = o.string("name");
-  b.shape = read_shape(o.object("shape"), &b);
+  b.shape = read_shape(o.object("shape", {"type", "radius", "semi_axes", "size", "file", "scale", "panels"}), &b);
   b.density = o.positive("density");
   b.mass_offset = o.vec3_or("mass_offset", Vec3::Zero());
   {
@@ -181,7 +208,7 @@ BodySpec read_body(Obj o) {
   b.angular_velocity = o.vec3_or("angular_velocity", Vec3::Zero());
   if (o.has("variation")) {
     // art direction: per-body draws from [lo, hi] (docs/effects.md)
-    Obj v = o.object("variation");
+    Obj v = o.object("variation", {"size", "density", "spin", "variants"});
     auto range = [&v](const std::string& key, double lo_min, double* lo, double* hi) {
       const json& r = v.get(key);
       if (!r.is_array() || r.size() != 2)
@@ -236,13 +263,13 @@ Scene parse_scene_unchecked(const std::string& text, const std::string& path) {
   }
   Scene s;
   s.file = path;
-  Obj top(j, "", path);
+  Obj top(j, "", path, {"version", "fluid", "gravity", "effects", "integrator", "duration", "seed", "bodies", "ground", "turbulence", "art", "output"});
   if (const json* v = top.find("version")) {
     if (!v->is_number_integer() || v->get<int>() != 1)
       top.fail("version", "only schema version 1 is supported, got " + Obj::dump(*v));
   }
   {
-    Obj f = top.object("fluid");
+    Obj f = top.object("fluid", {"density", "kinematic_viscosity", "field", "uniform", "time"});
     s.fluid_density = f.positive("density");
     s.kinematic_viscosity = f.positive("kinematic_viscosity");
     const bool field = f.has("field"), uniform = f.has("uniform");
@@ -260,7 +287,7 @@ Scene parse_scene_unchecked(const std::string& text, const std::string& path) {
         else f.fail("time", "must be \"loop\" or \"clamp\", got \"" + m + "\"");
       }
     } else {
-      Obj u = f.object("uniform");
+      Obj u = f.object("uniform", {"U", "k", "epsilon"});
       s.uniform_U = u.vec3("U");
       s.uniform_k = u.number("k");
       s.uniform_epsilon = u.number("epsilon");
@@ -294,7 +321,7 @@ Scene parse_scene_unchecked(const std::string& text, const std::string& path) {
     }
   }
   {
-    Obj in = top.object("integrator");
+    Obj in = top.object("integrator", {"scheme", "dt", "batched", "precision"});
     const std::string scheme = in.string("scheme");
     if (scheme == "euler") s.integrator = Integrator::Euler;
     else if (scheme == "rk4") s.integrator = Integrator::RK4;
@@ -324,20 +351,20 @@ Scene parse_scene_unchecked(const std::string& text, const std::string& path) {
       top.fail("bodies", "must be a non-empty list of body types");
     size_t total = 0;
     for (size_t i = 0; i < bodies.size(); ++i) {
-      s.bodies.push_back(read_body(Obj(bodies[i], "bodies[" + std::to_string(i) + "]", path)));
+      s.bodies.push_back(read_body(Obj(bodies[i], "bodies[" + std::to_string(i) + "]", path, kBodyKeys)));
       total += size_t(s.bodies.back().count);
     }
     if (total > 100000000) top.fail("bodies", "more than 1e8 bodies in total");
     if (s.bodies.size() > 65535) top.fail("bodies", "more than 65535 body types");
   }
   if (top.has("ground")) {
-    Obj g = top.object("ground");
+    Obj g = top.object("ground", {"z"});
     s.has_ground = true;
     s.ground_z = g.number("z");
     g.finish();
   }
   if (top.has("turbulence")) {
-    Obj t = top.object("turbulence");
+    Obj t = top.object("turbulence", {"model", "drift"});
     if (t.has("model")) {
       const std::string m = t.string("model");
       if (m == "body") s.turbulence_model = TurbulenceModel::Body;
@@ -354,7 +381,7 @@ Scene parse_scene_unchecked(const std::string& text, const std::string& path) {
   }
   if (top.has("art")) {
     // art direction: scales of what the bodies see of the field (docs/effects.md)
-    Obj a = top.object("art");
+    Obj a = top.object("art", {"mean_flow_scale", "turbulence_scale"});
     for (const char* key : {"mean_flow_scale", "turbulence_scale"}) {
       if (!a.has(key)) continue;
       const double v = a.number(key);
@@ -364,9 +391,15 @@ Scene parse_scene_unchecked(const std::string& text, const std::string& path) {
     a.finish();
   }
   if (top.has("output")) {
-    Obj o = top.object("output");
+    Obj o = top.object("output", {"dir", "every", "formats", "checkpoint_every"});
     if (o.has("dir")) s.output.dir = o.string("dir");  // relative to the working directory
     s.output.every = o.positive_or("every", s.output.every);
+    if (o.has("checkpoint_every")) {
+      s.output.checkpoint_every = o.number("checkpoint_every");
+      if (!(s.output.checkpoint_every >= 0))
+        o.fail("checkpoint_every", "must be >= 0 (0: no checkpoints), got " +
+                                       Obj::dump(o.get("checkpoint_every")));
+    }
     if (const json* f = o.find("formats")) {
       if (!f->is_array()) o.fail("formats", "must be a list of \"csv\", \"pvd\", \"glb\"");
       s.output.csv = s.output.pvd = s.output.glb = false;

@@ -50,6 +50,7 @@ struct OutputSpec {
   bool csv = true;
   bool pvd = true;
   bool glb = false;                       // animation.glb (glTF 2.0, docs/outputs.md)
+  double checkpoint_every = 300;          // s of wall time between checkpoints; 0: none
 };
 
 struct Scene {

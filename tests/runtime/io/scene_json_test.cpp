@@ -114,9 +114,42 @@ TEST_P(SceneJsonErrors, NameKeyAndValue) {
 INSTANTIATE_TEST_SUITE_P(
     Cases, SceneJsonErrors,
     ::testing::Values(
-        BadCase{"unknown top key", [](json& j) { j["colour"] = "red"; }, "colour: unknown key"},
+        BadCase{"unknown top key", [](json& j) { j["colour"] = "red"; }, "unknown key \"colour\""},
         BadCase{"unknown nested key", [](json& j) { j["bodies"][0]["shape"]["radious"] = 1; },
-                "bodies[0].shape.radious: unknown key"},
+                "bodies[0].shape: unknown key \"radious\" (did you mean \"radius\"?)"},
+        // issue 27: a typo in a required key is named (before the key is found missing)
+        BadCase{"typo in a required key",
+                [](json& j) {
+                  auto& b = j["bodies"][0];
+                  b["densty"] = b["density"];
+                  b.erase("density");
+                },
+                "bodies[0]: unknown key \"densty\" (did you mean \"density\"?)"},
+        BadCase{"typo in a required fluid key",
+                [](json& j) {
+                  auto& f = j["fluid"];
+                  f["kinematic_viscocity"] = f["kinematic_viscosity"];
+                  f.erase("kinematic_viscosity");
+                },
+                "fluid: unknown key \"kinematic_viscocity\" (did you mean "
+                "\"kinematic_viscosity\"?)"},
+        BadCase{"typo in one of two alternatives",
+                [](json& j) {
+                  auto& b = j["bodies"][0];
+                  b["spawn_bx"] = {{0, 0, 0}, {1, 1, 1}};
+                  b.erase("position");
+                  b.erase("spawn_box");
+                },
+                "bodies[0]: unknown key \"spawn_bx\" (did you mean \"spawn_box\"?)"},
+        BadCase{"typo at the top", [](json& j) { j["durration"] = j["duration"]; },
+                "unknown key \"durration\" (did you mean \"duration\"?)"},
+        BadCase{"dotted key", [](json& j) { j["art.turbulence_scale"] = 0.5; },
+                "unknown key \"art.turbulence_scale\": keys are nested, not dotted; write "
+                "\"art\": { \"turbulence_scale\": ... }"},
+        BadCase{"valid key that does not apply",
+                [](json& j) { j["bodies"][0]["shape"] = {{"type", "box"}, {"size", {1, 1, 1}},
+                                                         {"radius", 0.1}}; },
+                "bodies[0].shape: key \"radius\" does not apply here"},
         BadCase{"wrong type", [](json& j) { j["duration"] = "long"; },
                 "duration: must be a number, got \"long\""},
         BadCase{"negative size", [](json& j) { j["bodies"][0]["shape"]["radius"] = -0.1; },
@@ -212,7 +245,7 @@ TEST(SceneJson, BadArtDirectionNamesTheKey) {
       << error_of(j);
   j = valid_scene();
   j["art"] = {{"wind", 2}};
-  EXPECT_NE(error_of(j).find("art.wind: unknown key"), std::string::npos) << error_of(j);
+  EXPECT_NE(error_of(j).find("art: unknown key \"wind\""), std::string::npos) << error_of(j);
   j = valid_scene();
   j["bodies"][0]["variation"] = {{"size", {1.2, 0.8}}};
   EXPECT_NE(error_of(j).find("bodies[0].variation.size: upper bound below lower bound"),
@@ -239,6 +272,82 @@ TEST(SceneJson, MissingFileSaysSo) {
               std::string::npos)
         << e.what();
   }
+}
+
+
+// ---- issue 27: a typo in any key of a scene is named, with the key it was meant to be ----
+
+// Every key path below `j` (objects only; list elements by index), e.g. {"bodies", 0, "shape"}.
+void key_paths(const json& j, json::json_pointer at, std::vector<json::json_pointer>* out) {
+  if (j.is_object()) {
+    for (auto it = j.begin(); it != j.end(); ++it) {
+      out->push_back(at / it.key());
+      key_paths(it.value(), at / it.key(), out);
+    }
+  } else if (j.is_array()) {
+    for (size_t i = 0; i < j.size(); ++i) key_paths(j[i], at / i, out);
+  }
+}
+
+// For each key of `scene`: the same scene with that key misspelt (its middle letter doubled)
+// must fail naming the misspelt key and suggesting the real one, whatever else the scene says.
+void expect_every_typo_named(const json& scene) {
+  std::vector<json::json_pointer> paths;
+  key_paths(scene, json::json_pointer(), &paths);
+  ASSERT_GT(paths.size(), 5u);
+  for (const auto& p : paths) {
+    const std::string key = p.back();
+    std::string typo = key;
+    typo.insert(typo.size() / 2, 1, typo[typo.size() / 2]);
+    json j = scene;
+    json& parent = j[p.parent_pointer()];
+    parent[typo] = parent[key];
+    parent.erase(key);
+    const std::string m = error_of(j);
+    SCOPED_TRACE(p.to_string() + " -> " + typo);
+    EXPECT_NE(m.find("unknown key \"" + typo + "\" (did you mean \"" + key + "\"?)"),
+              std::string::npos)
+        << m;
+  }
+}
+
+TEST(SceneJson, ATypoInAnyKeyIsNamed) {
+  // every key the format has, over four scenes (alternatives exclude each other)
+  const std::string mesh = std::string(LRIGID_SOURCE_DIR) + "/tests/data/meshes/tetra.obj";
+  json full = valid_scene();
+  full["version"] = 1;
+  full["integrator"]["batched"] = true;
+  full["integrator"]["precision"] = "double";
+  full["art"] = {{"mean_flow_scale", 1.0}, {"turbulence_scale", 0.5}};
+  full["output"]["checkpoint_every"] = 60;
+  auto& b = full["bodies"][0];
+  b["mass_offset"] = {0, 0, 0};
+  b["orientation"] = "random";
+  b["angular_velocity"] = {0, 0, 1};
+  b["shape"]["panels"] = 200;
+  b["variation"] = {{"size", {0.9, 1.1}}, {"density", {0.9, 1.1}}, {"spin", {0, 1}},
+                    {"variants", 4}};
+  ASSERT_EQ(error_of(full), "");
+  expect_every_typo_named(full);
+
+  json other = valid_scene();
+  other["fluid"].erase("uniform");
+  other["fluid"]["field"] = mesh;  // parse_scene only checks that the file exists
+  other["fluid"]["time"] = "loop";
+  other["bodies"][0].erase("position");
+  other["bodies"][0]["spawn_box"] = {{0, 0, 0}, {1, 1, 1}};
+  other["bodies"][0]["shape"] = {{"type", "mesh"}, {"file", mesh}, {"scale", 0.01}};
+  ASSERT_EQ(error_of(other), "");
+  expect_every_typo_named(other);
+
+  json box = valid_scene();
+  box["bodies"][0]["shape"] = {{"type", "box"}, {"size", {0.1, 0.2, 0.3}}};
+  ASSERT_EQ(error_of(box), "");
+  expect_every_typo_named(box);
+  json ell = valid_scene();
+  ell["bodies"][0]["shape"] = {{"type", "ellipsoid"}, {"semi_axes", {0.1, 0.2, 0.3}}};
+  ASSERT_EQ(error_of(ell), "");
+  expect_every_typo_named(ell);
 }
 
 }  // namespace

@@ -1,0 +1,151 @@
+#include "io/checkpoint.h"
+
+#include <cinttypes>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+
+#include "io/atomic_file.h"
+#include "util/error.h"
+
+namespace lrigid {
+
+namespace {
+
+constexpr char kMagic[8] = {'L', 'R', 'I', 'G', 'C', 'K', 'P', '1'};
+
+struct Fnv {
+  uint64_t h = 1469598103934665603ull;
+  void add(const char* p, size_t n) {
+    for (size_t i = 0; i < n; ++i) {
+      h ^= static_cast<unsigned char>(p[i]);
+      h *= 1099511628211ull;
+    }
+  }
+  std::string hex() const {
+    char buf[20];
+    std::snprintf(buf, sizeof buf, "%016" PRIx64, h);
+    return buf;
+  }
+};
+
+}  // namespace
+
+uint64_t BinaryIn::length(size_t item) {
+  uint64_t n = 0;
+  pod(&n);
+  if (n > (uint64_t(1) << 40) / (item ? item : 1))
+    fail_input(file_, "", "corrupt checkpoint (an array of " + std::to_string(n) + " items)");
+  return n;
+}
+
+void BinaryIn::read(char* p, size_t n) {
+  in_.read(p, std::streamsize(n));
+  if (size_t(in_.gcount()) != n) fail_input(file_, "", "truncated checkpoint");
+}
+
+std::string text_fingerprint(const std::string& text) {
+  Fnv f;
+  f.add(text.data(), text.size());
+  return f.hex();
+}
+
+std::string file_fingerprint(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return "";
+  Fnv f;
+  std::vector<char> buf(1 << 16);
+  while (in) {
+    in.read(buf.data(), std::streamsize(buf.size()));
+    f.add(buf.data(), size_t(in.gcount()));
+  }
+  return f.hex();
+}
+
+std::string build_fingerprint() { return file_fingerprint("/proc/self/exe"); }
+
+void write_checkpoint(const std::string& path, const CheckpointId& id, int rank,
+                      const State& st, const RunStats& stats,
+                      const std::function<void(BinaryOut&)>& extra) {
+  write_file_atomically(path, [&](std::ostream& o) {
+    BinaryOut b(o);
+    o.write(kMagic, sizeof kMagic);
+    b.str(id.build);
+    b.str(id.scene);
+    b.pod(int32_t(id.ranks));
+    b.pod(int32_t(rank));
+    b.pod(st.t);
+    b.pod(st.step);
+    b.vec(st.x);
+    b.vec(st.q);
+    b.vec(st.v);
+    b.vec(st.w);
+    b.vec(st.u_seen);
+    b.vec(st.type);
+    b.vec(st.status);
+    b.vec(st.t_stop);
+    b.pod(uint64_t(st.reason.size()));
+    for (const std::string& r : st.reason) b.str(r);
+    b.vec(st.history);
+    b.vec(st.history_offset);
+    b.pod(stats);
+    extra(b);
+    o.flush();
+  });
+}
+
+void read_checkpoint(const std::string& path, const CheckpointId& id, int rank, State* st,
+                     RunStats* stats, const std::function<void(BinaryIn&)>& extra) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) fail_input(path, "", "checkpoint cannot be read");
+  BinaryIn b(in, path);
+  char magic[sizeof kMagic];
+  b.pod(&magic);
+  if (std::memcmp(magic, kMagic, sizeof kMagic) != 0)
+    fail_input(path, "", "not an lrigid checkpoint (or one of another format version)");
+  std::string build, scene;
+  int32_t ranks = 0, r = 0;
+  b.str(&build);
+  b.str(&scene);
+  b.pod(&ranks);
+  b.pod(&r);
+  if (build != id.build)
+    fail_input(path, "",
+               "written by another build of lrigid (fingerprint " + build + ", this one " +
+                   id.build + "): resume with the binary that started the run");
+  if (scene != id.scene)
+    fail_input(path, "",
+               "written by a run of another scene (or another seed, integrator or dt): the "
+               "scene given differs from the one the run started with");
+  if (ranks != id.ranks)
+    fail_input(path, "",
+               "written by a run of " + std::to_string(ranks) + " MPI rank(s); resume with " +
+                   (ranks > 1 ? "mpirun -np " + std::to_string(ranks) : "one process"));
+  if (r != rank) fail_input(path, "", "holds rank " + std::to_string(r));
+  const size_t n = st->size();
+  b.pod(&st->t);
+  b.pod(&st->step);
+  b.vec(&st->x);
+  b.vec(&st->q);
+  b.vec(&st->v);
+  b.vec(&st->w);
+  b.vec(&st->u_seen);
+  b.vec(&st->type);
+  b.vec(&st->status);
+  b.vec(&st->t_stop);
+  uint64_t nr = 0;
+  b.pod(&nr);
+  if (nr != n) fail_input(path, "", "holds another number of bodies");
+  st->reason.resize(n);
+  for (std::string& s : st->reason) b.str(&s);
+  b.vec(&st->history);
+  b.vec(&st->history_offset);
+  for (size_t k : {st->x.size(), st->q.size(), st->v.size(), st->w.size(), st->u_seen.size(),
+                   st->type.size(), st->status.size(), st->t_stop.size(),
+                   st->history_offset.size()})
+    if (k != n) fail_input(path, "", "holds another number of bodies");
+  b.pod(stats);
+  extra(b);
+}
+
+}  // namespace lrigid
