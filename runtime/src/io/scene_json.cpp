@@ -123,6 +123,9 @@ std::string resolve(const std::string& rel, const std::string& scene_file) {
   return (fs::path(scene_file).parent_path() / p).lexically_normal().string();
 }
 
+// the keys of a shape object (a body's "shape", and Python's lrigid.added_mass)
+constexpr Keys kShapeKeys = {"type", "radius", "semi_axes", "size", "file", "scale", "panels"};
+
 Shape read_shape(Obj o, BodySpec* b) {
   const std::string type = o.string("type");
   Shape s;
@@ -166,7 +169,7 @@ constexpr Keys kBodyKeys = {"name",     "shape",    "density",     "mass_offset"
 BodySpec read_body(Obj o) {
   BodySpec b;
   b.name = o.string("name");
-  b.shape = read_shape(o.object("shape", {"type", "radius", "semi_axes", "size", "file", "scale", "panels"}), &b);
+  b.shape = read_shape(o.object("shape", kShapeKeys), &b);
   b.density = o.positive("density");
   b.mass_offset = o.vec3_or("mass_offset", Vec3::Zero());
   {
@@ -433,7 +436,7 @@ Shape parse_shape(const std::string& text, const std::string& path, int* panels)
   try {
     const json j = json::parse(text);
     BodySpec b;
-    Shape s = read_shape(Obj(j, "shape", path), &b);
+    Shape s = read_shape(Obj(j, "shape", path, kShapeKeys), &b);
     *panels = b.panels;
     return s;
   } catch (const json::exception& e) {
