@@ -326,6 +326,10 @@ def study_case(st, args, name, cfg):
     if traj_err:
         st.check("%s, no dispersion: largest trajectory distance at common times" % name,
                  max(traj_err), 0.0, TOL, SRC, unit="m", tol_text="±%g m" % TOL)
+    elif dx_list:  # a guard that cannot vanish: both landed, so there must be common times
+        st.fail("%s, no dispersion: largest trajectory distance at common times" % name,
+                "no written time in common before landing (OpenFOAM tracks %d, lrigid frames "
+                "%d)" % (len(tracks_of), tr["t"].shape[0]))
 
     # dispersion on: 3 release points × N parcels each
     n = 60 if args.quick else 200
