@@ -479,8 +479,11 @@ class LateFailure : public Cli {
   // after a failed finish: none of the results under its final name (what the test put
   // there itself excepted), and no temporaries left behind
   void expect_nothing_final(const std::string& except = "") {
-    for (const char* n : kResultNames)
-      if (n != except) EXPECT_FALSE(fs::exists(dir_ / "out" / n)) << n << " appeared";
+    for (const char* n : kResultNames) {
+      if (n != except) {
+        EXPECT_FALSE(fs::exists(dir_ / "out" / n)) << n << " appeared";
+      }
+    }
     for (const auto& e : fs::recursive_directory_iterator(dir_ / "out"))
       EXPECT_EQ(e.path().string().find(".tmp"), std::string::npos) << "left over: " << e.path();
   }
@@ -577,7 +580,9 @@ TEST_F(LateFailure, AFolderMadeReadOnlyMidRunLeavesNoResult) {
   const auto read_only = fs::perms::owner_read | fs::perms::owner_exec | fs::perms::group_read |
                          fs::perms::group_exec | fs::perms::others_read | fs::perms::others_exec;
   fs::permissions(dir_ / "out", read_only);
-  if (getuid() != 0) ASSERT_NE(::access((dir_ / "out").c_str(), W_OK), 0);
+  if (getuid() != 0) {
+    ASSERT_NE(::access((dir_ / "out").c_str(), W_OK), 0);
+  }
   const Result r = wait_for(pid);
   fs::permissions(dir_ / "out", fs::perms::all);
   EXPECT_EQ(r.code, 4) << r.err;
