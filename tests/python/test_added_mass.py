@@ -41,7 +41,8 @@ def test_bad_shape_names_the_key():
         lrigid.added_mass({"type": "sphere", "radius": -1}, 1000)
     with pytest.raises(lrigid.Error, match=r"shape.type: must be sphere, ellipsoid, box or mesh"):
         lrigid.added_mass({"type": "cone"}, 1000)
-    with pytest.raises(lrigid.Error, match=r"shape.radios: unknown key"):
+    with pytest.raises(lrigid.Error,
+                       match=r'shape: unknown key "radios" \(did you mean "radius"\?\)'):
         lrigid.added_mass({"type": "sphere", "radius": 1, "radios": 2}, 1000)
     with pytest.raises(lrigid.Error, match="fluid_density"):
         lrigid.added_mass({"type": "sphere", "radius": 1}, -1)

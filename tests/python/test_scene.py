@@ -35,7 +35,8 @@ def test_missing_file_same_message_as_cli(lrigid_bin, tmp_path):
 
 @pytest.mark.parametrize("edit, key", [
     (lambda s: s["bodies"][1]["shape"].update(radius=-1), "bodies[1].shape.radius"),
-    (lambda s: s["fluid"].update(densty=1.2), "fluid.densty"),
+    (lambda s: s["fluid"].update(densty=1.2),
+     'fluid: unknown key "densty" (did you mean "density"?)'),
     (lambda s: s["integrator"].update(scheme="leapfrog"), "integrator.scheme"),
 ])
 def test_bad_scene_same_message_as_cli(lrigid_bin, tmp_path, edit, key):
@@ -52,9 +53,9 @@ def test_bad_scene_same_message_as_cli(lrigid_bin, tmp_path, edit, key):
     assert str(from_file.value) in r.stderr
     assert key in str(from_file.value)
     # the default name says the scene came from a dict
-    with pytest.raises(lrigid.Error, match=r"^<dict>: " + key.replace("[", r"\[").replace(
-            "]", r"\]")):
+    with pytest.raises(lrigid.Error) as named:
         lrigid.Scene.from_dict(s)
+    assert str(named.value).startswith("<dict>: " + key)
 
 
 def test_from_dict_rejects_what_json_cannot_hold():
