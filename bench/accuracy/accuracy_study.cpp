@@ -24,6 +24,7 @@
 #include "io/atomic_file.h"
 #include <nlohmann/json.hpp>
 
+#include "io/field_loader.h"
 #include "io/scene_json.h"
 #include "study.h"
 #include "util/error.h"
@@ -257,7 +258,7 @@ void sweep_grids(const Case& c, const Scene& base, const std::vector<std::string
     Scene s = base;
     s.field_path = g;
     s.uniform_field = false;
-    fields.push_back(load_field(s));
+    fields.push_back(load_field(s, StreamMode::Off, true));
   }
   for (bool turbulence : {false, true}) {
     Scene scene = base;
@@ -366,7 +367,7 @@ int study(int argc, char** argv) {
     }
     scene.duration = c.duration;
     apply_spawn(c, &scene);
-    const FluidField field = load_field(scene);
+    const FluidField field = load_field(scene, StreamMode::Off, true);
     auto wanted = [&](const char* s) {
       return std::find(sweeps.begin(), sweeps.end(), s) != sweeps.end();
     };

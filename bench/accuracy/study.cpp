@@ -6,7 +6,6 @@
 #include <ctime>
 
 #include "io/added_mass_cache.h"
-#include "io/grid_reader.h"
 #include "util/error.h"
 
 namespace lrigid::accuracy {
@@ -34,15 +33,6 @@ void scale_bodies(Scene* scene, int n) {
   if (total <= 0) return;
   for (auto& b : scene->bodies)
     b.count = std::max(1, static_cast<int>(std::lround(double(b.count) * n / double(total))));
-}
-
-FluidField load_field(const Scene& scene) {
-  if (scene.uniform_field)
-    return FluidField::uniform(scene.uniform_U, scene.uniform_k, scene.uniform_epsilon,
-                               scene.kinematic_viscosity, scene.drift);
-  GridFile g = read_grid(scene.field_path);
-  return FluidField::grid(g.geometry, g.frames, scene.kinematic_viscosity, scene.drift,
-                          scene.time_mode);
 }
 
 RunResult run(const Scene& scene_in, const FluidField& field, const RunSpec& spec, double every) {

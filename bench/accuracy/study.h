@@ -71,7 +71,5 @@ Metric landing_variance_error(const RunResult& a, const RunResult& ref);
 Integrator integrator_from_name(const std::string& name);  // throws on an unknown name
 // Scales the scene's body counts so they sum to about n (each type keeps at least one body).
 void scale_bodies(Scene* scene, int n);
-// The integration loop's state for a scene's field: uniform, or read from the .vti/.pvd.
-FluidField load_field(const Scene& scene);
 
 }  // namespace lrigid::accuracy
