@@ -149,7 +149,7 @@ EffectAnalysis analyze_effects(const Scene& scene, const BodyType& t, const Flow
   const double spin = spec.angular_velocity.norm() + std::max(spec.spin_min, spec.spin_max);
   a.spin_ratio = U > 0 ? t.r_eq * spin / U : 0;
   const double F_drag = c * U;
-  // the quantities the registry's rules weigh (model/effects.h AutoInputs)
+  // the quantities the registry's rules weigh (effects/registry.h AutoInputs)
   AutoInputs in;
   in.weight = W;
   in.buoyancy = B;
