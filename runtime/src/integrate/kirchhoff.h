@@ -40,15 +40,20 @@ LRIGID_LANE void mass_inv_times(const DiagonalMass& m, const T* y, T* x) {
 #pragma GCC unroll 6
   for (int a = 0; a < 6; ++a) x[a] = T(m.Mi[a]) * y[a];
 }
+// x = A y for a symmetric 6 x 6 A
 template <typename T>
-LRIGID_LANE void mass_inv_times(const FullMass& m, const T* y, T* x) {
+LRIGID_LANE void symmetric6_times(const double* A, const T* y, T* x) {
 #pragma GCC unroll 6
   for (int r = 0; r < 6; ++r) {
     T s = 0;
 #pragma GCC unroll 6
-    for (int c = 0; c < 6; ++c) s += T(m.Mi[r * 6 + c]) * y[c];
+    for (int c = 0; c < 6; ++c) s += T(A[r * 6 + c]) * y[c];
     x[r] = s;
   }
+}
+template <typename T>
+LRIGID_LANE void mass_inv_times(const FullMass& m, const T* y, T* x) {
+  symmetric6_times(m.Mi, y, x);
 }
 template <typename T>
 LRIGID_LANE void mass_times(const DiagonalMass& m, const T* y, T* x) {
@@ -57,13 +62,7 @@ LRIGID_LANE void mass_times(const DiagonalMass& m, const T* y, T* x) {
 }
 template <typename T>
 LRIGID_LANE void mass_times(const FullMass& m, const T* y, T* x) {
-#pragma GCC unroll 6
-  for (int r = 0; r < 6; ++r) {
-    T s = 0;
-#pragma GCC unroll 6
-    for (int c = 0; c < 6; ++c) s += T(m.M[r * 6 + c]) * y[c];
-    x[r] = s;
-  }
+  symmetric6_times(m.M, y, x);
 }
 
 // d^T M^-1 d: twice the kinetic energy of an impulse d (the flow's convergence norm)
