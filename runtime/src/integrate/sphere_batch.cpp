@@ -28,7 +28,7 @@ namespace {
 struct StepConsts : FieldConsts {
   bool drag = false;            // with turb, the step's two template switches
   double m = 0, ma = 0, J = 0;  // M's linear and angular diagonal; K's linear diagonal (0 without)
-  DiagonalMass mass;            // M = diag(m, m, m, J, J, J) (integrate/kirchhoff.h)
+  IsotropicMass mass;           // M = diag(m, m, m, J, J, J) (integrate/kirchhoff.h)
   // sphere drag (effects/drag.h drag_kernel, r_cob = 0): the law and the sphere's area
   DragParams law;
   double a_perp = 0, d_perp = 0;
@@ -42,7 +42,7 @@ StepConsts make_consts(const Model& model, const BodyType& type) {
   tc.m = type.M(0, 0);
   tc.ma = e.has(Effect::AddedMass) ? type.K_fluid(0, 0) : 0.0;
   tc.J = type.M(3, 3);
-  tc.mass = diagonal_mass(type);
+  tc.mass = IsotropicMass{type.M(0, 0), type.M(3, 3)};
   tc.law = type.plan.params->drag;  // the scalar step's (effects/plan.h)
   const double r = type.ell.x();
   tc.a_perp = M_PI * r * r;
