@@ -8,8 +8,8 @@ namespace {
 
 // Broadside drag coefficient of rectangular plates against the side ratio (docs/physics/lift.md):
 // 1.18 (square) ... 1.5 (20:1) after Hoerner (1965) as tabulated by White (Fluid Mechanics,
-// Table 7.3); the infinite strip takes APW's 2D value A + B = 2.4 (Hoerner's steady strip: 1.98-2.0),
-// so that long strips keep APW's model. Linear in 1 / aspect between the points.
+// Table 7.3); the infinite strip takes APW's 2D value A + B = 2.4 (Hoerner's steady
+// strip: 1.98-2.0), so that long strips keep APW's model. Linear in 1 / aspect between the points.
 constexpr double kCd90InvAspect[] = {1.0, 0.2, 0.1, 0.05, 0.0};
 constexpr double kCd90Rect[] = {1.18, 1.2, 1.3, 1.5, kPlateDragA + kPlateDragB};
 constexpr double kCd90Disk = 1.17;  // circular disk broadside (White Table 7.3; Hoerner)
@@ -39,14 +39,15 @@ PlateCoeffs plate_coefficients(const BodyType& type) {
   c.aspect = lo > 0 ? hi / lo : 1.0;
   c.cd90 = plate_broadside_cd(c.aspect, box);
   // APW's edgewise coefficient A - B is kept; the normal-force (pressure) part 2 B scales to the
-  // planform's broadside value, and with it the circulation and the quadratic damping torque
+  // planform's broadside value, and with it the translational lift, the other component of the
+  // same normal force (APW's C_T ~ B). The rotational lift C_R and the damping torque mu1, mu2
+  // stay APW's: scaling them too made horizontally released paper squares descend steadily
+  // broadside (docs/physics/lift.md, "The 3D model").
   c.span_factor = (c.cd90 - (kPlateDragA - kPlateDragB)) / (2.0 * kPlateDragB);
   const double r = c.span_factor;
   c.B = kPlateDragB * r;
   c.A = (kPlateDragA - kPlateDragB) + c.B;
   c.C_T = kLiftTranslational * r;
-  c.C_R = kLiftRotational * r;
-  c.mu2 = kPlateTorqueMu2 * r;
   return c;
 }
 
@@ -78,6 +79,7 @@ PlateParams plate_params(const BodyType& type, double rho, double nu, bool drag,
   k.drag_b = c.B;
   k.lift_t = c.C_T;
   k.lift_r = c.C_R;
+  k.mu1 = c.mu1;
   k.mu2 = c.mu2;
   return k;
 }

@@ -35,16 +35,18 @@ LRIGID_LANE T circulation_gate(T re) {
 }
 
 // The plate's finite-span coefficients (docs/physics/lift.md, "The 3D model"): APW's 2D
-// constants, with the pressure terms scaled by the ratio of the planform's broadside drag
-// coefficient to APW's strip value. aspect: the planform's side ratio (long / short side of a
-// rectangle, major / minor axis of an ellipse), >= 1.
+// constants, with the normal pressure force (drag B and translational lift C_T) scaled so that
+// the broadside drag coefficient is the planform's; C_R, mu1, mu2 are APW's. aspect: the
+// planform's side ratio (long / short side of a rectangle, major / minor axis of an ellipse or
+// of a mesh's equivalent ellipse), >= 1.
 struct PlateCoeffs {
-  double aspect = 1;      // planform side ratio
-  double cd90 = 0;        // broadside drag coefficient C_D(90 deg) of the planform
-  double span_factor = 1; // (cd90 - (A - B)) / (2 B): 1 for an infinite strip
-  double A = kPlateDragA, B = kPlateDragB;         // drag (A - B cos 2a)
+  double aspect = 1;       // planform side ratio
+  double cd90 = 0;         // broadside drag coefficient C_D(90 deg) of the planform
+  double span_factor = 1;  // (cd90 - (A - B)) / (2 B) of APW's A, B: 1 for an infinite strip
+  double A = kPlateDragA, B = kPlateDragB;  // drag (A - B cos 2a)
   double C_T = kLiftTranslational, C_R = kLiftRotational;
-  double mu2 = kPlateTorqueMu2;                    // quadratic (pressure) damping torque
+  double mu1 = kPlateTorqueMu1;  // linear damping torque (at Re_fit)
+  double mu2 = kPlateTorqueMu2;  // quadratic (pressure) damping torque
 };
 // broadside C_D of a flat plate of side ratio `aspect` (rectangle, or ellipse if !box)
 double plate_broadside_cd(double aspect, bool box);
@@ -65,7 +67,8 @@ struct PlateParams {
   double drag = 0, lift = 0;             // the effects as factors 1 or 0
   // the finite-span coefficients (PlateCoeffs)
   double drag_a = kPlateDragA, drag_b = kPlateDragB;
-  double lift_t = kLiftTranslational, lift_r = kLiftRotational, mu2 = kPlateTorqueMu2;
+  double lift_t = kLiftTranslational, lift_r = kLiftRotational;
+  double mu1 = kPlateTorqueMu1, mu2 = kPlateTorqueMu2;
 };
 // drag, lift: whether the drag (and torque) and the lift are computed
 PlateParams plate_params(const BodyType& type, double rho, double nu, bool drag, bool lift);
@@ -119,7 +122,7 @@ LRIGID_LANE void plate_kernel(const PlateParams& k, const T* u, const T* w, Drag
   const T kk = T(M_PI) * rho * (c * c) * (c * c) * span;
   const T re_w = speed * T(k.width_over_nu);
   const T re = re_w > T(kPlateTorqueReMin) ? re_w : T(kPlateTorqueReMin);
-  const T mu1 = T(kPlateTorqueMu1) * std::sqrt(T(kPlateTorqueFitRe) / re);
+  const T mu1 = T(k.mu1) * std::sqrt(T(kPlateTorqueFitRe) / re);
   const T pitch = spinning ? kk * (mu1 * Uv / c + T(k.mu2) * wp_norm) : T(0);
   const T c_pitch = spinning ? kk * (mu1 * Uv / c + T(2 * k.mu2) * wp_norm) : T(0);
   // spin about the normal: the Stokes torque plus the out-of-roundness drag

@@ -181,14 +181,14 @@ TEST(Kernels, PlateBroadsideAndEdgewiseDragFollowTheAspectRatio) {
 
 // The finite-span coefficients: the broadside C_D of the table (White Table 7.3 after Hoerner:
 // square 1.18, disk 1.17, side ratio 5: 1.2, 10: 1.3, 20: 1.5), APW's 2D constants in the limit
-// of an infinite strip, and every pressure term scaled by the same factor
+// of an infinite strip, the normal force's drag and translational lift scaled by the same factor
 TEST(Kernels, PlateCoefficientsReduceToApwForLongStrips) {
   EXPECT_NEAR(plate_broadside_cd(1, true), 1.18, 1e-12);
   EXPECT_NEAR(plate_broadside_cd(1, false), 1.17, 1e-12);
   EXPECT_NEAR(plate_broadside_cd(5, true), 1.2, 1e-12);
   EXPECT_NEAR(plate_broadside_cd(10, true), 1.3, 1e-12);
   EXPECT_NEAR(plate_broadside_cd(20, true), 1.5, 1e-12);
-  EXPECT_NEAR(plate_broadside_cd(40, true), 1.95, 1e-12);  // halfway to APW's 2.4 in 1 / aspect
+  EXPECT_NEAR(plate_broadside_cd(40, true), 1.95, 1e-12);   // halfway to APW's 2.4 in 1 / aspect
   EXPECT_NEAR(plate_broadside_cd(0.5, true), 1.18, 1e-12);  // aspect is >= 1 by definition
   double last = 0;
   for (double ar = 1; ar < 1e4; ar *= 1.3) {  // monotone in the aspect ratio
@@ -203,8 +203,9 @@ TEST(Kernels, PlateCoefficientsReduceToApwForLongStrips) {
   const double r = (1.18 - 0.4) / 2.0;
   EXPECT_NEAR(sq.span_factor, r, 1e-12);
   EXPECT_NEAR(sq.C_T, kLiftTranslational * r, 1e-12);
-  EXPECT_NEAR(sq.C_R, kLiftRotational * r, 1e-12);
-  EXPECT_NEAR(sq.mu2, kPlateTorqueMu2 * r, 1e-12);
+  EXPECT_NEAR(sq.C_R, kLiftRotational, 1e-12);  // rotational lift and damping: APW's
+  EXPECT_NEAR(sq.mu1, kPlateTorqueMu1, 1e-12);
+  EXPECT_NEAR(sq.mu2, kPlateTorqueMu2, 1e-12);
   // the aspect ratio of a plate whose normal is not body z, and of an ellipse
   const PlateCoeffs rect = plate_coefficients(type_of(Shape::box(0.0002, 0.02, 0.1)));
   EXPECT_NEAR(rect.aspect, 5.0, 1e-12);

@@ -1,11 +1,12 @@
 // Lift, plate drag and Magnus terms against their closed forms (effects/lift.h, drag.h,
 // magnus.h), and the plan that selects them.
+#include "effects/lift.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "effects/drag.h"
-#include "effects/lift.h"
 #include "effects/magnus.h"
 #include "effects/plan.h"
 #include "effects/plate.h"
@@ -51,8 +52,8 @@ TEST(Lift, TranslationalLiftIsNormalToVelocityAndPeaksAt45Degrees) {
     const Vec3 u(U * std::cos(a), 0, -U * std::sin(a));
     const Wrench w = lift_wrench(t, u, Vec3::Zero(), rho, kNuInviscid);
     const Vec3 f = w.head<3>();
-    EXPECT_NEAR(f.dot(u), 0.0, 1e-15) << deg;          // perpendicular to u
-    EXPECT_NEAR(f.y(), 0.0, 1e-15) << deg;             // in the plane of u and n
+    EXPECT_NEAR(f.dot(u), 0.0, 1e-15) << deg;  // perpendicular to u
+    EXPECT_NEAR(f.y(), 0.0, 1e-15) << deg;     // in the plane of u and n
     // |F| = rho C_T S U^2 |sin a cos a|
     const double sc = std::abs(std::sin(a) * std::cos(a));
     EXPECT_NEAR(f.norm(), rho * C_T * S * U * U * sc, 1e-12) << deg;
@@ -109,7 +110,7 @@ TEST(PlateDrag, BroadsideAndEdgewiseCoefficients) {
   // APW's quadratic drag plus the Stokes drag of the disk (16 mu a broadside, 32/3 mu a edgewise)
   const double nu = 1e-6, mu = rho * nu, a = 0.02;
   const PlateCoeffs pc = plate_coefficients(t);
-  EXPECT_NEAR(pc.A + pc.B, 1.17, 1e-12);  // a disk's broadside C_D
+  EXPECT_NEAR(pc.A + pc.B, 1.17, 1e-12);                       // a disk's broadside C_D
   EXPECT_NEAR(pc.A - pc.B, kPlateDragA - kPlateDragB, 1e-12);  // APW's edgewise value
   const Vec3 fb = plate_drag_wrench(t, Vec3(0, 0, U), Vec3::Zero(), rho, nu).head<3>();
   EXPECT_NEAR(fb.z(), -0.5 * rho * S * (pc.A + pc.B) * U * U - 16 * mu * a * U,
@@ -162,10 +163,9 @@ TEST(PlateDrag, DissipativeTorqueOpposesPitch) {
   const Vec3 tq = plate_drag_wrench(t, Vec3::Zero(), Vec3(0, wy, 0), rho, nu).tail<3>();
   // at rest (Re below kPlateTorqueReMin) mu1 is scaled by (Re_fit / Re_min)^(1/2)
   const double mu1 = kPlateTorqueMu1 * std::sqrt(kPlateTorqueFitRe / kPlateTorqueReMin);
-  const double expect =
-      -M_PI * rho * std::pow(c, 4) * span *
-          (mu1 * t.apw_speed / c + plate_coefficients(t).mu2 * wy) * wy -
-      rho * nu * t.stokes_torque.y() * wy;
+  const double expect = -M_PI * rho * std::pow(c, 4) * span *
+                            (mu1 * t.apw_speed / c + plate_coefficients(t).mu2 * wy) * wy -
+                        rho * nu * t.stokes_torque.y() * wy;
   EXPECT_NEAR(tq.y(), expect, 1e-15);
   EXPECT_GT(t.stokes_torque.y(), 0);
   EXPECT_GT(t.apw_speed, 0);
