@@ -38,16 +38,13 @@ PlateCoeffs plate_coefficients(const BodyType& type) {
   const double lo = std::min(ext[i1], ext[i2]), hi = std::max(ext[i1], ext[i2]);
   c.aspect = lo > 0 ? hi / lo : 1.0;
   c.cd90 = plate_broadside_cd(c.aspect, box);
-  // APW's edgewise coefficient A - B is kept; the normal-force (pressure) part 2 B scales to the
-  // planform's broadside value, and with it the translational lift, the other component of the
-  // same normal force (APW's C_T ~ B). The rotational lift C_R and the damping torque mu1, mu2
-  // stay APW's: scaling them too made horizontally released paper squares descend steadily
-  // broadside (docs/physics/lift.md, "The 3D model").
+  // APW's edgewise coefficient A - B is kept and the normal-force part 2 B scales to the
+  // planform's broadside value. The circulation (C_T, C_R) and the damping torque (mu1, mu2) stay
+  // APW's: scaling them with the same factor made heavy disks and strips stop tumbling and paper
+  // squares descend steadily broadside (docs/physics/lift.md, "The 3D model").
   c.span_factor = (c.cd90 - (kPlateDragA - kPlateDragB)) / (2.0 * kPlateDragB);
-  const double r = c.span_factor;
-  c.B = kPlateDragB * r;
+  c.B = kPlateDragB * c.span_factor;
   c.A = (kPlateDragA - kPlateDragB) + c.B;
-  c.C_T = kLiftTranslational * r;
   return c;
 }
 

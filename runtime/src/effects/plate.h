@@ -35,8 +35,8 @@ LRIGID_LANE T circulation_gate(T re) {
 }
 
 // The plate's finite-span coefficients (docs/physics/lift.md, "The 3D model"): APW's 2D
-// constants, with the normal pressure force (drag B and translational lift C_T) scaled so that
-// the broadside drag coefficient is the planform's; C_R, mu1, mu2 are APW's. aspect: the
+// constants, with the drag's normal-force part B scaled so that the broadside drag coefficient
+// A + B is the planform's; C_T, C_R, mu1, mu2 are APW's. aspect: the
 // planform's side ratio (long / short side of a rectangle, major / minor axis of an ellipse or
 // of a mesh's equivalent ellipse), >= 1.
 struct PlateCoeffs {

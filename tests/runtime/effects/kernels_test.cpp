@@ -181,7 +181,7 @@ TEST(Kernels, PlateBroadsideAndEdgewiseDragFollowTheAspectRatio) {
 
 // The finite-span coefficients: the broadside C_D of the table (White Table 7.3 after Hoerner:
 // square 1.18, disk 1.17, side ratio 5: 1.2, 10: 1.3, 20: 1.5), APW's 2D constants in the limit
-// of an infinite strip, the normal force's drag and translational lift scaled by the same factor
+// of an infinite strip; the circulation and the damping torque are APW's
 TEST(Kernels, PlateCoefficientsReduceToApwForLongStrips) {
   EXPECT_NEAR(plate_broadside_cd(1, true), 1.18, 1e-12);
   EXPECT_NEAR(plate_broadside_cd(1, false), 1.17, 1e-12);
@@ -202,8 +202,9 @@ TEST(Kernels, PlateCoefficientsReduceToApwForLongStrips) {
   EXPECT_NEAR(sq.A - sq.B, kPlateDragA - kPlateDragB, 1e-12);
   const double r = (1.18 - 0.4) / 2.0;
   EXPECT_NEAR(sq.span_factor, r, 1e-12);
-  EXPECT_NEAR(sq.C_T, kLiftTranslational * r, 1e-12);
-  EXPECT_NEAR(sq.C_R, kLiftRotational, 1e-12);  // rotational lift and damping: APW's
+  EXPECT_NEAR(sq.B, kPlateDragB * r, 1e-12);
+  EXPECT_NEAR(sq.C_T, kLiftTranslational, 1e-12);  // the circulation and damping: APW's
+  EXPECT_NEAR(sq.C_R, kLiftRotational, 1e-12);
   EXPECT_NEAR(sq.mu1, kPlateTorqueMu1, 1e-12);
   EXPECT_NEAR(sq.mu2, kPlateTorqueMu2, 1e-12);
   // the aspect ratio of a plate whose normal is not body z, and of an ellipse
