@@ -239,6 +239,7 @@ def main():
         a.set_xlabel("radius or half side R (cm)")
         a.set_ylabel(yl)
     axs[0].legend(fontsize=7)
+    fig.tight_layout()
     st.savefig(fig, "paper_drops.png", "Paper drops (70 g/m², 1 m, still air): Howison et al. "
                "2020's medians per radius bin (circles, full lines) against lrigid (squares, "
                "dashed), per segment as in their classification")
