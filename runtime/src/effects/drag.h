@@ -17,8 +17,8 @@
 
 namespace lrigid {
 
-constexpr double kDragEdgewise = 0.1;  // C_s
-constexpr double kDragRotation = 1.2;  // C_rot (flat-plate normal drag ~1.2)
+constexpr double kDragEdgewise = 0.1;   // C_s
+constexpr double kDragRotation = 1.2;   // C_rot (flat-plate normal drag ~1.2)
 
 // Schiller & Naumann (1935): C_D = 24/Re (1 + 0.15 Re^0.687), Re < 1000; 0.44 above.
 double schiller_naumann(double re);
@@ -57,7 +57,8 @@ struct DragOut {
 // The projected area of the equivalent ellipsoid across the unit direction uh, m^2, and the
 // diameter of the disk of that area, m.
 template <typename T>
-LRIGID_LANE void ellipsoid_projected_area(const DragParams& k, const T* uh, T* a_perp, T* d_perp) {
+LRIGID_LANE void ellipsoid_projected_area(const DragParams& k, const T* uh, T* a_perp,
+                                          T* d_perp) {
   const T p0 = T(k.l12) * uh[0], p1 = T(k.l02) * uh[1], p2 = T(k.l01) * uh[2];
   *a_perp = T(M_PI) * std::sqrt(p0 * p0 + p1 * p1 + p2 * p2);
   *d_perp = T(2) * std::sqrt(*a_perp * T(1.0 / M_PI));
@@ -124,7 +125,7 @@ Wrench drag_wrench(const BodyType& type, const Vec3& u_rel, const Vec3& w, doubl
 // normal: the Stokes torque plus the generic out-of-roundness drag.
 // APW's strip values; a finite plate's B (and so A = (A - B) + B) follows its broadside C_D
 // (plate_coefficients, effects/plate.h)
-constexpr double kPlateDragA = 1.4;  // APW 2005
+constexpr double kPlateDragA = 1.4;   // APW 2005
 constexpr double kPlateDragB = 1.0;
 constexpr double kPlateTorqueMu1 = 0.2;  // at Re = kPlateTorqueFitRe
 constexpr double kPlateTorqueMu2 = 0.2;

@@ -36,9 +36,9 @@ LRIGID_LANE T circulation_gate(T re) {
 
 // The plate's finite-span coefficients (docs/physics/lift.md, "The 3D model"): APW's 2D
 // constants, with the drag's normal-force part B scaled so that the broadside drag coefficient
-// A + B is the planform's; C_T, C_R, mu1, mu2 are APW's. aspect: the
-// planform's side ratio (long / short side of a rectangle, major / minor axis of an ellipse or
-// of a mesh's equivalent ellipse), >= 1.
+// A + B is the planform's; C_T, C_R, mu1, mu2 are APW's. aspect: the planform's side ratio
+// (long / short side of a rectangle, major / minor axis of an ellipse or of a mesh's equivalent
+// ellipse), >= 1.
 struct PlateCoeffs {
   double aspect = 1;       // planform side ratio
   double cd90 = 0;         // broadside drag coefficient C_D(90 deg) of the planform

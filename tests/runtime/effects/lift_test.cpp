@@ -1,12 +1,11 @@
 // Lift, plate drag and Magnus terms against their closed forms (effects/lift.h, drag.h,
 // magnus.h), and the plan that selects them.
-#include "effects/lift.h"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "effects/drag.h"
+#include "effects/lift.h"
 #include "effects/magnus.h"
 #include "effects/plan.h"
 #include "effects/plate.h"
@@ -46,14 +45,14 @@ TEST(Lift, TranslationalLiftIsNormalToVelocityAndPeaksAt45Degrees) {
   const Model m = disk_model(effects({Effect::Lift}));
   const BodyType& t = m.types[0];
   const double rho = 1000, U = 0.3, S = t.plate_area;
-  const double C_T = plate_coefficients(t).C_T;  // the disk's finite-span C_T
+  const double C_T = plate_coefficients(t).C_T;  // APW's for every plate (physics/lift.md)
   for (double deg : {0.0, 10.0, 30.0, 45.0, 60.0, 90.0}) {
     const double a = deg * M_PI / 180;
     const Vec3 u(U * std::cos(a), 0, -U * std::sin(a));
     const Wrench w = lift_wrench(t, u, Vec3::Zero(), rho, kNuInviscid);
     const Vec3 f = w.head<3>();
-    EXPECT_NEAR(f.dot(u), 0.0, 1e-15) << deg;  // perpendicular to u
-    EXPECT_NEAR(f.y(), 0.0, 1e-15) << deg;     // in the plane of u and n
+    EXPECT_NEAR(f.dot(u), 0.0, 1e-15) << deg;          // perpendicular to u
+    EXPECT_NEAR(f.y(), 0.0, 1e-15) << deg;             // in the plane of u and n
     // |F| = rho C_T S U^2 |sin a cos a|
     const double sc = std::abs(std::sin(a) * std::cos(a));
     EXPECT_NEAR(f.norm(), rho * C_T * S * U * U * sc, 1e-12) << deg;
@@ -163,9 +162,10 @@ TEST(PlateDrag, DissipativeTorqueOpposesPitch) {
   const Vec3 tq = plate_drag_wrench(t, Vec3::Zero(), Vec3(0, wy, 0), rho, nu).tail<3>();
   // at rest (Re below kPlateTorqueReMin) mu1 is scaled by (Re_fit / Re_min)^(1/2)
   const double mu1 = kPlateTorqueMu1 * std::sqrt(kPlateTorqueFitRe / kPlateTorqueReMin);
-  const double expect = -M_PI * rho * std::pow(c, 4) * span *
-                            (mu1 * t.apw_speed / c + plate_coefficients(t).mu2 * wy) * wy -
-                        rho * nu * t.stokes_torque.y() * wy;
+  const double expect =
+      -M_PI * rho * std::pow(c, 4) * span *
+          (mu1 * t.apw_speed / c + plate_coefficients(t).mu2 * wy) * wy -
+      rho * nu * t.stokes_torque.y() * wy;
   EXPECT_NEAR(tq.y(), expect, 1e-15);
   EXPECT_GT(t.stokes_torque.y(), 0);
   EXPECT_GT(t.apw_speed, 0);
