@@ -51,10 +51,9 @@ Consts make_consts(const Model& model, const BodyType& type) {
   }
   for (int a = 0; a < 3; ++a) k.K[a] = e.has(Effect::AddedMass) ? type.K_fluid(a, a) : 0.0;
   k.drag = e.has(Effect::Drag) ? 1.0 : 0.0;
-  k.law = drag_params(type, model.fluid_density, model.nu);
-  if (type.flat)
-    k.plate_model = plate_params(type, model.fluid_density, model.nu, e.has(Effect::Drag),
-                             e.has(Effect::Lift));
+  // the kernels' parameters, as the scalar step's terms read them (effects/plan.h)
+  k.law = type.plan.params->drag;
+  if (type.flat) k.plate_model = type.plan.params->plate_both;
   return k;
 }
 

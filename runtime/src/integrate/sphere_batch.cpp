@@ -40,7 +40,7 @@ Consts make_consts(const Model& model, const BodyType& type) {
   k.m = type.M(0, 0);
   k.ma = e.has(Effect::AddedMass) ? type.K_fluid(0, 0) : 0.0;
   k.J = type.M(3, 3);
-  k.law = drag_params(type, model.fluid_density, model.nu);
+  k.law = type.plan.params->drag;  // the scalar step's (effects/plan.h)
   const double r = type.ell.x();
   k.a_perp = M_PI * r * r;
   k.d_perp = 2.0 * std::sqrt(k.a_perp / M_PI);
