@@ -27,9 +27,10 @@ in the data and in the model.
 Checks per shape and radius bin: median descent speed within 15 % of the data's, median lateral
 displacement within a factor 1.5; per shape, the tumbling fraction's trend: at least 0.5 in the
 smallest bin and at most 0.3 in the largest (data: 0.82–0.85 and 0.0–0.08).
-Fitting: nothing is fitted to these data. Which plate terms follow the aspect ratio
-(docs/physics/lift.md) was chosen by the strips and Field et al.'s disks (validation/falling_plates),
-so both shapes here are independent checks.
+Fitting: no coefficient is fitted to these data. Which plate terms follow the aspect ratio
+(docs/physics/lift.md) was chosen among three variants, one of them rejected on the squares'
+drops, another on Field et al.'s disks (validation/falling_plates); the circles played no part
+and are the independent check.
 
 Terminal velocities: one square (R = 2.5 cm), one disk (R = 2.5 cm) and one 5:1 rectangle of the
 same paper held broadside (effects gravity, buoyancy, drag only: nothing turns them), 3 s; the
@@ -195,7 +196,7 @@ def main():
         for j, (R, vertical) in enumerate(meta):
             per_bin[R] += segments(tr, j, R, vertical)
         model[kind] = [bin_stats(per_bin[R]) for R in RADII]
-        role = "not fitted"
+        role = "used to reject a model variant" if kind == "square" else "independent check"
         for R, m, r in zip(RADII, model[kind], ref[ref_key]):
             rng_txt = "R %.1f–%.1f cm" % (100 * r["r_lo"], 100 * r["r_hi"])
             src = "Howison et al. 2020 data (%d segments), %s" % (r["n"], role)
