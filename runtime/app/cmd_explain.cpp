@@ -64,6 +64,11 @@ void print_type(const json& t) {
 
 void explain(const std::string& path) {
   const json j = explain_scene(read_scene(path));
+  // what looks like a mistake first (io/sanity.h), on stderr as lrigid run prints it
+  for (const json& w : j["warnings"])
+    std::fprintf(stderr, "lrigid: %s: %s: %s: %s\n", w["error"].get<bool>() ? "error" : "warning",
+                 path.c_str(), w["key"].get<std::string>().c_str(),
+                 w["message"].get<std::string>().c_str());
   const json &fluid = j["fluid"], &flow = j["flow"], &art = j["art"];
   std::printf("scene: %s\n", path.c_str());
   std::printf("fluid: rho_f = %g kg/m^3, nu = %g m^2/s, gravity = %g m/s^2\n",

@@ -20,6 +20,7 @@
 #include "io/grid_reader.h"
 #include "io/progress.h"
 #include "io/result_writer.h"
+#include "io/sanity.h"
 #include "io/scene_json.h"
 #include "io/tolerance_table.h"
 #include "model/state.h"
@@ -36,6 +37,7 @@ struct RunArgs {
   long long seed = -1;
   int threads = 0;
   bool quiet = false;
+  bool strict = false;             // --strict: sanity warnings (io/sanity.h) are errors
   double tolerance = 0;            // relative error; > 0: choose scheme and dt (docs/accuracy.md)
   std::string tolerance_table;     // empty: default_tolerance_table_path()
   std::string stream = "auto";     // --stream-field: auto, on, off
@@ -89,6 +91,10 @@ void run(const RunArgs& a, const Ranks& ranks) {
   const double load_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - load0).count();
   const Model model = compile_model(scene, std::move(field), cached_added_mass);
+  // what is valid but most likely a mistake (units above all): before the run, on stderr and
+  // in summary.json
+  const std::vector<SanityFinding> findings = check_scene(scene, model);
+  report_findings(findings, scene.file, a.strict, a.quiet || !ranks.root());
   State state = initial_state(model, scene);
   // checkpoints (app/checkpoints.h): the build's fingerprint is only needed with them
   const bool checkpoints = scene.output.checkpoint_every > 0 || !a.resume.empty();
@@ -143,6 +149,7 @@ void run(const RunArgs& a, const Ranks& ranks) {
   if (!writer) return;
   nlohmann::json extra;
   extra["threads"] = a.threads;
+  extra["warnings"] = findings_json(findings);
   if (ranks.size() > 1) extra["ranks"] = ranks.size();
   if (!scene.uniform_field) {
     extra["field"] = scene.field_path;  // for render and ParaView
@@ -180,6 +187,10 @@ void add_run_command(CLI::App& app) {
                                               "depend on it")
       ->check(CLI::Range(1, 1024));
   cmd->add_flag("--quiet", args->quiet, "Print nothing but errors");
+  cmd->add_flag("--strict", args->strict,
+                "Make the sanity warnings errors (a body size, mass or density implausible for "
+                "the fluid and grid, a spawn box outside the grid, a time step beyond the "
+                "scheme's measured limit, a grid too coarse for the bodies: docs/scene-format.md)");
   cmd->add_option("--tolerance", args->tolerance,
                   "Relative error to reach: picks the cheapest integrator and dt of the measured "
                   "table for this kind of scene (docs/accuracy.md) and says what it chose")

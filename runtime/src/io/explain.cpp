@@ -8,6 +8,7 @@
 #include "integrate/sphere_batch.h"
 #include "io/added_mass_cache.h"
 #include "io/field_loader.h"
+#include "io/sanity.h"
 #include "model/model.h"
 
 namespace lrigid {
@@ -95,6 +96,7 @@ nlohmann::json explain_scene(const Scene& scene) {
   j["integrator"] = integrator_name(scene.integrator);
   j["dt"] = scene.dt;
   j["effects_auto"] = scene.effects_auto;
+  j["warnings"] = findings_json(check_scene(scene, model));  // io/sanity.h
   j["body_types"] = nlohmann::json::array();
   double total_ns = 0;
   for (size_t ti = 0; ti < model.types.size(); ++ti) {
