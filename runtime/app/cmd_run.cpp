@@ -12,6 +12,7 @@
 #include <memory>
 
 #include "checkpoints.h"
+#include "checks.h"
 #include "commands.h"
 #include "ranks.h"
 #include "integrate/simulation.h"
@@ -181,8 +182,8 @@ void add_run_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("run", "Integrate the bodies of a scene (docs/scene-format.md)");
   cmd->add_option("scene", args->scene, "Scene file (JSON, schema v1)")->required();
   cmd->add_option("-o,--output", args->out, "Output directory (overrides output.dir)");
-  cmd->add_option("--seed", args->seed, "Random seed (overrides the scene's seed)")
-      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--seed", args->seed, "Random seed (overrides the scene's seed), 0 or more")
+      ->check(non_negative("a whole number, 0 or more (the random seed)"));
   cmd->add_option("--threads", args->threads, "Threads (default: all cores); results do not "
                                               "depend on it")
       ->check(CLI::Range(1, 1024));
@@ -210,7 +211,7 @@ void add_run_command(CLI::App& app) {
   cmd->add_option("--checkpoint-every", args->checkpoint_every,
                   "Seconds of wall time between checkpoints (overrides "
                   "output.checkpoint_every; 0: none)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative("seconds, 0 or more (0: no checkpoints)"));
   cmd->callback([args] {
     const Ranks ranks;
     try {
