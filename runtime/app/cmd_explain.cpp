@@ -29,6 +29,7 @@ void print_type(const json& t) {
               t["index"].get<size_t>(), t["name"].get<std::string>().c_str(),
               t["shape"].get<std::string>().c_str(), t["count"].get<size_t>(), num(t, "mass"),
               num(t, "volume"), num(t, "density"));
+  std::printf("  In plain words: %s\n", t["plain_words"].get<std::string>().c_str());
   const std::string flat =
       t["flat"].get<bool>() ? "yes, normal = body axis " + std::to_string(t["normal_axis"].get<int>())
                             : "no";
@@ -87,6 +88,8 @@ void explain(const std::string& path) {
               j["integrator"].get<std::string>().c_str(), num(j, "dt"),
               j["effects_auto"].get<bool>() ? "auto" : "listed by the scene");
   for (const json& t : j["body_types"]) print_type(t);
+  std::printf("\nThe numbers (tau_p, St, Re, ...) and the reasons are explained in "
+              "docs/effects.md, \"Glossary\".\n");
   std::printf("\nestimated total: %.3g body-steps, %.3g s on one core\n",
               num(j["total"], "body_steps"), num(j["total"], "seconds_one_core"));
 }
