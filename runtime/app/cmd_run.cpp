@@ -151,6 +151,7 @@ void run(const RunArgs& a, const Ranks& ranks) {
   nlohmann::json extra;
   extra["threads"] = a.threads;
   extra["warnings"] = findings_json(findings);
+  extra["fluid_density"] = scene.fluid_density;  // kg/m^3; lrigid render draws water as a tank
   if (ranks.size() > 1) extra["ranks"] = ranks.size();
   if (!scene.uniform_field) {
     extra["field"] = scene.field_path;  // for render and ParaView
