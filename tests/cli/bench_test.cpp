@@ -11,6 +11,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "support/shell.h"
+
 namespace {
 
 const std::string kLrigid = std::string(LRIGID_BINARY_DIR) + "/bin/lrigid";
@@ -41,15 +43,10 @@ TEST(CliBench, MeasuresEveryPointAndCountsBodySteps) {
   std::filesystem::remove(out);
 }
 
-// stdout of lrigid with `args`, run from `cwd`
+// what lrigid with `args` prints, run from `cwd`
 std::string output(const std::string& cwd, const std::string& args) {
   std::string r;
-  FILE* p = popen(("cd '" + cwd + "' && " + kLrigid + " " + args + " 2>&1").c_str(), "r");
-  if (!p) return r;
-  char buf[4096];
-  size_t n;
-  while ((n = fread(buf, 1, sizeof buf, p)) > 0) r.append(buf, n);
-  pclose(p);
+  lrigid::test::sh("cd '" + cwd + "' && " + kLrigid + " " + args, &r);
   return r;
 }
 

@@ -2,12 +2,10 @@
 // readable bound (CLI11's own check printed the largest double in full, 309 digits), and
 // `added-mass --help` states the panel counts that lrigid added-mass actually uses.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
-
-#include <array>
-#include <cstdio>
 #include <regex>
 #include <string>
+
+#include "support/shell.h"
 
 namespace {
 
@@ -16,18 +14,12 @@ const std::string kScene = std::string(LRIGID_SOURCE_DIR) + "/scenes/uniform_box
 
 struct Result {
   int rc = -1;
-  std::string out;
+  std::string out;  // stdout and stderr
 };
 
 Result lrigid(const std::string& args) {
   Result r;
-  FILE* p = popen((kLrigid + " " + args + " 2>&1").c_str(), "r");
-  if (!p) return r;
-  std::array<char, 4096> buf;
-  size_t n;
-  while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) r.out.append(buf.data(), n);
-  const int rc = pclose(p);
-  r.rc = WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
+  r.rc = lrigid::test::sh(kLrigid + " " + args, &r.out);
   return r;
 }
 

@@ -3,10 +3,6 @@
 // them errors (exit 3, no results), every body outside the grid is an error, and lrigid explain
 // prints them too. Tiny scenes (a few spheres, 0.1 s).
 #include <gtest/gtest.h>
-#include <sys/wait.h>
-
-#include <array>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -14,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "support/shell.h"
 #include "support/vti_writer.h"
 
 namespace fs = std::filesystem;
@@ -30,13 +27,7 @@ struct Result {
 // runs lrigid with `args`, stderr captured (stdout dropped)
 Result lrigid(const std::string& args) {
   Result r;
-  FILE* p = popen((kLrigid + " " + args + " 2>&1 >/dev/null").c_str(), "r");
-  if (!p) return r;
-  std::array<char, 4096> buf;
-  size_t n;
-  while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) r.err.append(buf.data(), n);
-  const int rc = pclose(p);
-  r.rc = WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
+  r.rc = lrigid::test::sh("( " + kLrigid + " " + args + " 2>&1 >/dev/null )", &r.err);
   return r;
 }
 
