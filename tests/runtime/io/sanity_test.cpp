@@ -38,7 +38,7 @@ std::string sphere(double radius, double density, const std::string& where,
          std::to_string(count) + ", " + where + "}";
 }
 
-struct Fixture : ::testing::Test {
+struct SanityChecks : ::testing::Test {
   fs::path dir;
   void SetUp() override {
     dir = fs::temp_directory_path() /
@@ -84,14 +84,14 @@ std::string all(const std::vector<SanityFinding>& f) {
   return s;
 }
 
-TEST_F(Fixture, SaneScenesGiveNoFinding) {
+TEST_F(SanityChecks, SaneScenesGiveNoFinding) {
   // a 1 cm glass bead in the wind, in the grid and in a uniform flow
   const std::string b = "[" + sphere(0.005, 2500, R"("spawn_box": [[2, 2, 6], [8, 8, 9]])") + "]";
   EXPECT_TRUE(check(scene_text(grid(), b)).empty()) << all(check(scene_text(grid(), b)));
   EXPECT_TRUE(check(scene_text(kUniformAir, b)).empty()) << all(check(scene_text(kUniformAir, b)));
 }
 
-TEST_F(Fixture, CentimetresWrittenAsMetresAreCaughtBySizeAndMass) {
+TEST_F(SanityChecks, CentimetresWrittenAsMetresAreCaughtBySizeAndMass) {
   // a 1.2 cm bead written as radius 0.6 "m" (centimetres read as metres): 1.2 m wide, 10 m grid
   const auto f = check(scene_text(
       grid(), "[" + sphere(0.6, 2500, R"("spawn_box": [[2, 2, 6], [8, 8, 9]])") + "]"));
@@ -117,7 +117,7 @@ TEST_F(Fixture, CentimetresWrittenAsMetresAreCaughtBySizeAndMass) {
             std::string::npos);
 }
 
-TEST_F(Fixture, ADensityNoMaterialHasIsNamed) {
+TEST_F(SanityChecks, ADensityNoMaterialHasIsNamed) {
   const auto f = check(scene_text(
       kUniformAir, "[" + sphere(0.005, 78000, R"("spawn_box": [[0, 0, 6], [1, 1, 9]])") + "]"));
   const SanityFinding* d = find(f, "density");
@@ -128,7 +128,7 @@ TEST_F(Fixture, ADensityNoMaterialHasIsNamed) {
   EXPECT_NE(d->message.find("densities are in kg/m^3"), std::string::npos);
 }
 
-TEST_F(Fixture, SpawnBoxesOutsideOrPartlyOutsideTheGrid) {
+TEST_F(SanityChecks, SpawnBoxesOutsideOrPartlyOutsideTheGrid) {
   const std::string bodies =
       "[" + sphere(0.005, 2500, R"("spawn_box": [[20, 20, 20], [30, 30, 30]])") + ", " +
       sphere(0.005, 2500, R"("spawn_box": [[5, 5, 5], [15, 9, 9]])") + "]";
@@ -150,7 +150,7 @@ TEST_F(Fixture, SpawnBoxesOutsideOrPartlyOutsideTheGrid) {
   EXPECT_EQ(find(f, "all_outside_grid"), nullptr);
 }
 
-TEST_F(Fixture, EveryBodyOutsideTheGridIsAnErrorEvenWithoutStrict) {
+TEST_F(SanityChecks, EveryBodyOutsideTheGridIsAnErrorEvenWithoutStrict) {
   const auto f = check(scene_text(
       grid(), "[" + sphere(0.005, 2500, R"("position": [100, 100, 500])", 1) + "]"));
   const SanityFinding* all_out = find(f, "all_outside_grid");
@@ -169,7 +169,7 @@ TEST_F(Fixture, EveryBodyOutsideTheGridIsAnErrorEvenWithoutStrict) {
   }
 }
 
-TEST_F(Fixture, StrictMakesAWarningAnErrorNamingKeyAndFix) {
+TEST_F(SanityChecks, StrictMakesAWarningAnErrorNamingKeyAndFix) {
   const auto f = check(scene_text(
       kUniformAir, "[" + sphere(3, 2500, R"("spawn_box": [[0, 0, 6], [1, 1, 9]])") + "]"));
   ASSERT_FALSE(f.empty());
@@ -186,7 +186,7 @@ TEST_F(Fixture, StrictMakesAWarningAnErrorNamingKeyAndFix) {
   }
 }
 
-TEST_F(Fixture, SpawnBoxUnderTheGround) {
+TEST_F(SanityChecks, SpawnBoxUnderTheGround) {
   const auto f = check(scene_text(
       kUniformAir, "[" + sphere(0.005, 2500, R"("spawn_box": [[0, 0, -3], [1, 1, -1]])") + "]"));
   const SanityFinding* g = find(f, "spawn_below_ground");
@@ -196,7 +196,7 @@ TEST_F(Fixture, SpawnBoxUnderTheGround) {
   EXPECT_NE(g->message.find("check ground.z and the box's z"), std::string::npos);
 }
 
-TEST_F(Fixture, TimeStepBeyondTheExplicitSchemesMeasuredLimit) {
+TEST_F(SanityChecks, TimeStepBeyondTheExplicitSchemesMeasuredLimit) {
   // a 50 um glass bead in air: tau_p = rho_b d^2 / (18 mu) = 0.019 s; euler: dt <= 2 tau_p
   const std::string b = "[" + sphere(2.5e-5, 2500, R"("spawn_box": [[0, 0, 6], [1, 1, 9]])") + "]";
   const auto f = check(scene_text(kUniformAir, b, R"({"scheme": "euler", "dt": 0.5})"));
@@ -212,7 +212,7 @@ TEST_F(Fixture, TimeStepBeyondTheExplicitSchemesMeasuredLimit) {
             nullptr);
 }
 
-TEST_F(Fixture, GridTooCoarseForTheBodies) {
+TEST_F(SanityChecks, GridTooCoarseForTheBodies) {
   // all bodies start within one 2.5 m cell of the 5x5x5 grid
   const auto f = check(scene_text(
       grid(), "[" + sphere(0.005, 2500, R"("spawn_box": [[5, 5, 5], [6, 6, 6]])") + "]"));
