@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <chrono>
 #include <cinttypes>
 #include <cmath>
 #include <cstdlib>
@@ -243,9 +244,14 @@ void ResultWriter::write_frame(const State& st) {
   if (spec_.pvd) {
     const size_t i = frames_.size();
     // the frames written so far, openable while the run goes on (the one before this one was
-    // being written on the frames' thread: wait for it first)
+    // being written on the frames' thread: wait for it first); rewritten at most every half
+    // second of wall time, as the list grows with the run (and at every checkpoint)
     vtp_->wait();
-    write_partial_pvds();
+    const auto now = std::chrono::steady_clock::now();
+    if (frames_.empty() || now - partial_written_ >= std::chrono::milliseconds(500)) {
+      write_partial_pvds();
+      partial_written_ = now;
+    }
     vtp_->write(st, (fs::path(vtp_tmp_dir_) / frame_name("bodies", i)).string(),
                 (fs::path(shapes_tmp_dir_) / frame_name("shapes", i)).string());
     frames_.emplace_back(st.t, frame_name("bodies", i));

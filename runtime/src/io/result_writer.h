@@ -12,6 +12,7 @@
 // renamed is put back, so either all results appear or none. A writer destroyed before
 // finish() removes its temporaries.
 #pragma once
+#include <chrono>
 #include <cstdio>
 #include <memory>
 #include <string>
@@ -91,6 +92,7 @@ class ResultWriter {
   std::string vtp_tmp_dir_;
   std::string shapes_tmp_dir_;
   std::unique_ptr<FramesThread> vtp_;  // the two series' frames (io/vtp_frames.h)
+  std::chrono::steady_clock::time_point partial_written_;  // the partial .pvd's last rewrite
   GltfAnimation gltf_;                  // frames kept for animation.glb
   std::vector<std::pair<double, std::string>> frames_;
   std::vector<StagedPath> staged_;      // complete temporaries waiting for commit_staged
