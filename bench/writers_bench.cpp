@@ -121,7 +121,7 @@ int main(int argc, char** argv) {
     BodiesFrames bodies(model, comp);
     std::vector<TriangleMesh> surfaces;
     for (const BodyType& t : model.types)
-      surfaces.push_back(body_surface(t, shape_faces_for(model.body_count)));
+      surfaces.push_back(series_surface(t, shape_faces_for(model.body_count)));
     ShapesFrames shapes(std::move(surfaces), comp);
 
     Clock c_csv, c_bodies, c_shapes, c_glb, c_all;

@@ -114,7 +114,7 @@ ResultWriter::ResultWriter(const std::string& dir, const Model& model, const Out
     make_dir(shapes_tmp_dir_);
     const int faces = shape_faces_for(model_.body_count);
     std::vector<TriangleMesh> surfaces;
-    for (const BodyType& t : model_.types) surfaces.push_back(body_surface(t, faces));
+    for (const BodyType& t : model_.types) surfaces.push_back(series_surface(t, faces));
     vtp_ = std::make_unique<FramesThread>(model_, std::move(surfaces));
   }
   if (spec_.glb) {

@@ -80,6 +80,20 @@ vtkSmartPointer<vtkCellArray> cells_in_order(vtkIdType n, vtkIdType per) {
 
 }  // namespace
 
+TriangleMesh series_surface(const BodyType& type, int target_faces) {
+  if (type.shape.type != ShapeType::Box) return body_surface(type, target_faces);
+  const Vec3& h = type.shape.half_extents;
+  TriangleMesh m;
+  for (int i = 0; i < 8; ++i)  // corner i: bit 0 x, bit 1 y, bit 2 z (set: +h)
+    m.vertices.push_back(Vec3(i & 1 ? h.x() : -h.x(), i & 2 ? h.y() : -h.y(),
+                              i & 4 ? h.z() : -h.z()) - type.com);
+  // two triangles per face, counter-clockwise seen from outside
+  m.faces = {{0, 2, 3}, {0, 3, 1}, {4, 5, 7}, {4, 7, 6},   // z = -h, +h
+             {0, 1, 5}, {0, 5, 4}, {2, 6, 7}, {2, 7, 3},   // y = -h, +h
+             {0, 4, 6}, {0, 6, 2}, {1, 3, 7}, {1, 7, 5}};  // x = -h, +h
+  return m;
+}
+
 struct BodiesFrames::Impl {
   const Model& model;
   VtpCompression compression;

@@ -24,6 +24,11 @@ namespace lrigid {
 
 enum class VtpCompression { None, LZ4, ZLib };
 
+// The surface the shapes series draws for a body type, in its body frame: a box as its 12
+// triangles (its exact surface: a finer tessellation of flat faces draws the same picture and
+// costs more to write), any other shape as body_surface(type, target_faces) (result_writer.h).
+TriangleMesh series_surface(const BodyType& type, int target_faces);
+
 class BodiesFrames {
  public:
   BodiesFrames(const Model& model, VtpCompression c = VtpCompression::LZ4);
