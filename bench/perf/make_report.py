@@ -322,6 +322,14 @@ def main():
             w(line)
         w("")
 
+    # the outputs' cost (issue 29): hand-written next to this script from
+    # bench/perf/output_cost.sh's measurements, copied as it is
+    cost = os.path.join(os.path.dirname(os.path.abspath(__file__)), "output_cost.md")
+    if os.path.exists(cost):
+        for line in open(cost).read().rstrip("\n").split("\n"):
+            w(line)
+        w("")
+
     # peers and targets
     w("## Peers and targets")
     w("")

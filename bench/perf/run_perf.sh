@@ -88,7 +88,7 @@ else
   ns=1000,10000,100000,1000000; bsteps=1e6; lin_steps=40
 fi
 echo "run_perf.sh: lrigid bench (N = $ns)" >&2
-"$bin/lrigid" bench $scene --n $ns --threads 1,2 --body-steps $bsteps --min-steps 2 --json "$out/bench.json"
+"$bin/lrigid" bench $scene --effects all --n $ns --threads 1,2 --body-steps $bsteps --min-steps 2 --json "$out/bench.json"
 # linearity in N: the same steps (the same simulated window) at every N. The splitting step's
 # cost changes along the trajectory (its implicit iterations are data-dependent), so the fixed
 # body-step budget above gives each N a different window and a different cost.
@@ -96,7 +96,7 @@ echo "run_perf.sh: lrigid bench (N = $ns)" >&2
 # slow episodes of a minute or so that would otherwise read as a cost growing with N).
 for pass in 1 2; do
   echo "run_perf.sh: lrigid bench, $lin_steps steps at every N (pass $pass of 2)" >&2
-  "$bin/lrigid" bench $scene --n $ns --threads 1 --body-steps 1 --min-steps $lin_steps \
+  "$bin/lrigid" bench $scene --effects all --n $ns --threads 1 --body-steps 1 --min-steps $lin_steps \
     --warmup 2 --json "$out/bench_linear.$pass.json"
 done
 rm -f "$out/bench_linear.json"
@@ -117,7 +117,7 @@ for integ in euler rk4 splitting; do
   f="$out/callgrind.$integ.out"
   valgrind --tool=callgrind --callgrind-out-file="$f" --toggle-collect='lrigid::step_body*' \
     --toggle-collect='lrigid::advance_*_block*' \
-    "$bin/lrigid" bench $scene --n 1000 --integrators $integ --threads 1 --body-steps 4000 \
+    "$bin/lrigid" bench $scene --effects all --n 1000 --integrators $integ --threads 1 --body-steps 4000 \
     --min-steps 4 --warmup 0 --quiet --json "$out/cg.$integ.json" 2> "$out/callgrind.$integ.log"
   ir=$(callgrind_annotate "$f" 2>/dev/null | awk '/PROGRAM TOTALS/ {gsub(",", "", $1); print $1}')
   bs=$(/usr/bin/python3 -c "$py" "$out/cg.$integ.json")
@@ -138,7 +138,7 @@ echo "$cgjson" > "$out/callgrind.json"
 if [ $flops = 1 ]; then
 echo "run_perf.sh: flop counts (lackey)" >&2
 flops() {  # integrator steps -> F64, V128 and V256 operations (lackey's AluOps column)
-  valgrind --tool=lackey --detailed-counts=yes "$bin/lrigid" bench $scene --n 200 \
+  valgrind --tool=lackey --detailed-counts=yes "$bin/lrigid" bench $scene --effects all --n 200 \
     --integrators "$1" --threads 1 --body-steps 1 --min-steps "$2" --warmup 0 --quiet 2>&1 |
     awk '$2 == "F64" || $2 == "V128" || $2 == "V256" {v = $5; gsub(",", "", v); c[$2] = v}
          END {print c["F64"] + 0, c["V128"] + 0, c["V256"] + 0}'

@@ -112,8 +112,12 @@ void add_added_mass_command(CLI::App& app) {
   cmd->add_option("--fluid-density", opt->fluid_density, "fluid density RHO [kg/m^3]")
       ->capture_default_str();
   cmd->add_option("--panels", opt->panels,
-                  "boundary element panels for boxes and meshes (0 = default " +
-                      std::to_string(kDefaultPanels) + ")")
+                  "boundary element panels for boxes and meshes, about this many (0 = aim at " +
+                      std::to_string(kDefaultPanels) +
+                      "): a box is tessellated to the nearest count its construction allows "
+                      "(a cube 1536, a thin plate 1792); a mesh's triangles are split in 4 "
+                      "until nearest the aim, never coarsened (12 triangles give 768, 16 give "
+                      "1024); the count used is printed")
       ->capture_default_str();
   cmd->add_flag("--json", opt->json, "print JSON (keys volume, added_mass, method, panels, ...)");
   cmd->callback([opt, cmd] {

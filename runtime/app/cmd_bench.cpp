@@ -1,14 +1,17 @@
-// lrigid bench [SCENE.json] [--n 1000,...] [--integrators euler,...] [--threads 1,2] [--json F]
+// lrigid bench [SCENE.json] [--n 1000,...] [--integrators euler,...] [--threads 1,2]
+//              [--effects scene|all|auto|LIST] [--json F]
 // Scene-level throughput: the scene's field and body types, scaled to N bodies, stepped for a
 // fixed number of steps per (N, integrator, threads) with no output. Reports steady-state
 // body-steps per second (warm-up steps excluded, setup and writes never timed) and the memory
 // per body. docs/performance.md is generated from its JSON (bench/perf/run_perf.sh).
 #include <omp.h>
+#include <unistd.h>
 #include <time.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
@@ -28,12 +31,32 @@ namespace lrigid::app {
 
 namespace {
 
+namespace fs = std::filesystem;
+
+// the repository's scenes/leaves_wind.json, found from the binary (build/bin/lrigid) or the
+// source tree it was built from, not from the working directory
+std::string default_scene() {
+  const std::string rel = "scenes/leaves_wind.json";
+  char exe[4096];
+  const ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
+  if (n > 0) {
+    const fs::path p = fs::path(std::string(exe, size_t(n))).parent_path().parent_path()
+                           .parent_path() / rel;
+    if (fs::exists(p)) return p.string();
+  }
+#ifdef LRIGID_SOURCE_DIR
+  return std::string(LRIGID_SOURCE_DIR) + "/" + rel;
+#else
+  return rel;
+#endif
+}
+
 struct BenchArgs {
-  std::string scene = "scenes/leaves_wind.json";
+  std::string scene;  // empty: default_scene()
   std::vector<long long> n = {1000, 10000, 100000, 1000000};
   std::vector<std::string> integrators = {"euler", "rk4", "splitting"};
   std::vector<int> threads = {1, 2};
-  std::string effects = "all";
+  std::string effects = "scene";  // the scene's own ("auto" or its list), "all", or a list
   double body_steps = 3e6;  // measured body-steps per point (at least min_steps steps)
   int min_steps = 3;
   int warmup = 1;
@@ -52,7 +75,7 @@ Integrator integrator_from(const std::string& s) {
 EffectSet effects_from(const std::string& s, bool* is_auto) {
   EffectSet e;
   *is_auto = s == "auto";
-  if (*is_auto) return e;
+  if (*is_auto || s == "scene") return e;
   if (s == "all") {
     for (const EffectInfo& i : all_effects()) e.add(i.effect);
     return e;
@@ -100,14 +123,47 @@ void scale_bodies(Scene* scene, long long n) {
   }
 }
 
-void bench(const BenchArgs& a) {
+void bench(const BenchArgs& args) {
+  BenchArgs a = args;
+  if (a.scene.empty()) a.scene = default_scene();
   const Scene base = read_scene(a.scene);
   const FluidField field = load_field(base, StreamMode::Auto, a.quiet);
   bool eff_auto = false;
+  const bool scene_effects = a.effects == "scene";
   const EffectSet effects = effects_from(a.effects, &eff_auto);
   nlohmann::json out;
   out["scene"] = a.scene;
   out["effects"] = a.effects;
+  // what runs, said before the numbers (and in the JSON): the scene, the effects of each body
+  // type, the columns
+  {
+    Scene s = base;
+    if (!scene_effects) {
+      s.effects_auto = eff_auto;
+      if (!eff_auto) s.effects = effects;
+    }
+    const Model m = compile_model(s, field, cached_added_mass);
+    out["body_types"] = nlohmann::json::array();
+    for (const BodyType& t : m.types)
+      out["body_types"].push_back({{"name", t.name}, {"effects", effect_names(t.effects)}});
+  }
+  if (!a.quiet) {
+    std::printf("scene %s\neffects: %s\n", a.scene.c_str(),
+                scene_effects ? (base.effects_auto ? "the scene's (\"auto\": chosen per body type)"
+                                                   : "the scene's list")
+                : a.effects == "all" ? "all, for every body type (--effects all)"
+                                     : ("--effects " + a.effects).c_str());
+    for (const auto& t : out["body_types"]) {
+      std::string names;
+      for (const auto& e : t["effects"]) names += (names.empty() ? "" : ", ") + std::string(e);
+      std::printf("  %s: %s\n", std::string(t["name"]).c_str(), names.c_str());
+    }
+    std::printf("columns: bodies, integrator, threads, steps timed, wall_s (wall time, s), "
+                "body_steps_s (body-steps per second), per_thread (that / threads), per_cpu_s "
+                "(body-steps per second of CPU time, all threads), B/body (bytes of State per "
+                "body), scalar%% (%% of the body-steps of batched body types handed to the "
+                "scalar step, docs/batched-step.md)\n");
+  }
   out["field_bytes"] = field.bytes();
   if (!base.uniform_field) out["field"] = base.field_path;
   out["max_threads"] = omp_get_max_threads();
@@ -121,8 +177,10 @@ void bench(const BenchArgs& a) {
       Scene s = base;
       scale_bodies(&s, n);
       s.integrator = integrator_from(iname);
-      s.effects_auto = eff_auto;
-      if (!eff_auto) s.effects = effects;
+      if (!scene_effects) {
+        s.effects_auto = eff_auto;
+        if (!eff_auto) s.effects = effects;
+      }
       const int steps = std::max(a.min_steps, int(std::ceil(a.body_steps / double(n))));
       Model m = compile_model(s, field, cached_added_mass);
       const State initial = initial_state(m, s);
@@ -178,14 +236,17 @@ void add_bench_command(CLI::App& app) {
   auto* cmd = app.add_subcommand(
       "bench", "Throughput of a scene's step (body-steps/s) for several body counts, "
                "integrators and thread counts; no outputs written (docs/performance.md)");
-  cmd->add_option("scene", args->scene, "Scene file (default scenes/leaves_wind.json)");
+  cmd->add_option("scene", args->scene,
+                  "Scene file (default: the repository's scenes/leaves_wind.json, wherever "
+                  "lrigid is run from)");
   cmd->add_option("--n", args->n, "Body counts")->delimiter(',')->check(CLI::PositiveNumber);
   cmd->add_option("--integrators", args->integrators, "euler, rk4, splitting")->delimiter(',');
   cmd->add_option("--threads", args->threads, "Thread counts")
       ->delimiter(',')
       ->check(CLI::Range(1, 1024));
   cmd->add_option("--effects", args->effects,
-                  "\"all\" (default), \"auto\" (as the scene chooses) or a comma list");
+                  "\"scene\" (default: the scene's own, \"auto\" or its list), \"all\", "
+                  "\"auto\" or a comma list; the effects used are printed first");
   cmd->add_option("--body-steps", args->body_steps,
                   "Body-steps timed per point (at least --min-steps steps)")
       ->check(CLI::PositiveNumber);

@@ -29,6 +29,7 @@ void print_type(const json& t) {
               t["index"].get<size_t>(), t["name"].get<std::string>().c_str(),
               t["shape"].get<std::string>().c_str(), t["count"].get<size_t>(), num(t, "mass"),
               num(t, "volume"), num(t, "density"));
+  std::printf("  In plain words: %s\n", t["plain_words"].get<std::string>().c_str());
   const std::string flat =
       t["flat"].get<bool>() ? "yes, normal = body axis " + std::to_string(t["normal_axis"].get<int>())
                             : "no";
@@ -64,6 +65,11 @@ void print_type(const json& t) {
 
 void explain(const std::string& path) {
   const json j = explain_scene(read_scene(path));
+  // what looks like a mistake first (io/sanity.h), on stderr as lrigid run prints it
+  for (const json& w : j["warnings"])
+    std::fprintf(stderr, "lrigid: %s: %s: %s: %s\n", w["error"].get<bool>() ? "error" : "warning",
+                 path.c_str(), w["key"].get<std::string>().c_str(),
+                 w["message"].get<std::string>().c_str());
   const json &fluid = j["fluid"], &flow = j["flow"], &art = j["art"];
   std::printf("scene: %s\n", path.c_str());
   std::printf("fluid: rho_f = %g kg/m^3, nu = %g m^2/s, gravity = %g m/s^2\n",
@@ -82,6 +88,8 @@ void explain(const std::string& path) {
               j["integrator"].get<std::string>().c_str(), num(j, "dt"),
               j["effects_auto"].get<bool>() ? "auto" : "listed by the scene");
   for (const json& t : j["body_types"]) print_type(t);
+  std::printf("\nThe numbers (tau_p, St, Re, ...) and the reasons are explained in "
+              "docs/effects.md, \"Glossary\".\n");
   std::printf("\nestimated total: %.3g body-steps, %.3g s on one core\n",
               num(j["total"], "body_steps"), num(j["total"], "seconds_one_core"));
 }

@@ -31,6 +31,7 @@
 #include "commands.h"
 #include "io/result_writer.h"
 #include "util/error.h"
+#include "vtk_annotate.h"
 #include "vtk_draw.h"
 
 namespace lrigid::app {
@@ -105,6 +106,10 @@ class Renderer {
     win_->SetSize(args.width, args.height);
     win_->AddRenderer(ren_);
     add_context();
+    // which colour is which body type (and which are drawn enlarged)
+    std::vector<std::string> names;
+    for (const auto& t : a.types) names.push_back(t.name);
+    add_legend(ren_, names, scale_, args.width, args.height);
     body_mapper_->SetScalarModeToUseCellData();
     body_mapper_->SetColorModeToDirectScalars();
     body_actor_->SetMapper(body_mapper_);
@@ -123,14 +128,11 @@ class Renderer {
     body_mapper_->SetInputData(bodies_at(a, f, scale_));
     char buf[128];
     std::snprintf(buf, sizeof buf, "t = %.2f s   %zu bodies", a.times[f], a.bodies());
-    std::string label = buf;
-    for (size_t i = 0; i < a.types.size(); ++i)
-      if (scale_[i] > 1.05) {
-        std::snprintf(buf, sizeof buf, "   %s drawn %.2gx enlarged", a.types[i].name.c_str(),
-                      scale_[i]);
-        label += buf;
-      }
+    // the body types and their enlargement are in the legend; the caption says where we are
+    const std::string label = buf + context_note_;
     text_->SetInput(label.c_str());
+    text_->GetTextProperty()->SetFontSize(std::max(12, args_.height / 36));
+    fit_caption(text_, ren_, args_.width, 12);
     win_->Render();
     write_png(win_, png);
   }
@@ -154,6 +156,18 @@ class Renderer {
       // the camera frames the bodies (and the floor below them), not the whole grid
       box_.add(Vec3(box_.lo.x(), box_.lo.y(), gb[4]));
       add_solids(ren_, img);
+      // the domain: the grid's box; in water, the tank's walls and its surface (the grid's top)
+      const bool water = s.contains("fluid_density") && s["fluid_density"].is_number() &&
+                         s["fluid_density"].get<double>() >= 100;
+      add_domain(ren_, img, water);
+      if (water) {
+        // a tank is small: show all of it
+        box_.add(Vec3(gb[0], gb[2], gb[4]));
+        box_.add(Vec3(gb[1], gb[3], gb[5]));
+      }
+      context_note_ = std::string(water ? "   tank: walls, floor, water surface (grid top)"
+                                        : "   grid outline") +
+                      (mode == "k" ? ", slice of k near the floor" : ", streamlines of U");
       // just above the grid's floor: a map under the bodies (obstacles show as k = 0, the value
       // the grid keeps at invalid points)
       if (mode == "k")
@@ -206,6 +220,7 @@ class Renderer {
   vtkNew<vtkPolyDataMapper> body_mapper_;
   vtkNew<vtkActor> body_actor_;
   vtkNew<vtkTextActor> text_;
+  std::string context_note_;  // what the context shows, for the caption
 };
 
 std::string shell_quote(const std::string& s) {

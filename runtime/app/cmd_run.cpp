@@ -12,6 +12,7 @@
 #include <memory>
 
 #include "checkpoints.h"
+#include "checks.h"
 #include "commands.h"
 #include "effects/compile_model.h"
 #include "ranks.h"
@@ -21,6 +22,7 @@
 #include "io/grid_reader.h"
 #include "io/progress.h"
 #include "io/result_writer.h"
+#include "io/sanity.h"
 #include "io/scene_json.h"
 #include "io/tolerance_table.h"
 #include "model/state.h"
@@ -37,6 +39,7 @@ struct RunArgs {
   long long seed = -1;
   int threads = 0;
   bool quiet = false;
+  bool strict = false;             // --strict: sanity warnings (io/sanity.h) are errors
   double tolerance = 0;            // relative error; > 0: choose scheme and dt (docs/accuracy.md)
   std::string tolerance_table;     // empty: default_tolerance_table_path()
   std::string stream = "auto";     // --stream-field: auto, on, off
@@ -90,6 +93,10 @@ void run(const RunArgs& a, const Ranks& ranks) {
   const double load_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - load0).count();
   const Model model = compile_model(scene, std::move(field), cached_added_mass);
+  // what is valid but most likely a mistake (units above all): before the run, on stderr and
+  // in summary.json
+  const std::vector<SanityFinding> findings = check_scene(scene, model);
+  report_findings(findings, scene.file, a.strict, a.quiet || !ranks.root());
   State state = initial_state(model, scene);
   // checkpoints (app/checkpoints.h): the build's fingerprint is only needed with them
   const bool checkpoints = scene.output.checkpoint_every > 0 || !a.resume.empty();
@@ -144,6 +151,8 @@ void run(const RunArgs& a, const Ranks& ranks) {
   if (!writer) return;
   nlohmann::json extra;
   extra["threads"] = a.threads;
+  extra["warnings"] = findings_json(findings);
+  extra["fluid_density"] = scene.fluid_density;  // kg/m^3; lrigid render draws water as a tank
   if (ranks.size() > 1) extra["ranks"] = ranks.size();
   if (!scene.uniform_field) {
     extra["field"] = scene.field_path;  // for render and ParaView
@@ -175,12 +184,16 @@ void add_run_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("run", "Integrate the bodies of a scene (docs/scene-format.md)");
   cmd->add_option("scene", args->scene, "Scene file (JSON, schema v1)")->required();
   cmd->add_option("-o,--output", args->out, "Output directory (overrides output.dir)");
-  cmd->add_option("--seed", args->seed, "Random seed (overrides the scene's seed)")
-      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--seed", args->seed, "Random seed (overrides the scene's seed), 0 or more")
+      ->check(non_negative("a whole number, 0 or more (the random seed)"));
   cmd->add_option("--threads", args->threads, "Threads (default: all cores); results do not "
                                               "depend on it")
       ->check(CLI::Range(1, 1024));
   cmd->add_flag("--quiet", args->quiet, "Print nothing but errors");
+  cmd->add_flag("--strict", args->strict,
+                "Make the sanity warnings errors (a body size, mass or density implausible for "
+                "the fluid and grid, a spawn box outside the grid, a time step beyond the "
+                "scheme's measured limit, a grid too coarse for the bodies: docs/scene-format.md)");
   cmd->add_option("--tolerance", args->tolerance,
                   "Relative error to reach: picks the cheapest integrator and dt of the measured "
                   "table for this kind of scene (docs/accuracy.md) and says what it chose")
@@ -200,7 +213,7 @@ void add_run_command(CLI::App& app) {
   cmd->add_option("--checkpoint-every", args->checkpoint_every,
                   "Seconds of wall time between checkpoints (overrides "
                   "output.checkpoint_every; 0: none)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative("seconds, 0 or more (0: no checkpoints)"));
   cmd->callback([args] {
     const Ranks ranks;
     try {

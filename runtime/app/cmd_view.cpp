@@ -37,6 +37,7 @@
 #include <memory>
 #include <string>
 
+#include "checks.h"
 #include "commands.h"
 #include "effects/compile_model.h"
 #include "io/added_mass_cache.h"
@@ -559,8 +560,8 @@ void add_view_command(CLI::App& app) {
               "\nScripted: --frames N [--screenshot out.png] [--write-frames DIR] draws N frames "
               "and exits (under xvfb-run -a without a display). docs/viewer.md");
   cmd->add_option("scene", args->scene, "Scene file (JSON, schema v1)")->required();
-  cmd->add_option("--seed", args->seed, "Random seed (overrides the scene's seed)")
-      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--seed", args->seed, "Random seed (overrides the scene's seed), 0 or more")
+      ->check(non_negative("a whole number, 0 or more (the random seed)"));
   cmd->add_option("--threads", args->threads, "Simulation threads (default: all cores but one, left to the drawing)")
       ->check(CLI::Range(1, 1024));
   cmd->add_option("--pace", args->pace,

@@ -63,8 +63,9 @@ void require_display(const std::string& command) {
 }
 
 void type_colour(size_t i, unsigned char rgb[3]) {
-  static const unsigned char kPalette[][3] = {{230, 140, 50}, {60, 130, 220}, {110, 190, 80},
-                                              {210, 80, 110}, {150, 110, 210}, {220, 200, 80}};
+  // no blue: the slices of k and |U| are blue (issue 29)
+  static const unsigned char kPalette[][3] = {{230, 140, 50}, {70, 170, 70}, {200, 50, 90},
+                                              {150, 90, 200}, {235, 200, 40}, {120, 80, 40}};
   for (int k = 0; k < 3; ++k) rgb[k] = kPalette[i % 6][k];
 }
 

@@ -21,7 +21,8 @@ namespace lrigid::app {
 // lrigid::Error(ExitCode::Runtime) with a hint to run `xvfb-run -a lrigid <command> ...`.
 void require_display(const std::string& command);
 
-// Colour of body type i (a palette of 6 that stays readable over the context), RGB 0..255.
+// Colour of body type i (a palette of 6 that stays readable over the context, no blue), RGB
+// 0..255.
 void type_colour(size_t i, unsigned char rgb[3]);
 
 struct Bounds {

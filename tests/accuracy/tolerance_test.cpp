@@ -49,6 +49,11 @@ TEST(Tolerance, UnreachableToleranceNamesTheSmallestMeasuredError) {
   } catch (const Error& e) {
     EXPECT_EQ(e.code(), ExitCode::BadInput);
     EXPECT_NE(std::string(e.what()).find("0.0003"), std::string::npos) << e.what();
+    // issue 29: the flag's value first, what is reachable, and what to do
+    const std::string w = e.what();
+    EXPECT_EQ(w.rfind("--tolerance 1e-05 is not reachable for 'uniform-air' scenes", 0), 0u) << w;
+    EXPECT_NE(w.find("the reachable tolerances are 0.0003 and above"), std::string::npos) << w;
+    EXPECT_NE(w.find("Pass --tolerance 0.0003 or more"), std::string::npos) << w;
   }
   EXPECT_THROW(choose_for_tolerance(small_table(), "uniform-air", 0), Error);
   EXPECT_THROW(choose_for_tolerance(small_table(), "uniform-air", -1), Error);

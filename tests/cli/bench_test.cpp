@@ -3,12 +3,15 @@
 // are usage errors.
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
 
 #include <nlohmann/json.hpp>
+
+#include "support/shell.h"
 
 namespace {
 
@@ -38,6 +41,54 @@ TEST(CliBench, MeasuresEveryPointAndCountsBodySteps) {
     EXPECT_GE(r["state_bytes_per_body"].get<double>(), 4.0 * 24 + 32);
   }
   std::filesystem::remove(out);
+}
+
+// what lrigid with `args` prints, run from `cwd`
+std::string output(const std::string& cwd, const std::string& args) {
+  std::string r;
+  lrigid::test::sh("cd '" + cwd + "' && " + kLrigid + " " + args, &r);
+  return r;
+}
+
+// issue 29: by default the scene's own effects, said before the numbers with the columns, the
+// same effects lrigid explain says the scene simulates
+TEST(CliBench, UsesTheScenesOwnEffectsAndSaysWhichAndWhatTheColumnsAre) {
+  const std::string tmp = std::filesystem::temp_directory_path().string();
+  const std::string b = output(tmp, "bench " + kScene +
+                                        " --n 20 --integrators euler --threads 1 --body-steps 1 "
+                                        "--min-steps 1 --warmup 0");
+  EXPECT_NE(b.find("effects: the scene's (\"auto\": chosen per body type)"), std::string::npos)
+      << b;
+  const std::string e = output(tmp, "explain " + kScene);
+  // "simulated: ..." of each body type, in order, against bench's "  name: ..." lines
+  size_t at = 0;
+  for (const char* name : {"paper_card", "polystyrene_bead"}) {
+    const size_t s = e.find("simulated: ", at);
+    ASSERT_NE(s, std::string::npos) << e;
+    const std::string list = e.substr(s + 11, e.find('\n', s) - s - 11);
+    at = s + 1;
+    EXPECT_NE(b.find(std::string("  ") + name + ": " + list + "\n"), std::string::npos)
+        << name << ": " << list << "\n" << b;
+  }
+  EXPECT_NE(b.find("B/body (bytes of State per body)"), std::string::npos) << b;
+  EXPECT_NE(b.find("scalar% (% of the body-steps of batched body types handed to the scalar "
+                   "step"),
+            std::string::npos) << b;
+  EXPECT_NE(output(tmp, "bench " + kScene + " --effects all --n 20 --integrators euler "
+                        "--threads 1 --body-steps 1 --min-steps 1 --warmup 0")
+                .find("effects: all, for every body type (--effects all)"),
+            std::string::npos);
+}
+
+// issue 29: the default scene is the repository's, whatever the working directory
+TEST(CliBench, DefaultSceneResolvesFromTheRepositoryNotTheWorkingDirectory) {
+  const std::string tmp = std::filesystem::temp_directory_path().string();
+  const std::string b = output(tmp, "bench --n 10 --integrators euler --threads 1 "
+                                    "--body-steps 1 --min-steps 1 --warmup 0");
+  // it runs (the wind grid exists) or fails on the grid, but it found the scene file
+  EXPECT_NE(b.find(std::string(LRIGID_SOURCE_DIR) + "/scenes/leaves_wind.json"),
+            std::string::npos) << b;
+  EXPECT_EQ(b.find("scenes/leaves_wind.json: file not found"), std::string::npos) << b;
 }
 
 TEST(CliBench, BadArgumentsAreUsageErrors) {

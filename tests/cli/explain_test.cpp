@@ -4,6 +4,8 @@
 // cannot read is an error that names the file.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <array>
 #include <cstdio>
 #include <regex>
@@ -89,6 +91,63 @@ TEST(CliExplain, SpunBallGetsMagnus) {
   EXPECT_NE(t.back().chooses.find("magnus"), std::string::npos) << t.back().chooses;
   for (size_t i = 0; i + 1 < t.size(); ++i)
     EXPECT_EQ(t[i].chooses.find("magnus"), std::string::npos) << "petal " << i;
+}
+
+// issue 29: each body type starts with one plain sentence, and the sentence agrees with the
+// numbers printed under it: the settling speed, falls or rises, the turbulence response
+TEST(CliExplain, EachBodyTypeStartsWithAPlainSentenceThatMatchesItsNumbers) {
+  char tmpl[] = "/tmp/lrigid_explain_XXXXXX";
+  ASSERT_NE(mkdtemp(tmpl), nullptr);
+  const std::string dir = tmpl, path = dir + "/scene.json";
+  // a steel ball in short-lived turbulence (k/eps = 0.01 s), and a bubble in water
+  FILE* f = fopen(path.c_str(), "w");
+  ASSERT_NE(f, nullptr);
+  fputs(R"({"version": 1, "fluid": {"density": 1000, "kinematic_viscosity": 1e-6,
+    "uniform": {"U": [0.01, 0, 0], "k": 1e-3, "epsilon": 0.1}}, "gravity": [0, 0, -9.81],
+    "effects": ["gravity", "buoyancy", "added_mass", "drag", "mean_flow", "turbulence"], "integrator": {"scheme": "splitting", "dt": 0.001}, "duration": 0.1, "seed": 1,
+    "bodies": [
+      {"name": "steel", "shape": {"type": "sphere", "radius": 0.01}, "density": 7800,
+       "count": 1, "position": [0, 0, 1]},
+      {"name": "bubble", "shape": {"type": "sphere", "radius": 0.001}, "density": 1.2,
+       "count": 1, "position": [0, 0, 1]}]})",
+        f);
+  fclose(f);
+  const Result r = explain(path);
+  std::remove(path.c_str());
+  rmdir(dir.c_str());
+  ASSERT_EQ(r.rc, 0) << r.out;
+  const std::regex block(
+      "body type [0-9]+ \"([a-z_]+)\"[^\n]*\n  In plain words: ([^\n]*)\n[^\n]*\n"
+      "  size d = [^ ]+ m   settling speed = ([0-9.e+-]+) m/s[^\n]*\n"
+      "  tau_p = [^ ]+ s   St\\(k/eps\\) = ([0-9.e+-]+)");
+  std::vector<std::vector<std::string>> seen;
+  for (std::sregex_iterator i(r.out.begin(), r.out.end(), block), e; i != e; ++i)
+    seen.push_back({(*i)[1].str(), (*i)[2].str(), (*i)[3].str(), (*i)[4].str()});
+  ASSERT_EQ(seen.size(), 2u) << r.out;
+  char speed[32];
+  // steel: falls, at the settling speed printed below (2 digits), turbulence barely moves it
+  EXPECT_EQ(seen[0][0], "steel");
+  std::snprintf(speed, sizeof speed, "%.2g m/s", std::stod(seen[0][2]));
+  EXPECT_NE(seen[0][1].find(std::string("falls at about ") + speed), std::string::npos)
+      << seen[0][1];
+  ASSERT_GT(std::stod(seen[0][3]), 3.0) << "St(k/eps) of the steel ball";
+  EXPECT_EQ(seen[0][1].find("Heavy enough that turbulence barely moves it;"), 0u)
+      << seen[0][1];
+  EXPECT_NE(seen[0][1].find("round, so it does not flutter"), std::string::npos);
+  // bubble: rises
+  EXPECT_EQ(seen[1][0], "bubble");
+  std::snprintf(speed, sizeof speed, "%.2g m/s", std::stod(seen[1][2]));
+  EXPECT_NE(seen[1][1].find(std::string("rises at about ") + speed + " (lighter than the water)"),
+            std::string::npos)
+      << seen[1][1];
+  EXPECT_NE(r.out.find("docs/effects.md, \"Glossary\""), std::string::npos);
+  // the flat leaf of the wind scene flutters
+  const Result leaves = explain(kScenes + "plate_flutter.json");
+  EXPECT_NE(leaves.out.find("In plain words: No turbulence moves it (the flow has none); falls "
+                            "at about"),
+            std::string::npos)
+      << leaves.out;
+  EXPECT_NE(leaves.out.find("its flat shape makes it flutter and tumble."), std::string::npos);
 }
 
 TEST(CliExplain, MissingSceneIsAnErrorNamingTheFile) {

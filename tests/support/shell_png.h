@@ -1,7 +1,6 @@
 // For tests that run the lrigid program and look at the PNGs it draws (tests/render/):
 // a shell command's exit status and output, and a PNG read into memory.
 #pragma once
-#include <sys/wait.h>
 #include <vtkImageData.h>
 #include <vtkNew.h>
 #include <vtkPNGReader.h>
@@ -12,19 +11,9 @@
 #include <string>
 #include <vector>
 
-namespace lrigid::test {
+#include "support/shell.h"
 
-// runs a shell command; returns its exit status (-1 when it did not exit) and stdout+stderr
-inline int sh(const std::string& cmd, std::string* out = nullptr) {
-  std::string text;
-  FILE* p = popen((cmd + " 2>&1").c_str(), "r");
-  if (!p) return -1;
-  char buf[512];
-  while (fgets(buf, sizeof buf, p)) text += buf;
-  const int st = pclose(p);
-  if (out) *out = text;
-  return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-}
+namespace lrigid::test {
 
 // pixels row by row, bottom row first (VTK's order), `comps` bytes each
 struct Image {

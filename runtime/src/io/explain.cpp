@@ -9,7 +9,9 @@
 #include "integrate/simulation.h"
 #include "integrate/sphere_batch.h"
 #include "io/added_mass_cache.h"
+#include "io/explain_words.h"
 #include "io/field_loader.h"
+#include "io/sanity.h"
 #include "model/model.h"
 
 namespace lrigid {
@@ -97,10 +99,12 @@ nlohmann::json explain_scene(const Scene& scene) {
   j["integrator"] = integrator_name(scene.integrator);
   j["dt"] = scene.dt;
   j["effects_auto"] = scene.effects_auto;
+  j["warnings"] = findings_json(check_scene(scene, model));  // io/sanity.h
   j["body_types"] = nlohmann::json::array();
   double total_ns = 0;
   for (size_t ti = 0; ti < model.types.size(); ++ti) {
     j["body_types"].push_back(body_type(scene, model, flow, ti));
+    j["body_types"].back()["plain_words"] = plain_words(j["body_types"].back(), j);
     total_ns += j["body_types"].back()["cost_ns"].get<double>() * double(model.types[ti].count);
   }
   const double steps = std::round(scene.duration / scene.dt);

@@ -12,6 +12,7 @@
 // renamed is put back, so either all results appear or none. A writer destroyed before
 // finish() removes its temporaries.
 #pragma once
+#include <chrono>
 #include <cstdio>
 #include <memory>
 #include <string>
@@ -20,6 +21,7 @@
 #include "integrate/simulation.h"
 #include "io/atomic_file.h"
 #include "io/gltf_writer.h"
+#include "io/vtp_frames.h"
 #include "model/state.h"
 #include "nlohmann/json.hpp"
 
@@ -77,8 +79,6 @@ class ResultWriter {
   void keep_temporaries() { keep_ = true; }
 
  private:
-  void write_vtp(const State& state, const std::string& path) const;
-  void write_shapes_vtp(const State& state, const std::string& path) const;
   void cleanup();
   void write_partial_pvds() const;
 
@@ -88,9 +88,11 @@ class ResultWriter {
   std::string tag_;
   std::FILE* csv_ = nullptr;
   std::string csv_tmp_;
+  std::string csv_line_;  // a frame of trajectories.csv, reused
   std::string vtp_tmp_dir_;
   std::string shapes_tmp_dir_;
-  std::vector<TriangleMesh> surfaces_;  // (ntype) for the shapes series
+  std::unique_ptr<FramesThread> vtp_;  // the two series' frames (io/vtp_frames.h)
+  std::chrono::steady_clock::time_point partial_written_;  // the partial .pvd's last rewrite
   GltfAnimation gltf_;                  // frames kept for animation.glb
   std::vector<std::pair<double, std::string>> frames_;
   std::vector<StagedPath> staged_;      // complete temporaries waiting for commit_staged

@@ -1,6 +1,7 @@
 #include "model/tolerance.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <limits>
 
@@ -46,19 +47,38 @@ ToleranceChoice choose_for_tolerance(const ToleranceTable& table, const std::str
                                                  "' (the table has: " + have + ")"));
   }
   const ToleranceEntry* best = nullptr;
-  double smallest = std::numeric_limits<double>::infinity();
+  const ToleranceEntry* most_accurate = nullptr;
   for (const ToleranceEntry& e : it->second) {
-    smallest = std::min(smallest, e.error);
+    if (!most_accurate || e.error < most_accurate->error) most_accurate = &e;
     if (e.error > tolerance) continue;
     if (!best || e.cost < best->cost || (e.cost == best->cost && e.dt > best->dt)) best = &e;
   }
   if (!best) {
-    char buf[200];
+    // the flag's value is what is wrong, not the table: say so first, then what is reachable
+    // for this kind of scene and for the others, then where the measurements are
+    std::string others;
+    for (const auto& [k, entries] : table.kinds) {
+      if (k == used || entries.empty()) continue;
+      double m = entries[0].error;
+      for (const ToleranceEntry& e : entries) m = std::min(m, e.error);
+      char b[80];
+      std::snprintf(b, sizeof b, "%s'%s' from %.2g", others.empty() ? "" : ", ", k.c_str(), m);
+      others += b;
+    }
+    // the smallest error rounded up to 2 significant digits: a value that is reachable
+    const double m = most_accurate->error;
+    const double unit = std::pow(10.0, std::floor(std::log10(m)) - 1);
+    const double suggest = std::ceil(m / unit * (1 - 1e-12)) * unit;
+    char buf[600];
     std::snprintf(buf, sizeof buf,
-                  "no measured integrator and dt reaches a relative error of %g for '%s' "
-                  "scenes; the smallest measured is %.3g",
-                  tolerance, used.c_str(), smallest);
-    throw Error(ExitCode::BadInput, where(table.source, "kinds." + used, buf));
+                  "--tolerance %g is not reachable for '%s' scenes: the most accurate measured "
+                  "point is %s at dt = %g s with a relative error of %.3g, so the reachable "
+                  "tolerances are %.3g and above (other kinds of scenes: %s). Pass --tolerance "
+                  "%.2g or more, or set integrator.scheme and integrator.dt in the scene yourself "
+                  "(measurements: %s, docs/accuracy.md)",
+                  tolerance, used.c_str(), most_accurate->integrator.c_str(), most_accurate->dt,
+                  m, m, others.empty() ? "none" : others.c_str(), suggest, table.source.c_str());
+    throw Error(ExitCode::BadInput, buf);
   }
   ToleranceChoice c;
   c.entry = *best;

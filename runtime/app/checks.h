@@ -1,0 +1,22 @@
+// Checks of numeric flags whose messages read well (issue 29). CLI::NonNegativeNumber is a range
+// up to the largest double and prints that bound in full (309 digits: "Value -1 not in range
+// 0.000000 to 179769313486231570814527423731704356798070567525844996598917476803157...").
+#pragma once
+#include <CLI/CLI.hpp>
+#include <string>
+
+namespace lrigid::app {
+
+// a number >= 0; `what` says what it is, e.g. "a whole number, 0 or more (the random seed)"
+inline CLI::Validator non_negative(const std::string& what) {
+  return CLI::Validator(
+      [what](std::string& s) -> std::string {
+        double v = 0;
+        if (!CLI::detail::lexical_cast(s, v)) return "\"" + s + "\" is not a number: give " + what;
+        if (!(v >= 0)) return s + " is negative: give " + what;
+        return "";
+      },
+      "NUMBER >= 0");
+}
+
+}  // namespace lrigid::app

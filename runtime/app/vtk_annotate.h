@@ -1,0 +1,30 @@
+// What makes a picture of `lrigid render` read at a glance (issue 29): a legend of the body
+// types in their colours, a caption that fits the image, and the domain the bodies are in (the
+// grid's outline; for water, the tank's walls and its surface). VTK; used by cmd_render.cpp.
+#pragma once
+#include <string>
+#include <vector>
+
+class vtkImageData;
+class vtkRenderer;
+class vtkTextActor;
+
+namespace lrigid::app {
+
+// A legend box in the top-left corner: one entry per body type, a swatch in type_colour(i)
+// (vtk_draw.h) and the type's name, with " (drawn Nx)" where the type is drawn enlarged
+// (scales[i] > 1.05). Its text is sized for an image `height` pixels tall.
+void add_legend(vtkRenderer* ren, const std::vector<std::string>& names,
+                const std::vector<double>& scales, int width, int height);
+
+// The grid's box as dark lines; with `water`, also its side walls and floor as pale translucent
+// panels and the water surface (the grid's top) as a translucent blue sheet.
+void add_domain(vtkRenderer* ren, vtkImageData* grid, bool water);
+
+// Shrinks the caption's font until it fits within the window's width (less 2 margins of
+// `margin` pixels), down to 10 points; if it still does not fit, puts each of its parts
+// (separated by 3 spaces) on a line of its own and shrinks down to 8 points. The renderer must
+// be in a window of its final size.
+void fit_caption(vtkTextActor* text, vtkRenderer* ren, int width, int margin);
+
+}  // namespace lrigid::app

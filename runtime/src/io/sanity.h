@@ -1,0 +1,49 @@
+// Sanity checks of a scene before it runs (issue 29; docs/scene-format.md, "Sanity warnings"):
+// what is valid input but most likely a mistake, above all in units (sizes in centimetres
+// written as metres, a spawn box in another frame than the grid). Each finding names the scene
+// key, its value, what looks wrong and what to check.
+//   - a body type whose size or mass is implausible for its fluid and grid
+//   - a density no material has
+//   - a spawn box or position outside the grid, or under the ground
+//   - a time step beyond what the chosen scheme was measured to handle (docs/stability.md)
+//   - a grid too coarse for the bodies (the bodies all start within one cell; a grid of fewer
+//     than 4 points along an axis)
+// Findings are warnings, except one: every body of the scene starting outside the grid is an
+// error (the run would end at t = 0). `lrigid run --strict` makes every warning an error.
+#pragma once
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "model/model.h"
+#include "model/scene.h"
+// analyze_effects, flow_scales and compile_model: in model/model.h, or in effects/compile_model.h
+// once the effects refactor on main has moved them there
+#if __has_include("effects/compile_model.h")
+#include "effects/compile_model.h"
+#endif
+
+namespace lrigid {
+
+struct SanityFinding {
+  std::string check;    // which check: body_size, body_mass, density, spawn_outside_grid,
+                        // spawn_partly_outside_grid, spawn_below_ground, dt_stability,
+                        // grid_coarse, all_outside_grid
+  std::string key;      // the scene key, e.g. "bodies[0].shape"
+  std::string message;  // the value, what looks wrong, what to check
+  bool error = false;   // an error even without --strict
+};
+
+std::vector<SanityFinding> check_scene(const Scene& scene, const Model& model);
+
+// [{check, key, message, error}] for summary.json and lrigid explain's data
+nlohmann::json findings_json(const std::vector<SanityFinding>& findings);
+
+// Prints each finding to stderr ("lrigid: warning: FILE: KEY: MESSAGE"; not with quiet, but
+// errors always), then throws lrigid::Error(ExitCode::BadInput) naming the first one that is an
+// error, or, with `strict`, the first warning.
+void report_findings(const std::vector<SanityFinding>& findings, const std::string& scene_file,
+                     bool strict, bool quiet);
+
+}  // namespace lrigid
