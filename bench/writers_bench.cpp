@@ -22,6 +22,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "effects/compile_model.h"
 #include "integrate/simulation.h"
 #include "io/added_mass_cache.h"
 #include "io/field_loader.h"
@@ -29,11 +30,6 @@
 #include "io/scene_json.h"
 #include "io/vtp_frames.h"
 #include "model/state.h"
-// analyze_effects, flow_scales and compile_model: in model/model.h, or in effects/compile_model.h
-// once the effects refactor on main has moved them there
-#if __has_include("effects/compile_model.h")
-#include "effects/compile_model.h"
-#endif
 
 namespace fs = std::filesystem;
 using namespace lrigid;

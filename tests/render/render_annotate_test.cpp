@@ -139,7 +139,9 @@ TEST_F(RenderAnnotate, CaptionFitsA480PixelImage) {
       }
     ASSERT_GE(right, 0) << "no caption at " << w << " px";
     EXPECT_LT(right, w - 4) << "the caption runs off a " << w << " px image";
-    if (w == 160) EXPECT_GT(top, 20) << "one line at 160 px: it cannot fit";
+    if (w == 160) {
+      EXPECT_GT(top, 20) << "one line at 160 px: it cannot fit";
+    }
   }
 }
 

@@ -16,13 +16,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include "effects/compile_model.h"
 #include "model/model.h"
 #include "model/scene.h"
-// analyze_effects, flow_scales and compile_model: in model/model.h, or in effects/compile_model.h
-// once the effects refactor on main has moved them there
-#if __has_include("effects/compile_model.h")
-#include "effects/compile_model.h"
-#endif
 
 namespace lrigid {
 
