@@ -12,8 +12,9 @@ namespace foam2grid {
 
 /// The unsigned distance (m) from every grid point (x fastest) to the nearest face of a wall
 /// patch of any part: exact to the faces triangulated as fans from their first point (exact for
-/// planar faces), found with a VTK static cell locator, OpenMP over the points. Empty when the
-/// mesh has no wall face. *n_faces (when given) receives the number of wall faces used.
+/// planar faces), found through a bounding-volume hierarchy of the triangles, OpenMP over rows
+/// of the grid. Empty when the mesh has no wall face. *n_faces (when given) receives the number
+/// of wall faces used.
 std::vector<float> unsigned_wall_distance(const std::vector<MeshPart>& parts,
                                           const GridSpec& grid, std::size_t* n_faces = nullptr);
 
