@@ -229,7 +229,8 @@ LRIGID_LANE ContactOut<T> contact_kernel(const ContactParams& k, const T* Minv, 
 // (J_i.n >= 0, |J_i,t| <= mu J_i.n): points never pull, and friction never exceeds mu times
 // the normal impulse. Points with depth < 0 (not touching) take none. v and w (body frame) are
 // updated in place; dx receives the deepest point's position correction (body frame). Returns
-// the number of points that carry a normal impulse. At most kContactMaxPoints points.
+// the number of points that carry a normal impulse. At most kContactMaxPoints points. It loops
+// and branches per point: one body at a time (a batched loop calls it per lane).
 constexpr int kContactMaxPoints = 64;
 template <typename T>
 int contact_resolve(const ContactParams& k, const T* Minv, T* v, T* w, int count, const T* r,
