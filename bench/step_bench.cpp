@@ -7,6 +7,8 @@
 #include <filesystem>
 #include <string>
 
+#include "effects/compile_model.h"
+#include "effects/registry.h"
 #include "integrate/integrators.h"
 #include "io/added_mass_cache.h"
 #include "io/grid_reader.h"

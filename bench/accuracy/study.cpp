@@ -5,6 +5,8 @@
 #include <cmath>
 #include <ctime>
 
+#include "effects/compile_model.h"
+#include "effects/registry.h"
 #include "io/added_mass_cache.h"
 #include "util/error.h"
 

@@ -14,6 +14,8 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.h"
+#include "effects/compile_model.h"
+#include "effects/registry.h"
 #include "integrate/simulation.h"
 #include "io/added_mass_cache.h"
 #include "io/atomic_file.h"

@@ -13,6 +13,7 @@
 
 #include "checkpoints.h"
 #include "commands.h"
+#include "effects/compile_model.h"
 #include "ranks.h"
 #include "integrate/simulation.h"
 #include "io/added_mass_cache.h"

@@ -38,6 +38,7 @@
 #include <string>
 
 #include "commands.h"
+#include "effects/compile_model.h"
 #include "io/added_mass_cache.h"
 #include "io/field_loader.h"
 #include "io/result_writer.h"

@@ -4,6 +4,8 @@
 // end "exited" (never "failed") at a position inside the grid box.
 #include <gtest/gtest.h>
 
+#include "effects/compile_model.h"
+#include "effects/registry.h"
 #include "stability/hard_case.h"
 
 namespace lrigid {

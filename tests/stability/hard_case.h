@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "effects/drag.h"
+#include "effects/registry.h"
 #include "integrate/simulation.h"
 #include "support/fixture.h"
 

@@ -5,6 +5,8 @@
 // variance.
 #include <gtest/gtest.h>
 
+#include "effects/compile_model.h"
+#include "effects/registry.h"
 #include "stability/hard_case.h"
 
 namespace lrigid {

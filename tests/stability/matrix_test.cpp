@@ -11,6 +11,8 @@
 #include <map>
 #include <tuple>
 
+#include "effects/compile_model.h"
+#include "effects/registry.h"
 #include "stability/hard_case.h"
 
 namespace lrigid {

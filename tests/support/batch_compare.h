@@ -13,6 +13,7 @@
 #include <utility>
 #include <vector>
 
+#include "effects/compile_model.h"
 #include "integrate/simulation.h"
 #include "support/fixture.h"
 

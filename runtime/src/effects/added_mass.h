@@ -8,6 +8,7 @@
 //     a~ = d/dt (R^T u_f) = R^T Du/Dt - w x u_f (Auton et al. 1988 use the fluid's material
 //     derivative Du/Dt = dU/dt + (U . grad) U).
 #pragma once
+#include "effects/context.h"
 #include "effects/wrench.h"
 #include "model/model.h"
 
@@ -23,6 +24,18 @@ inline Wrench added_mass_wrench(const BodyType& type, const Vec3& v_rel, const V
   Vec6 a;
   a << fluid_acc, Vec3::Zero();
   return type.K_fluid * a - kirchhoff_gyro(v_rel, w, momentum);
+}
+
+// the scalar step's term (the registry's row). In the impulse form (euler, splitting) the rest
+// of the Kirchhoff terms live in the impulse (integrate/dynamics.h): only -v_r x P_f remains.
+inline Vec6 added_mass_term(const EffectContext& c) {
+  if (c.impulse_form) {
+    Vec6 xi_r;
+    xi_r << c.v_rel, c.w;
+    const Vec3 P_f = (c.type->K_fluid * xi_r).head<3>();
+    return make_wrench(Vec3::Zero(), -c.v_rel.cross(P_f));
+  }
+  return added_mass_wrench(*c.type, c.v_rel, c.w, c.fluid_acc);
 }
 
 }  // namespace lrigid

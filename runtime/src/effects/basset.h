@@ -21,6 +21,7 @@
 // step per unit C, the window (W vectors, newest first), the tail modes (one vector per mode;
 // padded to a multiple of 4 modes of weight 0), and the count of windowed intervals.
 #pragma once
+#include "effects/context.h"
 #include "effects/wrench.h"
 #include "model/model.h"
 
@@ -46,6 +47,9 @@ inline Vec3 basset_history_force(const BassetKernel& k, const double* history) {
 inline Wrench basset_wrench(const BodyType& type, const Mat3& Rt, const double* history) {
   return make_wrench(Rt * basset_history_force(type.basset, history), Vec3::Zero());
 }
+
+// the scalar step's term (the registry's row)
+inline Vec6 basset_term(const EffectContext& c) { return basset_wrench(*c.type, c.Rt, c.history); }
 
 // Starts a history with relative velocity g0 (world frame, m/s).
 void basset_reset(const BassetKernel& k, const Vec3& g0, double* history);

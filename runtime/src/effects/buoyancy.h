@@ -3,6 +3,7 @@
 // body (centre of mass below the centre of buoyancy). Together with gravity this is the
 // "buoyancy-corrected gravity" R^T (m - rho_f V) g of the seed method (physics-notes §3).
 #pragma once
+#include "effects/context.h"
 #include "effects/wrench.h"
 #include "model/model.h"
 
@@ -11,6 +12,11 @@ namespace lrigid {
 inline Wrench buoyancy_wrench(const BodyType& type, double fluid_density, const Vec3& g_body) {
   const Vec3 f = -fluid_density * type.volume * g_body;
   return make_wrench(f, type.r_cob.cross(f));
+}
+
+// the scalar step's term (the registry's row)
+inline Vec6 buoyancy_term(const EffectContext& c) {
+  return buoyancy_wrench(*c.type, c.model->fluid_density, c.g_body);
 }
 
 }  // namespace lrigid

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "body/added_mass.h"
+#include "effects/plan.h"
 #include "effects/plate.h"
 
 namespace lrigid {
@@ -45,14 +46,27 @@ Wrench wrench_about_com(const BodyType& type, const DragOut<double>& d, DragStif
   return make_wrench(force, torque);
 }
 
+Wrench ellipsoid_drag(const BodyType& type, const DragParams& k, const Vec3& u_rel, const Vec3& w,
+                      DragStiffness* stiffness) {
+  // relative velocity of the volume centroid (where the drag acts)
+  const Vec3 u = u_rel + w.cross(type.r_cob);
+  return wrench_about_com(type, ellipsoid_drag_kernel(k, u.data(), w.data()), stiffness);
+}
+
+Wrench plate_drag(const BodyType& type, const PlateParams& k, const Vec3& u_rel, const Vec3& w,
+                  DragStiffness* stiffness) {
+  const Vec3 u = u_rel + w.cross(type.r_cob);
+  DragOut<double> d;
+  double lift[3];
+  plate_kernel<double, true, false>(k, u.data(), w.data(), &d, lift);
+  return wrench_about_com(type, d, stiffness);
+}
+
 }  // namespace
 
 Wrench drag_wrench(const BodyType& type, const Vec3& u_rel, const Vec3& w, double rho, double nu,
                    DragStiffness* stiffness) {
-  // relative velocity of the volume centroid (where the drag acts)
-  const Vec3 u = u_rel + w.cross(type.r_cob);
-  const DragParams k = drag_params(type, rho, nu);
-  return wrench_about_com(type, ellipsoid_drag_kernel(k, u.data(), w.data()), stiffness);
+  return ellipsoid_drag(type, drag_params(type, rho, nu), u_rel, w, stiffness);
 }
 
 void ellipsoid_stokes_resistance(const Vec3& s, Vec3* k, Vec3* r) {
@@ -69,12 +83,15 @@ void ellipsoid_stokes_resistance(const Vec3& s, Vec3* k, Vec3* r) {
 
 Wrench plate_drag_wrench(const BodyType& type, const Vec3& u_rel, const Vec3& w, double rho,
                          double nu, DragStiffness* stiffness) {
-  const Vec3 u = u_rel + w.cross(type.r_cob);
-  const PlateParams k = plate_params(type, rho, nu, true, false);
-  DragOut<double> d;
-  double lift[3];
-  plate_kernel<double, true, false>(k, u.data(), w.data(), &d, lift);
-  return wrench_about_com(type, d, stiffness);
+  return plate_drag(type, plate_params(type, rho, nu, true, false), u_rel, w, stiffness);
+}
+
+Vec6 drag_term(const EffectContext& c) {
+  return ellipsoid_drag(*c.type, c.type->plan.params->drag, c.v_rel, c.w, c.stiffness);
+}
+
+Vec6 plate_drag_term(const EffectContext& c) {
+  return plate_drag(*c.type, c.type->plan.params->plate_drag, c.v_rel, c.w, c.stiffness);
 }
 
 }  // namespace lrigid

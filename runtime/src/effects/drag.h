@@ -145,4 +145,10 @@ void ellipsoid_stokes_resistance(const Vec3& s, Vec3* k, Vec3* r);
 Wrench plate_drag_wrench(const BodyType& type, const Vec3& u_rel, const Vec3& w, double rho,
                          double nu, DragStiffness* stiffness = nullptr);
 
+// the scalar step's terms (the registry's row picks one by the body's flatness), on the body
+// type's cached kernel parameters (effects/plan.h); the stiffness goes to c.stiffness
+struct EffectContext;
+Vec6 drag_term(const EffectContext& c);
+Vec6 plate_drag_term(const EffectContext& c);
+
 }  // namespace lrigid

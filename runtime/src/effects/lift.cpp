@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "effects/plan.h"
 #include "effects/plate.h"
 
 namespace lrigid {
@@ -27,14 +28,25 @@ double plate_width(const BodyType& type) {
 
 double circulation_factor(double re) { return circulation_gate(re); }
 
-Wrench lift_wrench(const BodyType& type, const Vec3& u_rel, const Vec3& w, double rho, double nu) {
+namespace {
+
+Wrench plate_lift(const BodyType& type, const PlateParams& k, const Vec3& u_rel, const Vec3& w) {
   const Vec3 u = u_rel + w.cross(type.r_cob);
-  const PlateParams k = plate_params(type, rho, nu, false, true);
   DragOut<double> d;
   double lift[3];
   plate_kernel<double, false, true>(k, u.data(), w.data(), &d, lift);
   const Vec3 f(lift[0], lift[1], lift[2]);
   return make_wrench(f, type.r_cob.cross(f));
+}
+
+}  // namespace
+
+Wrench lift_wrench(const BodyType& type, const Vec3& u_rel, const Vec3& w, double rho, double nu) {
+  return plate_lift(type, plate_params(type, rho, nu, false, true), u_rel, w);
+}
+
+Vec6 lift_term(const EffectContext& c) {
+  return plate_lift(*c.type, c.type->plan.params->plate_lift, c.v_rel, c.w);
 }
 
 }  // namespace lrigid

@@ -42,4 +42,9 @@ double circulation_factor(double re);
 // velocity (body frame), rho: fluid density (kg/m^3), nu: kinematic viscosity (m^2/s)
 Wrench lift_wrench(const BodyType& type, const Vec3& u_rel, const Vec3& w, double rho, double nu);
 
+// the scalar step's term (the registry's row: flat bodies only), on the body type's cached
+// kernel parameters (effects/plan.h)
+struct EffectContext;
+Vec6 lift_term(const EffectContext& c);
+
 }  // namespace lrigid

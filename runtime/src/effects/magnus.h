@@ -4,6 +4,7 @@
 // at spin ratio S = a w / u, inside the spread of sports-ball data for S < 0.3 (Rubinow & Keller's
 // low-Re result is C_M = 3/4). No torque about the centroid; spin decays through the angular drag.
 #pragma once
+#include "effects/context.h"
 #include "effects/wrench.h"
 #include "model/model.h"
 #include "util/lane.h"
@@ -27,11 +28,19 @@ inline double magnus_factor(const BodyType& type, double rho) {
   return kMagnus * rho * type.volume;
 }
 
-inline Wrench magnus_wrench(const BodyType& type, const Vec3& u_rel, const Vec3& w, double rho) {
+// c: magnus_factor (EffectParams::magnus)
+inline Wrench magnus_wrench(const BodyType& type, double c, const Vec3& u_rel, const Vec3& w) {
   const Vec3 u = u_rel + w.cross(type.r_cob);
   Vec3 f;
-  magnus_kernel(magnus_factor(type, rho), w.data(), u.data(), f.data());
+  magnus_kernel(c, w.data(), u.data(), f.data());
   return make_wrench(f, type.r_cob.cross(f));
 }
+
+inline Wrench magnus_wrench(const BodyType& type, const Vec3& u_rel, const Vec3& w, double rho) {
+  return magnus_wrench(type, magnus_factor(type, rho), u_rel, w);
+}
+
+// the scalar step's term (the registry's row; effects/plan.cpp has the factor)
+Vec6 magnus_term(const EffectContext& c);
 
 }  // namespace lrigid

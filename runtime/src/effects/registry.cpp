@@ -1,4 +1,4 @@
-// The registry of effects (model/effects.h): one row per effect. Adding an effect means a row
+// The registry of effects (effects/registry.h): one row per effect. Adding an effect means a row
 // here, a kernel header in src/effects/ and its tests (docs/adding-an-effect.md).
 //
 // Auto rules: an effect is kept when its force (or inertia) is at least kKeep of the larger of
@@ -14,9 +14,14 @@
 #include <cstdio>
 #include <string>
 
+#include "effects/added_mass.h"
+#include "effects/basset.h"
+#include "effects/buoyancy.h"
+#include "effects/drag.h"
+#include "effects/gravity.h"
 #include "effects/lift.h"
 #include "effects/magnus.h"
-#include "model/effects.h"
+#include "effects/registry.h"
 #include "model/model.h"
 
 namespace lrigid {
@@ -119,30 +124,38 @@ AutoDecision basset_rule(const AutoInputs& a) {
   return d;
 }
 
+// the rows' term selectors (the term functions live next to their kernels)
+template <WrenchTerm Term>
+WrenchTerm always(const BodyType&) {
+  return Term;
+}
+WrenchTerm drag_for(const BodyType& t) { return t.flat ? plate_drag_term : drag_term; }
+WrenchTerm lift_for(const BodyType& t) { return t.flat ? lift_term : nullptr; }
+
 }  // namespace
 
 const std::vector<EffectInfo>& all_effects() {
   using F = FieldNeed;
-  // effect, name, summary, field, auto rule, cost scalar ns, batched ns, batched
+  // effect, name, summary, field, auto rule, scalar term, cost scalar ns, batched ns, batched
   static const std::vector<EffectInfo> list = {
-      {Effect::Gravity, "gravity", "weight m g at the centre of mass", F::None, gravity_rule, 5, 0,
-       true},
-      {Effect::Buoyancy, "buoyancy", "-rho_f V g at the centre of buoyancy", F::None, buoyancy_rule,
-       5, 0, true},
+      {Effect::Gravity, "gravity", "weight m g at the centre of mass", F::None, gravity_rule,
+       always<gravity_term>, 5, 0, true},
+      {Effect::Buoyancy, "buoyancy", "-rho_f V g at the centre of buoyancy", F::None,
+       buoyancy_rule, always<buoyancy_term>, 5, 0, true},
       {Effect::AddedMass, "added_mass", "Kirchhoff tensor of the displaced fluid", F::None,
-       added_mass_rule, 15, 0, true},
+       added_mass_rule, always<added_mass_term>, 15, 0, true},
       {Effect::Drag, "drag", "quasi-steady drag on the velocity relative to the fluid", F::None,
-       drag_rule, 100, 8, true},
+       drag_rule, drag_for, 100, 8, true},
       {Effect::MeanFlow, "mean_flow", "the fluid moves with the field's mean velocity U", F::Sample,
-       mean_flow_rule, 0, 0, true},
+       mean_flow_rule, nullptr, 0, 0, true},
       {Effect::Turbulence, "turbulence", "Langevin model from k and epsilon", F::Sample,
-       turbulence_rule, 100, 15, true},
+       turbulence_rule, nullptr, 100, 15, true},
       {Effect::Lift, "lift", "circulation lift of flat bodies (Andersen, Pesavento & Wang 2005)",
-       F::None, lift_rule, 80, 0, true},
-      {Effect::Magnus, "magnus", "lift of a spinning body, C_M rho V w x v_r", F::None, magnus_rule,
-       10, 1, true},
+       F::None, lift_rule, lift_for, 80, 0, true},
+      {Effect::Magnus, "magnus", "lift of a spinning body, C_M rho V w x v_r", F::None,
+       magnus_rule, always<magnus_term>, 10, 1, true},
       {Effect::Basset, "basset", "history force, window plus exponential-sum tail", F::None,
-       basset_rule, 90, 20, true},
+       basset_rule, always<basset_term>, 90, 20, true},
   };
   return list;
 }

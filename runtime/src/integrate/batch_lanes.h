@@ -14,6 +14,8 @@
 #include "effects/basset.h"
 #include "effects/drag.h"
 #include "effects/magnus.h"
+#include "effects/plan.h"
+#include "effects/registry.h"
 #include "effects/turbulence.h"
 #include "integrate/dynamics.h"
 #include "integrate/integrators.h"
@@ -98,7 +100,7 @@ void set_field_consts(const Model& model, const BodyType& type, FieldConsts* k) 
   for (int a = 0; a < 3; ++a) k->F[a] = F[a];
   k->basset = type.plan.basset;
   k->basset_mass = k->basset ? type.basset.implicit_mass : 0.0;
-  k->magnus = e.has(Effect::Magnus) ? magnus_factor(type, model.fluid_density) : 0.0;
+  k->magnus = e.has(Effect::Magnus) ? type.plan.params->magnus : 0.0;
   if (k->grid) {
     const GridGeometry& g = model.field.geometry();
     for (int a = 0; a < 3; ++a) {

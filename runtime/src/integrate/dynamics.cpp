@@ -2,8 +2,8 @@
 
 #include "effects/mean_flow.h"
 #include "effects/wrench.h"
+#include "integrate/kirchhoff.h"
 #include "util/lane.h"
-#include "util/small_lu.h"
 
 namespace lrigid {
 
@@ -78,67 +78,60 @@ EvalResult impulse_rates(const Model& model, const BodyType& type, const Kinemat
 
 namespace {
 
-// One implicit-midpoint step of the free Kirchhoff flow from Y0 (see kirchhoff_flow): false
-// when Newton did not converge. w_mid: the angular velocity at the midpoint.
-bool kirchhoff_midpoint(const BodyType& type, double h, const Vec6& Y0, Vec6* Y1, Vec3* w_mid,
+// One implicit-midpoint step of the free Kirchhoff flow from Y0 (see kirchhoff_flow) on the
+// kernels of integrate/kirchhoff.h: false when Newton did not converge. w_mid: the angular
+// velocity at the midpoint.
+template <class Mass>
+bool kirchhoff_midpoint(const Mass& mass, double h, const Vec6& Y0, Vec6* Y1, Vec3* w_mid,
                         int* iterations) {
-  auto Mi = [&type](const Vec6& y) { return type.M_inv_times(y); };
-  const double norm0 = Y0.dot(Mi(Y0));  // twice the relative kinetic energy
+  const double norm0 = energy_norm2(mass, Y0.data());  // twice the relative kinetic energy
   const double tol2 = kKirchhoffTol * kKirchhoffTol * norm0;
-  auto gyro = [&](const Vec6& Ym) {
-    const Vec6 xm = Mi(Ym);
-    return kirchhoff_gyro(xm.head<3>(), xm.tail<3>(), Ym);
-  };
   auto finish = [&](const Vec6& Y) {
     *Y1 = Y;
-    *w_mid = Mi(0.5 * (Y0 + Y)).tail<3>();
+    const Vec6 Ym = 0.5 * (Y0 + Y);
+    Vec6 xm;
+    mass_inv_times(mass, Ym.data(), xm.data());
+    *w_mid = xm.tail<3>();
     return true;
   };
   // fixed-point iteration first (cheap; contracts by about h |dg/dY| / 2 per iteration, fast
   // for most bodies); Newton from where it stopped when it contracts slowly or diverges
-  Vec6 Y = Y0 - h * gyro(Y0 - 0.5 * h * gyro(Y0));  // explicit midpoint: error O(h^3)
+  Vec6 Y;
+  kirchhoff_predictor(mass, h, Y0.data(), Y.data());
   double last = 0;
   for (int it = 0; it < kKirchhoffMaxFixedPoint; ++it) {
     ++*iterations;
-    const Vec6 next = Y0 - h * gyro(0.5 * (Y0 + Y));
-    const Vec6 d = next - Y;
-    const double step = d.dot(Mi(d));
+    Vec6 next;
+    const double step = kirchhoff_fixed_point(mass, h, Y0.data(), Y.data(), next.data());
     if (!next.allFinite()) break;
     Y = next;
     if (step <= tol2) return finish(Y);
     if (it > 0 && step > kKirchhoffSlowContraction * last) break;
     last = step;
   }
-  if (!Y.allFinite() || (Y - Y0).dot(Mi(Y - Y0)) > 4 * norm0) Y = Y0;
+  {
+    const Vec6 d = Y - Y0;
+    if (!Y.allFinite() || energy_norm2(mass, d.data()) > 4 * norm0) Y = Y0;
+  }
   // Newton, simplified: the Jacobian is factored once and kept while the iteration contracts
   // by at least kKirchhoffRefactor per step; otherwise it is refactored at the current iterate
   // (a full Newton step)
-  SmallLU<6> lu;
+  double A[36];
   bool refactor = true;
   double last_step = 0;
   for (int it = 0; it < kKirchhoffMaxNewton; ++it) {
     ++*iterations;
-    const Vec6 Ym = 0.5 * (Y0 + Y);
-    const Vec6 xm = Mi(Ym);
-    const Vec3 v = xm.head<3>(), w = xm.tail<3>(), P = Ym.head<3>(), L = Ym.tail<3>();
-    const Vec6 r = Y - Y0 + h * kirchhoff_gyro(v, w, Ym);
+    Vec6 d;
+    kirchhoff_residual(mass, h, Y0.data(), Y.data(), d.data());
     if (refactor) {
-      // d(gyro)/dY = [w^ 0; v^ w^] + [0 -P^; -P^ -L^] M^-1
-      Mat6 D = Mat6::Zero(), E = Mat6::Zero();
-      D.block<3, 3>(0, 0) = skew(w);
-      D.block<3, 3>(3, 0) = skew(v);
-      D.block<3, 3>(3, 3) = skew(w);
-      E.block<3, 3>(0, 3) = -skew(P);
-      E.block<3, 3>(3, 0) = -skew(P);
-      E.block<3, 3>(3, 3) = -skew(L);
-      const Mat6 EMi = type.M_diagonal ? Mat6(E * type.M_inv_diagonal.asDiagonal())
-                                       : Mat6(E * type.M_inv);
-      if (!lu.factor(Mat6::Identity() + 0.5 * h * (D + EMi))) return false;
+      const Vec6 Ym = 0.5 * (Y0 + Y);
+      kirchhoff_newton_matrix(mass, Ym.data(), 0.5 * h, A);
+      if (!lu_factor<6>(A)) return false;
     }
-    const Vec6 d = lu.solve(-r);
+    lu_solve<6>(A, d.data());
     Y += d;
     if (!Y.allFinite()) return false;
-    const double step = d.dot(Mi(d));
+    const double step = energy_norm2(mass, d.data());
     if (step <= tol2) return finish(Y);
     refactor = it > 0 && step > kKirchhoffRefactor * kKirchhoffRefactor * last_step;
     last_step = step;
@@ -157,14 +150,14 @@ Quat rotate_cayley(const Quat& q, const Vec3& theta) {
 }
 
 // kirchhoff_flow on the relative impulse Y over h, split into n equal substeps
-bool kirchhoff_substeps(const BodyType& type, double h, int n, Quat* q, Vec6* Y,
-                        int* iterations) {
+template <class Mass>
+bool kirchhoff_substeps(const Mass& mass, double h, int n, Quat* q, Vec6* Y, int* iterations) {
   Quat qn = *q;
   Vec6 Yn = *Y;
   for (int i = 0; i < n; ++i) {
     Vec6 Y1;
     Vec3 w_mid;
-    if (!kirchhoff_midpoint(type, h / n, Yn, &Y1, &w_mid, iterations)) return false;
+    if (!kirchhoff_midpoint(mass, h / n, Yn, &Y1, &w_mid, iterations)) return false;
     qn = rotate_cayley(qn, (h / n) * w_mid);
     Yn = Y1;
   }
@@ -191,9 +184,15 @@ int kirchhoff_flow(const BodyType& type, const Vec3& u_fluid, double h, Quat* q,
     Y.head<3>() = P + (2.0 / (1.0 + a.squaredNorm())) * (a.cross(aP) - aP);
     *q = rotate_cayley(*q, 2.0 * a);
   } else {
-    int n = 1;
-    while (!kirchhoff_substeps(type, h, n, q, &Y, &iterations) && n < kKirchhoffMaxSubsteps)
-      n *= 2;
+    auto substeps = [&](const auto& mass) {
+      int n = 1;
+      while (!kirchhoff_substeps(mass, h, n, q, &Y, &iterations) && n < kKirchhoffMaxSubsteps)
+        n *= 2;
+    };
+    if (type.M_diagonal)
+      substeps(diagonal_mass(type));
+    else
+      substeps(full_mass(type));
   }
   // (after the last substep count the state is left unchanged if Newton still failed: the
   // step keeps the start orientation and velocity, which is finite and conserves the energy)

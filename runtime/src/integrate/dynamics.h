@@ -7,6 +7,7 @@
 #include "effects/context.h"
 #include "effects/drag.h"
 #include "fluid/field.h"
+#include "integrate/kirchhoff.h"
 #include "model/model.h"
 
 namespace lrigid {
@@ -21,6 +22,17 @@ struct Kinematics {
 };
 
 enum class EvalResult { Ok, Outside };
+
+// The body type's M as the kernels of integrate/kirchhoff.h take it
+inline DiagonalMass diagonal_mass(const BodyType& t) {
+  DiagonalMass m;
+  for (int a = 0; a < 6; ++a) {
+    m.M[a] = t.M(a, a);
+    m.Mi[a] = t.M_inv_diagonal[a];
+  }
+  return m;
+}
+inline FullMass full_mass(const BodyType& t) { return FullMass{t.M.data(), t.M_inv.data()}; }
 
 // Does the body need the fluid field sampled at all?
 inline bool needs_field(const BodyType& t) { return t.plan.sample_field; }

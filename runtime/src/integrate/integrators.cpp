@@ -6,8 +6,8 @@
 #include "effects/mean_flow.h"
 #include "effects/turbulence.h"
 #include "integrate/dynamics.h"
+#include "integrate/kirchhoff.h"
 #include "util/rng.h"
-#include "util/small_lu.h"
 
 namespace lrigid {
 
@@ -84,31 +84,25 @@ Vec6 rotate6(const Mat3& R, const Vec6& a) {
   return r;
 }
 
-// Solves A x = b for the implicit force step's symmetric positive definite 6x6 matrix, as two
-// 3x3 systems when A has no linear-angular coupling (the drag stiffness never couples them, so
-// A is block diagonal whenever M is)
-class ImpulseSolver {
- public:
-  ImpulseSolver(const Mat6& A, bool block_diagonal) : block_(block_diagonal) {
-    if (block_) {
-      lin_.factor(A.topLeftCorner<3, 3>());
-      ang_.factor(A.bottomRightCorner<3, 3>());
-    } else {
-      full_.factor(A);
-    }
+// x = M (M + h J + b P)^-1 rhs: the implicit force step's impulse change (integrate/kirchhoff.h
+// implicit_impulse, the batched steps' kernel), J the drag stiffness ds (none: null), b the Basset
+// history's current interval as a mass (0 without)
+Vec6 implicit_impulse_change(const BodyType& type, double b, const DragStiffness* ds, double h,
+                             const Vec6& rhs) {
+  DragOut<double> d{};
+  if (ds) {
+    d.c_lin = ds->c_lin;
+    d.p = ds->p;
+    d.c_ang = ds->c_ang;
+    for (int a = 0; a < 3; ++a) d.u_hat[a] = ds->u_hat[a];
   }
-  Vec6 solve(const Vec6& b) const {
-    if (!block_) return full_.solve(b);
-    Vec6 x;
-    x << lin_.solve(b.head<3>()), ang_.solve(b.tail<3>());
-    return x;
-  }
-
- private:
-  bool block_;
-  SmallLU<6> full_;
-  SmallLU<3> lin_, ang_;
-};
+  Vec6 x;
+  if (type.M_diagonal)
+    implicit_impulse(diagonal_mass(type), b, d, h, rhs.data(), x.data());
+  else
+    implicit_impulse(full_mass(type), b, d, h, rhs.data(), x.data());
+  return x;
+}
 
 // One explicit Euler step in world-frame impulse form (see dynamics.h): forces, Munk moment
 // and rotation from the start of the step (euler). The Basset history's current interval is
@@ -123,10 +117,8 @@ StepOutcome impulse_step(const Model& model, const BodyType& type, double t, Bod
   if (type.plan.basset && s->history) {
     // current interval of the history force: 2 C sqrt(h) (du_f - dv) / h
     const double b = type.basset.implicit_mass;
-    Mat6 A = type.M;
-    A.block<3, 3>(0, 0) += b * Mat3::Identity();
     dPi.head<3>() += b * (k.R.transpose() * (h * r.a_fluid));
-    dPi = type.M_times(ImpulseSolver(A, type.M_block_diagonal).solve(dPi));
+    dPi = implicit_impulse_change(type, b, nullptr, h, dPi);
   }
   const Vec6 Pi_world = rotate6(k.R, r.impulse + dPi);
   const Vec3 u_fluid_new = r.u_fluid + h * r.a_fluid;  // world frame
@@ -194,19 +186,10 @@ StepOutcome split_deterministic_step(const Model& model, const BodyType& type, d
   const double b = plan.basset && s->history ? type.basset.implicit_mass : 0.0;
   const Vec3 basset_rhs = b * (h * (c.Rt * a_fluid));
   // the drag stiffness ds is re-evaluated by each drag evaluation below (Newton)
-  auto lhs = [&]() {
-    Mat6 A = type.M;
-    if (drag_term) {
-      A.block<3, 3>(0, 0) +=
-          h * ds.c_lin * (Mat3::Identity() + ds.p * ds.u_hat * ds.u_hat.transpose());
-      A.block<3, 3>(3, 3) += h * ds.c_ang * Mat3::Identity();
-    }
-    A.block<3, 3>(0, 0) += b * Mat3::Identity();
-    return ImpulseSolver(A, type.M_block_diagonal);
-  };
+  const DragStiffness* J = drag_term ? &ds : nullptr;
   Vec6 rhs = h * rate;
   rhs.head<3>() += basset_rhs;
-  Vec6 dPi = type.M_times(lhs().solve(rhs));
+  Vec6 dPi = implicit_impulse_change(type, b, J, h, rhs);
   Vec6 xi_new = velocity_from_impulse(type, Pi + dPi, uf_b_new, fluid_inertia);
   if (drag_term) {
     Vec6 xi_r;
@@ -222,7 +205,7 @@ StepOutcome split_deterministic_step(const Model& model, const BodyType& type, d
         cd.w = xi_new.tail<3>();
         Vec6 res = dPi - h * (other + drag_term(cd));
         res.head<3>() -= basset_rhs - b * type.M_inv_times(dPi).head<3>();
-        const Vec6 d = -type.M_times(lhs().solve(res));
+        const Vec6 d = -implicit_impulse_change(type, b, J, h, res);
         dPi += d;
         xi_new = velocity_from_impulse(type, Pi + dPi, uf_b_new, fluid_inertia);
         const Vec6 dv = type.M_inv_times(d);

@@ -9,6 +9,7 @@
 #include "effects/plate.h"
 #include "integrate/batch_lanes.h"
 #include "integrate/dynamics.h"
+#include "integrate/kirchhoff.h"
 
 namespace lrigid {
 
@@ -32,7 +33,7 @@ namespace {
 // What the step needs of the body type.
 struct Consts : FieldConsts {
   bool plate = false;  // flat: plate drag and lift (with turb, the step's template switches)
-  double M[6] = {0, 0, 0, 0, 0, 0}, Mi[6] = {0, 0, 0, 0, 0, 0};  // M's diagonal and its inverse
+  DiagonalMass mass;          // M (integrate/kirchhoff.h)
   double K[3] = {0, 0, 0};    // K's linear diagonal (0 without added mass)
   double drag = 0;  // the drag effect as a factor 1 or 0 (bodies that are not flat)
   // the drag of bodies that are not flat (effects/drag.h) and the plate model (effects/plate.h)
@@ -45,16 +46,12 @@ Consts make_consts(const Model& model, const BodyType& type) {
   set_field_consts(model, type, &k);
   const EffectSet& e = type.effects;
   k.plate = type.flat;
-  for (int a = 0; a < 6; ++a) {
-    k.M[a] = type.M(a, a);
-    k.Mi[a] = type.M_inv_diagonal[a];
-  }
+  k.mass = diagonal_mass(type);
   for (int a = 0; a < 3; ++a) k.K[a] = e.has(Effect::AddedMass) ? type.K_fluid(a, a) : 0.0;
   k.drag = e.has(Effect::Drag) ? 1.0 : 0.0;
-  k.law = drag_params(type, model.fluid_density, model.nu);
-  if (type.flat)
-    k.plate_model = plate_params(type, model.fluid_density, model.nu, e.has(Effect::Drag),
-                             e.has(Effect::Lift));
+  // the kernels' parameters, as the scalar step's terms read them (effects/plan.h)
+  k.law = type.plan.params->drag;
+  if (type.flat) k.plate_model = type.plan.params->plate_both;
   return k;
 }
 
@@ -90,109 +87,6 @@ struct Lanes : Samples<T> {
   }
   T (*velocity())[kBatch] { return v; }  // the velocity a lane keeps (end_step)
 };
-
-// ---- small vector algebra on one lane's values -------------------------------------------------
-
-// The free Kirchhoff flow's right-hand side with its sign: dY/dt = -gyro(Y),
-// gyro = (w x P, w x L + v x P) with (v, w) = M^-1 Y (effects/wrench.h kirchhoff_gyro)
-template <typename T>
-LRIGID_LANE void gyro(const Consts& k, const T* Y, T* g) {
-  const T v[3] = {T(k.Mi[0]) * Y[0], T(k.Mi[1]) * Y[1], T(k.Mi[2]) * Y[2]};
-  const T w[3] = {T(k.Mi[3]) * Y[3], T(k.Mi[4]) * Y[4], T(k.Mi[5]) * Y[5]};
-  T a[3], b[3], c[3];
-  cross3(w, Y, a);
-  cross3(w, Y + 3, b);
-  cross3(v, Y, c);
-#pragma GCC unroll 3
-  for (int i = 0; i < 3; ++i) {
-    g[i] = a[i];
-    g[3 + i] = b[i] + c[i];
-  }
-}
-
-// The free flow's Newton matrix I + h/2 d(gyro)/dY at the midpoint ym (dynamics.cpp
-// kirchhoff_midpoint): d(gyro)/dY = [w^ 0; v^ w^] + [0 -P^; -P^ -L^] M^-1, row major
-template <typename T>
-LRIGID_LANE void kirchhoff_jacobian(const Consts& k, const T* ym, T h2, T* A) {
-  const T v[3] = {T(k.Mi[0]) * ym[0], T(k.Mi[1]) * ym[1], T(k.Mi[2]) * ym[2]};
-  const T w[3] = {T(k.Mi[3]) * ym[3], T(k.Mi[4]) * ym[4], T(k.Mi[5]) * ym[5]};
-  const T* P = ym;
-  const T* L = ym + 3;
-  // a^ (r, c): 0 on the diagonal, -a[3 - r - c] above it in cyclic order, + below
-  auto sk = [](const T* a, int r, int c) {
-    return r == c ? T(0) : ((c - r + 3) % 3 == 1 ? -a[3 - r - c] : a[3 - r - c]);
-  };
-#pragma GCC unroll 3
-  for (int r = 0; r < 3; ++r)
-#pragma GCC unroll 3
-    for (int c = 0; c < 3; ++c) {
-      const T one = r == c ? T(1) : T(0);
-      A[r * 6 + c] = one + h2 * sk(w, r, c);
-      A[r * 6 + 3 + c] = -h2 * sk(P, r, c) * T(k.Mi[3 + c]);
-      A[(3 + r) * 6 + c] = h2 * (sk(v, r, c) - sk(P, r, c) * T(k.Mi[c]));
-      A[(3 + r) * 6 + 3 + c] = one + h2 * (sk(w, r, c) - sk(L, r, c) * T(k.Mi[3 + c]));
-    }
-}
-
-// LU of the 6 x 6 row-major A in place, without pivoting (the Newton matrix has a unit
-// diagonal); 0 when a pivot is zero or not finite
-template <typename T>
-LRIGID_LANE int lu6(T* A) {
-  int ok = 1;
-#pragma GCC unroll 6
-  for (int p = 0; p < 6; ++p) {
-    const T piv = A[p * 6 + p];
-    ok &= int(piv != T(0)) & int(std::isfinite(piv));
-    const T inv = T(1) / (piv != T(0) ? piv : T(1));
-#pragma GCC unroll 6
-    for (int i = p + 1; i < 6; ++i) {
-      const T l = A[i * 6 + p] * inv;
-      A[i * 6 + p] = l;
-#pragma GCC unroll 6
-      for (int j = p + 1; j < 6; ++j) A[i * 6 + j] -= l * A[p * 6 + j];
-    }
-  }
-  return ok;
-}
-
-// x = A^-1 b for A factored by lu6, in place
-template <typename T>
-LRIGID_LANE void lu6_solve(const T* A, T* b) {
-#pragma GCC unroll 6
-  for (int p = 0; p < 6; ++p)
-#pragma GCC unroll 6
-    for (int i = p + 1; i < 6; ++i) b[i] -= A[i * 6 + p] * b[p];
-#pragma GCC unroll 6
-  for (int i = 5; i >= 0; --i) {
-    T s = b[i];
-#pragma GCC unroll 6
-    for (int j = i + 1; j < 6; ++j) s -= A[i * 6 + j] * b[j];
-    b[i] = s / A[i * 6 + i];
-  }
-}
-
-// The implicit force step on a diagonal M (integrators.cpp split_deterministic_step): the
-// impulse changes x = M (M + h J + b_B P)^-1 b for the linear part b_lin and the angular part
-// b_ang, where J is the drag's stiffness d (linear: diagonal plus rank one, by Sherman-Morrison;
-// angular: c_ang I) and b_B the Basset history's current interval (0 without)
-template <typename T>
-LRIGID_LANE void implicit_solve(const Consts& k, const DragOut<T>& d, T h, const T* b_lin,
-                                const T* b_ang, T* x_lin, T* x_ang) {
-  T Dinv_b[3], Dinv_u[3];
-#pragma GCC unroll 3
-  for (int a = 0; a < 3; ++a) {
-    const T Dinv = T(1) / (T(k.M[a]) + T(k.basset_mass) + h * d.c_lin);
-    Dinv_b[a] = Dinv * b_lin[a];
-    Dinv_u[a] = Dinv * d.u_hat[a];
-  }
-  const T cp = h * d.c_lin * d.p;
-  const T g = cp * dot3(d.u_hat, Dinv_b) / (T(1) + cp * dot3(d.u_hat, Dinv_u));
-#pragma GCC unroll 3
-  for (int a = 0; a < 3; ++a) {
-    x_lin[a] = T(k.M[a]) * (Dinv_b[a] - g * Dinv_u[a]);
-    x_ang[a] = T(k.M[3 + a]) * b_ang[a] / (T(k.M[3 + a]) + h * d.c_ang);
-  }
-}
 
 // The forces of a body that is not flat: the drag (effects/drag.h, the equivalent ellipsoid's
 // projected area across u) times the drag effect's factor (0 without it)
@@ -267,21 +161,16 @@ LRIGID_IVDEP
     mul_t(R, u_f, ufb);
     // 2. the free Kirchhoff flow of the motion relative to the fluid, implicit midpoint from the
     //    explicit midpoint predictor (dynamics.cpp kirchhoff_midpoint)
-    T y0[6], g[6], ym[6], y[6];
+    T y0[6], y[6];
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
-      y0[a] = T(k.M[a]) * (v[a] - ufb[a]);
-      y0[3 + a] = T(k.M[3 + a]) * w[a];
+      y0[a] = T(k.mass.M[a]) * (v[a] - ufb[a]);
+      y0[3 + a] = T(k.mass.M[3 + a]) * w[a];
     }
-    gyro(k, y0, g);
-#pragma GCC unroll 6
-    for (int a = 0; a < 6; ++a) ym[a] = y0[a] - T(0.5) * h * g[a];
-    gyro(k, ym, g);
-    T norm0 = 0;
+    kirchhoff_predictor(k.mass, h, y0, y);
+    const T norm0 = energy_norm2(k.mass, y0);
 #pragma GCC unroll 6
     for (int a = 0; a < 6; ++a) {
-      y[a] = y0[a] - h * g[a];
-      norm0 += y0[a] * y0[a] * T(k.Mi[a]);
       Y0[a][j] = y0[a];
       Y[a][j] = y[a];
     }
@@ -302,20 +191,16 @@ LRIGID_IVDEP
     int any = 0;
 LRIGID_IVDEP
     for (int j = 0; j < kBatch; ++j) {
-      T ym[6], g[6];
-#pragma GCC unroll 6
-      for (int a = 0; a < 6; ++a) ym[a] = T(0.5) * (Y0[a][j] + Y[a][j]);
-      gyro(k, ym, g);
-      T step2 = 0;
-      int fin = 1;
-      T next[6];
+      T y0[6], y[6], next[6];
 #pragma GCC unroll 6
       for (int a = 0; a < 6; ++a) {
-        next[a] = Y0[a][j] - h * g[a];
-        const T d = next[a] - Y[a][j];
-        step2 += d * d * T(k.Mi[a]);
-        fin &= int(std::isfinite(next[a]));
+        y0[a] = Y0[a][j];
+        y[a] = Y[a][j];
       }
+      const T step2 = kirchhoff_fixed_point(k.mass, h, y0, y, next);
+      int fin = 1;
+#pragma GCC unroll 6
+      for (int a = 0; a < 6; ++a) fin &= int(std::isfinite(next[a]));
       const int act = active[j];
       const int keep = act & fin;
 #pragma GCC unroll 6
@@ -348,15 +233,15 @@ LRIGID_IVDEP
       last_step[j] = T(0);
       any_newton |= nt;
       // the start: where the fixed point stopped, or Y0 if that is not finite or far off
-      T dist = 0, norm0 = 0;
+      T y0[6], d[6];
       int fin = 1;
 #pragma GCC unroll 6
       for (int a = 0; a < 6; ++a) {
-        const T d = Y[a][j] - Y0[a][j];
-        dist += d * d * T(k.Mi[a]);
-        norm0 += Y0[a][j] * Y0[a][j] * T(k.Mi[a]);
+        y0[a] = Y0[a][j];
+        d[a] = Y[a][j] - y0[a];
         fin &= int(std::isfinite(Y[a][j]));
       }
+      const T dist = energy_norm2(k.mass, d), norm0 = energy_norm2(k.mass, y0);
       const int reset = nt & ((1 - fin) | int(dist > T(4) * norm0));
 #pragma GCC unroll 6
       for (int a = 0; a < 6; ++a) Y[a][j] = reset ? Y0[a][j] : Y[a][j];
@@ -376,8 +261,8 @@ LRIGID_IVDEP
           T ym[6], A[36];
 #pragma GCC unroll 6
           for (int a = 0; a < 6; ++a) ym[a] = T(0.5) * (Y0[a][j] + Y[a][j]);
-          kirchhoff_jacobian(k, ym, hh, A);
-          const int ok = lu6(A);
+          kirchhoff_newton_matrix(k.mass, ym, hh, A);
+          const int ok = lu_factor<6>(A);
           const int ref = newton[j] & refactor[j];
 #pragma GCC unroll 36
           for (int e = 0; e < 36; ++e) lu[e][j] = ref ? A[e] : lu[e][j];
@@ -389,24 +274,20 @@ LRIGID_IVDEP
 LRIGID_IVDEP
       for (int j = 0; j < kBatch; ++j) {
         const int act = newton[j];
-        T y0[6], y[6], ym[6], g[6], r[6], A[36];
+        T y0[6], y[6], r[6], A[36];
 #pragma GCC unroll 6
         for (int a = 0; a < 6; ++a) {
           y0[a] = Y0[a][j];
           y[a] = Y[a][j];
-          ym[a] = T(0.5) * (y0[a] + y[a]);
         }
-        gyro(k, ym, g);
-#pragma GCC unroll 6
-        for (int a = 0; a < 6; ++a) r[a] = -(y[a] - y0[a] + h * g[a]);
+        kirchhoff_residual(k.mass, h, y0, y, r);
 #pragma GCC unroll 36
         for (int e = 0; e < 36; ++e) A[e] = lu[e][j];
-        lu6_solve(A, r);
-        T step2 = 0;
+        lu_solve<6>(A, r);
+        const T step2 = energy_norm2(k.mass, r);
         int fin = 1;
 #pragma GCC unroll 6
         for (int a = 0; a < 6; ++a) {
-          step2 += r[a] * r[a] * T(k.Mi[a]);
           y[a] += r[a];
           fin &= int(std::isfinite(y[a]));
         }
@@ -454,9 +335,9 @@ LRIGID_IVDEP
     T q[4];
     {
       const T q0[4] = {L->q[0][j], L->q[1][j], L->q[2][j], L->q[3][j]};
-      const T a[3] = {hh * T(k.Mi[3]) * (T(0.5) * (y0[3] + y[3])),
-                      hh * T(k.Mi[4]) * (T(0.5) * (y0[4] + y[4])),
-                      hh * T(k.Mi[5]) * (T(0.5) * (y0[5] + y[5]))};
+      const T a[3] = {hh * T(k.mass.Mi[3]) * (T(0.5) * (y0[3] + y[3])),
+                      hh * T(k.mass.Mi[4]) * (T(0.5) * (y0[4] + y[4])),
+                      hh * T(k.mass.Mi[5]) * (T(0.5) * (y0[5] + y[5]))};
       cayley_rotate(q0, a, q);
     }
     T R[9];
@@ -466,8 +347,8 @@ LRIGID_IVDEP
     mul_t(R, u_f, ufb);
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
-      v[a] = T(k.Mi[a]) * y[a] + ufb[a];
-      w[a] = T(k.Mi[3 + a]) * y[3 + a];
+      v[a] = T(k.mass.Mi[a]) * y[a] + ufb[a];
+      w[a] = T(k.mass.Mi[3 + a]) * y[3 + a];
       vr[a] = v[a] - ufb[a];
     }
     T lift[3] = {0, 0, 0};
@@ -490,25 +371,25 @@ LRIGID_IVDEP
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) u_end[a] = u_f[a] + h * T(k.gu) * L->acc[a][j];
     mul_t(R, u_end, ufb_end);
-    T Gj[3], b_lin[3], b_ang[3], dPj[3], dLj[3];
+    T Gj[3], rhs[6], dPL_j[6];
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
       Gj[a] = Extra ? h * (Fb[a] + lift[a] + fx[a]) + T(k.basset_mass) * h * ab[a]
                     : h * (Fb[a] + lift[a]);
-      b_lin[a] = Gj[a] + h * d.f[a];
-      b_ang[a] = h * d.tq[a];
+      rhs[a] = Gj[a] + h * d.f[a];
+      rhs[3 + a] = h * d.tq[a];
     }
-    implicit_solve(k, d, h, b_lin, b_ang, dPj, dLj);
+    implicit_impulse(k.mass, T(k.basset_mass), d, h, rhs, dPL_j);
     T e_new = 0, e_r = 0;
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
-      const T dP = dPj[a], dL = dLj[a];
-      const T P = T(k.M[a]) * v[a] - T(k.K[a]) * ufb[a];
-      const T Lm = T(k.M[3 + a]) * w[a];
-      vn[a][j] = T(k.Mi[a]) * (P + dP + T(k.K[a]) * ufb_end[a]);
-      wn[a][j] = T(k.Mi[3 + a]) * (Lm + dL);
-      e_new += dP * dP * T(k.Mi[a]) + dL * dL * T(k.Mi[3 + a]);
-      e_r += T(k.M[a]) * vr[a] * vr[a] + T(k.M[3 + a]) * w[a] * w[a];
+      const T dP = dPL_j[a], dL = dPL_j[3 + a];
+      const T P = T(k.mass.M[a]) * v[a] - T(k.K[a]) * ufb[a];
+      const T Lm = T(k.mass.M[3 + a]) * w[a];
+      vn[a][j] = T(k.mass.Mi[a]) * (P + dP + T(k.K[a]) * ufb_end[a]);
+      wn[a][j] = T(k.mass.Mi[3 + a]) * (Lm + dL);
+      e_new += dP * dP * T(k.mass.Mi[a]) + dL * dL * T(k.mass.Mi[3 + a]);
+      e_r += T(k.mass.M[a]) * vr[a] * vr[a] + T(k.mass.M[3 + a]) * w[a] * w[a];
       Pl[a][j] = P;
       Pl[3 + a][j] = Lm;
       dPL[a][j] = dP;
@@ -545,26 +426,26 @@ LRIGID_IVDEP
         }
         const DragOut<T> d = body_forces<T, Plate>(k, vr, w, lift);
         // the Newton step -M (M + h J + b_B P)^-1 res, J the drag's stiffness here
-        T res_lin[3], res_ang[3], x_lin[3], x_ang[3];
+        T res[6], x[6];
 #pragma GCC unroll 3
         for (int a = 0; a < 3; ++a) {
-          res_lin[a] = dPL[a][j] - G[a][j] - h * d.f[a] +
-                       T(k.basset_mass) * T(k.Mi[a]) * dPL[a][j];
-          res_ang[a] = dPL[3 + a][j] - h * d.tq[a];
+          res[a] = dPL[a][j] - G[a][j] - h * d.f[a] +
+                   T(k.basset_mass) * T(k.mass.Mi[a]) * dPL[a][j];
+          res[3 + a] = dPL[3 + a][j] - h * d.tq[a];
         }
-        implicit_solve(k, d, h, res_lin, res_ang, x_lin, x_ang);
+        implicit_impulse(k.mass, T(k.basset_mass), d, h, res, x);
         T conv = 0;
 #pragma GCC unroll 3
         for (int a = 0; a < 3; ++a) {
-          const T ddP = -x_lin[a], ddL = -x_ang[a];
+          const T ddP = -x[a], ddL = -x[3 + a];
           const T dP = dPL[a][j] + ddP, dL = dPL[3 + a][j] + ddL;
-          const T v = T(k.Mi[a]) * (Pl[a][j] + dP + T(k.K[a]) * ufe[a][j]);
-          const T wa = T(k.Mi[3 + a]) * (Pl[3 + a][j] + dL);
+          const T v = T(k.mass.Mi[a]) * (Pl[a][j] + dP + T(k.K[a]) * ufe[a][j]);
+          const T wa = T(k.mass.Mi[3 + a]) * (Pl[3 + a][j] + dL);
           dPL[a][j] = act ? dP : dPL[a][j];
           dPL[3 + a][j] = act ? dL : dPL[3 + a][j];
           vn[a][j] = act ? v : vn[a][j];
           wn[a][j] = act ? wa : wn[a][j];
-          conv += ddP * ddP * T(k.Mi[a]) + ddL * ddL * T(k.Mi[3 + a]);
+          conv += ddP * ddP * T(k.mass.Mi[a]) + ddL * ddL * T(k.mass.Mi[3 + a]);
         }
         const int more = act & int(conv > T(kDragTol * kDragTol) * norm_r[j]);
         stiff[j] = more;

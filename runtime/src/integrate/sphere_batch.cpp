@@ -6,6 +6,7 @@
 #include "effects/drag.h"
 #include "integrate/batch_lanes.h"
 #include "integrate/dynamics.h"
+#include "integrate/kirchhoff.h"
 
 namespace lrigid {
 
@@ -27,6 +28,7 @@ namespace {
 struct Consts : FieldConsts {
   bool drag = false;  // with turb, the step's two template switches
   double m = 0, ma = 0, J = 0;  // M's linear and angular diagonal; K's linear diagonal (0 without)
+  DiagonalMass mass;            // M = diag(m, m, m, J, J, J) (integrate/kirchhoff.h)
   // sphere drag (effects/drag.h drag_kernel, r_cob = 0): the law and the sphere's area
   DragParams law;
   double a_perp = 0, d_perp = 0;
@@ -40,7 +42,8 @@ Consts make_consts(const Model& model, const BodyType& type) {
   k.m = type.M(0, 0);
   k.ma = e.has(Effect::AddedMass) ? type.K_fluid(0, 0) : 0.0;
   k.J = type.M(3, 3);
-  k.law = drag_params(type, model.fluid_density, model.nu);
+  k.mass = diagonal_mass(type);
+  k.law = type.plan.params->drag;  // the scalar step's (effects/plan.h)
   const double r = type.ell.x();
   k.a_perp = M_PI * r * r;
   k.d_perp = 2.0 * std::sqrt(k.a_perp / M_PI);
@@ -92,16 +95,6 @@ LRIGID_LANE DragOut<T> sphere_drag(const Consts& k, const T* u, const T* w) {
     *a = a_perp;
     *d = d_perp;
   });
-}
-
-// y = (m I + h c_lin (I + p u u^T) + b_B I)^-1 b (Sherman-Morrison), times m: the impulse
-// change; b_B the Basset history's current interval (0 without)
-template <typename T>
-LRIGID_LANE void implicit_linear(const Consts& k, const DragOut<T>& d, const T* b, T* dP) {
-  const T a = T(k.m) + T(k.basset_mass) + T(k.h) * d.c_lin, c = T(k.h) * d.c_lin * d.p;
-  const T ub = d.u_hat[0] * b[0] + d.u_hat[1] * b[1] + d.u_hat[2] * b[2];
-  const T g = c / (a + c);
-  for (int i = 0; i < 3; ++i) dP[i] = T(k.m) * (b[i] - g * d.u_hat[i] * ub) / a;
 }
 
 // Advances every lane of L by one step; lanes that are not kOk keep their state at the start of
@@ -174,20 +167,23 @@ LRIGID_IVDEP
       for (int a = 0; a < 3; ++a)
         Gj[a] += h * (L->fb[a][j] + fm[a]) + T(k.basset_mass) * h * T(k.gu) * L->acc[a][j];
     }
-    T b[3], P[3], dPj[3], dLj[3], Vnew[3], wnew[3], u_end[3];
+    // the implicit step's impulse change (integrate/kirchhoff.h implicit_impulse; the world and
+    // body frames differ by a rotation, under which the isotropic M and the stiffness commute)
+    T b[6], P[3], dPL_j[6], Vnew[3], wnew[3], u_end[3];
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
       b[a] = Gj[a] + h * d.f[a];
+      b[3 + a] = h * d.tq[a];
       P[a] = T(k.m) * V[a] - T(k.ma) * u_f[a];
       // the fluid velocity at the end of the step enters through the added mass
       u_end[a] = u_f[a] + h * T(k.gu) * L->acc[a][j];
     }
-    implicit_linear(k, d, b, dPj);
-    const T ja = T(k.J) + h * d.c_ang;
+    implicit_impulse(k.mass, T(k.basset_mass), d, h, b, dPL_j);
+    const T* dPj = dPL_j;
+    const T* dLj = dPL_j + 3;
     T e_new = 0, e_r = 0;
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
-      dLj[a] = T(k.J) * (h * d.tq[a]) / ja;
       Vnew[a] = (P[a] + dPj[a] + T(k.ma) * u_end[a]) / T(k.m);
       wnew[a] = (T(k.J) * w[a] + dLj[a]) / T(k.J);
       e_new += dPj[a] * dPj[a] / T(k.m) + dLj[a] * dLj[a] / T(k.J);
@@ -227,16 +223,18 @@ LRIGID_IVDEP
           w[a] = wn[a][j];
         }
         const DragOut<T> d = sphere_drag(k, vr, w);
-        T res[3], dd[3];
+        T res[6], x[6];
 #pragma GCC unroll 3
-        for (int a = 0; a < 3; ++a)
+        for (int a = 0; a < 3; ++a) {
           res[a] = dP[a][j] - G[a][j] - h * d.f[a] + T(k.basset_mass / k.m) * dP[a][j];
-        implicit_linear(k, d, res, dd);
-        const T ja = T(k.J) + h * d.c_ang;
+          res[3 + a] = dL[a][j] - h * d.tq[a];
+        }
+        implicit_impulse(k.mass, T(k.basset_mass), d, h, res, x);
+        const T* dd = x;
         T conv = 0;
 #pragma GCC unroll 3
         for (int a = 0; a < 3; ++a) {
-          const T dl = -T(k.J) * (dL[a][j] - h * d.tq[a]) / ja;
+          const T dl = -x[3 + a];
           const T dPa = dP[a][j] - dd[a], dLa = dL[a][j] + dl;
           const T acc = T(k.gu) * L->acc[a][j];
           const T Va = (Pi[a][j] + dPa + T(k.ma) * (uf[a][j] + h * acc)) / T(k.m);

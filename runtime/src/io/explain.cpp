@@ -4,6 +4,8 @@
 #include <string>
 #include <utility>
 
+#include "effects/compile_model.h"
+#include "effects/registry.h"
 #include "integrate/simulation.h"
 #include "integrate/sphere_batch.h"
 #include "io/added_mass_cache.h"

@@ -23,6 +23,7 @@
 #include <sstream>
 
 #include "body/tessellate.h"
+#include "effects/registry.h"
 #include "io/atomic_file.h"
 #include "integrate/simulation.h"
 #include "io/checkpoint.h"

@@ -8,6 +8,7 @@
 #include <set>
 #include <sstream>
 
+#include "effects/registry.h"
 #include "io/mesh_io.h"
 #include "util/error.h"
 #include "util/suggest.h"

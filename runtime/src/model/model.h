@@ -1,9 +1,10 @@
 // The constant model a run steps with (the mjModel of this project): body types with their
 // generalized mass matrices and drag parameters, the fluid field and the options. Built once by
-// compile_model(); never changed by the step. The body frame of every body type has its origin
+// compile_model() (effects/compile_model.h); never changed by the step. The body frame of every body type has its origin
 // at the centre of mass and the axes of the shape.
 #pragma once
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,7 @@ namespace lrigid {
 // The selected wrench terms of a body type, built once by compile_model (effects/plan.h): the
 // step loops over these only, so an effect that is not selected costs nothing.
 struct EffectContext;  // effects/context.h
+struct EffectParams;   // effects/plan.h: the kernels' Params of the body type
 using WrenchTerm = Vec6 (*)(const EffectContext&);
 struct EffectPlan {
   std::vector<WrenchTerm> terms;   // evaluation order of all_effects()
@@ -25,6 +27,9 @@ struct EffectPlan {
   bool mean_flow = false;
   bool seen = false;               // seen turbulence moves the surrounding fluid
   bool basset = false;
+  // the effect kernels' parameters (effects/plan.h), built once per body type with the plan:
+  // the scalar step's terms and the batched loops read the same
+  std::shared_ptr<const EffectParams> params;
 };
 
 // Basset history kernel of a body type (effects/basset.h), for the model's fixed dt.
@@ -128,51 +133,8 @@ struct Model {
   EffectSet union_effects() const;
 };
 
+// The fluid Kirchhoff tensor of a shape (body/added_mass.h), analytic or by BEM, as the app
+// provides it (cached); compile_model (effects/compile_model.h) asks it once per body type.
 using AddedMassProvider = std::function<AddedMass(const Shape&, double fluid_density, int panels)>;
-
-// Representative flow of a scene for the dimensionless numbers of "auto" and `lrigid explain`.
-// Uniform field: its U, k, eps. Grid: medians over valid grid points (up to ~32^3 sampled) of
-// |U|, and of k and eps recovered from the Langevin coefficients (first frame).
-struct FlowScales {
-  double U = 0;        // |U|, m/s
-  double k = 0;        // m^2/s^2
-  double eps = 0;      // m^2/s^3
-  std::string source;  // how they were obtained
-};
-FlowScales flow_scales(const Scene& scene, const FluidField& field);
-
-// Why "auto" keeps or skips each effect of a body type (docs/effects.md states the thresholds).
-struct EffectAnalysis {
-  double density_ratio = 0;    // rho_f / rho_b
-  double aspect_ratio = 1;     // smallest / largest semi-axis of the equivalent ellipsoid
-  double size = 0;             // d: diameter of the equal-volume sphere (chord for flat), m
-  double speed = 0;            // characteristic speed relative to the fluid, m/s
-  double terminal_speed = 0;   // settling speed in still fluid, m/s
-  double reynolds = 0;         // speed d / nu
-  double tau_p = 0;            // response time m_eff / drag coefficient, s
-  double stokes_k_eps = 0;     // tau_p / (k / eps)
-  double stokes_kolmogorov = 0;  // tau_p / sqrt(nu / eps)
-  double spin_ratio = 0;       // r_eq |w0| / speed
-  std::vector<std::pair<Effect, double>> size_rel;  // force (or inertia) / driving force
-  EffectSet chosen;
-  std::vector<std::pair<Effect, std::string>> skipped;
-};
-EffectAnalysis analyze_effects(const Scene& scene, const BodyType& type, const FlowScales& flow,
-                               const BodySpec& spec);
-
-// Effects chosen for "effects": "auto" (analyze_effects().chosen).
-EffectSet auto_effects(const Scene& scene, const BodyType& type, const FlowScales& flow,
-                       const BodySpec& spec);
-
-// Estimated cost of one body-step for an effect set and integrator, ns: an additive fit to the
-// table in docs/effects.md (uniform field; grid sampling is extra). A guide, not a promise.
-double estimated_cost_ns(EffectSet set, Integrator integrator, bool grid, bool isotropic_mass);
-// The same for a body type that takes a batched step: spheres (integrate/sphere_batch.h) or, with
-// `rigid`, plates and ellipsoids (integrate/rigid_batch.h); a fit to docs/batched-step.md's
-// measurements (AVX-512 loops, steady grid, one core).
-double estimated_batched_cost_ns(EffectSet set, Precision precision, bool rigid = false);
-
-// Throws lrigid::Error naming the scene file and key for physically impossible input.
-Model compile_model(const Scene& scene, FluidField field, const AddedMassProvider& added_mass);
 
 }  // namespace lrigid

@@ -1,5 +1,5 @@
 // A scene as the user described it (parsed and validated by io/scene_json). Plain data, SI units.
-// compile_model() turns it into the constant Model the step runs on.
+// compile_model() (effects/compile_model.h) turns it into the constant Model the step runs on.
 #pragma once
 #include <cstdint>
 #include <string>

@@ -35,8 +35,4 @@ struct State {
   size_t size() const { return x.size(); }
 };
 
-// Places the bodies as the scene says; random draws are keyed by (seed, body), so the state
-// does not depend on threads. The seen turbulence starts from its stationary distribution.
-State initial_state(const Model& model, const Scene& scene);
-
 }  // namespace lrigid

@@ -1,70 +1,56 @@
-// LU factorization with partial pivoting for the step's small fixed-size systems (3x3, 6x6).
-// Eigen's PartialPivLU / LDLT go through its dynamic-size blocked kernels even for a 6x6 matrix
-// (about 1,500 instructions to factor, measured with callgrind); these loops have compile-time
-// bounds, unroll, and factor a 6x6 in about a fifth of that. The factorization is kept so that
-// Newton iterations with an unchanged matrix (simplified Newton) pay only for the solves.
+// LU factorization of the step's small fixed-size systems (6 x 6 and 3 x 3), written once for
+// the scalar step (T = double) and the batched steps' loops across bodies (double or float):
+// compile-time bounds that unroll, no branches, no pivoting. Every matrix the step factors has a
+// safe diagonal: the free Kirchhoff flow's Newton matrix I + h/2 dG/dY is the identity plus a
+// perturbation that the substeps make small (integrate/dynamics.cpp falls back to them when a
+// pivot fails), and the implicit force step's M + h J + b P is symmetric positive definite, for
+// which elimination without pivoting is stable (Golub & Van Loan, Matrix Computations, 4th ed.,
+// section 4.2). Eigen's PartialPivLU goes through its dynamic-size blocked kernels even for a 6 x 6
+// (about 1,500 instructions to factor, measured with callgrind), about five times these loops. The
+// factorization is kept so that Newton iterations with an unchanged matrix (simplified Newton)
+// pay only for the solves.
 #pragma once
-#include <Eigen/Core>
 #include <cmath>
+
+#include "util/lane.h"
 
 namespace lrigid {
 
-template <int N>
-class SmallLU {
- public:
-  using Matrix = Eigen::Matrix<double, N, N>;
-  using Vector = Eigen::Matrix<double, N, 1>;
-
-  SmallLU() = default;
-  explicit SmallLU(const Matrix& a) { factor(a); }
-
-  // false when the matrix is singular (a zero or non-finite pivot)
-  bool factor(const Matrix& a) {
-    lu_ = a;
-    for (int k = 0; k < N; ++k) {
-      int p = k;
-      double best = std::abs(lu_(k, k));
-      for (int i = k + 1; i < N; ++i) {
-        const double m = std::abs(lu_(i, k));
-        if (m > best) {
-          best = m;
-          p = i;
-        }
-      }
-      perm_[k] = p;
-      if (p != k) lu_.row(k).swap(lu_.row(p));
-      if (!(best > 0) || !std::isfinite(best)) return ok_ = false;
-      const double inv = 1.0 / lu_(k, k);
-      for (int i = k + 1; i < N; ++i) {
-        const double l = lu_(i, k) * inv;
-        lu_(i, k) = l;
-        for (int j = k + 1; j < N; ++j) lu_(i, j) -= l * lu_(k, j);
-      }
+// The LU factors of the N x N row-major A, in place (unit lower triangle below the diagonal,
+// U on and above it). 0 when a pivot is zero or not finite (the factors are then meaningless).
+template <int N, typename T>
+LRIGID_LANE int lu_factor(T* A) {
+  int ok = 1;
+#pragma GCC unroll 6
+  for (int p = 0; p < N; ++p) {
+    const T piv = A[p * N + p];
+    ok &= int(piv != T(0)) & int(std::isfinite(piv));
+    const T inv = T(1) / (piv != T(0) ? piv : T(1));
+#pragma GCC unroll 6
+    for (int i = p + 1; i < N; ++i) {
+      const T l = A[i * N + p] * inv;
+      A[i * N + p] = l;
+#pragma GCC unroll 6
+      for (int j = p + 1; j < N; ++j) A[i * N + j] -= l * A[p * N + j];
     }
-    return ok_ = true;
   }
+  return ok;
+}
 
-  bool ok() const { return ok_; }
-
-  // x with A x = b (A as factored)
-  Vector solve(Vector b) const {
-    // the row exchanges first (the stored multipliers moved with their rows), then L and U
-    for (int k = 0; k < N; ++k)
-      if (perm_[k] != k) std::swap(b[k], b[perm_[k]]);
-    for (int k = 0; k < N; ++k)
-      for (int i = k + 1; i < N; ++i) b[i] -= lu_(i, k) * b[k];
-    for (int i = N - 1; i >= 0; --i) {
-      double s = b[i];
-      for (int j = i + 1; j < N; ++j) s -= lu_(i, j) * b[j];
-      b[i] = s / lu_(i, i);
-    }
-    return b;
+// b <- A^-1 b for A factored by lu_factor
+template <int N, typename T>
+LRIGID_LANE void lu_solve(const T* A, T* b) {
+#pragma GCC unroll 6
+  for (int p = 0; p < N; ++p)
+#pragma GCC unroll 6
+    for (int i = p + 1; i < N; ++i) b[i] -= A[i * N + p] * b[p];
+#pragma GCC unroll 6
+  for (int i = N - 1; i >= 0; --i) {
+    T s = b[i];
+#pragma GCC unroll 6
+    for (int j = i + 1; j < N; ++j) s -= A[i * N + j] * b[j];
+    b[i] = s / A[i * N + i];
   }
-
- private:
-  Matrix lu_ = Matrix::Zero();
-  int perm_[N] = {};
-  bool ok_ = false;
-};
+}
 
 }  // namespace lrigid

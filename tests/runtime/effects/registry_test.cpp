@@ -5,6 +5,7 @@
 #include <set>
 #include <string>
 
+#include "effects/registry.h"
 #include "model/effects.h"
 #include "model/model.h"
 

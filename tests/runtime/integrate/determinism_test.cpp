@@ -4,6 +4,7 @@
 
 #include <cstring>
 
+#include "effects/compile_model.h"
 #include "integrate/simulation.h"
 #include "support/fixture.h"
 

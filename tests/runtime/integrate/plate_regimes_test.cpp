@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "effects/compile_model.h"
 #include "integrate/simulation.h"
 #include "io/scene_json.h"
 #include "support/fixture.h"

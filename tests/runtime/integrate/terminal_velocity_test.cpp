@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "effects/compile_model.h"
 #include "effects/drag.h"
 #include "integrate/simulation.h"
 #include "support/fixture.h"

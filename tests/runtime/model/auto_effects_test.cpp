@@ -2,6 +2,8 @@
 // docs/effects.md).
 #include <gtest/gtest.h>
 
+#include "effects/compile_model.h"
+#include "effects/registry.h"
 #include "support/fixture.h"
 
 namespace lrigid {

@@ -1,0 +1,406 @@
+#include "effects/compile_model.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "body/mass_properties.h"
+#include "effects/basset.h"
+#include "effects/drag.h"
+#include "effects/plan.h"
+#include "effects/registry.h"
+#include "fluid/turbulence_coefficients.h"
+#include "util/error.h"
+#include "util/rng.h"
+#include "util/rng_uniform.h"
+
+namespace lrigid {
+
+namespace {
+
+// kinetic energy is invariant under a change of reference point: with xi_c = T xi,
+// K_com = T^T K_c T, T = [[I, -[r]x], [0, I]], r = centroid - com
+Mat6 shift_tensor(const Mat6& K_centroid, const Vec3& r) {
+  Mat6 T = Mat6::Identity();
+  T.block<3, 3>(0, 3) = -skew(r);
+  return T.transpose() * K_centroid * T;
+}
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0;
+  const size_t m = v.size() / 2;
+  std::nth_element(v.begin(), v.begin() + m, v.end());
+  return v[m];
+}
+
+// drag force on the body at relative speed U (quasi-steady, broadside for flat bodies), N
+double drag_force(const BodyType& t, double U, double rho, double nu) {
+  if (!(U > 0)) return 0;
+  if (t.flat) return 0.5 * rho * t.plate_area * (kPlateDragA + kPlateDragB) * U * U;
+  const double d = 2.0 * t.r_eq;
+  return 0.5 * rho * schiller_naumann(U * d / nu) * M_PI * t.r_eq * t.r_eq * U * U;
+}
+
+// U with drag_force(U) = F (bisection in log U)
+double speed_for_force(const BodyType& t, double F, double rho, double nu) {
+  if (!(F > 0)) return 0;
+  double lo = 1e-12, hi = 1e4;
+  for (int i = 0; i < 200; ++i) {
+    const double mid = std::sqrt(lo * hi);
+    (drag_force(t, mid, rho, nu) < F ? lo : hi) = mid;
+  }
+  return std::sqrt(lo * hi);
+}
+
+Shape scaled_shape(const Shape& s, double f) {
+  if (f == 1.0) return s;
+  switch (s.type) {
+    case ShapeType::Sphere: return Shape::sphere(f * s.half_extents.x());
+    case ShapeType::Ellipsoid:
+      return Shape::ellipsoid(f * s.half_extents.x(), f * s.half_extents.y(),
+                              f * s.half_extents.z());
+    case ShapeType::Box:
+      return Shape::box(2 * f * s.half_extents.x(), 2 * f * s.half_extents.y(),
+                        2 * f * s.half_extents.z());
+    case ShapeType::Mesh: {
+      auto m = std::make_shared<TriangleMesh>(*s.mesh);
+      for (Vec3& v : m->vertices) v *= f;
+      return Shape::from_mesh(std::move(m), s.source);
+    }
+  }
+  return s;
+}
+
+}  // namespace
+
+FlowScales flow_scales(const Scene& scene, const FluidField& field) {
+  FlowScales f;
+  const double ms = scene.mean_flow_scale, ts2 = scene.turbulence_scale * scene.turbulence_scale;
+  if (scene.uniform_field) {
+    f.U = ms * scene.uniform_U.norm();
+    f.k = ts2 * scene.uniform_k;
+    f.eps = ts2 * scene.uniform_epsilon;
+    f.source = "uniform field";
+    return f;
+  }
+  // up to ~32^3 grid points of the first frame; k, eps recovered from the median sigma2, beta^2
+  const GridGeometry& g = field.geometry();
+  int stride[3];
+  for (int a = 0; a < 3; ++a) stride[a] = std::max(1, (g.n[a] + 31) / 32);
+  std::vector<double> U, s2, b2;
+  const double t0 = field.times().empty() ? 0.0 : field.times().front();
+  for (int i = 0; i < g.n[0]; i += stride[0])
+    for (int j = 0; j < g.n[1]; j += stride[1])
+      for (int k = 0; k < g.n[2]; k += stride[2]) {
+        const Vec3 x = g.origin + Vec3(i * g.spacing.x(), j * g.spacing.y(), k * g.spacing.z());
+        FluidSample s;
+        if (!field.sample(x, t0, false, &s)) continue;
+        U.push_back(s.U.norm());
+        s2.push_back(s.sigma2);
+        b2.push_back(s.beta * s.beta);
+      }
+  const double sigma2 = median(s2), beta2 = median(b2);
+  double c0 = 6.5;
+  for (int it = 0; it < 30 && sigma2 > 0; ++it) {
+    f.k = scene.drift == Drift::Stationary ? 1.5 * sigma2 : sigma2 * (1 + 1.5 * c0) / c0;
+    f.eps = beta2 / c0;
+    c0 = std::max(1.0, c0_of_reynolds(taylor_reynolds(f.k, f.eps, scene.kinematic_viscosity)));
+  }
+  f.U = ms * median(U);
+  f.k *= ts2;
+  f.eps *= ts2;
+  f.source = "grid: medians over " + std::to_string(U.size()) +
+             " valid points of |U|, and k, eps from the median Langevin sigma2, beta^2";
+  return f;
+}
+
+EffectAnalysis analyze_effects(const Scene& scene, const BodyType& t, const FlowScales& flow,
+                               const BodySpec& spec) {
+  EffectAnalysis a;
+  const double rho = scene.fluid_density, nu = scene.kinematic_viscosity;
+  const double g = scene.gravity.norm();
+  const double W = t.mass * g, B = rho * t.volume * g;
+  const double m_a = t.K_fluid.block<3, 3>(0, 0).diagonal().maxCoeff();
+  const double m_eff = t.mass + t.K_fluid.block<3, 3>(0, 0).trace() / 3.0;
+  Vec3 sorted = t.ell;
+  std::sort(sorted.data(), sorted.data() + 3);
+  a.density_ratio = rho / t.density;
+  a.aspect_ratio = sorted[0] / sorted[2];
+  a.size = t.flat ? 2.0 * sorted[1] : 2.0 * t.r_eq;
+  a.terminal_speed = speed_for_force(t, std::abs(W - B), rho, nu);
+  const double u_turb = std::sqrt(2.0 * flow.k / 3.0);
+  const double T_flow = flow.k > 0 && flow.eps > 0 ? flow.k / flow.eps : 0;
+  const double tau_eta = flow.eps > 0 ? std::sqrt(nu / flow.eps) : 0;
+  // characteristic relative speed: settling plus the part of the turbulent velocity the body
+  // does not follow (first-order filter of an exponentially correlated velocity)
+  double U = std::max(a.terminal_speed, 1e-12), c = 0;
+  for (int it = 0; it < 20; ++it) {
+    const double Ue = std::max(U, 1e-9);
+    c = drag_force(t, Ue, rho, nu) / Ue;
+    a.tau_p = c > 0 ? m_eff / c : 0;
+    const double st = T_flow > 0 ? a.tau_p / T_flow : 0;
+    const double u_rel = u_turb * std::sqrt(st / (1.0 + st));
+    U = std::sqrt(a.terminal_speed * a.terminal_speed + u_rel * u_rel);
+  }
+  a.speed = U;
+  a.reynolds = U * a.size / nu;
+  a.stokes_k_eps = T_flow > 0 ? a.tau_p / T_flow : 0;
+  a.stokes_kolmogorov = tau_eta > 0 ? a.tau_p / tau_eta : 0;
+  const double spin = spec.angular_velocity.norm() + std::max(spec.spin_min, spec.spin_max);
+  a.spin_ratio = U > 0 ? t.r_eq * spin / U : 0;
+  const double F_drag = c * U;
+  // the quantities the registry's rules weigh (model/effects.h AutoInputs)
+  AutoInputs in;
+  in.weight = W;
+  in.buoyancy = B;
+  in.F_ref = std::max({std::abs(W - B), F_drag, 1e-300});
+  in.drag_per_speed = c;
+  in.speed = U;
+  in.mass = t.mass;
+  in.added_mass_max = m_a;
+  in.flow_U = flow.U;
+  in.flow_k = flow.k;
+  in.u_turb = u_turb;
+  in.stokes_k_eps = a.stokes_k_eps;
+  in.spin = spin;
+  in.rho = rho;
+  in.nu = nu;
+  in.volume = t.volume;
+  in.r_eq = t.r_eq;
+  in.tau_p = a.tau_p;
+  in.reynolds = a.reynolds;
+  in.flat = t.flat;
+  in.plate_area = t.plate_area;
+  in.thickness_ratio = sorted[0] / sorted[1];
+  for (const EffectInfo& info : all_effects()) {
+    const AutoDecision d = info.rule(in);
+    a.size_rel.emplace_back(info.effect, d.size);
+    if (d.keep) a.chosen.add(info.effect);
+    else a.skipped.emplace_back(info.effect, d.why_not);
+  }
+  return a;
+}
+
+EffectSet auto_effects(const Scene& scene, const BodyType& type, const FlowScales& flow,
+                       const BodySpec& spec) {
+  return analyze_effects(scene, type, flow, spec).chosen;
+}
+
+namespace {
+
+BodyType make_body_type(const Scene& scene, const BodySpec& b, const Shape& shape,
+                        double density, const FluidField& field, const FlowScales& flow,
+                        const AddedMassProvider& added_mass, const std::string& key) {
+  BodyType t;
+  t.name = b.name;
+  t.shape = shape;
+  t.density = density;
+  const MassProperties mp = mass_properties(shape);
+  t.volume = mp.volume;
+  t.mass = density * mp.volume;
+  t.centroid = mp.centroid;
+  t.com = mp.centroid + b.mass_offset;
+  t.r_cob = -b.mass_offset;
+  // inertia: the uniform body's inertia, taken about the (possibly offset) centre of mass
+  t.M_body.setZero();
+  t.M_body.block<3, 3>(0, 0) = t.mass * Mat3::Identity();
+  t.M_body.block<3, 3>(3, 3) = density * mp.inertia;
+
+  // equivalent ellipsoid for drag: exact for spheres/ellipsoids; boxes and meshes use their
+  // bounding box scaled by sqrt(4/pi), so face areas match (pi l1 l2 = 4 h1 h2)
+  const Vec3 h = shape.half_extents;
+  t.half_extents = h;
+  t.ell = (shape.type == ShapeType::Sphere || shape.type == ShapeType::Ellipsoid)
+              ? h
+              : Vec3(h * std::sqrt(4.0 / M_PI));
+  Vec3 sorted = t.ell;
+  std::sort(sorted.data(), sorted.data() + 3);
+  t.area_max = M_PI * sorted[1] * sorted[2];
+  t.r_eq = std::cbrt(3.0 * t.volume / (4.0 * M_PI));
+  for (int a = 0; a < 3; ++a) {
+    const double lj = t.ell[(a + 1) % 3], lk = t.ell[(a + 2) % 3];
+    // rotation about axis a pushes fluid in proportion to the body's out-of-roundness
+    t.rot_drag_len5[a] = t.ell[a] * std::abs(std::pow(lj, 4) - std::pow(lk, 4));
+  }
+  // flat: the smallest semi-axis is at most kFlatRatio of the middle one
+  t.ell.minCoeff(&t.normal_axis);
+  t.flat = sorted[0] <= kFlatRatio * sorted[1];
+  t.plate_area = t.area_max;
+  t.apw_speed =
+      std::sqrt(std::abs(density / scene.fluid_density - 1.0) * scene.gravity.norm() * sorted[0]);
+  if (t.flat) ellipsoid_stokes_resistance(t.ell, &t.stokes_force, &t.stokes_torque);
+
+  // the fluid tensor is computed for every body type: "auto" needs its size
+  const AddedMass am = added_mass(shape, scene.fluid_density, b.panels);
+  t.K_fluid = shift_tensor(am.tensor, t.centroid - t.com);
+  t.added_mass_method = am.method;
+  t.added_mass_panels = am.panels;
+
+  t.effects = scene.effects_auto ? auto_effects(scene, t, flow, b) : scene.effects;
+  t.M = t.M_body;
+  if (t.effects.has(Effect::AddedMass)) t.M += t.K_fluid;
+  t.M = 0.5 * (t.M + t.M.transpose());
+  Eigen::LDLT<Mat6> ldlt(t.M);
+  if (ldlt.info() != Eigen::Success || !ldlt.isPositive() || ldlt.vectorD().minCoeff() <= 0) {
+    fail_input(scene.file, key, "generalized mass matrix is not positive definite");
+  }
+  t.M_inv = ldlt.solve(Mat6::Identity());
+  t.M_inv = 0.5 * (t.M_inv + t.M_inv.transpose());  // exactly symmetric (integrate/kirchhoff.h)
+  t.M_block_diagonal =
+      t.M.topRightCorner<3, 3>().isZero(0.0) && t.M.bottomLeftCorner<3, 3>().isZero(0.0);
+  t.M_diagonal = Mat6(t.M.diagonal().asDiagonal()) == t.M;
+  if (t.M_diagonal) t.M_inv_diagonal = t.M.diagonal().cwiseInverse();
+  auto equal3 = [](const Vec3& d) {
+    return (d.array() - d.mean()).abs().maxCoeff() <= 1e-13 * d.mean();
+  };
+  t.M_isotropic =
+      t.M_diagonal && equal3(t.M.diagonal().head<3>()) && equal3(t.M.diagonal().tail<3>());
+  if (t.effects.has(Effect::Basset)) {
+    const double coef =
+        6.0 * t.r_eq * t.r_eq * scene.fluid_density * std::sqrt(M_PI * scene.kinematic_viscosity);
+    t.basset = make_basset_kernel(coef, scene.dt, kBassetWindow, scene.duration);
+    Mat6 A = t.M;
+    A.block<3, 3>(0, 0) += t.basset.implicit_mass * Mat3::Identity();
+    t.basset.implicit_inv = A.inverse();
+  }
+  build_effect_plan(&t, scene.turbulence_model, scene.fluid_density, scene.kinematic_viscosity);
+  (void)field;
+  return t;
+}
+
+}  // namespace
+
+Model compile_model(const Scene& scene, FluidField field, const AddedMassProvider& added_mass) {
+  Model m;
+  m.scene_file = scene.file;
+  m.fluid_density = scene.fluid_density;
+  m.nu = scene.kinematic_viscosity;
+  m.gravity = scene.gravity;
+  m.integrator = scene.integrator;
+  m.batched = scene.batched;
+  m.precision = scene.precision;
+  m.dt = scene.dt;
+  m.duration = scene.duration;
+  m.seed = scene.seed;
+  m.turbulence_model = scene.turbulence_model;
+  m.drift = scene.drift;
+  m.has_ground = scene.has_ground;
+  m.ground_z = scene.ground_z;
+  m.mean_flow_scale = scene.mean_flow_scale;
+  m.turbulence_scale = scene.turbulence_scale;
+  const FlowScales flow = scene.effects_auto ? flow_scales(scene, field) : FlowScales();
+
+  size_t first = 0;
+  for (size_t i = 0; i < scene.bodies.size(); ++i) {
+    const BodySpec& b = scene.bodies[i];
+    const std::string key = "bodies[" + std::to_string(i) + "]";
+    const bool varied = b.variants > 1 && (b.size_max != b.size_min ||
+                                           b.density_max != b.density_min);
+    const int nv = varied ? std::min(b.variants, b.count) : 1;
+    for (int j = 0; j < nv; ++j) {
+      double f_size = b.size_min, f_rho = b.density_min;
+      if (varied) {
+        // variant j's factors, keyed by (seed, body entry, variant)
+        double u[4];
+        uniforms4(scene.seed, static_cast<uint32_t>(i), 0x76000000u + uint32_t(j), u);
+        f_size = b.size_min + u[0] * (b.size_max - b.size_min);
+        f_rho = b.density_min + u[1] * (b.density_max - b.density_min);
+      }
+      BodyType t = make_body_type(scene, b, scaled_shape(b.shape, f_size), f_rho * b.density,
+                                  field, flow, added_mass, key);
+      t.spec = i;
+      t.first_body = first;
+      t.count = size_t(b.count / nv + (j < b.count % nv ? 1 : 0));
+      first += t.count;
+      m.types.push_back(std::move(t));
+    }
+  }
+  if (m.types.size() > 65535) fail_input(scene.file, "bodies", "more than 65535 body variants");
+  m.body_count = first;
+  m.field = std::move(field);
+  return m;
+}
+
+State initial_state(const Model& model, const Scene& scene) {
+  State s;
+  const size_t n = model.body_count;
+  s.x.resize(n);
+  s.q.resize(n);
+  s.v.resize(n);
+  s.w.resize(n);
+  s.u_seen.assign(n, Vec3::Zero());
+  s.type.resize(n);
+  s.status.assign(n, BodyStatus::Moving);
+  s.t_stop.assign(n, 0.0);
+  s.reason.assign(n, std::string());
+  s.history_offset.assign(n, State::kNoHistory);
+  size_t hist = 0;
+  for (const BodyType& type : model.types)
+    if (type.plan.basset) hist += type.count * type.basset.stride();
+  s.history.assign(hist, 0.0);
+  hist = 0;
+  for (size_t ti = 0; ti < model.types.size(); ++ti) {
+    const BodyType& type = model.types[ti];
+    const BodySpec& spec = scene.bodies[type.spec];
+    for (size_t i = type.first_body; i < type.first_body + type.count; ++i) {
+      const uint32_t id = static_cast<uint32_t>(i);
+      s.type[i] = static_cast<uint16_t>(ti);
+      if (spec.spawn_in_box) {
+        double u[4];
+        uniforms4(model.seed, id, 1, u);
+        for (int a = 0; a < 3; ++a)
+          s.x[i][a] = spec.box_lo[a] + u[a] * (spec.box_hi[a] - spec.box_lo[a]);
+      } else {
+        s.x[i] = spec.position;
+      }
+      if (spec.random_orientation) {
+        // uniform on SO(3): a normalized 4D Gaussian (Shoemake's method is equivalent)
+        NormalStream ns(model.seed, id, ~uint64_t(0));
+        double z[4];
+        ns.normals(z);
+        s.q[i] = Quat(z[0], z[1], z[2], z[3]).normalized();
+      } else {
+        s.q[i] = spec.orientation.normalized();
+      }
+      const Mat3 Rt = s.q[i].toRotationMatrix().transpose();
+      s.v[i] = Rt * spec.velocity;
+      s.w[i] = Rt * spec.angular_velocity;
+      if (spec.spin_max > 0) {
+        // art direction: spin of a uniformly drawn magnitude about a uniformly random axis
+        double u[4];
+        uniforms4(model.seed, id, 2, u);
+        NormalStream ns(model.seed, id, ~uint64_t(2));
+        double z[4];
+        ns.normals(z);
+        const Vec3 axis = Vec3(z[0], z[1], z[2]).normalized();
+        s.w[i] += (spec.spin_min + u[0] * (spec.spin_max - spec.spin_min)) * axis;
+      }
+      // seen model: the fluid's fluctuation starts stationary; body model: the body starts with
+      // exactly the scene's velocity (its turbulent velocity starts at 0)
+      if (type.effects.has(Effect::Turbulence) &&
+          model.turbulence_model == TurbulenceModel::Seen) {
+        FluidSample fs;
+        if (model.field.sample(s.x[i], 0.0, false, &fs)) {
+          NormalStream ns(model.seed, id, ~uint64_t(1));
+          double z[4];
+          ns.normals(z);
+          s.u_seen[i] = model.turbulence_scale * std::sqrt(fs.sigma2) * Vec3(z[0], z[1], z[2]);
+        }
+      }
+      if (type.plan.basset) {
+        // the history starts from the relative velocity at t = 0 (no initial-jump term)
+        s.history_offset[i] = hist;
+        hist += type.basset.stride();
+        Vec3 uf = Vec3::Zero();
+        FluidSample fs;
+        if (type.plan.mean_flow && model.field.sample(s.x[i], 0.0, false, &fs))
+          uf += model.mean_flow_scale * fs.U;
+        if (type.plan.seen) uf += s.u_seen[i];
+        basset_reset(type.basset, uf - s.q[i].toRotationMatrix() * s.v[i], s.history_of(i));
+      }
+    }
+  }
+  return s;
+}
+
+}  // namespace lrigid

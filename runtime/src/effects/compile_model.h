@@ -1,0 +1,57 @@
+// Compiling a scene into the constant model and its initial state: each body type's mass
+// properties, generalized mass, the effects "auto" keeps (the registry's rules, weighed on the
+// scene's representative flow), its Basset kernel and its plan of wrench terms. It needs the
+// physics (effects/), so it lives above the model (model/ <- effects/ <- integrate/).
+#pragma once
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "model/model.h"
+#include "model/state.h"
+
+namespace lrigid {
+
+// Representative flow of a scene for the dimensionless numbers of "auto" and `lrigid explain`.
+// Uniform field: its U, k, eps. Grid: medians over valid grid points (up to ~32^3 sampled) of
+// |U|, and of k and eps recovered from the Langevin coefficients (first frame).
+struct FlowScales {
+  double U = 0;        // |U|, m/s
+  double k = 0;        // m^2/s^2
+  double eps = 0;      // m^2/s^3
+  std::string source;  // how they were obtained
+};
+FlowScales flow_scales(const Scene& scene, const FluidField& field);
+
+// Why "auto" keeps or skips each effect of a body type (docs/effects.md states the thresholds).
+struct EffectAnalysis {
+  double density_ratio = 0;    // rho_f / rho_b
+  double aspect_ratio = 1;     // smallest / largest semi-axis of the equivalent ellipsoid
+  double size = 0;             // d: diameter of the equal-volume sphere (chord for flat), m
+  double speed = 0;            // characteristic speed relative to the fluid, m/s
+  double terminal_speed = 0;   // settling speed in still fluid, m/s
+  double reynolds = 0;         // speed d / nu
+  double tau_p = 0;            // response time m_eff / drag coefficient, s
+  double stokes_k_eps = 0;     // tau_p / (k / eps)
+  double stokes_kolmogorov = 0;  // tau_p / sqrt(nu / eps)
+  double spin_ratio = 0;       // r_eq |w0| / speed
+  std::vector<std::pair<Effect, double>> size_rel;  // force (or inertia) / driving force
+  EffectSet chosen;
+  std::vector<std::pair<Effect, std::string>> skipped;
+};
+EffectAnalysis analyze_effects(const Scene& scene, const BodyType& type, const FlowScales& flow,
+                               const BodySpec& spec);
+
+// Effects chosen for "effects": "auto" (analyze_effects().chosen).
+EffectSet auto_effects(const Scene& scene, const BodyType& type, const FlowScales& flow,
+                       const BodySpec& spec);
+
+// Throws lrigid::Error naming the scene file and key for physically impossible input.
+Model compile_model(const Scene& scene, FluidField field, const AddedMassProvider& added_mass);
+
+// Places the bodies as the scene says; random draws are keyed by (seed, body), so the state
+// does not depend on threads. The seen turbulence starts from its stationary distribution, the
+// Basset history from the relative velocity at t = 0.
+State initial_state(const Model& model, const Scene& scene);
+
+}  // namespace lrigid

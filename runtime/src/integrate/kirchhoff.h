@@ -1,0 +1,237 @@
+// The free Kirchhoff flow's kernels, written once for the scalar step (integrate/dynamics.cpp,
+// T = double) and the batched steps' loops across bodies (integrate/rigid_batch.cpp, double or
+// float): the generalized mass M as the kernels see it, the flow's right-hand side, the Newton
+// matrix of its implicit midpoint step, and the implicit force step's solve. The drivers (the
+// scalar step's early-exit iterations, the lanes' masked ones) stay with their steps.
+//
+// The flow (dynamics.h kirchhoff_flow): for Y = (P; L) = M xi_r, xi_r = (v - R^T u_f; w),
+//   dY/dt = -G(Y),   G(Y) = (w x P; w x L + v x P),   (v; w) = M^-1 Y,
+// and one implicit-midpoint step solves Y1 = Y0 - h G((Y0 + Y1)/2), by fixed point first and
+// Newton with the matrix I + h/2 dG/dY, where dG/dY = [w^ 0; v^ w^] + [0 -P^; -P^ -L^] M^-1.
+#pragma once
+#include <cmath>
+
+#include "effects/drag.h"
+#include "util/lane.h"
+#include "util/small_lu.h"
+
+namespace lrigid {
+
+// ---- M as the kernels see it --------------------------------------------------------------------
+
+// A diagonal M (boxes, ellipsoids, spheres with the centre of mass at the centroid): its
+// diagonal and the inverse's, kg and kg m^2.
+struct DiagonalMass {
+  double M[6] = {0, 0, 0, 0, 0, 0};
+  double Mi[6] = {0, 0, 0, 0, 0, 0};
+};
+
+// A full symmetric M (meshes, bodies with an offset centre of mass): M and M^-1, 36 numbers each
+// (symmetric, so row and column major are the same; the scalar step points into BodyType::M and
+// M_inv).
+struct FullMass {
+  const double* M = nullptr;
+  const double* Mi = nullptr;
+};
+
+// x = M^-1 y and x = M y
+template <typename T>
+LRIGID_LANE void mass_inv_times(const DiagonalMass& m, const T* y, T* x) {
+#pragma GCC unroll 6
+  for (int a = 0; a < 6; ++a) x[a] = T(m.Mi[a]) * y[a];
+}
+template <typename T>
+LRIGID_LANE void mass_inv_times(const FullMass& m, const T* y, T* x) {
+#pragma GCC unroll 6
+  for (int r = 0; r < 6; ++r) {
+    T s = 0;
+#pragma GCC unroll 6
+    for (int c = 0; c < 6; ++c) s += T(m.Mi[r * 6 + c]) * y[c];
+    x[r] = s;
+  }
+}
+template <typename T>
+LRIGID_LANE void mass_times(const DiagonalMass& m, const T* y, T* x) {
+#pragma GCC unroll 6
+  for (int a = 0; a < 6; ++a) x[a] = T(m.M[a]) * y[a];
+}
+template <typename T>
+LRIGID_LANE void mass_times(const FullMass& m, const T* y, T* x) {
+#pragma GCC unroll 6
+  for (int r = 0; r < 6; ++r) {
+    T s = 0;
+#pragma GCC unroll 6
+    for (int c = 0; c < 6; ++c) s += T(m.M[r * 6 + c]) * y[c];
+    x[r] = s;
+  }
+}
+
+// d^T M^-1 d: twice the kinetic energy of an impulse d (the flow's convergence norm)
+template <typename T>
+LRIGID_LANE T energy_norm2(const DiagonalMass& m, const T* d) {
+  T s = 0;
+#pragma GCC unroll 6
+  for (int a = 0; a < 6; ++a) s += d[a] * d[a] * T(m.Mi[a]);
+  return s;
+}
+template <typename T>
+LRIGID_LANE T energy_norm2(const FullMass& m, const T* d) {
+  T x[6];
+  mass_inv_times(m, d, x);
+  T s = 0;
+#pragma GCC unroll 6
+  for (int a = 0; a < 6; ++a) s += d[a] * x[a];
+  return s;
+}
+
+// ---- the free flow --------------------------------------------------------------------------
+
+// g = G(Y) = (w x P; w x L + v x P) with (v; w) = M^-1 Y (effects/wrench.h kirchhoff_gyro)
+template <typename T, class Mass>
+LRIGID_LANE void kirchhoff_gyro_kernel(const Mass& m, const T* Y, T* g) {
+  T xi[6];
+  mass_inv_times(m, Y, xi);
+  T a[3], b[3], c[3];
+  cross3(xi + 3, Y, a);
+  cross3(xi + 3, Y + 3, b);
+  cross3(xi, Y, c);
+#pragma GCC unroll 3
+  for (int i = 0; i < 3; ++i) {
+    g[i] = a[i];
+    g[3 + i] = b[i] + c[i];
+  }
+}
+
+// A = I + h2 dG/dY at the midpoint impulse ym (h2 = h / 2), row major
+template <typename T, class Mass>
+LRIGID_LANE void kirchhoff_newton_matrix(const Mass& m, const T* ym, T h2, T* A) {
+  T xi[6];
+  mass_inv_times(m, ym, xi);
+  const T* v = xi;
+  const T* w = xi + 3;
+  const T* P = ym;
+  const T* L = ym + 3;
+  // a^ (r, c): 0 on the diagonal, -a[3 - r - c] above it in cyclic order, + below
+  auto sk = [](const T* a, int r, int c) {
+    return r == c ? T(0) : ((c - r + 3) % 3 == 1 ? -a[3 - r - c] : a[3 - r - c]);
+  };
+  // E = [0 -P^; -P^ -L^] (row major), then A = I + h2 (D + E M^-1)
+  T E[36];
+#pragma GCC unroll 3
+  for (int r = 0; r < 3; ++r)
+#pragma GCC unroll 3
+    for (int c = 0; c < 3; ++c) {
+      E[r * 6 + c] = T(0);
+      E[r * 6 + 3 + c] = -sk(P, r, c);
+      E[(3 + r) * 6 + c] = -sk(P, r, c);
+      E[(3 + r) * 6 + 3 + c] = -sk(L, r, c);
+    }
+#pragma GCC unroll 6
+  for (int r = 0; r < 6; ++r) {
+    // row r of E M^-1: M^-1 is symmetric, so it is M^-1 times E's row
+    T EMi[6];
+    mass_inv_times(m, E + r * 6, EMi);
+#pragma GCC unroll 6
+    for (int c = 0; c < 6; ++c) {
+      const int rb = r / 3, cb = c / 3, rr = r % 3, cc = c % 3;
+      // D = [w^ 0; v^ w^]
+      const T D = (rb == cb) ? sk(w, rr, cc) : (rb == 1 && cb == 0 ? sk(v, rr, cc) : T(0));
+      A[r * 6 + c] = (r == c ? T(1) : T(0)) + h2 * (D + EMi[c]);
+    }
+  }
+}
+
+// The explicit midpoint predictor Y = Y0 - h G(Y0 - h/2 G(Y0)) (error O(h^3)), the start of the
+// iteration
+template <typename T, class Mass>
+LRIGID_LANE void kirchhoff_predictor(const Mass& m, T h, const T* Y0, T* Y) {
+  T g[6], ym[6];
+  kirchhoff_gyro_kernel(m, Y0, g);
+#pragma GCC unroll 6
+  for (int a = 0; a < 6; ++a) ym[a] = Y0[a] - T(0.5) * h * g[a];
+  kirchhoff_gyro_kernel(m, ym, g);
+#pragma GCC unroll 6
+  for (int a = 0; a < 6; ++a) Y[a] = Y0[a] - h * g[a];
+}
+
+// One fixed-point iteration of the midpoint equation, next = Y0 - h G((Y0 + Y)/2); returns the
+// update's size (next - Y)^T M^-1 (next - Y)
+template <typename T, class Mass>
+LRIGID_LANE T kirchhoff_fixed_point(const Mass& m, T h, const T* Y0, const T* Y, T* next) {
+  T ym[6], g[6], d[6];
+#pragma GCC unroll 6
+  for (int a = 0; a < 6; ++a) ym[a] = T(0.5) * (Y0[a] + Y[a]);
+  kirchhoff_gyro_kernel(m, ym, g);
+#pragma GCC unroll 6
+  for (int a = 0; a < 6; ++a) {
+    next[a] = Y0[a] - h * g[a];
+    d[a] = next[a] - Y[a];
+  }
+  return energy_norm2(m, d);
+}
+
+// The Newton step's right-hand side r = -(Y - Y0 + h G((Y0 + Y)/2)), to be solved with the
+// factored kirchhoff_newton_matrix at the midpoint (lu_solve)
+template <typename T, class Mass>
+LRIGID_LANE void kirchhoff_residual(const Mass& m, T h, const T* Y0, const T* Y, T* r) {
+  T ym[6], g[6];
+#pragma GCC unroll 6
+  for (int a = 0; a < 6; ++a) ym[a] = T(0.5) * (Y0[a] + Y[a]);
+  kirchhoff_gyro_kernel(m, ym, g);
+#pragma GCC unroll 6
+  for (int a = 0; a < 6; ++a) r[a] = -(Y[a] - Y0[a] + h * g[a]);
+}
+
+// ---- the implicit force step --------------------------------------------------------------------
+
+// x = M (M + h J + b_B P)^-1 b: the impulse change of the implicit force step (integrators.cpp
+// split_deterministic_step) for right-hand side b (6: linear, angular), where J is the drag's
+// stiffness d (linear block c_lin (I + p u u^T), angular c_ang I: never coupled) and b_B the
+// Basset history's current interval as a mass on the linear block (0 without). Diagonal M:
+// Sherman-Morrison on the linear block, closed form on the angular one.
+template <typename T>
+LRIGID_LANE bool implicit_impulse(const DiagonalMass& m, T basset_mass, const DragOut<T>& d, T h,
+                                  const T* b, T* x) {
+  T Dinv_b[3], Dinv_u[3];
+#pragma GCC unroll 3
+  for (int a = 0; a < 3; ++a) {
+    const T Dinv = T(1) / (T(m.M[a]) + basset_mass + h * d.c_lin);
+    Dinv_b[a] = Dinv * b[a];
+    Dinv_u[a] = Dinv * d.u_hat[a];
+  }
+  const T cp = h * d.c_lin * d.p;
+  const T g = cp * dot3(d.u_hat, Dinv_b) / (T(1) + cp * dot3(d.u_hat, Dinv_u));
+#pragma GCC unroll 3
+  for (int a = 0; a < 3; ++a) {
+    x[a] = T(m.M[a]) * (Dinv_b[a] - g * Dinv_u[a]);
+    x[3 + a] = T(m.M[3 + a]) * b[3 + a] / (T(m.M[3 + a]) + h * d.c_ang);
+  }
+  return true;
+}
+
+// Full M: the symmetric positive definite 6 x 6 matrix factored without pivoting. false when a
+// pivot fails (not for a positive definite matrix).
+template <typename T>
+LRIGID_LANE bool implicit_impulse(const FullMass& m, T basset_mass, const DragOut<T>& d, T h,
+                                  const T* b, T* x) {
+  T A[36];
+#pragma GCC unroll 6
+  for (int e = 0; e < 36; ++e) A[e] = T(m.M[e]);
+#pragma GCC unroll 3
+  for (int r = 0; r < 3; ++r) {
+#pragma GCC unroll 3
+    for (int c = 0; c < 3; ++c)
+      A[r * 6 + c] += h * d.c_lin * ((r == c ? T(1) : T(0)) + d.p * d.u_hat[r] * d.u_hat[c]);
+    A[r * 6 + r] += basset_mass;
+    A[(3 + r) * 6 + 3 + r] += h * d.c_ang;
+  }
+  const int ok = lu_factor<6>(A);
+  T y[6];
+#pragma GCC unroll 6
+  for (int a = 0; a < 6; ++a) y[a] = b[a];
+  lu_solve<6>(A, y);
+  mass_times(m, y, x);
+  return ok != 0;
+}
+
+}  // namespace lrigid
