@@ -19,8 +19,8 @@ enum class FieldNeed : uint8_t {
   Sample,  // U, k, eps (Langevin coefficients) at the position: one grid sample per step
 };
 
-// What the "auto" rules weigh, per body type, from effects/compile_model.cpp analyze_effects: forces in N,
-// speeds in m/s (docs/effects.md states the thresholds).
+// What the "auto" rules weigh, per body type, from analyze_effects (effects/compile_model.cpp):
+// forces in N, speeds in m/s (docs/effects.md states the thresholds).
 struct AutoInputs {
   double weight = 0, buoyancy = 0;  // W = m g, B = rho_f V g
   double F_ref = 0;                 // max(|W - B|, drag at the characteristic speed)

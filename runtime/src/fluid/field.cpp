@@ -5,6 +5,8 @@
 #include <chrono>
 #include <cmath>
 
+#include "fluid/trilinear.h"
+
 namespace lrigid {
 
 namespace {
@@ -200,45 +202,23 @@ bool FluidField::sample_frame(const std::vector<GridRecord>& frame, const Vec3& 
     i0[a] = i;
     f[a] = s - i;
   }
-  const size_t sx = 1, sy = size_t(g.n[0]), sz = size_t(g.n[0]) * g.n[1];
-  const GridRecord* r0 = frame.data() + i0[0] * sx + i0[1] * sy + i0[2] * sz;
-  const GridRecord* rec[8] = {r0,           r0 + sx,           r0 + sy,      r0 + sx + sy,
-                              r0 + sz,      r0 + sx + sz,      r0 + sy + sz, r0 + sx + sy + sz};
-  // trilinear weights of the 8 corners (c = cx + 2 cy + 4 cz), zero for invalid corners, and
-  // their derivatives per unit index; branch-free so the loops below vectorize
-  const double gx[2] = {1 - f[0], f[0]}, gy[2] = {1 - f[1], f[1]}, gz[2] = {1 - f[2], f[2]};
-  // the wall distance takes the plain weights: invalid corners hold negative distances
-  double w[8], dw[3][8], wall = 0;
-  int nvalid = 0;
-  for (int c = 0; c < 8; ++c) {
-    const int cx = c & 1, cy = (c >> 1) & 1, cz = c >> 2;
-    const double valid = rec[c]->valid;
-    nvalid += valid != 0.0;
-    const double plain = gx[cx] * gy[cy] * gz[cz];
-    w[c] = valid * plain;
-    wall += plain * rec[c]->wall_distance;
-    dw[0][c] = (cx ? 1 : -1) * gy[cy] * gz[cz];
-    dw[1][c] = gx[cx] * (cy ? 1 : -1) * gz[cz];
-    dw[2][c] = gx[cx] * gy[cy] * (cz ? 1 : -1);
-  }
-  // value sums v[0..5] = (u0,u1,u2,alpha,beta,sigma2) and the weight W; invalid records hold 0
-  double W = 0, v[6] = {0, 0, 0, 0, 0, 0};
-  for (int c = 0; c < 8; ++c) {
-    const GridRecord& r = *rec[c];
-    W += w[c];
-    v[0] += w[c] * r.u[0], v[1] += w[c] * r.u[1], v[2] += w[c] * r.u[2];
-    v[3] += w[c] * r.alpha, v[4] += w[c] * r.beta, v[5] += w[c] * r.sigma2;
-  }
-  // gradients (per unit index) of u0,u1,u2,sigma2, used only when all corners are valid
-  double dv[4][3] = {{0}};
-  if (gradients && nvalid == 8) {
-    for (int c = 0; c < 8; ++c) {
-      const GridRecord& r = *rec[c];
-      const double gv[4] = {r.u[0], r.u[1], r.u[2], r.sigma2};
-      for (int q = 0; q < 4; ++q)
-        for (int a = 0; a < 3; ++a) dv[q][a] += dw[a][c] * gv[q];
-    }
-  }
+  // the 8 corners' records (fluid/trilinear.h, the batched step's kernel too)
+  const int sy = g.n[0], sz = g.n[0] * g.n[1];
+  const int off[8] = {0, 8, 8 * sy, 8 * (1 + sy), 8 * sz, 8 * (1 + sz), 8 * (sy + sz),
+                      8 * (1 + sy + sz)};
+  const float* r0 = reinterpret_cast<const float*>(frame.data()) +
+                    8 * (size_t(i0[0]) + size_t(i0[1]) * sy + size_t(i0[2]) * sz);
+  Record8<double>::type v, dv[3];
+  const int nvalid =
+      gradients ? trilinear_record<double, true>(r0, off, f, &v, &dv[0], &dv[1], &dv[2])
+                : trilinear_record<double, false>(r0, off, f, &v, &dv[0], &dv[1], &dv[2]);
+  const double W = v[6];
+  // the wall distance (slot 7) with the plain trilinear weights: invalid corners hold negative
+  // distances, so the blend crosses 0 at the wall (trilinear_record weighs slots by validity)
+  double wall = 0;
+  for (int c = 0; c < 8; ++c)
+    wall += ((c & 1) ? f[0] : 1 - f[0]) * ((c & 2) ? f[1] : 1 - f[1]) *
+            ((c & 4) ? f[2] : 1 - f[2]) * double(r0[off[c] + 7]);
   out->wall_distance = has_wall_distance_ ? wall : HUGE_VAL;
   // the wall lies between a valid and an invalid grid point: x is in the fluid when the valid
   // corners carry at least half of the trilinear weight (the wall at mid-spacing, error <= h/2)
@@ -252,8 +232,8 @@ bool FluidField::sample_frame(const std::vector<GridRecord>& frame, const Vec3& 
     // next to invalid points the renormalized blend has no reliable gradient: use none there
     if (nvalid == 8) {
       for (int i = 0; i < 3; ++i)
-        for (int a = 0; a < 3; ++a) out->grad_U(i, a) = dv[i][a] / g.spacing[a];
-      for (int a = 0; a < 3; ++a) out->grad_sigma2[a] = dv[3][a] / g.spacing[a];
+        for (int a = 0; a < 3; ++a) out->grad_U(i, a) = dv[a][i] / g.spacing[a];
+      for (int a = 0; a < 3; ++a) out->grad_sigma2[a] = dv[a][5] / g.spacing[a];
     } else {
       out->grad_U.setZero();
       out->grad_sigma2.setZero();

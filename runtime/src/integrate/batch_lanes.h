@@ -17,6 +17,7 @@
 #include "effects/plan.h"
 #include "effects/registry.h"
 #include "effects/turbulence.h"
+#include "fluid/trilinear.h"
 #include "integrate/dynamics.h"
 #include "integrate/integrators.h"
 #include "integrate/sphere_batch.h"
@@ -74,7 +75,7 @@ struct FieldConsts {
   double basset_mass = 0, magnus = 0;
   // grid
   double origin[3] = {0, 0, 0}, spacing[3] = {1, 1, 1}, upper_index[3] = {0, 0, 0};
-  int n[3] = {0, 0, 0};
+  int points[3] = {0, 0, 0};  // grid points per axis
   int64_t sy = 0, sz = 0;
   const float* records = nullptr;
   FluidSample uniform;  // art scales applied
@@ -83,43 +84,43 @@ struct FieldConsts {
   uint64_t seed = 0;
 };
 
-void set_field_consts(const Model& model, const BodyType& type, FieldConsts* k) {
+void set_field_consts(const Model& model, const BodyType& type, FieldConsts* fc) {
   const EffectSet& e = type.effects;
-  k->h = model.dt;
-  k->turb = e.has(Effect::Turbulence);
-  k->sample = type.plan.sample_field;
-  k->mf = e.has(Effect::MeanFlow) ? 1.0 : 0.0;
-  k->wm = model.well_mixed_correction ? 1.0 : 0.0;
-  k->gu = type.plan.gradients ? 1.0 : 0.0;
-  k->grid = !model.field.is_uniform();
-  k->mean_flow_scale = model.mean_flow_scale;
-  k->turbulence_scale = model.turbulence_scale;
+  fc->h = model.dt;
+  fc->turb = e.has(Effect::Turbulence);
+  fc->sample = type.plan.sample_field;
+  fc->mf = e.has(Effect::MeanFlow) ? 1.0 : 0.0;
+  fc->wm = model.well_mixed_correction ? 1.0 : 0.0;
+  fc->gu = type.plan.gradients ? 1.0 : 0.0;
+  fc->grid = !model.field.is_uniform();
+  fc->mean_flow_scale = model.mean_flow_scale;
+  fc->turbulence_scale = model.turbulence_scale;
   Vec3 F = Vec3::Zero();
   if (e.has(Effect::Gravity)) F += type.mass * model.gravity;
   if (e.has(Effect::Buoyancy)) F -= model.fluid_density * type.volume * model.gravity;
-  for (int a = 0; a < 3; ++a) k->F[a] = F[a];
-  k->basset = type.plan.basset;
-  k->basset_mass = k->basset ? type.basset.implicit_mass : 0.0;
-  k->magnus = e.has(Effect::Magnus) ? type.plan.params->magnus : 0.0;
-  if (k->grid) {
+  for (int a = 0; a < 3; ++a) fc->F[a] = F[a];
+  fc->basset = type.plan.basset;
+  fc->basset_mass = fc->basset ? type.basset.implicit_mass : 0.0;
+  fc->magnus = e.has(Effect::Magnus) ? type.plan.params->magnus : 0.0;
+  if (fc->grid) {
     const GridGeometry& g = model.field.geometry();
     for (int a = 0; a < 3; ++a) {
-      k->origin[a] = g.origin[a];
-      k->spacing[a] = g.spacing[a];
-      k->n[a] = g.n[a];
-      k->upper_index[a] = double(g.n[a] - 1);
+      fc->origin[a] = g.origin[a];
+      fc->spacing[a] = g.spacing[a];
+      fc->points[a] = g.n[a];
+      fc->upper_index[a] = double(g.n[a] - 1);
     }
-    k->sy = g.n[0];
-    k->sz = int64_t(g.n[0]) * g.n[1];
-    k->records = model.field.frame_records(0);
+    fc->sy = g.n[0];
+    fc->sz = int64_t(g.n[0]) * g.n[1];
+    fc->records = model.field.frame_records(0);
   } else {
-    model.field.sample(Vec3::Zero(), 0.0, false, &k->uniform);
-    apply_art_scales(model, &k->uniform);
+    model.field.sample(Vec3::Zero(), 0.0, false, &fc->uniform);
+    apply_art_scales(model, &fc->uniform);
   }
-  k->ground = model.has_ground;
-  k->ground_z = model.ground_z;
-  for (int a = 0; a < 3; ++a) k->half[a] = type.half_extents[a];
-  k->seed = model.seed;
+  fc->ground = model.has_ground;
+  fc->ground_z = model.ground_z;
+  for (int a = 0; a < 3; ++a) fc->half[a] = type.half_extents[a];
+  fc->seed = model.seed;
 }
 
 // What rules out the batched steps for every body type: the integrator, the turbulence model,
@@ -166,43 +167,40 @@ struct Samples {
 };
 
 // Whether the step needs its third switch (`Extra`): the Basset history or the Magnus force.
-inline bool extra_effects(const FieldConsts& k) { return k.basset || k.magnus != 0; }
+inline bool extra_effects(const FieldConsts& fc) { return fc.basset || fc.magnus != 0; }
 
-// Fills the sample arrays of L at positions x (may be L.x itself), lanes [lo, hi).
+// Fills the sample arrays of lanes at positions x (may be lanes.x itself), lanes [lo, hi).
 template <typename T>
-LRIGID_MULTIVERSION void sample_lanes(const FieldConsts& k, const T (*x)[kBatch], Samples<T>* L,
-                                      int lo = 0, int hi = kBatch) {
-  if (!k.grid) {
-    const FluidSample& u = k.uniform;
+LRIGID_MULTIVERSION void sample_lanes(const FieldConsts& fc, const T (*x)[kBatch],
+                                      Samples<T>* lanes, int lo = 0, int hi = kBatch) {
+  if (!fc.grid) {
+    const FluidSample& u = fc.uniform;
 LRIGID_IVDEP
     for (int j = lo; j < hi; ++j) {
 #pragma GCC unroll 3
       for (int a = 0; a < 3; ++a) {
-        L->U[a][j] = T(u.U[a]);
-        L->gs[a][j] = T(0);
-        L->acc[a][j] = T(0);
+        lanes->U[a][j] = T(u.U[a]);
+        lanes->gs[a][j] = T(0);
+        lanes->acc[a][j] = T(0);
       }
-      L->alpha[j] = T(u.alpha);
-      L->beta[j] = T(u.beta);
-      L->sigma2[j] = T(u.sigma2);
+      lanes->alpha[j] = T(u.alpha);
+      lanes->beta[j] = T(u.beta);
+      lanes->sigma2[j] = T(u.sigma2);
       const bool fin = std::isfinite(x[0][j]) && std::isfinite(x[1][j]) && std::isfinite(x[2][j]);
-      L->inside[j] = fin ? T(1) : T(0);
+      lanes->inside[j] = fin ? T(1) : T(0);
     }
     return;
   }
-  const float* rec = k.records;
+  const float* rec = fc.records;
   // 32-bit float offsets of the 8 corners' records (batch_exclusion bounds the grid)
-  const int sy = int(k.sy), sz = int(k.sz);
+  const int sy = int(fc.sy), sz = int(fc.sz);
   const int off[8] = {
       0, 8, 8 * sy, 8 * (1 + sy), 8 * sz, 8 * (1 + sz), 8 * (sy + sz), 8 * (1 + sy + sz)};
-  const T mfs = T(k.mean_flow_scale), ts = T(k.turbulence_scale), ts2 = ts * ts;
-  // One lane at a time, a corner's whole record (8 floats, one vector) at once: the sums of the
-  // trilinear weights times the record (the 6 values and, in slot 6, the valid weight W: the
-  // valid flag is 1 or 0, so valid times valid is valid), and of the weights' derivatives times
-  // the record (the gradients). Across lanes these would be 56
-  // gathers per lane, which cost more than the arithmetic.
-  typedef T V8 __attribute__((vector_size(8 * sizeof(T))));
-  typedef float F8 __attribute__((vector_size(32)));
+  const T mfs = T(fc.mean_flow_scale), ts = T(fc.turbulence_scale), ts2 = ts * ts;
+  // One lane at a time, the trilinear record kernel (fluid/trilinear.h, the scalar step's too):
+  // the sums of the weights times the corners' records (slot 6: the valid weight W) and of the
+  // weights' derivatives times them (the gradients).
+  typedef typename Record8<T>::type V8;
   alignas(64) T val[8][kBatch], grad[3][8][kBatch], allv[kBatch], frac[3][kBatch];
   alignas(64) int base[kBatch], inbox[kBatch];
   // the cells first (across lanes), so that their records can be fetched ahead
@@ -211,13 +209,13 @@ LRIGID_IVDEP
     int idx = 0, in = 1;
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
-      T s = (x[a][j] - T(k.origin[a])) / T(k.spacing[a]);
-      in &= int(s >= T(0)) & int(s <= T(k.upper_index[a]));
+      T s = (x[a][j] - T(fc.origin[a])) / T(fc.spacing[a]);
+      in &= int(s >= T(0)) & int(s <= T(fc.upper_index[a]));
       // clamped so that every lane reads inside the grid, also lanes outside it
       s = s > T(0) ? s : T(0);
-      s = s < T(k.upper_index[a]) ? s : T(k.upper_index[a]);
+      s = s < T(fc.upper_index[a]) ? s : T(fc.upper_index[a]);
       int i = static_cast<int>(s);
-      i = i < k.n[a] - 2 ? i : k.n[a] - 2;
+      i = i < fc.points[a] - 2 ? i : fc.points[a] - 2;
       frac[a][j] = s - T(i);
       idx += 8 * (a == 0 ? 1 : (a == 1 ? sy : sz)) * i;
     }
@@ -241,26 +239,12 @@ LRIGID_IVDEP
     const T f[3] = {frac[0][j], frac[1][j], frac[2][j]};
     const int idx = base[j];
     bool in = inbox[j] != 0;
-    const T gx[2] = {T(1) - f[0], f[0]}, gy[2] = {T(1) - f[1], f[1]}, gz[2] = {T(1) - f[2], f[2]};
-    V8 v = {}, d0 = {}, d1 = {}, d2 = {};
-    int nvalid = 0;
-#pragma GCC unroll 8
-    for (int c = 0; c < 8; ++c) {
-      const int cx = c & 1, cy = (c >> 1) & 1, cz = c >> 2;
-      F8 gf;
-      std::memcpy(&gf, rec + idx + off[c], sizeof gf);
-      const V8 g = __builtin_convertvector(gf, V8);
-      const T valid = g[6];
-      nvalid += valid != T(0);
-      v += (valid * (gx[cx] * gy[cy] * gz[cz])) * g;
-      d0 += ((cx ? T(1) : T(-1)) * gy[cy] * gz[cz]) * g;
-      d1 += (gx[cx] * (cy ? T(1) : T(-1)) * gz[cz]) * g;
-      d2 += (gx[cx] * gy[cy] * (cz ? T(1) : T(-1))) * g;
-    }
+    V8 v, d0, d1, d2;
+    const int nvalid = trilinear_record<T, true>(rec + idx, off, f, &v, &d0, &d1, &d2);
     // slot 6 of v: the weight W of the valid corners
     in = in & (nvalid > 0) & (v[6] >= T(0.5));
     allv[j] = nvalid == 8 ? T(1) : T(0);
-    L->inside[j] = in ? T(1) : T(0);
+    lanes->inside[j] = in ? T(1) : T(0);
 #pragma GCC unroll 8
     for (int p = 0; p < 8; ++p) {
       val[p][j] = v[p];
@@ -278,47 +262,48 @@ LRIGID_IVDEP
     T gu[3][3];
 #pragma GCC unroll 3
     for (int p = 0; p < 3; ++p) {
-      L->U[p][j] = mfs * val[p][j] * inv;
+      lanes->U[p][j] = mfs * val[p][j] * inv;
 #pragma GCC unroll 3
-      for (int a = 0; a < 3; ++a) gu[p][a] = mfs * all * grad[a][p][j] / T(k.spacing[a]);
+      for (int a = 0; a < 3; ++a) gu[p][a] = mfs * all * grad[a][p][j] / T(fc.spacing[a]);
     }
-    L->alpha[j] = val[3][j] * inv;
-    L->beta[j] = ts * val[4][j] * inv;
-    L->sigma2[j] = ts2 * val[5][j] * inv;
+    lanes->alpha[j] = val[3][j] * inv;
+    lanes->beta[j] = ts * val[4][j] * inv;
+    lanes->sigma2[j] = ts2 * val[5][j] * inv;
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
-      L->gs[a][j] = ts2 * all * grad[a][5][j] / T(k.spacing[a]);
-      L->acc[a][j] = gu[a][0] * L->U[0][j] + gu[a][1] * L->U[1][j] + gu[a][2] * L->U[2][j];
+      lanes->gs[a][j] = ts2 * all * grad[a][5][j] / T(fc.spacing[a]);
+      lanes->acc[a][j] =
+          gu[a][0] * lanes->U[0][j] + gu[a][1] * lanes->U[1][j] + gu[a][2] * lanes->U[2][j];
     }
   }
 }
 
 // The OU half step's decay and noise at the lanes' samples (effects/turbulence.h ou_exact).
 template <typename T>
-LRIGID_MULTIVERSION void ou_coefficients(const FieldConsts& k, Samples<T>* L, int lo = 0,
+LRIGID_MULTIVERSION void ou_coefficients(const FieldConsts& fc, Samples<T>* lanes, int lo = 0,
                                          int hi = kBatch) {
-  const double hh = 0.5 * k.h;
+  const double hh = 0.5 * fc.h;
 LRIGID_IVDEP
   for (int j = lo; j < hi; ++j) {
     double decay, noise;
-    ou_exact_kernel(double(L->alpha[j]), double(L->beta[j]), hh, &decay, &noise);
-    L->decay[j] = T(decay);
-    L->noise[j] = T(noise);
+    ou_exact_kernel(double(lanes->alpha[j]), double(lanes->beta[j]), hh, &decay, &noise);
+    lanes->decay[j] = T(decay);
+    lanes->noise[j] = T(noise);
   }
 }
 
 // Normals of step `step` for every lane: the Strang half-step increments of the linear noise,
 // exactly as brownian_increments (integrators.cpp) draws them from NormalStream.
 template <typename T>
-LRIGID_MULTIVERSION void lane_normals(const FieldConsts& k, const Samples<T>& L, uint64_t step,
+LRIGID_MULTIVERSION void lane_normals(const FieldConsts& fc, const Samples<T>& lanes, uint64_t step,
                                       T (*z1)[kBatch], T (*z2)[kBatch]) {
   // words: block 0 (pairs 0, 1), block 1 words 2, 3 (pair 3), block 2 words 0, 1 (pair 4)
   alignas(64) uint32_t wd[8][kBatch];
-  const uint32_t k0 = static_cast<uint32_t>(k.seed), k1 = static_cast<uint32_t>(k.seed >> 32);
+  const uint32_t k0 = static_cast<uint32_t>(fc.seed), k1 = static_cast<uint32_t>(fc.seed >> 32);
   const uint32_t lo = static_cast<uint32_t>(step), hi = static_cast<uint32_t>(step >> 32);
 LRIGID_IVDEP
   for (int j = 0; j < kBatch; ++j) {
-    const uint32_t body = L.body[j];
+    const uint32_t body = lanes.body[j];
     uint32_t b0[4] = {body, lo, hi, 0x6c720000u};
     uint32_t b1[4] = {body, lo, hi, 0x6c720001u};
     uint32_t b2[4] = {body, lo, hi, 0x6c720002u};
@@ -383,13 +368,13 @@ inline int decode_outcome(int bits) {
 // The body's lowest point is on or below the ground (stops.h touches_ground) for quaternion q
 // (w, x, y, z) at height z.
 template <typename T>
-LRIGID_LANE int lane_landed(const FieldConsts& k, const T* q, T z) {
+LRIGID_LANE int lane_landed(const FieldConsts& fc, const T* q, T z) {
   const T qw = q[0], qx = q[1], qy = q[2], qz = q[3];
   const T r20 = T(2) * (qx * qz - qw * qy), r21 = T(2) * (qy * qz + qw * qx);
   const T r22 = T(1) - T(2) * (qx * qx + qy * qy);
   const T reach =
-      std::abs(r20) * T(k.half[0]) + std::abs(r21) * T(k.half[1]) + std::abs(r22) * T(k.half[2]);
-  return int(k.ground & (z - reach <= T(k.ground_z)));
+      std::abs(r20) * T(fc.half[0]) + std::abs(r21) * T(fc.half[1]) + std::abs(r22) * T(fc.half[2]);
+  return int(fc.ground & (z - reach <= T(fc.ground_z)));
 }
 
 // A step's new state per lane, filled by a batched step before end_step: position,
@@ -408,61 +393,60 @@ struct NewState {
 
 // The end of every batched step: the field sampled at the new positions, the second OU half step
 // (normals z2) along the world velocity V at the end of the step, each lane's outcome and
-// landing, and the commit into L of the lanes whose step succeeded (the others keep the state at
-// the start of the step).
-// Inlined into each version of the step (as target_clones of its own it halved the sphere
-// step's speed: 9.5 against 14.5 M body-steps/s per core on the beads scene).
+// landing, and the commit into `lanes` of the lanes whose step succeeded (the others keep the state
+// at the start of the step). Inlined into each version of the step (as target_clones of its own it
+// halved the sphere step's speed: 9.5 against 14.5 M body-steps/s per core on the beads scene).
 template <typename T, bool Turb, class Lanes>
-LRIGID_LANE void end_step(const FieldConsts& k, const T (*z2)[kBatch], const T (*V)[kBatch],
-                          NewState<T>* n, Lanes* L, int* outcome, int* landed) {
-  const T hh = T(0.5 * k.h), wm = T(k.wm);
+LRIGID_LANE void end_step(const FieldConsts& fc, const T (*z2)[kBatch], const T (*V)[kBatch],
+                          NewState<T>* next, Lanes* lanes, int* outcome, int* landed) {
+  const T hh = T(0.5 * fc.h), wm = T(fc.wm);
   alignas(64) T inside0[kBatch];
-  for (int j = 0; j < kBatch; ++j) inside0[j] = k.sample ? L->inside[j] : T(1);
-  if (k.sample) sample_lanes(k, n->x, L);
-  if (Turb) ou_coefficients(k, L);
-  const bool sample = k.sample;
+  for (int j = 0; j < kBatch; ++j) inside0[j] = fc.sample ? lanes->inside[j] : T(1);
+  if (fc.sample) sample_lanes(fc, next->x, lanes);
+  if (Turb) ou_coefficients(fc, lanes);
+  const bool sample = fc.sample;
 LRIGID_IVDEP
   for (int j = 0; j < kBatch; ++j) {
-    T us[3] = {n->us[0][j], n->us[1][j], n->us[2][j]};
+    T us[3] = {next->us[0][j], next->us[1][j], next->us[2][j]};
     if constexpr (Turb) {
       const T Vj[3] = {V[0][j], V[1][j], V[2][j]};
-      const T gs[3] = {L->gs[0][j], L->gs[1][j], L->gs[2][j]};
+      const T gs[3] = {lanes->gs[0][j], lanes->gs[1][j], lanes->gs[2][j]};
       const T z[3] = {z2[0][j], z2[1][j], z2[2][j]};
-      ou_update(wm, L->decay[j], L->noise[j], L->sigma2[j], Vj, gs, z, hh, us);
+      ou_update(wm, lanes->decay[j], lanes->noise[j], lanes->sigma2[j], Vj, gs, z, hh, us);
     }
 #pragma GCC unroll 3
-    for (int a = 0; a < 3; ++a) n->us[a][j] = us[a];
+    for (int a = 0; a < 3; ++a) next->us[a][j] = us[a];
     // & rather than && on the lanes' conditions: no branches in the loop
-    const bool in = (inside0[j] != T(0)) & (!sample | (L->inside[j] != T(0)));
-    const T x[3] = {n->x[0][j], n->x[1][j], n->x[2][j]};
-    const T v[3] = {n->vel[0][j], n->vel[1][j], n->vel[2][j]};
-    const T w[3] = {n->w[0][j], n->w[1][j], n->w[2][j]};
-    const T q[4] = {n->q[0][j], n->q[1][j], n->q[2][j], n->q[3][j]};
-    outcome[j] = outcome_bits(x, q, v, w, us, in, n->scalar[j] != 0);
-    landed[j] = lane_landed(k, q, x[2]);
+    const bool in = (inside0[j] != T(0)) & (!sample | (lanes->inside[j] != T(0)));
+    const T x[3] = {next->x[0][j], next->x[1][j], next->x[2][j]};
+    const T v[3] = {next->vel[0][j], next->vel[1][j], next->vel[2][j]};
+    const T w[3] = {next->w[0][j], next->w[1][j], next->w[2][j]};
+    const T q[4] = {next->q[0][j], next->q[1][j], next->q[2][j], next->q[3][j]};
+    outcome[j] = outcome_bits(x, q, v, w, us, in, next->scalar[j] != 0);
+    landed[j] = lane_landed(fc, q, x[2]);
   }
   for (int j = 0; j < kBatch; ++j) outcome[j] = decode_outcome(outcome[j]);
-  if (k.basset) {
+  if (fc.basset) {
     // what the Basset history takes in: the relative velocity at the end of the step
-    const T mf = T(k.mf);
+    const T mf = T(fc.mf);
 LRIGID_IVDEP
     for (int j = 0; j < kBatch; ++j)
 #pragma GCC unroll 3
       for (int a = 0; a < 3; ++a)
-        L->gb[a][j] = mf * L->U[a][j] + (Turb ? n->us[a][j] : T(0)) - V[a][j];
+        lanes->gb[a][j] = mf * lanes->U[a][j] + (Turb ? next->us[a][j] : T(0)) - V[a][j];
   }
-  T(*vel)[kBatch] = L->velocity();
+  T(*vel)[kBatch] = lanes->velocity();
   for (int j = 0; j < kBatch; ++j) {
-    if (outcome[j] != kOk || !L->live[j]) continue;
+    if (outcome[j] != kOk || !lanes->live[j]) continue;
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
-      L->x[a][j] = n->x[a][j];
-      vel[a][j] = n->vel[a][j];
-      L->w[a][j] = n->w[a][j];
-      L->us[a][j] = n->us[a][j];
+      lanes->x[a][j] = next->x[a][j];
+      vel[a][j] = next->vel[a][j];
+      lanes->w[a][j] = next->w[a][j];
+      lanes->us[a][j] = next->us[a][j];
     }
 #pragma GCC unroll 4
-    for (int a = 0; a < 4; ++a) L->q[a][j] = n->q[a][j];
+    for (int a = 0; a < 4; ++a) lanes->q[a][j] = next->q[a][j];
   }
 }
 
@@ -488,72 +472,72 @@ void with_switches(bool a, bool b, bool c, F f) {
 // driver's: it sets each lane's history force before the step (Samples::fb) and appends the step
 // to the history of the lanes that took it (as step_body does at its end).
 template <typename T, class Lanes, class Step>
-BlockStats drive_block(const Model& model, const BodyType& type, const FieldConsts& k, bool a,
+BlockStats drive_block(const Model& model, const BodyType& type, const FieldConsts& fc, bool a,
                        bool b, State* state, const uint32_t* body, int count, uint64_t first,
                        uint64_t last, Step step) {
   BlockStats stats;
   State& st = *state;
-  Lanes lanes{};  // zeroed: without a field to sample, the sample arrays stay the fluid at rest
-  Lanes* L = &lanes;
+  Lanes block{};  // zeroed: without a field to sample, the sample arrays stay the fluid at rest
+  Lanes* lanes = &block;
   for (int j = 0; j < kBatch; ++j) {
     // lanes past count repeat the first body and stay idle
     const size_t i = body[j < count ? j : 0];
-    L->load(j, load_body(st, i));
-    L->body[j] = static_cast<uint32_t>(i);
-    L->live[j] = j < count && st.status[i] == BodyStatus::Moving;
-    L->history[j] = st.history_of(i);
+    lanes->load(j, load_body(st, i));
+    lanes->body[j] = static_cast<uint32_t>(i);
+    lanes->live[j] = j < count && st.status[i] == BodyStatus::Moving;
+    lanes->history[j] = st.history_of(i);
   }
   auto resample = [&](int lo, int hi) {
-    if (k.sample) sample_lanes(k, L->x, L, lo, hi);
-    if (k.turb) ou_coefficients(k, L, lo, hi);
+    if (fc.sample) sample_lanes(fc, lanes->x, lanes, lo, hi);
+    if (fc.turb) ou_coefficients(fc, lanes, lo, hi);
   };
   resample(0, kBatch);
   alignas(64) int outcome[kBatch];
   alignas(64) int landed[kBatch];
   for (uint64_t s = first; s < last; ++s) {
     bool any = false;
-    for (int j = 0; j < count; ++j) any = any || L->live[j];
+    for (int j = 0; j < count; ++j) any = any || lanes->live[j];
     if (!any) break;
     const double t = static_cast<double>(s) * model.dt;
-    if (k.basset) {
+    if (fc.basset) {
       for (int j = 0; j < kBatch; ++j) {
-        const Vec3 f = L->history[j] ? basset_history_force(type.basset, L->history[j])
-                                     : Vec3::Zero();
+        const Vec3 f =
+            lanes->history[j] ? basset_history_force(type.basset, lanes->history[j]) : Vec3::Zero();
 #pragma GCC unroll 3
-        for (int c = 0; c < 3; ++c) L->fb[c][j] = T(f[c]);
+        for (int c = 0; c < 3; ++c) lanes->fb[c][j] = T(f[c]);
       }
     }
-    with_switches(a, b, extra_effects(k),
-                  [&](auto A, auto B, auto C) { step(A, B, C, L, s, outcome, landed); });
-    if (k.basset) {
+    with_switches(a, b, extra_effects(fc),
+                  [&](auto A, auto B, auto C) { step(A, B, C, lanes, s, outcome, landed); });
+    if (fc.basset) {
       // the relative velocity g = u_f - V at the end of the step enters the history
       for (int j = 0; j < count; ++j) {
-        if (!L->live[j] || outcome[j] != kOk || !L->history[j]) continue;
-        const Vec3 g(double(L->gb[0][j]), double(L->gb[1][j]), double(L->gb[2][j]));
-        basset_push(type.basset, g, model.dt, L->history[j]);
+        if (!lanes->live[j] || outcome[j] != kOk || !lanes->history[j]) continue;
+        const Vec3 g(double(lanes->gb[0][j]), double(lanes->gb[1][j]), double(lanes->gb[2][j]));
+        basset_push(type.basset, g, model.dt, lanes->history[j]);
       }
     }
     for (int j = 0; j < count; ++j) {
-      if (!L->live[j]) continue;
-      const size_t i = L->body[j];
+      if (!lanes->live[j]) continue;
+      const size_t i = lanes->body[j];
       BodyState b;
       StepOutcome out = StepOutcome::Ok;
       std::string reason;
       bool land = landed[j] != 0;
       if (outcome[j] == kScalar) {
-        L->store(j, &b);
-        b.history = L->history[j];  // step_body appends to it
+        lanes->store(j, &b);
+        b.history = lanes->history[j];  // step_body appends to it
         ++stats.scalar_steps;
-        out = step_body(model, type, L->body[j], s, t, &b, &reason);
+        out = step_body(model, type, lanes->body[j], s, t, &b, &reason);
         if (out == StepOutcome::Ok) {
           // the lane's sample is at its batched position: sample it where the scalar step took it
-          L->load(j, b);
+          lanes->load(j, b);
           resample(j, j + 1);
           land = model.has_ground && touches_ground(model, type, b);
         }
       } else if (outcome[j] != kOk) {
         // the lane kept its state at the start of the step (as step_body restores it)
-        L->store(j, &b);
+        lanes->store(j, &b);
         const bool outside = outcome[j] == kOutside;
         out = outside ? StepOutcome::Exited : StepOutcome::Failed;
         if (!outside) reason = std::string("non-finite ") + kNonFiniteName[outcome[j] - kNonFinite];
@@ -566,16 +550,16 @@ BlockStats drive_block(const Model& model, const BodyType& type, const FieldCons
       } else {
         stop_body(model, type, i, t, out, reason, b, &st);
       }
-      L->live[j] = false;
-      if (st.status[i] == BodyStatus::Landed) L->rest(j);
+      lanes->live[j] = false;
+      if (st.status[i] == BodyStatus::Landed) lanes->rest(j);
     }
   }
   for (int j = 0; j < count; ++j) {
     BodyState b;
-    L->store(j, &b);
+    lanes->store(j, &b);
     store_body(b, body[j], &st);
   }
-  stats.newton_steps = L->newton;
+  stats.newton_steps = lanes->newton;
   return stats;
 }
 

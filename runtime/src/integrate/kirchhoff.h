@@ -26,6 +26,11 @@ struct DiagonalMass {
   double Mi[6] = {0, 0, 0, 0, 0, 0};
 };
 
+// An isotropic M = diag(m, m, m, J, J, J) (spheres): the implicit step's closed form is cheaper
+struct IsotropicMass {
+  double m = 0, J = 0;
+};
+
 // A full symmetric M (meshes, bodies with an offset centre of mass): M and M^-1, 36 numbers each
 // (symmetric, so row and column major are the same; the scalar step points into BodyType::M and
 // M_inv).
@@ -40,15 +45,20 @@ LRIGID_LANE void mass_inv_times(const DiagonalMass& m, const T* y, T* x) {
 #pragma GCC unroll 6
   for (int a = 0; a < 6; ++a) x[a] = T(m.Mi[a]) * y[a];
 }
+// x = A y for a symmetric 6 x 6 A
 template <typename T>
-LRIGID_LANE void mass_inv_times(const FullMass& m, const T* y, T* x) {
+LRIGID_LANE void symmetric6_times(const double* A, const T* y, T* x) {
 #pragma GCC unroll 6
   for (int r = 0; r < 6; ++r) {
     T s = 0;
 #pragma GCC unroll 6
-    for (int c = 0; c < 6; ++c) s += T(m.Mi[r * 6 + c]) * y[c];
+    for (int c = 0; c < 6; ++c) s += T(A[r * 6 + c]) * y[c];
     x[r] = s;
   }
+}
+template <typename T>
+LRIGID_LANE void mass_inv_times(const FullMass& m, const T* y, T* x) {
+  symmetric6_times(m.Mi, y, x);
 }
 template <typename T>
 LRIGID_LANE void mass_times(const DiagonalMass& m, const T* y, T* x) {
@@ -57,13 +67,7 @@ LRIGID_LANE void mass_times(const DiagonalMass& m, const T* y, T* x) {
 }
 template <typename T>
 LRIGID_LANE void mass_times(const FullMass& m, const T* y, T* x) {
-#pragma GCC unroll 6
-  for (int r = 0; r < 6; ++r) {
-    T s = 0;
-#pragma GCC unroll 6
-    for (int c = 0; c < 6; ++c) s += T(m.M[r * 6 + c]) * y[c];
-    x[r] = s;
-  }
+  symmetric6_times(m.M, y, x);
 }
 
 // d^T M^-1 d: twice the kinetic energy of an impulse d (the flow's convergence norm)
@@ -102,40 +106,60 @@ LRIGID_LANE void kirchhoff_gyro_kernel(const Mass& m, const T* Y, T* g) {
   }
 }
 
-// A = I + h2 dG/dY at the midpoint impulse ym (h2 = h / 2), row major
-template <typename T, class Mass>
-LRIGID_LANE void kirchhoff_newton_matrix(const Mass& m, const T* ym, T h2, T* A) {
+// a^ (r, c): 0 on the diagonal, -a[3 - r - c] above it in cyclic order, + below
+template <typename T>
+LRIGID_LANE T skew_entry(const T* a, int r, int c) {
+  return r == c ? T(0) : ((c - r + 3) % 3 == 1 ? -a[3 - r - c] : a[3 - r - c]);
+}
+
+// A = I + h2 dG/dY at the midpoint impulse ym (h2 = h / 2), row major:
+// dG/dY = D + E M^-1 with D = [w^ 0; v^ w^] and E = [0 -P^; -P^ -L^]. Diagonal M: E M^-1 scales
+// E's columns.
+template <typename T>
+LRIGID_LANE void kirchhoff_newton_matrix(const DiagonalMass& m, const T* ym, T h2, T* A) {
   T xi[6];
   mass_inv_times(m, ym, xi);
   const T* v = xi;
   const T* w = xi + 3;
   const T* P = ym;
   const T* L = ym + 3;
-  // a^ (r, c): 0 on the diagonal, -a[3 - r - c] above it in cyclic order, + below
-  auto sk = [](const T* a, int r, int c) {
-    return r == c ? T(0) : ((c - r + 3) % 3 == 1 ? -a[3 - r - c] : a[3 - r - c]);
-  };
-  // E = [0 -P^; -P^ -L^] (row major), then A = I + h2 (D + E M^-1)
-  T E[36];
 #pragma GCC unroll 3
   for (int r = 0; r < 3; ++r)
 #pragma GCC unroll 3
     for (int c = 0; c < 3; ++c) {
-      E[r * 6 + c] = T(0);
-      E[r * 6 + 3 + c] = -sk(P, r, c);
-      E[(3 + r) * 6 + c] = -sk(P, r, c);
-      E[(3 + r) * 6 + 3 + c] = -sk(L, r, c);
+      const T one = r == c ? T(1) : T(0);
+      A[r * 6 + c] = one + h2 * skew_entry(w, r, c);
+      A[r * 6 + 3 + c] = -h2 * skew_entry(P, r, c) * T(m.Mi[3 + c]);
+      A[(3 + r) * 6 + c] = h2 * (skew_entry(v, r, c) - skew_entry(P, r, c) * T(m.Mi[c]));
+      A[(3 + r) * 6 + 3 + c] =
+          one + h2 * (skew_entry(w, r, c) - skew_entry(L, r, c) * T(m.Mi[3 + c]));
     }
+}
+
+// Full M: E M^-1 row by row (M^-1 symmetric: row r of E M^-1 is M^-1 times E's row r)
+template <typename T>
+LRIGID_LANE void kirchhoff_newton_matrix(const FullMass& m, const T* ym, T h2, T* A) {
+  T xi[6];
+  mass_inv_times(m, ym, xi);
+  const T* v = xi;
+  const T* w = xi + 3;
+  const T* P = ym;
+  const T* L = ym + 3;
 #pragma GCC unroll 6
   for (int r = 0; r < 6; ++r) {
-    // row r of E M^-1: M^-1 is symmetric, so it is M^-1 times E's row
+    T E[6];
+#pragma GCC unroll 3
+    for (int c = 0; c < 3; ++c) {
+      E[c] = r < 3 ? T(0) : -skew_entry(P, r - 3, c);
+      E[3 + c] = r < 3 ? -skew_entry(P, r, c) : -skew_entry(L, r - 3, c);
+    }
     T EMi[6];
-    mass_inv_times(m, E + r * 6, EMi);
+    mass_inv_times(m, E, EMi);
 #pragma GCC unroll 6
     for (int c = 0; c < 6; ++c) {
       const int rb = r / 3, cb = c / 3, rr = r % 3, cc = c % 3;
-      // D = [w^ 0; v^ w^]
-      const T D = (rb == cb) ? sk(w, rr, cc) : (rb == 1 && cb == 0 ? sk(v, rr, cc) : T(0));
+      const T D =
+          rb == cb ? skew_entry(w, rr, cc) : (rb == 1 && cb == 0 ? skew_entry(v, rr, cc) : T(0));
       A[r * 6 + c] = (r == c ? T(1) : T(0)) + h2 * (D + EMi[c]);
     }
   }
@@ -205,6 +229,23 @@ LRIGID_LANE bool implicit_impulse(const DiagonalMass& m, T basset_mass, const Dr
   for (int a = 0; a < 3; ++a) {
     x[a] = T(m.M[a]) * (Dinv_b[a] - g * Dinv_u[a]);
     x[3 + a] = T(m.M[3 + a]) * b[3 + a] / (T(m.M[3 + a]) + h * d.c_ang);
+  }
+  return true;
+}
+
+// Isotropic M: (m + b_B) I + h c_lin (I + p u u^T) is inverted by Sherman-Morrison in closed form
+// (one scalar a for all three axes)
+template <typename T>
+LRIGID_LANE bool implicit_impulse(const IsotropicMass& m, T basset_mass, const DragOut<T>& d, T h,
+                                  const T* b, T* x) {
+  const T a = T(m.m) + basset_mass + h * d.c_lin, c = h * d.c_lin * d.p;
+  const T ub = dot3(d.u_hat, b);
+  const T g = c / (a + c);
+  const T ja = T(m.J) + h * d.c_ang;
+#pragma GCC unroll 3
+  for (int i = 0; i < 3; ++i) {
+    x[i] = T(m.m) * (b[i] - g * d.u_hat[i] * ub) / a;
+    x[3 + i] = T(m.J) * b[3 + i] / ja;
   }
   return true;
 }

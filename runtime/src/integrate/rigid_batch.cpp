@@ -31,28 +31,28 @@ bool rigid_batch_eligible(const Model& model, const BodyType& type, std::string*
 namespace {
 
 // What the step needs of the body type.
-struct Consts : FieldConsts {
-  bool plate = false;  // flat: plate drag and lift (with turb, the step's template switches)
-  DiagonalMass mass;          // M (integrate/kirchhoff.h)
-  double K[3] = {0, 0, 0};    // K's linear diagonal (0 without added mass)
-  double drag = 0;  // the drag effect as a factor 1 or 0 (bodies that are not flat)
+struct StepConsts : FieldConsts {
+  bool plate = false;       // flat: plate drag and lift (with turb, the step's template switches)
+  DiagonalMass mass;        // M (integrate/kirchhoff.h)
+  double K[3] = {0, 0, 0};  // K's linear diagonal (0 without added mass)
+  double drag = 0;          // the drag effect as a factor 1 or 0 (bodies that are not flat)
   // the drag of bodies that are not flat (effects/drag.h) and the plate model (effects/plate.h)
   DragParams law;
   PlateParams plate_model;
 };
 
-Consts make_consts(const Model& model, const BodyType& type) {
-  Consts k;
-  set_field_consts(model, type, &k);
+StepConsts make_consts(const Model& model, const BodyType& type) {
+  StepConsts tc;
+  set_field_consts(model, type, &tc);
   const EffectSet& e = type.effects;
-  k.plate = type.flat;
-  k.mass = diagonal_mass(type);
-  for (int a = 0; a < 3; ++a) k.K[a] = e.has(Effect::AddedMass) ? type.K_fluid(a, a) : 0.0;
-  k.drag = e.has(Effect::Drag) ? 1.0 : 0.0;
+  tc.plate = type.flat;
+  tc.mass = diagonal_mass(type);
+  for (int a = 0; a < 3; ++a) tc.K[a] = e.has(Effect::AddedMass) ? type.K_fluid(a, a) : 0.0;
+  tc.drag = e.has(Effect::Drag) ? 1.0 : 0.0;
   // the kernels' parameters, as the scalar step's terms read them (effects/plan.h)
-  k.law = type.plan.params->drag;
-  if (type.flat) k.plate_model = type.plan.params->plate_both;
-  return k;
+  tc.law = type.plan.params->drag;
+  if (type.flat) tc.plate_model = type.plan.params->plate_both;
+  return tc;
 }
 
 // The state of a block of bodies, structure of arrays, in the scalar step's frames: v and w in
@@ -91,28 +91,28 @@ struct Lanes : Samples<T> {
 // The forces of a body that is not flat: the drag (effects/drag.h, the equivalent ellipsoid's
 // projected area across u) times the drag effect's factor (0 without it)
 template <typename T>
-LRIGID_LANE DragOut<T> ellipsoid_forces(const Consts& k, const T* u, const T* w) {
-  DragOut<T> d = ellipsoid_drag_kernel(k.law, u, w);
-  const T dr = T(k.drag);
+LRIGID_LANE DragOut<T> ellipsoid_forces(const StepConsts& tc, const T* u, const T* w) {
+  DragOut<T> drag = ellipsoid_drag_kernel(tc.law, u, w);
+  const T dr = T(tc.drag);
 #pragma GCC unroll 3
   for (int a = 0; a < 3; ++a) {
-    d.f[a] *= dr;
-    d.tq[a] *= dr;
+    drag.f[a] *= dr;
+    drag.tq[a] *= dr;
   }
-  d.c_lin *= dr;
-  d.c_ang *= dr;
-  return d;
+  drag.c_lin *= dr;
+  drag.c_ang *= dr;
+  return drag;
 }
 
 // A lane's drag (and, for plates, lift: effects/plate.h) on relative velocity u and spin w
 template <typename T, bool Plate>
-LRIGID_LANE DragOut<T> body_forces(const Consts& k, const T* u, const T* w, T* lift) {
+LRIGID_LANE DragOut<T> body_forces(const StepConsts& tc, const T* u, const T* w, T* lift) {
   if constexpr (Plate) {
-    DragOut<T> d;
-    plate_kernel(k.plate_model, u, w, &d, lift);
-    return d;
+    DragOut<T> drag;
+    plate_kernel(tc.plate_model, u, w, &drag, lift);
+    return drag;
   } else {
-    return ellipsoid_forces(k, u, w);
+    return ellipsoid_forces(tc, u, w);
   }
 }
 
@@ -122,14 +122,14 @@ template <typename T>
 constexpr double kLaneKirchhoffTol = std::is_same_v<T, float> ? 1e-5 : kKirchhoffTol;
 constexpr int kLaneKirchhoffNewton = kKirchhoffMaxNewton / 2;
 
-// Advances every lane of L by one step (see rigid_batch.h); lanes that are not kOk keep their
+// Advances every lane of lanes by one step (see rigid_batch.h); lanes that are not kOk keep their
 // state at the start of the step. landed: the lane is on or below the ground after the step.
 template <typename T, bool Turb, bool Plate, bool Extra>
-LRIGID_MULTIVERSION void step_lanes(const Consts& k, Lanes<T>* L, uint64_t step, int* outcome,
-                                    int* landed) {
-  const T h = T(k.h), hh = T(0.5 * k.h), wm = T(k.wm);
+LRIGID_MULTIVERSION void step_lanes(const StepConsts& tc, Lanes<T>* lanes, uint64_t step,
+                                    int* outcome, int* landed) {
+  const T h = T(tc.h), hh = T(0.5 * tc.h), wm = T(tc.wm);
   alignas(64) T z1[3][kBatch], z2[3][kBatch];
-  if constexpr (Turb) lane_normals(k, *L, step, z1, z2);
+  if constexpr (Turb) lane_normals(tc, *lanes, step, z1, z2);
   // the Kirchhoff iteration: start impulse Y0 and iterate Y (relative to the fluid), the fluid
   // velocity uf (world), the world velocity V0 at the start, the seen fluctuation after the
   // first half step
@@ -137,38 +137,38 @@ LRIGID_MULTIVERSION void step_lanes(const Consts& k, Lanes<T>* L, uint64_t step,
   alignas(64) T uf[3][kBatch], V0[3][kBatch];
   int active[kBatch];
   // new state, committed at the end for the lanes whose step succeeded
-  NewState<T> n;
-  T(&usn)[3][kBatch] = n.us;
-  int(&scalar)[kBatch] = n.scalar;
+  NewState<T> next;
+  T(&usn)[3][kBatch] = next.us;
+  int(&scalar)[kBatch] = next.scalar;
 LRIGID_IVDEP
   for (int j = 0; j < kBatch; ++j) {
-    T us[3] = {L->us[0][j], L->us[1][j], L->us[2][j]};
-    const T q[4] = {L->q[0][j], L->q[1][j], L->q[2][j], L->q[3][j]};
-    const T v[3] = {L->v[0][j], L->v[1][j], L->v[2][j]};
-    const T w[3] = {L->w[0][j], L->w[1][j], L->w[2][j]};
+    T us[3] = {lanes->us[0][j], lanes->us[1][j], lanes->us[2][j]};
+    const T q[4] = {lanes->q[0][j], lanes->q[1][j], lanes->q[2][j], lanes->q[3][j]};
+    const T v[3] = {lanes->v[0][j], lanes->v[1][j], lanes->v[2][j]};
+    const T w[3] = {lanes->w[0][j], lanes->w[1][j], lanes->w[2][j]};
     T R[9], V[3];
     rotation(q, R);
     mul(R, v, V);
     // 1. first OU half step
     if constexpr (Turb) {
-      const T gs[3] = {L->gs[0][j], L->gs[1][j], L->gs[2][j]};
+      const T gs[3] = {lanes->gs[0][j], lanes->gs[1][j], lanes->gs[2][j]};
       const T z[3] = {z1[0][j], z1[1][j], z1[2][j]};
-      ou_update(wm, L->decay[j], L->noise[j], L->sigma2[j], V, gs, z, hh, us);
+      ou_update(wm, lanes->decay[j], lanes->noise[j], lanes->sigma2[j], V, gs, z, hh, us);
     }
     T u_f[3], ufb[3];
 #pragma GCC unroll 3
-    for (int a = 0; a < 3; ++a) u_f[a] = T(k.mf) * L->U[a][j] + (Turb ? us[a] : T(0));
+    for (int a = 0; a < 3; ++a) u_f[a] = T(tc.mf) * lanes->U[a][j] + (Turb ? us[a] : T(0));
     mul_t(R, u_f, ufb);
     // 2. the free Kirchhoff flow of the motion relative to the fluid, implicit midpoint from the
     //    explicit midpoint predictor (dynamics.cpp kirchhoff_midpoint)
     T y0[6], y[6];
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
-      y0[a] = T(k.mass.M[a]) * (v[a] - ufb[a]);
-      y0[3 + a] = T(k.mass.M[3 + a]) * w[a];
+      y0[a] = T(tc.mass.M[a]) * (v[a] - ufb[a]);
+      y0[3 + a] = T(tc.mass.M[3 + a]) * w[a];
     }
-    kirchhoff_predictor(k.mass, h, y0, y);
-    const T norm0 = energy_norm2(k.mass, y0);
+    kirchhoff_predictor(tc.mass, h, y0, y);
+    const T norm0 = energy_norm2(tc.mass, y0);
 #pragma GCC unroll 6
     for (int a = 0; a < 6; ++a) {
       Y0[a][j] = y0[a];
@@ -191,20 +191,20 @@ LRIGID_IVDEP
     int any = 0;
 LRIGID_IVDEP
     for (int j = 0; j < kBatch; ++j) {
-      T y0[6], y[6], next[6];
+      T y0[6], y[6], y_next[6];
 #pragma GCC unroll 6
       for (int a = 0; a < 6; ++a) {
         y0[a] = Y0[a][j];
         y[a] = Y[a][j];
       }
-      const T step2 = kirchhoff_fixed_point(k.mass, h, y0, y, next);
+      const T step2 = kirchhoff_fixed_point(tc.mass, h, y0, y, y_next);
       int fin = 1;
 #pragma GCC unroll 6
-      for (int a = 0; a < 6; ++a) fin &= int(std::isfinite(next[a]));
+      for (int a = 0; a < 6; ++a) fin &= int(std::isfinite(y_next[a]));
       const int act = active[j];
       const int keep = act & fin;
 #pragma GCC unroll 6
-      for (int a = 0; a < 6; ++a) Y[a][j] = keep ? next[a] : Y[a][j];
+      for (int a = 0; a < 6; ++a) Y[a][j] = keep ? y_next[a] : Y[a][j];
       const int conv = int(step2 <= tol2[j]);
       const int slow = int(it > 0) & int(step2 > T(kKirchhoffSlowContraction) * last[j]);
       scalar[j] |= act & ((1 - fin) | ((1 - conv) & slow));
@@ -233,20 +233,21 @@ LRIGID_IVDEP
       last_step[j] = T(0);
       any_newton |= nt;
       // the start: where the fixed point stopped, or Y0 if that is not finite or far off
-      T y0[6], d[6];
+      T y0[6], dy[6];
       int fin = 1;
 #pragma GCC unroll 6
       for (int a = 0; a < 6; ++a) {
         y0[a] = Y0[a][j];
-        d[a] = Y[a][j] - y0[a];
+        dy[a] = Y[a][j] - y0[a];
         fin &= int(std::isfinite(Y[a][j]));
       }
-      const T dist = energy_norm2(k.mass, d), norm0 = energy_norm2(k.mass, y0);
+      const T dist = energy_norm2(tc.mass, dy), norm0 = energy_norm2(tc.mass, y0);
       const int reset = nt & ((1 - fin) | int(dist > T(4) * norm0));
 #pragma GCC unroll 6
       for (int a = 0; a < 6; ++a) Y[a][j] = reset ? Y0[a][j] : Y[a][j];
     }
-    for (int j = 0; j < kBatch; ++j) L->newton += uint64_t(newton[j] != 0) & uint64_t(L->live[j]);
+    for (int j = 0; j < kBatch; ++j)
+      lanes->newton += uint64_t(newton[j] != 0) & uint64_t(lanes->live[j]);
     if (any_newton)
       for (int e = 0; e < 36; ++e)
         for (int j = 0; j < kBatch; ++j) lu[e][j] = T(0);
@@ -261,7 +262,7 @@ LRIGID_IVDEP
           T ym[6], A[36];
 #pragma GCC unroll 6
           for (int a = 0; a < 6; ++a) ym[a] = T(0.5) * (Y0[a][j] + Y[a][j]);
-          kirchhoff_newton_matrix(k.mass, ym, hh, A);
+          kirchhoff_newton_matrix(tc.mass, ym, hh, A);
           const int ok = lu_factor<6>(A);
           const int ref = newton[j] & refactor[j];
 #pragma GCC unroll 36
@@ -280,11 +281,11 @@ LRIGID_IVDEP
           y0[a] = Y0[a][j];
           y[a] = Y[a][j];
         }
-        kirchhoff_residual(k.mass, h, y0, y, r);
+        kirchhoff_residual(tc.mass, h, y0, y, r);
 #pragma GCC unroll 36
         for (int e = 0; e < 36; ++e) A[e] = lu[e][j];
         lu_solve<6>(A, r);
-        const T step2 = energy_norm2(k.mass, r);
+        const T step2 = energy_norm2(tc.mass, r);
         int fin = 1;
 #pragma GCC unroll 6
         for (int a = 0; a < 6; ++a) {
@@ -299,8 +300,8 @@ LRIGID_IVDEP
         scalar[j] = conv ? 0 : scalar[j];
         active[j] = conv ? 0 : active[j];
         const int more = good & (1 - conv);
-        refactor[j] = int(it > 0) &
-                      int(step2 > T(kKirchhoffRefactor * kKirchhoffRefactor) * last_step[j]);
+        refactor[j] =
+            int(it > 0) & int(step2 > T(kKirchhoffRefactor * kKirchhoffRefactor) * last_step[j]);
         last_step[j] = step2;
         newton[j] = more;
         any |= more;
@@ -311,11 +312,11 @@ LRIGID_IVDEP
   }
   // 3. the forces at the new orientation, drag implicit: (M + h J + b_B P) M^-1 dPi = h G +
   //    b_B h a_fluid, from one linearly implicit step, or Newton (below) for stiff drag
-  T(&xn)[3][kBatch] = n.x;
-  T(&qn)[4][kBatch] = n.q;
-  T(&vn)[3][kBatch] = n.vel;
-  T(&wn)[3][kBatch] = n.w;
-  // what Newton needs: the impulse P (linear, relative to the fluid's added-mass impulse) and L
+  T(&xn)[3][kBatch] = next.x;
+  T(&qn)[4][kBatch] = next.q;
+  T(&vn)[3][kBatch] = next.vel;
+  T(&wn)[3][kBatch] = next.w;
+  // what Newton needs: the impulse P (linear, relative to the fluid's added-mass impulse) and lanes
   // before the forces, their changes dP and dL, h times the forces other than drag G (linear;
   // none of them has a torque), the fluid velocity (body frame) at the end, and the norm of the
   // relative velocity
@@ -334,10 +335,10 @@ LRIGID_IVDEP
     // q <- q cay(h w_mid)
     T q[4];
     {
-      const T q0[4] = {L->q[0][j], L->q[1][j], L->q[2][j], L->q[3][j]};
-      const T a[3] = {hh * T(k.mass.Mi[3]) * (T(0.5) * (y0[3] + y[3])),
-                      hh * T(k.mass.Mi[4]) * (T(0.5) * (y0[4] + y[4])),
-                      hh * T(k.mass.Mi[5]) * (T(0.5) * (y0[5] + y[5]))};
+      const T q0[4] = {lanes->q[0][j], lanes->q[1][j], lanes->q[2][j], lanes->q[3][j]};
+      const T a[3] = {hh * T(tc.mass.Mi[3]) * (T(0.5) * (y0[3] + y[3])),
+                      hh * T(tc.mass.Mi[4]) * (T(0.5) * (y0[4] + y[4])),
+                      hh * T(tc.mass.Mi[5]) * (T(0.5) * (y0[5] + y[5]))};
       cayley_rotate(q0, a, q);
     }
     T R[9];
@@ -347,13 +348,13 @@ LRIGID_IVDEP
     mul_t(R, u_f, ufb);
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
-      v[a] = T(k.mass.Mi[a]) * y[a] + ufb[a];
-      w[a] = T(k.mass.Mi[3 + a]) * y[3 + a];
+      v[a] = T(tc.mass.Mi[a]) * y[a] + ufb[a];
+      w[a] = T(tc.mass.Mi[3 + a]) * y[3 + a];
       vr[a] = v[a] - ufb[a];
     }
     T lift[3] = {0, 0, 0};
-    const DragOut<T> d = body_forces<T, Plate>(k, vr, w, lift);
-    T F[3] = {T(k.F[0]), T(k.F[1]), T(k.F[2])};
+    const DragOut<T> drag = body_forces<T, Plate>(tc, vr, w, lift);
+    T F[3] = {T(tc.F[0]), T(tc.F[1]), T(tc.F[2])};
     T Fb[3], u_end[3], ufb_end[3], fx[3] = {0, 0, 0}, ab[3] = {0, 0, 0};
     if constexpr (Extra) {
       // the Basset history force (world) joins the weight; Magnus (body frame) and the
@@ -361,35 +362,35 @@ LRIGID_IVDEP
       T acc[3];
 #pragma GCC unroll 3
       for (int a = 0; a < 3; ++a) {
-        F[a] += L->fb[a][j];
-        acc[a] = T(k.gu) * L->acc[a][j];
+        F[a] += lanes->fb[a][j];
+        acc[a] = T(tc.gu) * lanes->acc[a][j];
       }
-      magnus_kernel(T(k.magnus), w, vr, fx);
+      magnus_kernel(T(tc.magnus), w, vr, fx);
       mul_t(R, acc, ab);
     }
     mul_t(R, F, Fb);
 #pragma GCC unroll 3
-    for (int a = 0; a < 3; ++a) u_end[a] = u_f[a] + h * T(k.gu) * L->acc[a][j];
+    for (int a = 0; a < 3; ++a) u_end[a] = u_f[a] + h * T(tc.gu) * lanes->acc[a][j];
     mul_t(R, u_end, ufb_end);
     T Gj[3], rhs[6], dPL_j[6];
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
-      Gj[a] = Extra ? h * (Fb[a] + lift[a] + fx[a]) + T(k.basset_mass) * h * ab[a]
+      Gj[a] = Extra ? h * (Fb[a] + lift[a] + fx[a]) + T(tc.basset_mass) * h * ab[a]
                     : h * (Fb[a] + lift[a]);
-      rhs[a] = Gj[a] + h * d.f[a];
-      rhs[3 + a] = h * d.tq[a];
+      rhs[a] = Gj[a] + h * drag.f[a];
+      rhs[3 + a] = h * drag.tq[a];
     }
-    implicit_impulse(k.mass, T(k.basset_mass), d, h, rhs, dPL_j);
+    implicit_impulse(tc.mass, T(tc.basset_mass), drag, h, rhs, dPL_j);
     T e_new = 0, e_r = 0;
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
       const T dP = dPL_j[a], dL = dPL_j[3 + a];
-      const T P = T(k.mass.M[a]) * v[a] - T(k.K[a]) * ufb[a];
-      const T Lm = T(k.mass.M[3 + a]) * w[a];
-      vn[a][j] = T(k.mass.Mi[a]) * (P + dP + T(k.K[a]) * ufb_end[a]);
-      wn[a][j] = T(k.mass.Mi[3 + a]) * (Lm + dL);
-      e_new += dP * dP * T(k.mass.Mi[a]) + dL * dL * T(k.mass.Mi[3 + a]);
-      e_r += T(k.mass.M[a]) * vr[a] * vr[a] + T(k.mass.M[3 + a]) * w[a] * w[a];
+      const T P = T(tc.mass.M[a]) * v[a] - T(tc.K[a]) * ufb[a];
+      const T Lm = T(tc.mass.M[3 + a]) * w[a];
+      vn[a][j] = T(tc.mass.Mi[a]) * (P + dP + T(tc.K[a]) * ufb_end[a]);
+      wn[a][j] = T(tc.mass.Mi[3 + a]) * (Lm + dL);
+      e_new += dP * dP * T(tc.mass.Mi[a]) + dL * dL * T(tc.mass.Mi[3 + a]);
+      e_r += T(tc.mass.M[a]) * vr[a] * vr[a] + T(tc.mass.M[3 + a]) * w[a] * w[a];
       Pl[a][j] = P;
       Pl[3 + a][j] = Lm;
       dPL[a][j] = dP;
@@ -400,7 +401,7 @@ LRIGID_IVDEP
     }
     // drag that changes the relative velocity by more than kStiffChange: Newton, as the scalar
     // step (lanes the scalar step takes anyway need none)
-    const int st = int(k.drag != 0) & int(e_new > T(kStiffChange * kStiffChange) * e_r) &
+    const int st = int(tc.drag != 0) & int(e_new > T(kStiffChange * kStiffChange) * e_r) &
                    (1 - (scalar[j] | active[j]));
     stiff[j] = st;
     any_stiff |= st;
@@ -411,8 +412,9 @@ LRIGID_IVDEP
   }
   // stiff drag: Newton on R(dPi) = dPi - h (G_other + F_drag(xi(dPi))) - b_B (h a - dv), lanes
   // drop out as they converge (integrators.cpp split_deterministic_step)
-  if (k.drag != 0 && any_stiff) {
-    for (int j = 0; j < kBatch; ++j) L->newton += uint64_t(stiff[j] != 0) & uint64_t(L->live[j]);
+  if (tc.drag != 0 && any_stiff) {
+    for (int j = 0; j < kBatch; ++j)
+      lanes->newton += uint64_t(stiff[j] != 0) & uint64_t(lanes->live[j]);
     for (int it = 0; it < kDragMaxNewton; ++it) {
       int any = 0;
 LRIGID_IVDEP
@@ -424,28 +426,28 @@ LRIGID_IVDEP
           vr[a] = vn[a][j] - ufs[a][j];
           w[a] = wn[a][j];
         }
-        const DragOut<T> d = body_forces<T, Plate>(k, vr, w, lift);
+        const DragOut<T> drag = body_forces<T, Plate>(tc, vr, w, lift);
         // the Newton step -M (M + h J + b_B P)^-1 res, J the drag's stiffness here
         T res[6], x[6];
 #pragma GCC unroll 3
         for (int a = 0; a < 3; ++a) {
-          res[a] = dPL[a][j] - G[a][j] - h * d.f[a] +
-                   T(k.basset_mass) * T(k.mass.Mi[a]) * dPL[a][j];
-          res[3 + a] = dPL[3 + a][j] - h * d.tq[a];
+          res[a] = dPL[a][j] - G[a][j] - h * drag.f[a] +
+                   T(tc.basset_mass) * T(tc.mass.Mi[a]) * dPL[a][j];
+          res[3 + a] = dPL[3 + a][j] - h * drag.tq[a];
         }
-        implicit_impulse(k.mass, T(k.basset_mass), d, h, res, x);
+        implicit_impulse(tc.mass, T(tc.basset_mass), drag, h, res, x);
         T conv = 0;
 #pragma GCC unroll 3
         for (int a = 0; a < 3; ++a) {
           const T ddP = -x[a], ddL = -x[3 + a];
           const T dP = dPL[a][j] + ddP, dL = dPL[3 + a][j] + ddL;
-          const T v = T(k.mass.Mi[a]) * (Pl[a][j] + dP + T(k.K[a]) * ufe[a][j]);
-          const T wa = T(k.mass.Mi[3 + a]) * (Pl[3 + a][j] + dL);
+          const T v = T(tc.mass.Mi[a]) * (Pl[a][j] + dP + T(tc.K[a]) * ufe[a][j]);
+          const T wa = T(tc.mass.Mi[3 + a]) * (Pl[3 + a][j] + dL);
           dPL[a][j] = act ? dP : dPL[a][j];
           dPL[3 + a][j] = act ? dL : dPL[3 + a][j];
           vn[a][j] = act ? v : vn[a][j];
           wn[a][j] = act ? wa : wn[a][j];
-          conv += ddP * ddP * T(k.mass.Mi[a]) + ddL * ddL * T(k.mass.Mi[3 + a]);
+          conv += ddP * ddP * T(tc.mass.Mi[a]) + ddL * ddL * T(tc.mass.Mi[3 + a]);
         }
         const int more = act & int(conv > T(kDragTol * kDragTol) * norm_r[j]);
         stiff[j] = more;
@@ -465,25 +467,25 @@ LRIGID_IVDEP
     mul(R, v, Vend);
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
-      xn[a][j] = L->x[a][j] + hh * (V0[a][j] + Vend[a]);
+      xn[a][j] = lanes->x[a][j] + hh * (V0[a][j] + Vend[a]);
       Vn[a][j] = Vend[a];
     }
   }
   // 5. the second OU half step at the new position
-  end_step<T, Turb>(k, z2, Vn, &n, L, outcome, landed);
+  end_step<T, Turb>(tc, z2, Vn, &next, lanes, outcome, landed);
 }
 
 template <typename T>
 BlockStats advance(const Model& model, const BodyType& type, State* state, const uint32_t* body,
                    int count, uint64_t first, uint64_t last) {
-  const Consts k = make_consts(model, type);
-  auto step = [&k](auto turb, auto plate, auto extra, Lanes<T>* lanes, uint64_t s, int* outcome,
-                   int* landed) {
+  const StepConsts tc = make_consts(model, type);
+  auto step = [&tc](auto turb, auto plate, auto extra, Lanes<T>* lanes, uint64_t s, int* outcome,
+                    int* landed) {
     step_lanes<T, decltype(turb)::value, decltype(plate)::value, decltype(extra)::value>(
-        k, lanes, s, outcome, landed);
+        tc, lanes, s, outcome, landed);
   };
-  return drive_block<T, Lanes<T>>(model, type, k, k.turb, k.plate, state, body, count, first, last,
-                                  step);
+  return drive_block<T, Lanes<T>>(model, type, tc, tc.turb, tc.plate, state, body, count, first,
+                                  last, step);
 }
 
 }  // namespace

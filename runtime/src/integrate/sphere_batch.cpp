@@ -25,29 +25,29 @@ bool sphere_batch_eligible(const Model& model, const BodyType& type, std::string
 namespace {
 
 // What the step needs of the sphere type, in the world frame.
-struct Consts : FieldConsts {
-  bool drag = false;  // with turb, the step's two template switches
+struct StepConsts : FieldConsts {
+  bool drag = false;            // with turb, the step's two template switches
   double m = 0, ma = 0, J = 0;  // M's linear and angular diagonal; K's linear diagonal (0 without)
-  DiagonalMass mass;            // M = diag(m, m, m, J, J, J) (integrate/kirchhoff.h)
+  IsotropicMass mass;           // M = diag(m, m, m, J, J, J) (integrate/kirchhoff.h)
   // sphere drag (effects/drag.h drag_kernel, r_cob = 0): the law and the sphere's area
   DragParams law;
   double a_perp = 0, d_perp = 0;
 };
 
-Consts make_consts(const Model& model, const BodyType& type) {
-  Consts k;
-  set_field_consts(model, type, &k);
+StepConsts make_consts(const Model& model, const BodyType& type) {
+  StepConsts tc;
+  set_field_consts(model, type, &tc);
   const EffectSet& e = type.effects;
-  k.drag = e.has(Effect::Drag);
-  k.m = type.M(0, 0);
-  k.ma = e.has(Effect::AddedMass) ? type.K_fluid(0, 0) : 0.0;
-  k.J = type.M(3, 3);
-  k.mass = diagonal_mass(type);
-  k.law = type.plan.params->drag;  // the scalar step's (effects/plan.h)
+  tc.drag = e.has(Effect::Drag);
+  tc.m = type.M(0, 0);
+  tc.ma = e.has(Effect::AddedMass) ? type.K_fluid(0, 0) : 0.0;
+  tc.J = type.M(3, 3);
+  tc.mass = IsotropicMass{type.M(0, 0), type.M(3, 3)};
+  tc.law = type.plan.params->drag;  // the scalar step's (effects/plan.h)
   const double r = type.ell.x();
-  k.a_perp = M_PI * r * r;
-  k.d_perp = 2.0 * std::sqrt(k.a_perp / M_PI);
-  return k;
+  tc.a_perp = M_PI * r * r;
+  tc.d_perp = 2.0 * std::sqrt(tc.a_perp / M_PI);
+  return tc;
 }
 
 // The state of a block of spheres and the fluid sample at their positions, structure of arrays.
@@ -89,30 +89,30 @@ struct Lanes : Samples<T> {
 // and torque on relative velocity u and spin w, and the stiffness the implicit step needs; the
 // projected area is the same in every direction.
 template <typename T>
-LRIGID_LANE DragOut<T> sphere_drag(const Consts& k, const T* u, const T* w) {
-  const T a_perp = T(k.a_perp), d_perp = T(k.d_perp);
-  return drag_kernel(k.law, u, w, [&](const T*, T* a, T* d) {
+LRIGID_LANE DragOut<T> sphere_drag(const StepConsts& tc, const T* u, const T* w) {
+  const T a_perp = T(tc.a_perp), d_perp = T(tc.d_perp);
+  return drag_kernel(tc.law, u, w, [&](const T*, T* a, T* diameter) {
     *a = a_perp;
-    *d = d_perp;
+    *diameter = d_perp;
   });
 }
 
-// Advances every lane of L by one step; lanes that are not kOk keep their state at the start of
+// Advances every lane of lanes by one step; lanes that are not kOk keep their state at the start of
 // the step. landed: the lane is on or below the ground after the step.
 template <typename T, bool Turb, bool WithDrag, bool Extra>
-LRIGID_MULTIVERSION void step_lanes(const Consts& k, Lanes<T>* L, uint64_t step, int* outcome,
-                                    int* landed) {
-  const T h = T(k.h), hh = T(0.5 * k.h), wm = T(k.wm);
+LRIGID_MULTIVERSION void step_lanes(const StepConsts& tc, Lanes<T>* lanes, uint64_t step,
+                                    int* outcome, int* landed) {
+  const T h = T(tc.h), hh = T(0.5 * tc.h), wm = T(tc.wm);
   alignas(64) T z1[3][kBatch], z2[3][kBatch];
-  if constexpr (Turb) lane_normals(k, *L, step, z1, z2);
+  if constexpr (Turb) lane_normals(tc, *lanes, step, z1, z2);
   // new state, committed at the end for the lanes whose step succeeded
-  NewState<T> n;
-  T(&xn)[3][kBatch] = n.x;
-  T(&Vn)[3][kBatch] = n.vel;
-  T(&wn)[3][kBatch] = n.w;
-  T(&qn)[4][kBatch] = n.q;
-  T(&usn)[3][kBatch] = n.us;
-  for (int j = 0; j < kBatch; ++j) n.scalar[j] = 0;
+  NewState<T> next;
+  T(&xn)[3][kBatch] = next.x;
+  T(&Vn)[3][kBatch] = next.vel;
+  T(&wn)[3][kBatch] = next.w;
+  T(&qn)[4][kBatch] = next.q;
+  T(&usn)[3][kBatch] = next.us;
+  for (int j = 0; j < kBatch; ++j) next.scalar[j] = 0;
   // what the Newton iteration of stiff drag needs
   alignas(64) T uf[3][kBatch], Pi[3][kBatch], dP[3][kBatch], dL[3][kBatch], V0[3][kBatch];
   alignas(64) T G[3][kBatch];  // h times the forces other than drag, + b_B h a_fluid
@@ -121,26 +121,26 @@ LRIGID_MULTIVERSION void step_lanes(const Consts& k, Lanes<T>* L, uint64_t step,
   int any_stiff = 0;
 LRIGID_IVDEP
   for (int j = 0; j < kBatch; ++j) {
-    T us[3] = {L->us[0][j], L->us[1][j], L->us[2][j]};
-    const T U[3] = {L->U[0][j], L->U[1][j], L->U[2][j]};
-    const T gs[3] = {L->gs[0][j], L->gs[1][j], L->gs[2][j]};
+    T us[3] = {lanes->us[0][j], lanes->us[1][j], lanes->us[2][j]};
+    const T U[3] = {lanes->U[0][j], lanes->U[1][j], lanes->U[2][j]};
+    const T gs[3] = {lanes->gs[0][j], lanes->gs[1][j], lanes->gs[2][j]};
     // 1. first OU half step
     if constexpr (Turb) {
       const T z[3] = {z1[0][j], z1[1][j], z1[2][j]};
-      const T V[3] = {L->V[0][j], L->V[1][j], L->V[2][j]};
-      ou_update(wm, L->decay[j], L->noise[j], L->sigma2[j], V, gs, z, hh, us);
+      const T V[3] = {lanes->V[0][j], lanes->V[1][j], lanes->V[2][j]};
+      ou_update(wm, lanes->decay[j], lanes->noise[j], lanes->sigma2[j], V, gs, z, hh, us);
     }
     // 2. the free Kirchhoff flow: for isotropic M the world velocity is unchanged and
     //    q <- q cay(h w) (integrate/dynamics.cpp kirchhoff_flow)
     T u_f[3], V[3], w[3];
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
-      u_f[a] = T(k.mf) * U[a] + (Turb ? us[a] : T(0));
-      V[a] = L->V[a][j];
-      w[a] = L->w[a][j];
+      u_f[a] = T(tc.mf) * U[a] + (Turb ? us[a] : T(0));
+      V[a] = lanes->V[a][j];
+      w[a] = lanes->w[a][j];
     }
     {
-      const T q0[4] = {L->q[0][j], L->q[1][j], L->q[2][j], L->q[3][j]};
+      const T q0[4] = {lanes->q[0][j], lanes->q[1][j], lanes->q[2][j], lanes->q[3][j]};
       const T a[3] = {hh * w[0], hh * w[1], hh * w[2]};
       T q[4];
       cayley_rotate(q0, a, q);
@@ -151,43 +151,44 @@ LRIGID_IVDEP
     T vr[3];
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) vr[a] = V[a] - u_f[a];
-    DragOut<T> d = {};
-    if constexpr (WithDrag) d = sphere_drag(k, vr, w);
+    DragOut<T> drag = {};
+    if constexpr (WithDrag) drag = sphere_drag(tc, vr, w);
     T Gj[3];
 #pragma GCC unroll 3
-    for (int a = 0; a < 3; ++a) Gj[a] = h * T(k.F[a]);
+    for (int a = 0; a < 3; ++a) Gj[a] = h * T(tc.F[a]);
     if constexpr (Extra) {
       // Magnus on the world spin (the flow rotates q about w, so either orientation gives it),
       // the Basset history force and its current interval's b_B h a_fluid
       const T qj[4] = {qn[0][j], qn[1][j], qn[2][j], qn[3][j]};
       T wW[3], fm[3];
       rotate_by(qj, w, wW);
-      magnus_kernel(T(k.magnus), wW, vr, fm);
+      magnus_kernel(T(tc.magnus), wW, vr, fm);
 #pragma GCC unroll 3
       for (int a = 0; a < 3; ++a)
-        Gj[a] += h * (L->fb[a][j] + fm[a]) + T(k.basset_mass) * h * T(k.gu) * L->acc[a][j];
+        Gj[a] +=
+            h * (lanes->fb[a][j] + fm[a]) + T(tc.basset_mass) * h * T(tc.gu) * lanes->acc[a][j];
     }
     // the implicit step's impulse change (integrate/kirchhoff.h implicit_impulse; the world and
     // body frames differ by a rotation, under which the isotropic M and the stiffness commute)
     T b[6], P[3], dPL_j[6], Vnew[3], wnew[3], u_end[3];
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
-      b[a] = Gj[a] + h * d.f[a];
-      b[3 + a] = h * d.tq[a];
-      P[a] = T(k.m) * V[a] - T(k.ma) * u_f[a];
+      b[a] = Gj[a] + h * drag.f[a];
+      b[3 + a] = h * drag.tq[a];
+      P[a] = T(tc.m) * V[a] - T(tc.ma) * u_f[a];
       // the fluid velocity at the end of the step enters through the added mass
-      u_end[a] = u_f[a] + h * T(k.gu) * L->acc[a][j];
+      u_end[a] = u_f[a] + h * T(tc.gu) * lanes->acc[a][j];
     }
-    implicit_impulse(k.mass, T(k.basset_mass), d, h, b, dPL_j);
+    implicit_impulse(tc.mass, T(tc.basset_mass), drag, h, b, dPL_j);
     const T* dPj = dPL_j;
     const T* dLj = dPL_j + 3;
     T e_new = 0, e_r = 0;
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
-      Vnew[a] = (P[a] + dPj[a] + T(k.ma) * u_end[a]) / T(k.m);
-      wnew[a] = (T(k.J) * w[a] + dLj[a]) / T(k.J);
-      e_new += dPj[a] * dPj[a] / T(k.m) + dLj[a] * dLj[a] / T(k.J);
-      e_r += T(k.m) * vr[a] * vr[a] + T(k.J) * w[a] * w[a];
+      Vnew[a] = (P[a] + dPj[a] + T(tc.ma) * u_end[a]) / T(tc.m);
+      wnew[a] = (T(tc.J) * w[a] + dLj[a]) / T(tc.J);
+      e_new += dPj[a] * dPj[a] / T(tc.m) + dLj[a] * dLj[a] / T(tc.J);
+      e_r += T(tc.m) * vr[a] * vr[a] + T(tc.J) * w[a] * w[a];
     }
     const int s = WithDrag ? int(e_new > T(kStiffChange * kStiffChange) * e_r) : 0;
     stiff[j] = s;
@@ -209,7 +210,8 @@ LRIGID_IVDEP
   // stiff drag: Newton on R(dPi) = dPi - h (G_other + F_drag(xi(dPi))) - b_B (h a - dV), lanes
   // drop out as they converge
   if (WithDrag && any_stiff) {
-    for (int j = 0; j < kBatch; ++j) L->newton += uint64_t(stiff[j] != 0) & uint64_t(L->live[j]);
+    for (int j = 0; j < kBatch; ++j)
+      lanes->newton += uint64_t(stiff[j] != 0) & uint64_t(lanes->live[j]);
     for (int it = 0; it < kDragMaxNewton; ++it) {
       int any = 0;
 LRIGID_IVDEP
@@ -222,28 +224,28 @@ LRIGID_IVDEP
           vr[a] = Vn[a][j] - uf[a][j];
           w[a] = wn[a][j];
         }
-        const DragOut<T> d = sphere_drag(k, vr, w);
+        const DragOut<T> drag = sphere_drag(tc, vr, w);
         T res[6], x[6];
 #pragma GCC unroll 3
         for (int a = 0; a < 3; ++a) {
-          res[a] = dP[a][j] - G[a][j] - h * d.f[a] + T(k.basset_mass / k.m) * dP[a][j];
-          res[3 + a] = dL[a][j] - h * d.tq[a];
+          res[a] = dP[a][j] - G[a][j] - h * drag.f[a] + T(tc.basset_mass / tc.m) * dP[a][j];
+          res[3 + a] = dL[a][j] - h * drag.tq[a];
         }
-        implicit_impulse(k.mass, T(k.basset_mass), d, h, res, x);
+        implicit_impulse(tc.mass, T(tc.basset_mass), drag, h, res, x);
         const T* dd = x;
         T conv = 0;
 #pragma GCC unroll 3
         for (int a = 0; a < 3; ++a) {
           const T dl = -x[3 + a];
           const T dPa = dP[a][j] - dd[a], dLa = dL[a][j] + dl;
-          const T acc = T(k.gu) * L->acc[a][j];
-          const T Va = (Pi[a][j] + dPa + T(k.ma) * (uf[a][j] + h * acc)) / T(k.m);
-          const T wa = (T(k.J) * L->w[a][j] + dLa) / T(k.J);
+          const T acc = T(tc.gu) * lanes->acc[a][j];
+          const T Va = (Pi[a][j] + dPa + T(tc.ma) * (uf[a][j] + h * acc)) / T(tc.m);
+          const T wa = (T(tc.J) * lanes->w[a][j] + dLa) / T(tc.J);
           dP[a][j] = act ? dPa : dP[a][j];
           dL[a][j] = act ? dLa : dL[a][j];
           Vn[a][j] = act ? Va : Vn[a][j];
           wn[a][j] = act ? wa : wn[a][j];
-          conv += dd[a] * dd[a] / T(k.m) + dl * dl / T(k.J);
+          conv += dd[a] * dd[a] / T(tc.m) + dl * dl / T(tc.J);
         }
         const int more = int(act & (conv > T(kDragTol * kDragTol) * norm_r[j]));
         stiff[j] = more;
@@ -256,21 +258,21 @@ LRIGID_IVDEP
 LRIGID_IVDEP
   for (int j = 0; j < kBatch; ++j)
 #pragma GCC unroll 3
-    for (int a = 0; a < 3; ++a) xn[a][j] = L->x[a][j] + hh * (V0[a][j] + Vn[a][j]);
-  end_step<T, Turb>(k, z2, Vn, &n, L, outcome, landed);
+    for (int a = 0; a < 3; ++a) xn[a][j] = lanes->x[a][j] + hh * (V0[a][j] + Vn[a][j]);
+  end_step<T, Turb>(tc, z2, Vn, &next, lanes, outcome, landed);
 }
 
 template <typename T>
 BlockStats advance(const Model& model, const BodyType& type, State* state, const uint32_t* body,
                    int count, uint64_t first, uint64_t last) {
-  const Consts k = make_consts(model, type);
-  auto step = [&k](auto turb, auto drag, auto extra, Lanes<T>* lanes, uint64_t s, int* outcome,
-                   int* landed) {
+  const StepConsts tc = make_consts(model, type);
+  auto step = [&tc](auto turb, auto drag, auto extra, Lanes<T>* lanes, uint64_t s, int* outcome,
+                    int* landed) {
     step_lanes<T, decltype(turb)::value, decltype(drag)::value, decltype(extra)::value>(
-        k, lanes, s, outcome, landed);
+        tc, lanes, s, outcome, landed);
   };
-  return drive_block<T, Lanes<T>>(model, type, k, k.turb, k.drag, state, body, count, first, last,
-                                  step);
+  return drive_block<T, Lanes<T>>(model, type, tc, tc.turb, tc.drag, state, body, count, first,
+                                  last, step);
 }
 
 }  // namespace

@@ -139,5 +139,34 @@ TEST(KirchhoffKernels, ImplicitImpulseSolvesTheImplicitForceStep) {
   }
 }
 
+TEST(KirchhoffKernels, ImplicitImpulseOfAnIsotropicMassIsTheDiagonalOne) {
+  // the sphere step's closed form against the diagonal kernel on M = diag(m, m, m, J, J, J)
+  std::mt19937_64 gen(17);
+  std::uniform_real_distribution<double> u(-1, 1), s(0.0, 5.0);
+  for (int trial = 0; trial < 100; ++trial) {
+    const IsotropicMass iso{2e-3 * (1 + s(gen)), 4e-7 * (1 + s(gen))};
+    DiagonalMass diag;
+    for (int a = 0; a < 3; ++a) {
+      diag.M[a] = iso.m;
+      diag.Mi[a] = 1 / iso.m;
+      diag.M[3 + a] = iso.J;
+      diag.Mi[3 + a] = 1 / iso.J;
+    }
+    DragOut<double> d{};
+    d.c_lin = 1e-3 * s(gen);
+    d.p = s(gen);
+    d.c_ang = 1e-7 * s(gen);
+    Vec3 uh(u(gen), u(gen), u(gen));
+    uh.normalize();
+    for (int a = 0; a < 3; ++a) d.u_hat[a] = uh[a];
+    Vec6 b;
+    for (int a = 0; a < 6; ++a) b[a] = 1e-3 * u(gen);
+    Vec6 xi, xd;
+    implicit_impulse(iso, 1e-4, d, 1e-3, b.data(), xi.data());
+    implicit_impulse(diag, 1e-4, d, 1e-3, b.data(), xd.data());
+    EXPECT_LE((xi - xd).norm(), 1e-14 * xd.norm());
+  }
+}
+
 }  // namespace
 }  // namespace lrigid

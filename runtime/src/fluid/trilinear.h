@@ -1,0 +1,56 @@
+// The trilinear record kernel, written once: the scalar step's FluidField::sample_frame
+// (fluid/field.cpp, T = double) and the batched steps' sample_lanes (integrate/batch_lanes.h,
+// double or float) both blend a cell's 8 corner records (GridRecord: 8 floats, one vector) with it.
+// A corner's whole record is taken at once: across lanes the same sums would be 56 gathers per
+// lane, which cost more than the arithmetic.
+#pragma once
+#include <cstring>
+
+#include "util/lane.h"
+
+namespace lrigid {
+
+// 8 values of type T in one vector (GCC's and Clang's vector extension), a record's slots.
+template <typename T>
+struct Record8 {
+  typedef T type __attribute__((vector_size(8 * sizeof(T))));
+};
+
+// The sums over the corners c = cx + 2 cy + 4 cz of the cell whose first record starts at r0
+// (the corners' records at r0 + off[c], in floats), at fractions f (0..1 per axis) of the cell:
+//   v  = sum_c valid_c w_c rec_c     (w_c the trilinear weights; slot 6 = the valid weight W,
+//                                      since valid_c is 1 or 0),
+//   dk = sum_c (dw_c / df_k) rec_c   (k = 0, 1, 2: per unit index; with Gradients only).
+// Returns the number of valid corners. Gradients are meaningful only when all 8 are valid.
+template <typename T, bool Gradients>
+LRIGID_LANE int trilinear_record(const float* r0, const int* off, const T* f,
+                                 typename Record8<T>::type* v, typename Record8<T>::type* d0,
+                                 typename Record8<T>::type* d1, typename Record8<T>::type* d2) {
+  typedef typename Record8<T>::type V8;
+  typedef float F8 __attribute__((vector_size(32)));
+  const T gx[2] = {T(1) - f[0], f[0]}, gy[2] = {T(1) - f[1], f[1]}, gz[2] = {T(1) - f[2], f[2]};
+  V8 sv = {}, s0 = {}, s1 = {}, s2 = {};
+  int nvalid = 0;
+#pragma GCC unroll 8
+  for (int c = 0; c < 8; ++c) {
+    const int cx = c & 1, cy = (c >> 1) & 1, cz = c >> 2;
+    F8 gf;
+    std::memcpy(&gf, r0 + off[c], sizeof gf);
+    const V8 g = __builtin_convertvector(gf, V8);
+    const T valid = g[6];
+    nvalid += valid != T(0);
+    sv += (valid * (gx[cx] * gy[cy] * gz[cz])) * g;
+    if constexpr (Gradients) {
+      s0 += ((cx ? T(1) : T(-1)) * gy[cy] * gz[cz]) * g;
+      s1 += (gx[cx] * (cy ? T(1) : T(-1)) * gz[cz]) * g;
+      s2 += (gx[cx] * gy[cy] * (cz ? T(1) : T(-1))) * g;
+    }
+  }
+  *v = sv;
+  *d0 = s0;
+  *d1 = s1;
+  *d2 = s2;
+  return nvalid;
+}
+
+}  // namespace lrigid
