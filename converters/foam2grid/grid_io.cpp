@@ -55,6 +55,12 @@ void write_vti(const std::string& path, const GridSpec& grid, const std::vector<
   valid->SetName("valid");
   valid->SetArray(data->valid.data(), np, 1);
   image->GetPointData()->AddArray(valid);
+  if (!data->wall_distance.empty()) {
+    vtkNew<vtkFloatArray> wd;
+    wd->SetName("wall_distance");
+    wd->SetArray(data->wall_distance.data(), np, 1);
+    image->GetPointData()->AddArray(wd);
+  }
 
   vtkNew<vtkDoubleArray> nu;
   nu->SetName("kinematic_viscosity");

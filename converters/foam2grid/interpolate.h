@@ -44,6 +44,8 @@ enum class Scheme {
 struct GridFields {
   std::vector<std::vector<float>> arrays;
   std::vector<std::uint8_t> valid;
+  /// signed distance to the nearest wall, m (wall_distance.h); not written when empty
+  std::vector<float> wall_distance;
 };
 
 /// Progress of resample(): fraction of the cells done (0..1) and grid points resampled so far.

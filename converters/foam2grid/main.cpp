@@ -18,6 +18,7 @@
 #include "grid_io.h"
 #include "interpolate.h"
 #include "io/progress.h"
+#include "wall_distance.h"
 #include "util/cli_suggest.h"
 
 #ifndef FOAM2GRID_VERSION
@@ -95,7 +96,8 @@ std::vector<FieldSpec> parse_fields(const std::string& list) {
     for (const FieldSpec& s : specs) {
       if (s.name == name) fail_usage("--fields '" + list + "': '" + name + "' given twice");
     }
-    if (name == "valid") fail_usage("--fields: 'valid' is always written, do not request it");
+    if (name == "valid" || name == "wall_distance")
+      fail_usage("--fields: '" + name + "' is always written, do not request it");
     FieldSpec s;
     s.name = name;
     s.ncomp = name == "U" ? 3 : 1;
@@ -264,7 +266,7 @@ int run(const Options& opt) {
   }
   const GridSpec grid = make_grid(opt, mb, default_spacing);
   {
-    double per_point = 2;  // valid + claim flag
+    double per_point = 10;  // valid + claim flag, wall distance (unsigned and signed)
     for (const FieldSpec& s : specs) per_point += 4.0 * s.ncomp;
     const double npts = static_cast<double>(grid.dims[0]) * static_cast<double>(grid.dims[1]) *
                         static_cast<double>(grid.dims[2]);
@@ -289,6 +291,13 @@ int run(const Options& opt) {
   for (const MeshPart& m : parts) ncells += m.n_cells;
   log("mesh: " + std::to_string(ncells) + " cells, " + std::to_string(count_global_points(parts)) +
       " points");
+
+  // the distance to the walls: the mesh does not move, so once for every time (signed below
+  // with each time's valid mask)
+  std::size_t wall_faces = 0;
+  const std::vector<float> wall_d = unsigned_wall_distance(parts, grid, &wall_faces);
+  log(wall_faces == 0 ? std::string("no wall patch: wall_distance not written")
+                      : "wall distance: " + std::to_string(wall_faces) + " wall faces");
 
   // output locations
   const fs::path out_path = fs::absolute(opt.output);
@@ -328,6 +337,7 @@ int run(const Options& opt) {
         progress.update((static_cast<double>(n) + f) * per_time,
                         which + ": " + std::to_string(points) + of_points);
       });
+      data.wall_distance = signed_wall_distance(wall_d, data.valid);
       std::size_t nvalid = 0;
       for (std::uint8_t v : data.valid) nvalid += v;
       log("time " + tname + ": resampled, " + std::to_string(nvalid) + " of " +
@@ -408,7 +418,8 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--fields", opt.fields,
                  "comma-separated fields: U (m/s), k (m^2/s^2), epsilon (m^2/s^3), nut (m^2/s); "
-                 "'valid' is always written")
+                 "'valid' and 'wall_distance' (m, signed distance to the nearest wall patch face) "
+                 "are always written")
       ->capture_default_str();
   app.add_option("--interpolation", opt.interpolation,
                  "cellPoint (OpenFOAM's cellPoint: linear over each cell's tetrahedra, from cell "

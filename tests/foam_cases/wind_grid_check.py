@@ -4,7 +4,10 @@
   wind_grid_check.py inside CASE_DIR
       grid points inside the geometry (constant/triSurface/geometry.stl) by more than the
       finest cell are all invalid (valid = 0); points farther than two finest cells outside
-      it are valid (>= 99 %); prints the counts
+      it are valid (>= 99 %); prints the counts. The grid's wall_distance (foam2grid) agrees
+      with the distance to the geometry or the ground, whichever is nearer (VTK's
+      vtkImplicitPolyDataDistance to the STL, computed here independently) within 1.5 finest
+      cells wherever the snapped mesh and the STL can differ, and has the validity's sign
   wind_grid_check.py loglaw CASE_DIR
       the mean-flow profile 1 H downstream of the inlet, on the domain's centre line, at
       0.5 H, 1 H and 2 H above the ground: |U| within 5 % of the log law
@@ -95,6 +98,32 @@ def check_inside(case):
         fail('%d grid points inside the geometry are marked valid' % bad_in)
     if frac_out < 0.99:
         fail('only %.4f of the points outside the geometry are valid (want >= 0.99)' % frac_out)
+    check_wall_distance(img, pts, d, w)
+
+
+def check_wall_distance(img, pts, d_stl, w):
+    a = arrays(img)
+    if 'wall_distance' not in a:
+        fail('the grid has no wall_distance array')
+    wd = a['wall_distance'].astype(float)
+    valid = a['valid']
+    h = w['finest_cell']
+    # the walls: the geometry (snapped onto the mesh within about a cell) and the ground
+    height = pts[:, 2] - w['ground']
+    want = np.where(d_stl > 0, np.minimum(d_stl, height), d_stl)
+    wrong = np.signbit(wd) != (valid == 0)  # -0.0 on a wall counts as inside
+    if wrong.any():
+        fail('wall_distance has the wrong sign at %d points' % int(wrong.sum()))
+    # inside the geometry, under the ground plane's level, the ground has no face: only compare
+    # inside points deeper than their height above the ground's level
+    sel = (d_stl > 0) | (-d_stl < height)
+    err = np.abs(wd - want)[sel]
+    print('wall_distance vs the STL and the ground: max |difference| %.3g m over %d points '
+          '(finest cell %.3g m)' % (err.max(), int(sel.sum()), h))
+    if err.max() > 1.5 * h:
+        worst = np.argmax(np.abs(wd - want) * sel)
+        fail('wall_distance %.4g m at %s, expected %.4g m (STL and ground) within %.3g m'
+             % (wd[worst], pts[worst], want[worst], 1.5 * h))
 
 
 def foam2grid_box(case, bounds, spacing):

@@ -1,5 +1,5 @@
 // Writes a small grid file in foam2grid's format (VTK XML ImageData with point arrays U, k,
-// epsilon, valid and field data kinematic_viscosity, time; docs/grid-format.md) for tests that
+// epsilon, valid, optionally wall_distance, and field data kinematic_viscosity, time; docs/grid-format.md) for tests that
 // need one on disk. `fill` sets U, k and epsilon at point p (x fastest) at position x.
 #pragma once
 #include <vtkDoubleArray.h>
@@ -26,6 +26,8 @@ struct VtiGrid {
   bool with_epsilon = true;
   // points where it returns true are solid (valid = 0); empty: all points are fluid
   std::function<bool(const std::array<double, 3>& x)> solid;
+  // the point array wall_distance (m) at x; empty: not written (a grid of an older foam2grid)
+  std::function<float(const std::array<double, 3>& x)> wall_distance;
 };
 
 using VtiFill = std::function<void(int p, const std::array<double, 3>& x, float U[3], float* k,
@@ -40,6 +42,9 @@ inline bool write_vti(const std::string& path, const VtiGrid& g, const VtiFill& 
   const int n = g.dims[0] * g.dims[1] * g.dims[2];
   vtkNew<vtkFloatArray> U, k, eps;
   vtkNew<vtkUnsignedCharArray> valid;
+  vtkNew<vtkFloatArray> wall;
+  wall->SetName("wall_distance");
+  wall->SetNumberOfTuples(n);
   U->SetName("U");
   U->SetNumberOfComponents(3);
   U->SetNumberOfTuples(n);
@@ -59,11 +64,13 @@ inline bool write_vti(const std::string& path, const VtiGrid& g, const VtiFill& 
     k->SetValue(p, kv);
     eps->SetValue(p, ev);
     valid->SetValue(p, g.solid && g.solid(x) ? 0 : 1);
+    if (g.wall_distance) wall->SetValue(p, g.wall_distance(x));
   }
   img->GetPointData()->AddArray(U);
   img->GetPointData()->AddArray(k);
   if (g.with_epsilon) img->GetPointData()->AddArray(eps);
   img->GetPointData()->AddArray(valid);
+  if (g.wall_distance) img->GetPointData()->AddArray(wall);
   vtkNew<vtkDoubleArray> nu, time;
   nu->SetName("kinematic_viscosity");
   nu->InsertNextValue(g.nu);

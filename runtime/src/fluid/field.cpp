@@ -39,7 +39,7 @@ std::vector<GridRecord> FluidField::records(const GridGeometry& geometry, const 
     GridRecord& r = recs[p];
     const bool valid = raw.valid.empty() || raw.valid[p] != 0;
     r.valid = valid ? 1.f : 0.f;
-    r.pad = 0.f;
+    r.wall_distance = raw.wall_distance.empty() ? 0.f : raw.wall_distance[p];
     for (int a = 0; a < 3; ++a) r.u[a] = valid && !raw.U.empty() ? raw.U[3 * p + a] : 0.f;
     if (valid && !raw.k.empty()) {
       const LangevinCoefficients c = langevin_coefficients(raw.k[p], raw.epsilon[p], nu, drift,
@@ -61,6 +61,7 @@ FluidField FluidField::grid(const GridGeometry& geometry, const std::vector<RawG
   f.id_ = next_field_id++;
   f.geometry_ = geometry;
   f.mode_ = mode;
+  f.has_wall_distance_ = !frames.empty() && !frames.front().wall_distance.empty();
   for (const RawGridFrame& raw : frames) {
     f.frames_.push_back(records(geometry, raw, nu, drift, limits));
     f.times_.push_back(raw.time);
@@ -91,7 +92,10 @@ FluidField FluidField::streamed(const GridGeometry& geometry, const std::vector<
   f.stream_->limits = limits;
   // the first frame is what model compilation and the initial state sample; a frame the caller
   // already read is taken as it is (not counted as a read)
-  if (first && !times.empty()) f.frames_[0] = records(geometry, *first, nu, drift, limits);
+  if (first && !times.empty()) {
+    f.frames_[0] = records(geometry, *first, nu, drift, limits);
+    f.has_wall_distance_ = !first->wall_distance.empty();
+  }
   if (!times.empty()) f.prepare(times.front(), times.front());
   return f;
 }
@@ -148,8 +152,9 @@ void FluidField::prepare(double t_lo, double t_hi) const {
   for (size_t k = 0; k < frames_.size(); ++k) {
     if (need[k] && frames_[k].empty()) {
       const auto start = std::chrono::steady_clock::now();
-      frames_[k] = records(geometry_, stream_->load(k), stream_->nu, stream_->drift,
-                           stream_->limits);
+      const RawGridFrame raw = stream_->load(k);
+      if (k == 0) has_wall_distance_ = !raw.wall_distance.empty();
+      frames_[k] = records(geometry_, raw, stream_->nu, stream_->drift, stream_->limits);
       stream_->stats.load_seconds +=
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       ++stream_->stats.loads;
@@ -188,7 +193,10 @@ bool FluidField::sample_frame(const std::vector<GridRecord>& frame, const Vec3& 
   double f[3];
   for (int a = 0; a < 3; ++a) {
     const double s = (x[a] - g.origin[a]) / g.spacing[a];
-    if (!(s >= 0.0 && s <= double(g.n[a] - 1))) return false;  // also false for NaN
+    if (!(s >= 0.0 && s <= double(g.n[a] - 1))) {  // also false for NaN
+      out->wall_distance = HUGE_VAL;
+      return false;
+    }
     int i = static_cast<int>(s);
     if (i > g.n[a] - 2) i = g.n[a] - 2;
     i0[a] = i;
@@ -205,6 +213,13 @@ bool FluidField::sample_frame(const std::vector<GridRecord>& frame, const Vec3& 
       gradients ? trilinear_record<double, true>(r0, off, f, &v, &dv[0], &dv[1], &dv[2])
                 : trilinear_record<double, false>(r0, off, f, &v, &dv[0], &dv[1], &dv[2]);
   const double W = v[6];
+  // the wall distance (slot 7) with the plain trilinear weights: invalid corners hold negative
+  // distances, so the blend crosses 0 at the wall (trilinear_record weighs slots by validity)
+  double wall = 0;
+  for (int c = 0; c < 8; ++c)
+    wall += ((c & 1) ? f[0] : 1 - f[0]) * ((c & 2) ? f[1] : 1 - f[1]) *
+            ((c & 4) ? f[2] : 1 - f[2]) * double(r0[off[c] + 7]);
+  out->wall_distance = has_wall_distance_ ? wall : HUGE_VAL;
   // the wall lies between a valid and an invalid grid point: x is in the fluid when the valid
   // corners carry at least half of the trilinear weight (the wall at mid-spacing, error <= h/2)
   if (nvalid == 0 || W < 0.5) return false;
@@ -277,8 +292,13 @@ bool FluidField::sample_uncached(const Vec3& x, double t, bool gradients,
   bracket(t, &i, &j, &lam);
   if (i == j) return sample_frame(frames_[i], x, gradients, out);
   FluidSample a, b;
-  if (!sample_frame(frames_[i], x, gradients, &a) || !sample_frame(frames_[j], x, gradients, &b))
-    return false;
+  const bool in_a = sample_frame(frames_[i], x, gradients, &a);
+  const bool in_b = sample_frame(frames_[j], x, gradients, &b);
+  // the mesh does not move: the frames' distances agree (and are +infinity outside the box)
+  out->wall_distance = std::isfinite(a.wall_distance) && std::isfinite(b.wall_distance)
+                           ? (1 - lam) * a.wall_distance + lam * b.wall_distance
+                           : std::min(a.wall_distance, b.wall_distance);
+  if (!in_a || !in_b) return false;
   const double dt = times_[j] - times_[i];
   out->U = (1 - lam) * a.U + lam * b.U;
   out->alpha = (1 - lam) * a.alpha + lam * b.alpha;

@@ -15,6 +15,7 @@
 // frames are resident, 3 during the one step that crosses a frame time (4 when it wraps a
 // looping series; docs/scaling.md).
 #pragma once
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -41,6 +42,9 @@ struct RawGridFrame {
   std::vector<float> k;            // m^2/s^2
   std::vector<float> epsilon;      // m^2/s^3
   std::vector<uint8_t> valid;      // 1 in the fluid
+  // signed distance to the nearest wall, m (positive in the fluid, negative in solids;
+  // docs/grid-format.md); empty: the file has none (a grid of an older foam2grid)
+  std::vector<float> wall_distance;
 };
 
 struct GridRecord {
@@ -49,7 +53,7 @@ struct GridRecord {
   float beta;    // m/s^1.5
   float sigma2;  // m^2/s^2
   float valid;   // 1 or 0
-  float pad;
+  float wall_distance;  // m, signed (RawGridFrame::wall_distance); 0 when the grid has none
 };
 static_assert(sizeof(GridRecord) == 32, "one grid point is half a cache line");
 
@@ -61,6 +65,11 @@ struct FluidSample {
   Mat3 grad_U = Mat3::Zero();         // dU_i/dx_j, 1/s (only when gradients are asked for)
   Vec3 grad_sigma2 = Vec3::Zero();    // m/s^2
   Vec3 dU_dt = Vec3::Zero();          // partial time derivative of U, m/s^2
+  // signed distance to the nearest wall, m: the plain trilinear blend of the 8 corners (invalid
+  // ones too, whose distance is negative), so it crosses 0 at the wall, exactly for a planar
+  // wall. Set whenever x lies in the grid's box, also when sample() returns false; +infinity
+  // outside the box, on a uniform field and on a grid without the array (older foam2grid).
+  double wall_distance = HUGE_VAL;
 };
 
 enum class TimeMode { Clamp, Loop };
@@ -106,6 +115,8 @@ class FluidField {
   bool sample(const Vec3& x, double t, bool gradients, FluidSample* out) const;
 
   bool is_uniform() const { return frames_.empty(); }
+  // the grid holds a wall distance (the first frame's file has the array wall_distance)
+  bool has_wall_distance() const { return has_wall_distance_; }
   // x lies in the grid's box (always true for a uniform field)
   bool in_box(const Vec3& x) const;
   const GridGeometry& geometry() const { return geometry_; }
@@ -137,6 +148,8 @@ class FluidField {
   std::vector<double> times_;
   TimeMode mode_ = TimeMode::Clamp;
   std::shared_ptr<Stream> stream_;  // null unless streamed
+  // the first frame has a wall distance (set when it is read, by prepare() for a stream)
+  mutable bool has_wall_distance_ = false;
 };
 
 }  // namespace lrigid

@@ -40,6 +40,11 @@ FluidField load_field(const Scene& scene, StreamMode stream, bool quiet) {
               << ": fluid.kinematic_viscosity = " << scene.kinematic_viscosity
               << " m^2/s differs from the grid's " << g.kinematic_viscosity << " m^2/s ("
               << scene.field_path << ")\n";
+  if (!g.has_wall_distance && !quiet)
+    std::cerr << "lrigid: note: " << scene.field_path
+              << " has no point array wall_distance (a grid of an older foam2grid, or a case "
+                 "without wall patches): bodies meet the solids as before, stopping where the "
+                 "grid's valid points end; convert the case again with foam2grid to add it\n";
   const double all_bytes =
       double(g.times.size()) * double(g.geometry.points()) * sizeof(GridRecord);
   const bool streamed =

@@ -97,6 +97,7 @@ void read_vti(const std::string& path, GridGeometry* geom, RawGridFrame* frame, 
   vtkDataArray* k = array("k", 1, true);
   vtkDataArray* eps = array("epsilon", 1, true);
   vtkDataArray* valid = array("valid", 1, false);
+  vtkDataArray* wall = array("wall_distance", 1, false);  // older grids have none
   frame->U.resize(3 * np);
   frame->k.resize(np);
   frame->epsilon.resize(np);
@@ -123,6 +124,16 @@ void read_vti(const std::string& path, GridGeometry* geom, RawGridFrame* frame, 
     frame->epsilon[p] = float(ee);
   }
   if (nvalid == 0) fail_input(path, "valid", "no valid point: the grid is empty");
+  frame->wall_distance.clear();
+  if (wall) {
+    frame->wall_distance.resize(np);
+    for (size_t p = 0; p < np; ++p) {
+      const double d = wall->GetComponent(p, 0);
+      if (!std::isfinite(d))
+        fail_input(path, "wall_distance", "non-finite value at point " + std::to_string(p));
+      frame->wall_distance[p] = float(d);
+    }
+  }
   *nu = 0;
   if (vtkFieldData* fd = img->GetFieldData())
     if (vtkDataArray* a = fd->GetArray("kinematic_viscosity"); a && a->GetNumberOfTuples() > 0)
@@ -205,6 +216,11 @@ RawGridFrame GridSeries::load(size_t i) const {
       (geom.origin - geometry.origin).norm() > 1e-9 ||
       (geom.spacing - geometry.spacing).norm() > 1e-9)
     fail_input(files[i], "", "grid differs from the series' first grid " + files[0]);
+  if (f.wall_distance.empty() != !has_wall_distance)
+    fail_input(files[i], "wall_distance",
+               std::string(has_wall_distance ? "point array missing; the series' first grid "
+                                             : "present, but the series' first grid ") +
+                   files[0] + (has_wall_distance ? " has it" : " has none"));
   return f;
 }
 
@@ -218,6 +234,7 @@ GridSeries open_grid_series(const std::string& path, RawGridFrame* first) {
   }
   // the first frame gives the geometry the others must match
   RawGridFrame f0 = read_entry(s, 0, &s.geometry, &s.kinematic_viscosity);
+  s.has_wall_distance = !f0.wall_distance.empty();
   if (!s.is_series) s.times[0] = f0.time;
   if (first) *first = std::move(f0);
   return s;

@@ -1,7 +1,8 @@
 // Reads foam2grid's grid files (docs/grid-format.md): one .vti, or a .pvd series of .vti files.
 // Checks everything the runtime relies on and names the file, array and point that is wrong:
 // at least 2 points per axis, arrays U (3 components), k and epsilon present with one value per
-// point, values finite, k >= 0 and epsilon >= 0 at valid points. Throws lrigid::Error (BadInput).
+// point, values finite, k >= 0 and epsilon >= 0 at valid points; the optional wall_distance
+// (1 component, finite). Throws lrigid::Error (BadInput).
 #pragma once
 #include <string>
 #include <vector>
@@ -28,6 +29,8 @@ struct GridSeries {
   std::vector<std::string> files;     // one .vti per time
   GridGeometry geometry;
   double kinematic_viscosity = 0;     // from the first frame's field data (0 if absent), m^2/s
+  // the first frame has the point array wall_distance; every frame must agree
+  bool has_wall_distance = false;
   RawGridFrame load(size_t i) const;
 };
 

@@ -165,7 +165,63 @@ Shape read_shape(Obj o, BodySpec* b) {
 
 constexpr Keys kBodyKeys = {"name",     "shape",    "density",     "mass_offset",
                             "count",    "position", "spawn_box",   "orientation",
-                            "velocity", "angular_velocity", "variation"};
+                            "velocity", "angular_velocity", "variation", "contact"};
+
+// A "contact" object (a body type's, or the scene's defaults): restitution in [0, 1] and
+// friction >= 0, each optional; *given says which were.
+void read_contact(Obj o, ContactSpec* c, bool* restitution_given, bool* friction_given) {
+  if (o.has("restitution")) {
+    const double e = o.number("restitution");
+    if (!(e >= 0 && e <= 1))
+      o.fail("restitution", "must lie in [0, 1] (normal speed after / before an impact), got " +
+                                Obj::dump(o.get("restitution")));
+    c->restitution = e;
+    *restitution_given = true;
+  }
+  if (o.has("friction")) {
+    const double mu = o.number("friction");
+    if (!(mu >= 0))
+      o.fail("friction", "must be >= 0 (Coulomb coefficient), got " +
+                             Obj::dump(o.get("friction")));
+    c->friction = mu;
+    *friction_given = true;
+  }
+  o.finish();
+}
+
+constexpr Keys kContactKeys = {"restitution", "friction"};
+
+// "contact": "collide" | "stop" of the object o (ground, walls)
+ContactMode read_contact_mode(Obj& o) {
+  const std::string m = o.string("contact");
+  if (m == "collide") return ContactMode::Collide;
+  if (m == "stop") return ContactMode::Stop;
+  o.fail("contact", "must be \"collide\" or \"stop\", got \"" + m + "\"");
+}
+
+// the scene's contact keys: "contact" (the body types' defaults, applied to every body type
+// for the keys it does not give), "walls" and "outside" (ground.contact is read with the ground)
+void read_scene_contacts(Obj& top, Scene* s) {
+  if (top.has("contact")) {
+    bool e_given = false, mu_given = false;
+    read_contact(top.object("contact", kContactKeys), &s->contact, &e_given, &mu_given);
+  }
+  for (BodySpec& b : s->bodies) {
+    if (!b.restitution_given) b.contact.restitution = s->contact.restitution;
+    if (!b.friction_given) b.contact.friction = s->contact.friction;
+  }
+  if (top.has("walls")) {
+    Obj w = top.object("walls", {"contact"});
+    if (w.has("contact")) s->walls_contact = read_contact_mode(w);
+    w.finish();
+  }
+  if (top.has("outside")) {
+    const std::string m = top.string("outside");
+    if (m == "remove") s->outside = OutsideMode::Remove;
+    else if (m == "stop") s->outside = OutsideMode::Stop;
+    else top.fail("outside", "must be \"remove\" or \"stop\", got \"" + m + "\"");
+  }
+}
 
 BodySpec read_body(Obj o) {
   BodySpec b;
@@ -236,6 +292,9 @@ BodySpec read_body(Obj o) {
     }
     v.finish();
   }
+  if (o.has("contact"))
+    read_contact(o.object("contact", kContactKeys), &b.contact, &b.restitution_given,
+                 &b.friction_given);
   o.finish();
   return b;
 }
@@ -267,7 +326,7 @@ Scene parse_scene_unchecked(const std::string& text, const std::string& path) {
   }
   Scene s;
   s.file = path;
-  Obj top(j, "", path, {"version", "fluid", "gravity", "effects", "integrator", "duration", "seed", "bodies", "ground", "turbulence", "art", "output"});
+  Obj top(j, "", path, {"version", "fluid", "gravity", "effects", "integrator", "duration", "seed", "bodies", "ground", "turbulence", "art", "output", "contact", "walls", "outside"});
   if (const json* v = top.find("version")) {
     if (!v->is_number_integer() || v->get<int>() != 1)
       top.fail("version", "only schema version 1 is supported, got " + Obj::dump(*v));
@@ -362,9 +421,10 @@ Scene parse_scene_unchecked(const std::string& text, const std::string& path) {
     if (s.bodies.size() > 65535) top.fail("bodies", "more than 65535 body types");
   }
   if (top.has("ground")) {
-    Obj g = top.object("ground", {"z"});
+    Obj g = top.object("ground", {"z", "contact"});
     s.has_ground = true;
     s.ground_z = g.number("z");
+    if (g.has("contact")) s.ground_contact = read_contact_mode(g);
     g.finish();
   }
   if (top.has("turbulence")) {
@@ -418,6 +478,7 @@ Scene parse_scene_unchecked(const std::string& text, const std::string& path) {
     }
     o.finish();
   }
+  read_scene_contacts(top, &s);
   top.finish();
   return s;
 }

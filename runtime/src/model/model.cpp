@@ -16,6 +16,10 @@ const char* turbulence_model_name(TurbulenceModel m) {
 }
 
 const char* drift_name(Drift d) { return d == Drift::Original ? "original" : "stationary"; }
+const char* contact_mode_name(ContactMode m) {
+  return m == ContactMode::Collide ? "collide" : "stop";
+}
+const char* outside_mode_name(OutsideMode m) { return m == OutsideMode::Remove ? "remove" : "stop"; }
 
 EffectSet Model::union_effects() const {
   EffectSet s;

@@ -16,6 +16,20 @@ enum class TurbulenceModel { Body, Seen };
 // arithmetic of the batched steps (integrate/sphere_batch.h, rigid_batch.h); the scalar step is double
 enum class Precision { Double, Float };
 
+// How bodies meet the ground, the grid's solids and the grid's outer boundary (scene keys
+// ground.contact, walls.contact, outside; docs/scene-format.md, docs/contacts.md). Parsed and
+// validated; NOT YET APPLIED by the steps, which still stop a body there (issue 23).
+enum class ContactMode { Collide, Stop };
+enum class OutsideMode { Remove, Stop };
+const char* contact_mode_name(ContactMode m);
+const char* outside_mode_name(OutsideMode m);
+
+// A body type's contact material (key "contact", per body type and as the scene's default).
+struct ContactSpec {
+  double restitution = 0.3;  // e in [0, 1]: normal speed after / before an impact, -
+  double friction = 0.5;     // mu >= 0: Coulomb friction coefficient, -
+};
+
 const char* integrator_name(Integrator i);
 const char* turbulence_model_name(TurbulenceModel m);
 const char* drift_name(Drift d);
@@ -42,6 +56,9 @@ struct BodySpec {
   double size_min = 1, size_max = 1;       // -
   double density_min = 1, density_max = 1; // -
   int variants = 1;
+  // contact material; a key the body does not give comes from the scene's "contact"
+  ContactSpec contact;
+  bool restitution_given = false, friction_given = false;
 };
 
 struct OutputSpec {
@@ -74,6 +91,11 @@ struct Scene {
   std::vector<BodySpec> bodies;
   bool has_ground = false;
   double ground_z = 0;                    // m
+  // contacts (docs/contacts.md): parsed, not yet applied by the steps
+  ContactSpec contact;                    // defaults of the body types' "contact"
+  ContactMode ground_contact = ContactMode::Collide;
+  ContactMode walls_contact = ContactMode::Collide;
+  OutsideMode outside = OutsideMode::Remove;
   TurbulenceModel turbulence_model = TurbulenceModel::Seen;
   Drift drift = Drift::Stationary;
   // art direction: scales of the mean flow U and of the turbulent velocity (sqrt k) the bodies

@@ -306,9 +306,10 @@ TEST(Foam2gridFormat, ArraysFieldDataAndInvalidPoints) {
                 .rc,
             0);
   vtkSmartPointer<vtkImageData> im2 = read_vti(out2);
-  EXPECT_EQ(im2->GetPointData()->GetNumberOfArrays(), 2);
+  EXPECT_EQ(im2->GetPointData()->GetNumberOfArrays(), 3);
   EXPECT_NE(im2->GetPointData()->GetArray("U"), nullptr);
   EXPECT_NE(im2->GetPointData()->GetArray("valid"), nullptr);
+  EXPECT_NE(im2->GetPointData()->GetArray("wall_distance"), nullptr);
   im2->GetDimensions(d);
   im2->GetSpacing(h);
   EXPECT_EQ(d[0], 13);
@@ -341,9 +342,10 @@ TEST(Foam2gridFormat, BinaryAndCompressedCaseGiveTheSameGrid) {
   vtkSmartPointer<vtkImageData> a = read_vti(w + "/ascii.vti");
   vtkSmartPointer<vtkImageData> b = read_vti(w + "/binary.vti");
   ASSERT_EQ(a->GetNumberOfPoints(), b->GetNumberOfPoints());
-  for (const char* f : {"U", "k", "epsilon", "nut", "valid"}) {
+  for (const char* f : {"U", "k", "epsilon", "nut", "valid", "wall_distance"}) {
     vtkDataArray* x = a->GetPointData()->GetArray(f);
     vtkDataArray* y = b->GetPointData()->GetArray(f);
+    ASSERT_TRUE(x && y) << f;
     ASSERT_NE(y, nullptr) << f;
     double worst = 0;
     for (vtkIdType i = 0; i < x->GetNumberOfTuples(); ++i) {
@@ -419,9 +421,10 @@ TEST(Foam2gridDecomposed, ProcessorDirectoriesGiveTheReconstructedGrid) {
   EXPECT_NE(r2.out.find("decomposed, 2 processors"), std::string::npos) << r2.out;
   vtkSmartPointer<vtkImageData> a = read_vti(w + "/recon.vti");
   vtkSmartPointer<vtkImageData> b = read_vti(w + "/decomp.vti");
-  for (const char* f : {"U", "k", "epsilon", "nut", "valid"}) {
+  for (const char* f : {"U", "k", "epsilon", "nut", "valid", "wall_distance"}) {
     vtkDataArray* x = a->GetPointData()->GetArray(f);
     vtkDataArray* y = b->GetPointData()->GetArray(f);
+    ASSERT_TRUE(x && y) << f;
     double worst = 0, range = 0;
     for (vtkIdType i = 0; i < x->GetNumberOfTuples(); ++i) {
       for (int k = 0; k < x->GetNumberOfComponents(); ++k) {

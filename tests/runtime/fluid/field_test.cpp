@@ -137,5 +137,65 @@ TEST(FluidField, RepeatedSamplesAreServedCorrectly) {
   EXPECT_NEAR(h.U.x(), 2 * e.U.x(), 1e-5);
 }
 
+// The wall z = 2.7 m, solid below, as foam2grid writes it: valid = 0 and a negative distance
+// in the solid. The sample's distance is the plain trilinear blend, exact for a plane, also
+// where sample() reports the point outside the fluid.
+RawGridFrame walled_frame(const GridGeometry& g, double t) {
+  RawGridFrame f = linear_frame(g, t, 1);
+  f.wall_distance.resize(g.points());
+  for (size_t p = 0; p < g.points(); ++p) {
+    const double z = g.origin.z() + double(p / (size_t(g.n[0]) * g.n[1])) * g.spacing.z();
+    f.wall_distance[p] = float(z - 2.7);
+    f.valid[p] = z > 2.7;
+  }
+  return f;
+}
+
+TEST(FluidField, WallDistanceIsTheTrilinearBlendAndCrossesZeroAtThePlane) {
+  const GridGeometry g = geometry();  // z from 2 to 4 m
+  const FluidField f =
+      FluidField::grid(g, {walled_frame(g, 0)}, 1e-5, Drift::Stationary, TimeMode::Clamp);
+  EXPECT_TRUE(f.has_wall_distance());
+  FluidSample s;
+  for (double z : {2.05, 2.5, 2.69, 2.71, 3.0, 3.3, 3.99}) {
+    const Vec3 x(-0.3, 0.37, z);
+    const bool in = f.sample(x, 0, false, &s);
+    EXPECT_NEAR(s.wall_distance, z - 2.7, 1e-6) << z;
+    if (z < 2.5) EXPECT_FALSE(in) << z;  // all corners below the plane are solid
+  }
+  // outside the grid's box there is no wall: +infinity
+  EXPECT_FALSE(f.sample(Vec3(5, 0.5, 3), 0, false, &s));
+  EXPECT_EQ(s.wall_distance, HUGE_VAL);
+  // the same frames in a series: the distance does not depend on time
+  const FluidField series = FluidField::grid(g, {walled_frame(g, 0), walled_frame(g, 1)}, 1e-5,
+                                             Drift::Stationary, TimeMode::Clamp);
+  ASSERT_TRUE(series.sample(Vec3(0.1, 0.2, 3.2), 0.3, false, &s));
+  EXPECT_NEAR(s.wall_distance, 0.5, 1e-6);
+  EXPECT_FALSE(series.sample(Vec3(0.1, 0.2, 2.2), 0.3, false, &s));
+  EXPECT_NEAR(s.wall_distance, -0.5, 1e-6);
+}
+
+TEST(FluidField, WithoutAWallDistanceEverySampleIsFarFromWalls) {
+  const GridGeometry g = geometry();
+  const FluidField f =
+      FluidField::grid(g, {linear_frame(g, 0, 1)}, 1e-5, Drift::Stationary, TimeMode::Clamp);
+  EXPECT_FALSE(f.has_wall_distance());
+  FluidSample s;
+  ASSERT_TRUE(f.sample(Vec3(0, 0.5, 3), 0, false, &s));
+  EXPECT_EQ(s.wall_distance, HUGE_VAL);
+  const FluidField u = FluidField::uniform(Vec3(1, 0, 0), 0.1, 0.01, 1e-5, Drift::Stationary);
+  EXPECT_FALSE(u.has_wall_distance());
+  ASSERT_TRUE(u.sample(Vec3(0, 0, 0), 0, false, &s));
+  EXPECT_EQ(s.wall_distance, HUGE_VAL);
+  // a streamed series learns it from its first frame, read on demand
+  const FluidField st = FluidField::streamed(
+      g, {0.0, 1.0, 2.0}, [&g](size_t i) { return walled_frame(g, double(i)); }, 1e-5,
+      Drift::Stationary, TimeMode::Clamp);
+  EXPECT_TRUE(st.has_wall_distance());
+  st.prepare(0.5, 0.5);
+  ASSERT_TRUE(st.sample(Vec3(0.1, 0.2, 3.2), 0.5, false, &s));
+  EXPECT_NEAR(s.wall_distance, 0.5, 1e-6);
+}
+
 }  // namespace
 }  // namespace lrigid

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "io/field_loader.h"
 #include "support/vti_writer.h"
 #include "util/error.h"
 
@@ -103,6 +104,89 @@ TEST(GridReader, RejectsNaNNegativeMissingAndEmpty) {
   std::ofstream(d + "/empty.pvd")
       << "<VTKFile type=\"Collection\"><Collection></Collection></VTKFile>";
   EXPECT_NE(error_of(d + "/empty.pvd").find("the series is empty"), std::string::npos);
+}
+
+// the plane z = 3.4 m as the wall, solid below (as foam2grid writes it: negative in the solid)
+test::VtiGrid walled_grid(double time) {
+  test::VtiGrid g;
+  g.dims = {4, 3, 3};
+  g.origin = {1, 2, 3};
+  g.spacing = {0.5, 0.5, 0.5};
+  g.time = time;
+  g.solid = [](const std::array<double, 3>& x) { return x[2] < 3.4; };
+  g.wall_distance = [](const std::array<double, 3>& x) { return float(x[2] - 3.4); };
+  return g;
+}
+
+void write_walled(const std::string& path, double time, bool with_wall = true,
+                  float bad = 0) {
+  test::VtiGrid g = walled_grid(time);
+  if (!with_wall) g.wall_distance = nullptr;
+  if (bad != 0) g.wall_distance = [bad](const std::array<double, 3>&) { return bad; };
+  ASSERT_TRUE(test::write_vti(path, g, [](int, const std::array<double, 3>&, float U[3],
+                                          float* k, float* eps) {
+    U[0] = 1;
+    *k = 0.1f;
+    *eps = 0.01f;
+  }));
+}
+
+TEST(GridReader, ReadsTheWallDistanceAndRejectsBadOnes) {
+  const std::string d = tmpdir();
+  write_walled(d + "/wall.vti", 0);
+  const GridFile g = read_grid(d + "/wall.vti");
+  ASSERT_EQ(g.frames[0].wall_distance.size(), g.geometry.points());
+  // point (0, 0, 2) lies at z = 4: 0.6 m above the wall; (0, 0, 0) at z = 3, 0.4 m inside
+  const size_t top = 2 * 4 * 3;
+  EXPECT_FLOAT_EQ(g.frames[0].wall_distance[top], 0.6f);
+  EXPECT_FLOAT_EQ(g.frames[0].wall_distance[0], -0.4f);
+  write_walled(d + "/old.vti", 0, false);
+  EXPECT_TRUE(read_grid(d + "/old.vti").frames[0].wall_distance.empty());
+  write_walled(d + "/nan.vti", 0, true, std::nanf(""));
+  EXPECT_NE(error_of(d + "/nan.vti").find("nan.vti: wall_distance: non-finite value at point 0"),
+            std::string::npos)
+      << error_of(d + "/nan.vti");
+  // a series whose frames disagree names the frame and the array
+  fs::create_directories(d + "/mix_vti");
+  write_walled(d + "/mix_vti/a.vti", 0);
+  write_walled(d + "/mix_vti/b.vti", 1, false);
+  std::ofstream(d + "/mix.pvd") << "<VTKFile type=\"Collection\"><Collection>\n"
+                                   "<DataSet timestep=\"0\" file=\"mix_vti/a.vti\"/>\n"
+                                   "<DataSet timestep=\"1\" file=\"mix_vti/b.vti\"/>\n"
+                                   "</Collection></VTKFile>\n";
+  const std::string e = error_of(d + "/mix.pvd");
+  EXPECT_NE(e.find("b.vti: wall_distance: point array missing"), std::string::npos) << e;
+}
+
+// lrigid says once, on stderr, that a grid without wall_distance falls back to the valid mask;
+// a grid with it loads silently, and the sample carries it
+TEST(FieldLoader, SaysOnceWhenTheGridHasNoWallDistance) {
+  const std::string d = tmpdir();
+  write_walled(d + "/old.vti", 0, false);
+  write_walled(d + "/new.vti", 0);
+  Scene s;
+  s.file = d + "/scene.json";
+  s.uniform_field = false;
+  s.kinematic_viscosity = 1.5e-5;
+  s.field_path = d + "/old.vti";
+  testing::internal::CaptureStderr();
+  const FluidField old = load_field(s);
+  const std::string said = testing::internal::GetCapturedStderr();
+  EXPECT_NE(said.find("old.vti has no point array wall_distance"), std::string::npos) << said;
+  EXPECT_EQ(said.find("wall_distance"), said.rfind("wall_distance")) << "said more than once";
+  EXPECT_FALSE(old.has_wall_distance());
+  FluidSample a;
+  ASSERT_TRUE(old.sample(Vec3(1.5, 2.5, 3.9), 0, false, &a));
+  EXPECT_EQ(a.wall_distance, HUGE_VAL);  // today's behaviour: no wall but the valid mask
+
+  s.field_path = d + "/new.vti";
+  testing::internal::CaptureStderr();
+  const FluidField now = load_field(s);
+  EXPECT_EQ(testing::internal::GetCapturedStderr(), "");
+  EXPECT_TRUE(now.has_wall_distance());
+  FluidSample b;
+  ASSERT_TRUE(now.sample(Vec3(1.5, 2.5, 3.9), 0, false, &b));
+  EXPECT_NEAR(b.wall_distance, 0.5, 1e-6);
 }
 
 }  // namespace

@@ -217,6 +217,73 @@ INSTANTIATE_TEST_SUITE_P(
       return n;
     });
 
+void expect_every_typo_named(const json& scene);  // below
+
+// contacts (docs/scene-format.md "Contacts"): parsed and validated, not yet applied by the step
+TEST(SceneJson, ContactDefaultsAndKeys) {
+  const Scene d = parse_scene(valid_scene().dump(), "/tmp/scene.json");
+  EXPECT_EQ(d.ground_contact, ContactMode::Collide);
+  EXPECT_EQ(d.walls_contact, ContactMode::Collide);
+  EXPECT_EQ(d.outside, OutsideMode::Remove);
+  EXPECT_EQ(d.bodies[0].contact.restitution, ContactSpec{}.restitution);
+  EXPECT_EQ(d.bodies[0].contact.friction, ContactSpec{}.friction);
+
+  json j = valid_scene();
+  j["contact"] = {{"restitution", 0.1}, {"friction", 0.8}};
+  j["ground"]["contact"] = "stop";
+  j["walls"] = {{"contact", "stop"}};
+  j["outside"] = "stop";
+  json second = j["bodies"][0];
+  second["name"] = "other";
+  j["bodies"][0]["contact"] = {{"restitution", 0.6}};
+  j["bodies"].push_back(second);
+  const Scene s = parse_scene(j.dump(), "/tmp/scene.json");
+  EXPECT_EQ(s.ground_contact, ContactMode::Stop);
+  EXPECT_EQ(s.walls_contact, ContactMode::Stop);
+  EXPECT_EQ(s.outside, OutsideMode::Stop);
+  // the body's own key wins; the others come from the scene's "contact"
+  EXPECT_EQ(s.bodies[0].contact.restitution, 0.6);
+  EXPECT_EQ(s.bodies[0].contact.friction, 0.8);
+  EXPECT_EQ(s.bodies[1].contact.restitution, 0.1);
+  EXPECT_EQ(s.bodies[1].contact.friction, 0.8);
+  // the limits are allowed
+  j["contact"] = {{"restitution", 1}, {"friction", 0}};
+  EXPECT_EQ(error_of(j), "");
+  expect_every_typo_named(j);
+  EXPECT_STREQ(contact_mode_name(ContactMode::Collide), "collide");
+  EXPECT_STREQ(outside_mode_name(OutsideMode::Remove), "remove");
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Contacts, SceneJsonErrors,
+    ::testing::Values(
+        BadCase{"negative restitution",
+                [](json& j) { j["bodies"][0]["contact"] = {{"restitution", -0.2}}; },
+                "bodies[0].contact.restitution: must lie in [0, 1] (normal speed after / before "
+                "an impact), got -0.2"},
+        BadCase{"restitution above 1", [](json& j) { j["contact"] = {{"restitution", 1.5}}; },
+                "contact.restitution: must lie in [0, 1] (normal speed after / before an "
+                "impact), got 1.5"},
+        BadCase{"negative friction",
+                [](json& j) { j["bodies"][0]["contact"] = {{"friction", -1}}; },
+                "bodies[0].contact.friction: must be >= 0 (Coulomb coefficient), got -1"},
+        BadCase{"friction not a number", [](json& j) { j["contact"] = {{"friction", "high"}}; },
+                "contact.friction: must be a number, got \"high\""},
+        BadCase{"unknown ground contact mode", [](json& j) { j["ground"]["contact"] = "bounce"; },
+                "ground.contact: must be \"collide\" or \"stop\", got \"bounce\""},
+        BadCase{"unknown walls contact mode", [](json& j) { j["walls"] = {{"contact", "slide"}}; },
+                "walls.contact: must be \"collide\" or \"stop\", got \"slide\""},
+        BadCase{"unknown outside mode", [](json& j) { j["outside"] = "wrap"; },
+                "outside: must be \"remove\" or \"stop\", got \"wrap\""},
+        BadCase{"typo in contact", [](json& j) { j["contact"] = {{"restitusion", 0.5}}; },
+                "contact: unknown key \"restitusion\" (did you mean \"restitution\"?)"}),
+    [](const auto& info) {
+      std::string n = info.param.what;
+      for (char& c : n)
+        if (!isalnum(static_cast<unsigned char>(c))) c = '_';
+      return n;
+    });
+
 TEST(SceneJson, ArtDirectionAndVariation) {
   json j = valid_scene();
   j["effects"] = {"gravity", "drag", "lift", "magnus", "basset"};

@@ -1,0 +1,119 @@
+#include "effects/contact.h"
+
+extern "C" {
+#include <libqhull_r/qhull_ra.h>
+}
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+#include "model/model.h"
+#include "util/error.h"
+
+namespace lrigid {
+
+namespace {
+
+// The indices of the vertices of the convex hull of `pts` (Qhull, reentrant); empty when Qhull
+// finds no 3D hull (fewer than 4 points, or all in a plane).
+std::vector<int> hull_vertices(const std::vector<Vec3>& pts) {
+  if (pts.size() < 4) return {};
+  std::vector<coordT> coords(3 * pts.size());
+  for (size_t i = 0; i < pts.size(); ++i)
+    for (int a = 0; a < 3; ++a) coords[3 * i + a] = pts[i][a];
+  qhT qh_storage;
+  qhT* qh = &qh_storage;
+  // Qhull's messages go to a memory buffer, not to the user's terminal
+  char* buffer = nullptr;
+  size_t size = 0;
+  FILE* err = open_memstream(&buffer, &size);
+  qh_zero(qh, err);
+  char flags[] = "qhull Qt";
+  const int code = qh_new_qhull(qh, 3, int(pts.size()), coords.data(), False, flags, nullptr, err);
+  std::vector<int> ids;
+  if (code == 0) {
+    vertexT* vertex;
+    FORALLvertices ids.push_back(qh_pointid(qh, vertex->point));
+  }
+  qh_freeqhull(qh, !qh_ALL);
+  int curlong = 0, totlong = 0;
+  qh_memfreeshort(qh, &curlong, &totlong);
+  if (err) std::fclose(err);
+  std::free(buffer);
+  std::sort(ids.begin(), ids.end());
+  return ids;
+}
+
+void add_point(ContactParams* k, const Vec3& p) {
+  for (int a = 0; a < 3; ++a) k->points.push_back(p[a]);
+}
+
+}  // namespace
+
+ContactParams contact_params(const Shape& shape, const Vec3& com, double restitution,
+                             double friction, double max_gap) {
+  if (!(restitution >= 0 && restitution <= 1)) {
+    std::ostringstream m;
+    m << "contact restitution must lie in [0, 1], got " << restitution;
+    throw Error(ExitCode::BadInput, m.str());
+  }
+  if (!(friction >= 0) || !std::isfinite(friction)) {
+    std::ostringstream m;
+    m << "contact friction must be >= 0, got " << friction;
+    throw Error(ExitCode::BadInput, m.str());
+  }
+  ContactParams k;
+  k.restitution = restitution;
+  k.friction = friction;
+  const Vec3 h = shape.half_extents;
+  switch (shape.type) {
+    case ShapeType::Sphere:
+    case ShapeType::Ellipsoid:
+      k.support = true;
+      for (int a = 0; a < 3; ++a) {
+        k.semi_axes[a] = h[a];
+        k.centre[a] = -com[a];  // analytic shapes are centred at the origin
+      }
+      break;
+    case ShapeType::Box: {
+      // the 8 corners, then the interior points of the 12 edges
+      for (int c = 0; c < 8; ++c)
+        add_point(&k, Vec3(c & 1 ? h.x() : -h.x(), c & 2 ? h.y() : -h.y(),
+                           c & 4 ? h.z() : -h.z()) -
+                          com);
+      for (int axis = 0; axis < 3; ++axis) {
+        const double len = 2 * h[axis];
+        int inner = max_gap > 0 ? int(std::ceil(len / max_gap - 1e-9)) - 1 : 0;
+        inner = std::clamp(inner, 0, kContactEdgePoints);
+        const int b1 = (axis + 1) % 3, b2 = (axis + 2) % 3;
+        for (int e = 0; e < 4; ++e)
+          for (int i = 1; i <= inner; ++i) {
+            Vec3 p;
+            p[axis] = -h[axis] + len * i / (inner + 1);
+            p[b1] = e & 1 ? h[b1] : -h[b1];
+            p[b2] = e & 2 ? h[b2] : -h[b2];
+            add_point(&k, p - com);
+          }
+      }
+      break;
+    }
+    case ShapeType::Mesh: {
+      const std::vector<Vec3>& v = shape.mesh->vertices;
+      std::vector<int> ids = hull_vertices(v);
+      if (ids.empty())
+        for (size_t i = 0; i < v.size(); ++i) ids.push_back(int(i));
+      for (int i : ids) add_point(&k, v[size_t(i)] - com);
+      break;
+    }
+  }
+  return k;
+}
+
+ContactParams contact_params(const BodyType& type, double restitution, double friction,
+                             double max_gap) {
+  return contact_params(type.shape, type.com, restitution, friction, max_gap);
+}
+
+}  // namespace lrigid

@@ -1,0 +1,305 @@
+// Contact of a body with a wall (the grid's solids, through FluidSample::wall_distance) or the
+// ground plane: a velocity-level impulse at a contact point with Newton restitution e and
+// Coulomb friction mu, applied through the body's generalized 6x6 mass (body plus added mass),
+// and a position correction that leaves the velocities alone (docs/contacts.md).
+//
+// Written once, as the other effects (docs/adding-an-effect.md): a ContactParams built once per
+// body type, and kernels on plain numbers of type T (double on the scalar step, double or float
+// in the batched loops). Everything here is in the BODY frame (axes of the shape, origin at the
+// centre of mass), as the state's v and w and the model's M^-1 are: the caller turns the wall's
+// normal into the body frame and the position correction back into the world frame.
+//
+// NOT YET CALLED BY THE STEPS: the scalar and batched steps still stop a body at the ground and
+// at the solids (integrate/stops.cpp); wiring these kernels in is the next part of issue 23.
+#pragma once
+#include <cmath>
+#include <vector>
+
+#include "body/shape.h"
+#include "util/lane.h"
+#include "util/types.h"
+
+namespace lrigid {
+
+struct BodyType;
+
+// What contact needs of a body type, built once per type (contact_params).
+struct ContactParams {
+  double restitution = 0;  // e in [0, 1]: normal velocity after / before (Newton), -
+  double friction = 0;     // mu >= 0: Coulomb friction coefficient, -
+  // sphere and ellipsoid: the contact point is the support point of the surface against the
+  // wall's normal (ellipsoid_support_point); semi-axes along the body axes and the shape's
+  // centre minus the centre of mass, m
+  bool support = false;
+  double semi_axes[3] = {0, 0, 0};
+  double centre[3] = {0, 0, 0};
+  // box and mesh: fixed contact points relative to the centre of mass, body frame, 3 per
+  // point, m (box: corners and edge points; mesh: its convex hull's vertices)
+  std::vector<double> points;
+  size_t count() const { return support ? 1 : points.size() / 3; }
+};
+
+// The contact points of a shape whose centre of mass is at `com` (shape coordinates, m).
+// Box edges get evenly spaced points between the corners, at most max_gap (m) apart and at most
+// kContactEdgePoints per edge, so that a solid's corner narrower than max_gap cannot pass
+// between two points of a thin plate's edge; max_gap <= 0: corners only. Mesh: the vertices of
+// its convex hull (Qhull); all vertices if Qhull finds no 3D hull (a flat mesh).
+// Throws lrigid::Error (BadInput) on restitution outside [0, 1] or negative friction.
+ContactParams contact_params(const Shape& shape, const Vec3& com, double restitution,
+                             double friction, double max_gap);
+ContactParams contact_params(const BodyType& type, double restitution, double friction,
+                             double max_gap);
+constexpr int kContactEdgePoints = 16;  // interior points per box edge at most
+
+// ---- the kernels ---------------------------------------------------------------------------
+
+// The point of the ellipsoid (sphere) of k farthest along -n, relative to the centre of mass,
+// body frame (n unit): c - A^2 n / |A n|, A = diag(semi-axes). The contact point of a support
+// shape against a wall of normal n (pointing from the wall into the fluid).
+template <typename T>
+LRIGID_LANE void ellipsoid_support_point(const ContactParams& k, const T* n, T* r) {
+  T a2n[3], s = T(0);
+#pragma GCC unroll 3
+  for (int a = 0; a < 3; ++a) {
+    const T ax = T(k.semi_axes[a]);
+    a2n[a] = ax * ax * n[a];
+    s += a2n[a] * n[a];
+  }
+  const T inv = T(1) / std::sqrt(s);
+#pragma GCC unroll 3
+  for (int a = 0; a < 3; ++a) r[a] = T(k.centre[a]) - a2n[a] * inv;
+}
+
+// The velocity change of the contact point r (body frame, from the centre of mass) and of the
+// body (dv, dw) when the impulse J (N s, body frame) acts at r: dxi = M^-1 [J; r x J],
+// dvc = dv + dw x r. Minv: the 6x6 generalized inverse mass [v; w], row-major (symmetric).
+template <typename T>
+LRIGID_LANE void contact_response(const T* Minv, const T* r, const T* J, T* dvc, T* dv, T* dw) {
+  T p[6];
+  p[0] = J[0], p[1] = J[1], p[2] = J[2];
+  cross3(r, J, p + 3);
+  T d[6];
+#pragma GCC unroll 6
+  for (int i = 0; i < 6; ++i) {
+    T s = T(0);
+#pragma GCC unroll 6
+    for (int j = 0; j < 6; ++j) s += Minv[6 * i + j] * p[j];
+    d[i] = s;
+  }
+  dv[0] = d[0], dv[1] = d[1], dv[2] = d[2];
+  dw[0] = d[3], dw[1] = d[4], dw[2] = d[5];
+  T wxr[3];
+  cross3(dw, r, wxr);
+#pragma GCC unroll 3
+  for (int a = 0; a < 3; ++a) dvc[a] = dv[a] + wxr[a];
+}
+
+// What one contact does to a body.
+template <typename T>
+struct ContactOut {
+  T J[3];        // impulse at the contact point, body frame, N s
+  T dv[3];       // change of the centre of mass's velocity, body frame, m/s
+  T dw[3];       // change of the angular velocity, body frame, rad/s
+  T jn;          // normal impulse J.n (>= 0), N s
+  T jt;          // tangential impulse |J - jn n| (<= mu jn), N s
+  T dx[3];       // position correction of the centre of mass, body frame (depth n), m
+  T active;      // 1 when an impulse was applied, 0 otherwise
+};
+
+// One contact point: r (body frame, from the centre of mass), the wall's unit normal n (body
+// frame, pointing from the wall into the fluid), the penetration depth (m, = -wall distance of
+// the point; the point touches the wall when depth >= 0) and the body's velocity v and spin w
+// (body frame). The impulse acts when the point touches and approaches (v_n < 0): it brings
+// the point's normal velocity to vn_target (>= 0; -e v_n for one point alone, see
+// contact_kernel), at most -v_n (never a faster rebound than an elastic one), and its
+// tangential velocity to 0 when the needed impulse lies in the friction cone
+// |J_t| <= mu J_n (sticking); otherwise it slides: J = j_n (n - mu t), t the unit slip
+// velocity before the contact, |J_t| = mu J_n exactly. An impulse that would raise the
+// kinetic energy (possible with friction when M couples the directions) is replaced by the
+// frictionless one, which never does. The position correction moves the body out along n by
+// the depth and leaves the velocities alone (no Baumgarte feedback): it adds no kinetic energy.
+template <typename T>
+LRIGID_LANE ContactOut<T> contact_impulse_kernel(const ContactParams& k, const T* Minv,
+                                                 const T* v, const T* w, const T* r, const T* n,
+                                                 T depth, T vn_target) {
+  ContactOut<T> o;
+  const T mu = T(k.friction);
+  // velocity of the contact point and its normal and tangential parts
+  T wxr[3], vc[3];
+  cross3(w, r, wxr);
+#pragma GCC unroll 3
+  for (int a = 0; a < 3; ++a) vc[a] = v[a] + wxr[a];
+  const T vn = dot3(vc, n);
+  T vt[3];
+#pragma GCC unroll 3
+  for (int a = 0; a < 3; ++a) vt[a] = vc[a] - vn * n[a];
+  const T vt_norm = std::sqrt(dot3(vt, vt));
+  // K: the contact point's velocity change per unit impulse (symmetric positive definite)
+  T K[9], dv[3], dw[3];
+#pragma GCC unroll 3
+  for (int j = 0; j < 3; ++j) {
+    const T ej[3] = {T(j == 0), T(j == 1), T(j == 2)};
+    T col[3];
+    contact_response(Minv, r, ej, col, dv, dw);
+    K[j] = col[0], K[3 + j] = col[1], K[6 + j] = col[2];
+  }
+  T Kn[3];
+  mul(K, n, Kn);
+  const T knn = dot3(n, Kn);
+  // the normal velocity wanted after the contact: at most the elastic rebound
+  const T vn_after = vn_target < -vn ? vn_target : -vn;
+  const T dvn = vn_after - vn;  // > 0 when active
+  // frictionless: J = j0 n
+  const T j0 = dvn / knn;
+  // sticking: K J = dvn n - vt
+  const T det = K[0] * (K[4] * K[8] - K[5] * K[7]) - K[1] * (K[3] * K[8] - K[5] * K[6]) +
+                K[2] * (K[3] * K[7] - K[4] * K[6]);
+  const T idet = T(1) / det;
+  const T Ki[9] = {(K[4] * K[8] - K[5] * K[7]) * idet, (K[2] * K[7] - K[1] * K[8]) * idet,
+                   (K[1] * K[5] - K[2] * K[4]) * idet, (K[5] * K[6] - K[3] * K[8]) * idet,
+                   (K[0] * K[8] - K[2] * K[6]) * idet, (K[2] * K[3] - K[0] * K[5]) * idet,
+                   (K[3] * K[7] - K[4] * K[6]) * idet, (K[1] * K[6] - K[0] * K[7]) * idet,
+                   (K[0] * K[4] - K[1] * K[3]) * idet};
+  T want[3], Js[3];
+#pragma GCC unroll 3
+  for (int a = 0; a < 3; ++a) want[a] = dvn * n[a] - vt[a];
+  mul(Ki, want, Js);
+  const T jn_s = dot3(Js, n);
+  T Jst[3];
+#pragma GCC unroll 3
+  for (int a = 0; a < 3; ++a) Jst[a] = Js[a] - jn_s * n[a];
+  const T jt_s = std::sqrt(dot3(Jst, Jst));
+  const bool sticks = jt_s <= mu * jn_s;
+  // sliding: J = j_d (n - mu t), t = vt / |vt|
+  const T inv_vt = T(1) / (vt_norm > T(0) ? vt_norm : T(1));
+  T d[3];
+#pragma GCC unroll 3
+  for (int a = 0; a < 3; ++a) d[a] = n[a] - mu * vt[a] * inv_vt;
+  T Kd[3];
+  mul(K, d, Kd);
+  const T den = dot3(n, Kd);
+  const bool slide_ok = (vt_norm > T(0)) & (den > T(1e-6) * knn);
+  const T jd = dvn / (slide_ok ? den : T(1));
+  T J[3];
+#pragma GCC unroll 3
+  for (int a = 0; a < 3; ++a) J[a] = sticks ? Js[a] : (slide_ok ? jd * d[a] : j0 * n[a]);
+  // the kinetic energy change J.vc + J.K J / 2 must not be positive
+  T KJ[3];
+  mul(K, J, KJ);
+  const T dE = dot3(J, vc) + T(0.5) * dot3(J, KJ);
+  const bool gains = dE > T(0);
+  const bool active = (depth >= T(0)) & (vn < T(0)) & (dvn > T(0));
+#pragma GCC unroll 3
+  for (int a = 0; a < 3; ++a) {
+    J[a] = gains ? j0 * n[a] : J[a];
+    J[a] = active ? J[a] : T(0);
+    o.J[a] = J[a];
+  }
+  T dvc[3];
+  contact_response(Minv, r, J, dvc, o.dv, o.dw);
+  o.jn = dot3(J, n);
+  T Jt[3];
+#pragma GCC unroll 3
+  for (int a = 0; a < 3; ++a) Jt[a] = J[a] - o.jn * n[a];
+  o.jt = std::sqrt(dot3(Jt, Jt));
+  const T dpos = depth > T(0) ? depth : T(0);
+#pragma GCC unroll 3
+  for (int a = 0; a < 3; ++a) o.dx[a] = dpos * n[a];
+  o.active = active ? T(1) : T(0);
+  return o;
+}
+
+// One contact point alone: the normal velocity after is -e times the one before.
+template <typename T>
+LRIGID_LANE ContactOut<T> contact_kernel(const ContactParams& k, const T* Minv, const T* v,
+                                         const T* w, const T* r, const T* n, T depth) {
+  T wxr[3], vc[3];
+  cross3(w, r, wxr);
+#pragma GCC unroll 3
+  for (int a = 0; a < 3; ++a) vc[a] = v[a] + wxr[a];
+  const T vn = dot3(vc, n);
+  return contact_impulse_kernel(k, Minv, v, w, r, n, depth, -T(k.restitution) * vn);
+}
+
+// Several contact points touching at once (a box flat on the ground, a plate across a roof
+// edge): projected Gauss-Seidel on the accumulated impulses (Catto's sequential impulses),
+// `passes` sweeps over the points. Each sweep gives point i the impulse change that would bring
+// its velocity to (target_i n) -- normal rebound target -e times its normal velocity before the
+// first sweep, no slip -- then projects its accumulated impulse J_i onto the friction cone
+// (J_i.n >= 0, |J_i,t| <= mu J_i.n): points never pull, and friction never exceeds mu times
+// the normal impulse. Points with depth < 0 (not touching) take none. v and w (body frame) are
+// updated in place; dx receives the deepest point's position correction (body frame). Returns
+// the number of points that carry a normal impulse. At most kContactMaxPoints points. It loops
+// and branches per point: one body at a time (a batched loop calls it per lane).
+constexpr int kContactMaxPoints = 64;
+template <typename T>
+int contact_resolve(const ContactParams& k, const T* Minv, T* v, T* w, int count, const T* r,
+                    const T* n, const T* depth, int passes, T* dx) {
+  const int m = count < kContactMaxPoints ? count : kContactMaxPoints;
+  const T mu = T(k.friction);
+  T target[kContactMaxPoints], Ki[kContactMaxPoints][9], Jacc[kContactMaxPoints][3];
+  T best = T(0);
+  dx[0] = dx[1] = dx[2] = T(0);
+  for (int i = 0; i < m; ++i) {
+    const T* ri = r + 3 * i;
+    T wxr[3], vc[3];
+    cross3(w, ri, wxr);
+    for (int a = 0; a < 3; ++a) vc[a] = v[a] + wxr[a];
+    const T vn = dot3(vc, n + 3 * i);
+    target[i] = vn < T(0) ? -T(k.restitution) * vn : T(0);
+    // K^-1 of the point (K: velocity change per unit impulse, symmetric positive definite)
+    T K[9], dvc[3], dv[3], dw[3];
+    for (int j = 0; j < 3; ++j) {
+      const T ej[3] = {T(j == 0), T(j == 1), T(j == 2)};
+      contact_response(Minv, ri, ej, dvc, dv, dw);
+      K[j] = dvc[0], K[3 + j] = dvc[1], K[6 + j] = dvc[2];
+    }
+    const T idet = T(1) / (K[0] * (K[4] * K[8] - K[5] * K[7]) -
+                           K[1] * (K[3] * K[8] - K[5] * K[6]) +
+                           K[2] * (K[3] * K[7] - K[4] * K[6]));
+    const T inv[9] = {(K[4] * K[8] - K[5] * K[7]), (K[2] * K[7] - K[1] * K[8]),
+                      (K[1] * K[5] - K[2] * K[4]), (K[5] * K[6] - K[3] * K[8]),
+                      (K[0] * K[8] - K[2] * K[6]), (K[2] * K[3] - K[0] * K[5]),
+                      (K[3] * K[7] - K[4] * K[6]), (K[1] * K[6] - K[0] * K[7]),
+                      (K[0] * K[4] - K[1] * K[3])};
+    for (int q = 0; q < 9; ++q) Ki[i][q] = inv[q] * idet;
+    Jacc[i][0] = Jacc[i][1] = Jacc[i][2] = T(0);
+    if (depth[i] > best) {
+      best = depth[i];
+      for (int a = 0; a < 3; ++a) dx[a] = depth[i] * n[3 * i + a];
+    }
+  }
+  for (int p = 0; p < passes; ++p)
+    for (int i = 0; i < m; ++i) {
+      if (!(depth[i] >= T(0))) continue;
+      const T *ri = r + 3 * i, *ni = n + 3 * i;
+      T wxr[3], vc[3];
+      cross3(w, ri, wxr);
+      for (int a = 0; a < 3; ++a) vc[a] = v[a] + wxr[a];
+      T want[3], dJ[3], Jn[3];
+      for (int a = 0; a < 3; ++a) want[a] = target[i] * ni[a] - vc[a];
+      mul(Ki[i], want, dJ);
+      for (int a = 0; a < 3; ++a) Jn[a] = Jacc[i][a] + dJ[a];
+      // onto the friction cone
+      const T jn = dot3(Jn, ni);
+      T jt[3];
+      for (int a = 0; a < 3; ++a) jt[a] = Jn[a] - jn * ni[a];
+      const T jt_norm = std::sqrt(dot3(jt, jt));
+      const T jn_c = jn > T(0) ? jn : T(0);
+      const T scale = jt_norm > mu * jn_c ? mu * jn_c / jt_norm : T(1);
+      T delta[3];
+      for (int a = 0; a < 3; ++a) {
+        Jn[a] = jn_c * ni[a] + scale * jt[a];
+        delta[a] = Jn[a] - Jacc[i][a];
+        Jacc[i][a] = Jn[a];
+      }
+      T dvc[3], dv[3], dw[3];
+      contact_response(Minv, ri, delta, dvc, dv, dw);
+      for (int a = 0; a < 3; ++a) v[a] += dv[a], w[a] += dw[a];
+    }
+  int carrying = 0;
+  for (int i = 0; i < m; ++i) carrying += dot3(Jacc[i], n + 3 * i) > T(0);
+  return carrying;
+}
+
+}  // namespace lrigid

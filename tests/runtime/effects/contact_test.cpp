@@ -1,0 +1,395 @@
+// The contact kernel (effects/contact.h) against closed forms: a sphere dropped on a wall
+// rebounds with e times its speed; an oblique hit sticks (the contact point stops, the sphere
+// keeps 5/7 of its tangential speed, rolling) when mu is large enough and slides with
+// |J_t| = mu J_n when it is not; a box corner takes the textbook impulse; energy never grows;
+// double and float agree to float round-off. And the contact points of each shape.
+#include "effects/contact.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <cmath>
+#include <memory>
+#include <random>
+
+#include "model/model.h"
+#include "support/fixture.h"
+#include "util/error.h"
+
+namespace lrigid {
+namespace {
+
+// M^-1 of a rigid body of mass m and principal inertia I (body frame), row-major
+std::array<double, 36> diag_inverse(double m, const Vec3& I) {
+  std::array<double, 36> Mi{};
+  for (int a = 0; a < 3; ++a) {
+    Mi[7 * a] = 1 / m;
+    Mi[7 * (a + 3)] = 1 / I[a];
+  }
+  return Mi;
+}
+
+std::array<double, 36> row_major(const Mat6& M) {
+  std::array<double, 36> r{};
+  for (int i = 0; i < 6; ++i)
+    for (int j = 0; j < 6; ++j) r[6 * i + j] = M(i, j);
+  return r;
+}
+
+// kinetic energy 1/2 xi^T M xi of xi = (v, w), M = Minv^-1
+double energy(const std::array<double, 36>& Minv, const double* v, const double* w) {
+  Mat6 Mi;
+  for (int i = 0; i < 6; ++i)
+    for (int j = 0; j < 6; ++j) Mi(i, j) = Minv[6 * i + j];
+  Vec6 xi;
+  xi << v[0], v[1], v[2], w[0], w[1], w[2];
+  return 0.5 * xi.dot(Mi.ldlt().solve(xi));
+}
+
+// velocity of the point r of a body moving with (v, w)
+Vec3 point_velocity(const double* v, const double* w, const double* r) {
+  return Vec3(v[0], v[1], v[2]) + Vec3(w[0], w[1], w[2]).cross(Vec3(r[0], r[1], r[2]));
+}
+
+constexpr double kR = 0.05, kDensity = 2500;  // a 5 cm pebble, kg/m^3
+
+struct Sphere {
+  double m = 4.0 / 3 * M_PI * kR * kR * kR * kDensity;
+  double I = 0.4 * m * kR * kR;
+  std::array<double, 36> Minv = diag_inverse(m, Vec3::Constant(I));
+};
+
+ContactParams sphere_params(double e, double mu) {
+  return contact_params(Shape::sphere(kR), Vec3::Zero(), e, mu, 0);
+}
+
+TEST(Contact, SphereDroppedVerticallyReboundsWithESpeed) {
+  const Sphere s;
+  const double n[3] = {0, 0, 1}, v[3] = {0, 0, -3}, w[3] = {0, 0, 0};
+  for (double e : {0.0, 0.3, 0.6, 1.0}) {
+    const ContactParams k = sphere_params(e, 0.5);
+    double r[3];
+    ellipsoid_support_point(k, n, r);
+    EXPECT_NEAR(r[2], -kR, 1e-15);
+    const ContactOut<double> o = contact_kernel(k, s.Minv.data(), v, w, r, n, 1e-4);
+    EXPECT_EQ(o.active, 1.0);
+    EXPECT_NEAR(v[2] + o.dv[2], 3 * e, 1e-12) << e;
+    EXPECT_NEAR(o.jn, (1 + e) * 3 * s.m, 1e-12) << e;
+    EXPECT_NEAR(o.jt, 0, 1e-15);
+    for (int a = 0; a < 3; ++a) EXPECT_NEAR(o.dw[a], 0, 1e-12);
+  }
+  // with added mass in the generalized mass (a compiled model: a sphere in water) the rebound
+  // speed is still e v: the impulse is larger by the fluid's share
+  Scene sc = test::sphere_scene(kR, kDensity, 1000, 1e-6);
+  sc.effects = test::effects({Effect::Gravity, Effect::AddedMass});
+  const Model model = test::compile(sc);
+  const BodyType& t = model.types[0];
+  EXPECT_GT(t.M(0, 0), t.mass * 1.1);  // m + rho V / 2
+  const ContactParams k = contact_params(t, 0.5, 0.5, 0);
+  const std::array<double, 36> Minv = row_major(t.M_inv);
+  double r[3];
+  ellipsoid_support_point(k, n, r);
+  const ContactOut<double> o = contact_kernel(k, Minv.data(), v, w, r, n, 0.0);
+  EXPECT_NEAR(v[2] + o.dv[2], 1.5, 1e-12);
+  EXPECT_NEAR(o.jn, 1.5 * 3 * t.M(2, 2), 1e-9);
+}
+
+TEST(Contact, ObliqueHitSticksWithLargeFrictionAndRolls) {
+  const Sphere s;
+  const double e = 0.6, n[3] = {0, 0, 1}, v[3] = {2, 0, -3}, w[3] = {0, 0, 0};
+  const ContactParams k = sphere_params(e, 1.0);
+  double r[3];
+  ellipsoid_support_point(k, n, r);
+  const ContactOut<double> o = contact_kernel(k, s.Minv.data(), v, w, r, n, 0.0);
+  double v1[3], w1[3];
+  for (int a = 0; a < 3; ++a) v1[a] = v[a] + o.dv[a], w1[a] = w[a] + o.dw[a];
+  const Vec3 vc = point_velocity(v1, w1, r);
+  // the contact point stops sliding; the normal speed is e v
+  EXPECT_NEAR(vc.x(), 0, 1e-12);
+  EXPECT_NEAR(vc.y(), 0, 1e-12);
+  EXPECT_NEAR(vc.z(), 3 * e, 1e-12);
+  // a solid sphere that grips keeps 5/7 of its tangential speed and rolls: w R = v
+  EXPECT_NEAR(v1[0], 2.0 * 5 / 7, 1e-12);
+  EXPECT_NEAR(w1[1] * kR, v1[0], 1e-12);
+  EXPECT_LT(o.jt, 1.0 * o.jn);
+  EXPECT_NEAR(o.jt, s.m * 2.0 * 2 / 7, 1e-12);  // m (v - 5/7 v)
+}
+
+TEST(Contact, ObliqueHitSlidesWithSmallFrictionAndJtIsMuJn) {
+  const Sphere s;
+  const double e = 0.6, mu = 0.05, n[3] = {0, 0, 1}, v[3] = {2, 1, -3}, w[3] = {0, 0, 0};
+  const ContactParams k = sphere_params(e, mu);
+  double r[3];
+  ellipsoid_support_point(k, n, r);
+  const ContactOut<double> o = contact_kernel(k, s.Minv.data(), v, w, r, n, 0.0);
+  EXPECT_NEAR(o.jt, mu * o.jn, 1e-12 * o.jn);
+  EXPECT_NEAR(o.jn, (1 + e) * 3 * s.m, 1e-12);
+  double v1[3], w1[3];
+  for (int a = 0; a < 3; ++a) v1[a] = v[a] + o.dv[a], w1[a] = w[a] + o.dw[a];
+  // the friction impulse opposes the slip (2, 1)/sqrt(5) and the point still slides that way
+  const double slip = std::sqrt(5.0);
+  EXPECT_NEAR(o.J[0], -mu * o.jn * 2 / slip, 1e-12);
+  EXPECT_NEAR(o.J[1], -mu * o.jn * 1 / slip, 1e-12);
+  const Vec3 vc = point_velocity(v1, w1, r);
+  EXPECT_NEAR(vc.z(), 3 * e, 1e-12);
+  EXPECT_GT(vc.x(), 0);
+  EXPECT_NEAR(vc.y() / vc.x(), 0.5, 1e-12);
+  EXPECT_LT(energy(s.Minv, v1, w1), energy(s.Minv, v, w));
+}
+
+// The textbook impulse of a frictionless hit at a box corner, body with diagonal M:
+// j = -(1 + e) v_rel.n / (n.M^-1 n + (r x n).I^-1 (r x n)).
+TEST(Contact, BoxCornerHitIsTheTextbookImpulse) {
+  const Vec3 size(0.4, 0.2, 0.1);
+  const double m = 3.0;
+  const Vec3 I(m / 12 * (size.y() * size.y() + size.z() * size.z()),
+               m / 12 * (size.x() * size.x() + size.z() * size.z()),
+               m / 12 * (size.x() * size.x() + size.y() * size.y()));
+  const std::array<double, 36> Minv = diag_inverse(m, I);
+  const double e = 0.4;
+  const ContactParams k = contact_params(Shape::box(size.x(), size.y(), size.z()),
+                                         Vec3::Zero(), e, 0.0, 0);
+  ASSERT_EQ(k.count(), 8u);
+  // a tilted wall normal so that every term of the formula counts
+  const Vec3 nn = Vec3(0.2, -0.3, 1).normalized();
+  const double n[3] = {nn.x(), nn.y(), nn.z()};
+  const double v[3] = {0.5, -0.2, -2}, w[3] = {0.3, -1.2, 0.7};
+  for (size_t c = 0; c < k.count(); ++c) {
+    const double* r = &k.points[3 * c];
+    const Vec3 rv(r[0], r[1], r[2]);
+    const double vn = point_velocity(v, w, r).dot(nn);
+    if (vn >= 0) continue;  // corners leaving the wall take no impulse
+    const Vec3 rxn = rv.cross(nn);
+    const double j = -(1 + e) * vn / (1 / m + rxn.cwiseProduct(rxn).cwiseQuotient(I).sum());
+    const ContactOut<double> o = contact_kernel(k, Minv.data(), v, w, r, n, 0.0);
+    EXPECT_NEAR(o.jn, j, 1e-12 * j) << "corner " << c;
+    EXPECT_NEAR(o.jt, 0, 1e-12 * j);
+    for (int a = 0; a < 3; ++a) {
+      EXPECT_NEAR(o.dv[a], j * n[a] / m, 1e-12) << c;
+      EXPECT_NEAR(o.dw[a], j * rxn[a] / I[a], 1e-11) << c;
+    }
+    double v1[3], w1[3];
+    for (int a = 0; a < 3; ++a) v1[a] = v[a] + o.dv[a], w1[a] = w[a] + o.dw[a];
+    EXPECT_NEAR(point_velocity(v1, w1, r).dot(nn), -e * vn, 1e-12);
+  }
+}
+
+// random symmetric positive definite 6x6 (a body with added mass couples everything)
+std::array<double, 36> random_minv(std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> u(-1, 1);
+  Mat6 A;
+  for (int i = 0; i < 6; ++i)
+    for (int j = 0; j < 6; ++j) A(i, j) = u(rng);
+  Mat6 M = A * A.transpose() + 0.2 * Mat6::Identity();
+  M.block<3, 3>(0, 0) += 2 * Mat3::Identity();  // a mass that dominates, as in practice
+  return row_major(M.inverse());
+}
+
+TEST(Contact, EnergyNeverIncreasesAndTheContactPointNeverApproaches) {
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(-1, 1), pos(0, 1);
+  int active = 0, slid = 0;
+  for (int trial = 0; trial < 4000; ++trial) {
+    const std::array<double, 36> Minv = random_minv(rng);
+    ContactParams k;
+    k.restitution = pos(rng);
+    k.friction = 2 * pos(rng) * pos(rng);
+    const Vec3 nn = Vec3(u(rng), u(rng), u(rng)).normalized();
+    const double n[3] = {nn.x(), nn.y(), nn.z()};
+    const double r[3] = {0.5 * u(rng), 0.5 * u(rng), 0.5 * u(rng)};
+    const double v[3] = {u(rng), u(rng), u(rng)}, w[3] = {3 * u(rng), 3 * u(rng), 3 * u(rng)};
+    const ContactOut<double> o = contact_kernel(k, Minv.data(), v, w, r, n, 0.01 * pos(rng));
+    double v1[3], w1[3];
+    for (int a = 0; a < 3; ++a) v1[a] = v[a] + o.dv[a], w1[a] = w[a] + o.dw[a];
+    const double e0 = energy(Minv, v, w), e1 = energy(Minv, v1, w1);
+    ASSERT_LE(e1, e0 * (1 + 1e-12)) << "trial " << trial;
+    const double vn0 = point_velocity(v, w, r).dot(nn), vn1 = point_velocity(v1, w1, r).dot(nn);
+    if (vn0 < 0) {
+      ASSERT_EQ(o.active, 1.0);
+      ASSERT_GE(vn1, -1e-12) << "trial " << trial;
+      ASSERT_LE(o.jt, k.friction * o.jn * (1 + 1e-9) + 1e-15) << "trial " << trial;
+      ++active;
+      slid += o.jt > 0.999 * k.friction * o.jn && o.jt > 0;
+    } else {
+      ASSERT_EQ(o.active, 0.0);  // a point leaving the wall takes no impulse
+      ASSERT_EQ(o.jn, 0.0);
+    }
+  }
+  EXPECT_GT(active, 1000);
+  EXPECT_GT(slid, 100);  // both regimes were exercised
+}
+
+TEST(Contact, DoubleAndFloatAgreeToFloatRoundOff) {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(-1, 1), pos(0, 1);
+  double worst = 0;
+  for (int trial = 0; trial < 500; ++trial) {
+    const std::array<double, 36> Minv = random_minv(rng);
+    ContactParams k;
+    k.restitution = pos(rng);
+    k.friction = pos(rng);
+    const Vec3 nn = Vec3(u(rng), u(rng), u(rng)).normalized();
+    const double n[3] = {nn.x(), nn.y(), nn.z()};
+    const double r[3] = {0.5 * u(rng), 0.5 * u(rng), 0.5 * u(rng)};
+    const double v[3] = {u(rng), u(rng), u(rng)}, w[3] = {u(rng), u(rng), u(rng)};
+    float Mf[36], nf[3], rf[3], vf[3], wf[3];
+    for (int i = 0; i < 36; ++i) Mf[i] = float(Minv[i]);
+    for (int a = 0; a < 3; ++a)
+      nf[a] = float(n[a]), rf[a] = float(r[a]), vf[a] = float(v[a]), wf[a] = float(w[a]);
+    const ContactOut<double> od = contact_kernel(k, Minv.data(), v, w, r, n, 0.001);
+    const ContactOut<float> of = contact_kernel(k, Mf, vf, wf, rf, nf, 0.001f);
+    ASSERT_EQ(od.active, double(of.active));
+    const double scale = std::abs(od.jn) + 1e-3;
+    // a case at the stick/slide boundary may fall either way in float: skip those
+    if (std::abs(od.jt - k.friction * od.jn) < 1e-4 * scale) continue;
+    for (int a = 0; a < 3; ++a) {
+      worst = std::max(worst, std::abs(od.J[a] - double(of.J[a])) / scale);
+      worst = std::max(worst, std::abs(od.dv[a] - double(of.dv[a])) / (std::abs(od.dv[a]) + 1));
+    }
+  }
+  EXPECT_LT(worst, 1e-4) << "relative difference, float vs double";
+}
+
+TEST(Contact, PositionCorrectionMovesOutAlongTheNormalAndLeavesVelocitiesAlone) {
+  const Sphere s;
+  const ContactParams k = sphere_params(0.5, 0.5);
+  const double n[3] = {0, 0.6, 0.8}, w[3] = {0, 0, 0};
+  double r[3];
+  ellipsoid_support_point(k, n, r);
+  // penetrating but leaving the wall: no impulse, only the correction
+  const double v[3] = {1, 0, 0.5};
+  const ContactOut<double> o = contact_kernel(k, s.Minv.data(), v, w, r, n, 0.002);
+  EXPECT_EQ(o.active, 0.0);
+  for (int a = 0; a < 3; ++a) {
+    EXPECT_EQ(o.dv[a], 0.0);
+    EXPECT_EQ(o.dw[a], 0.0);
+    EXPECT_NEAR(o.dx[a], 0.002 * n[a], 1e-18);
+  }
+  // not touching (depth < 0): nothing at all
+  const double down[3] = {0, 0, -1};
+  const ContactOut<double> far = contact_kernel(k, s.Minv.data(), down, w, r, n, -0.01);
+  EXPECT_EQ(far.active, 0.0);
+  EXPECT_EQ(far.dx[2], 0.0);
+}
+
+TEST(Contact, BoxLandingFlatStopsWithoutSpinningWithZeroRestitution) {
+  // (contact_resolve: the 4 lower corners at once, projected Gauss-Seidel)
+  const Vec3 size(0.3, 0.2, 0.02);  // a thin plate
+  const double m = 0.5;
+  const Vec3 I(m / 12 * (size.y() * size.y() + size.z() * size.z()),
+               m / 12 * (size.x() * size.x() + size.z() * size.z()),
+               m / 12 * (size.x() * size.x() + size.y() * size.y()));
+  const std::array<double, 36> Minv = diag_inverse(m, I);
+  const ContactParams k =
+      contact_params(Shape::box(size.x(), size.y(), size.z()), Vec3::Zero(), 0.0, 0.8, 0);
+  // the 4 lower corners touch the ground together
+  std::vector<double> r, n, depth;
+  for (size_t c = 0; c < k.count(); ++c)
+    if (k.points[3 * c + 2] < 0) {
+      for (int a = 0; a < 3; ++a) r.push_back(k.points[3 * c + a]);
+      n.insert(n.end(), {0.0, 0.0, 1.0});
+      depth.push_back(1e-4);
+    }
+  ASSERT_EQ(depth.size(), 4u);
+  double v[3] = {0.5, 0, -2}, w[3] = {0, 0, 0}, dx[3];
+  const double e0 = energy(Minv, v, w);
+  const int carrying =
+      contact_resolve(k, Minv.data(), v, w, 4, r.data(), n.data(), depth.data(), 20, dx);
+  EXPECT_EQ(carrying, 4);
+  EXPECT_NEAR(v[2], 0, 1e-9);
+  // the friction cone: total tangential impulse mu (m 2 m/s) = 0.8 m/s of speed, more than
+  // the 0.5 m/s sliding: it stops
+  EXPECT_NEAR(v[0], 0, 1e-9);
+  for (int a = 0; a < 3; ++a) EXPECT_NEAR(w[a], 0, 1e-9) << a;
+  EXPECT_LT(energy(Minv, v, w), e0);
+  EXPECT_NEAR(dx[2], 1e-4, 1e-18);
+  for (int i = 0; i < 4; ++i) EXPECT_GE(point_velocity(v, w, &r[3 * i]).z(), -1e-9);
+  // with mu = 0.1 it slides on: the tangential impulse is mu times the normal one, m 2 m/s,
+  // which takes 0.2 m/s off the 0.5 m/s. (Rotation locked, M^-1 without its angular block: a
+  // free plate also pitches under the friction at its bottom, and its impulses have no closed
+  // form.)
+  const ContactParams slippery =
+      contact_params(Shape::box(size.x(), size.y(), size.z()), Vec3::Zero(), 0.0, 0.1, 0);
+  std::array<double, 36> locked = Minv;
+  for (int a = 3; a < 6; ++a) locked[7 * a] = 0;
+  double v2[3] = {0.5, 0, -2}, w2[3] = {0, 0, 0};
+  contact_resolve(slippery, locked.data(), v2, w2, 4, r.data(), n.data(), depth.data(), 20, dx);
+  EXPECT_NEAR(v2[2], 0, 1e-9);
+  EXPECT_NEAR(v2[0], 0.3, 1e-9);
+}
+
+TEST(Contact, EllipsoidSupportPointLiesOnTheSurfaceWithNormalAgainstTheWall) {
+  const Vec3 com(0.01, -0.02, 0.005);
+  const ContactParams k = contact_params(Shape::ellipsoid(0.3, 0.1, 0.05), com, 0.5, 0.5, 0);
+  ASSERT_TRUE(k.support);
+  EXPECT_EQ(k.count(), 1u);
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int trial = 0; trial < 100; ++trial) {
+    const Vec3 nn = Vec3(u(rng), u(rng), u(rng)).normalized();
+    const double n[3] = {nn.x(), nn.y(), nn.z()};
+    double r[3];
+    ellipsoid_support_point(k, n, r);
+    const Vec3 p = Vec3(r[0], r[1], r[2]) + com;  // shape coordinates
+    const Vec3 s(0.3, 0.1, 0.05);
+    EXPECT_NEAR(p.cwiseQuotient(s).squaredNorm(), 1, 1e-12);
+    // the outward surface normal there is -n
+    const Vec3 normal = p.cwiseQuotient(s.cwiseProduct(s)).normalized();
+    EXPECT_NEAR(normal.dot(-nn), 1, 1e-12);
+  }
+}
+
+TEST(Contact, BoxEdgesGetPointsAtMostMaxGapApart) {
+  const Shape plate = Shape::box(0.3, 0.2, 0.01);
+  EXPECT_EQ(contact_params(plate, Vec3::Zero(), 0.3, 0.5, 0).count(), 8u);
+  // 0.3 m edges: 5 gaps of 0.06 m (4 inner points each); 0.2 m: 3 gaps (2); 0.01 m: none
+  const ContactParams k = contact_params(plate, Vec3::Zero(), 0.3, 0.5, 0.07);
+  EXPECT_EQ(k.count(), 8u + 4 * 4 + 4 * 2 + 4 * 0);
+  // every point lies on an edge of the box (two coordinates at +-half size)
+  for (size_t i = 0; i < k.count(); ++i) {
+    int on = 0;
+    const Vec3 h(0.15, 0.1, 0.005);
+    for (int a = 0; a < 3; ++a) on += std::abs(std::abs(k.points[3 * i + a]) - h[a]) < 1e-15;
+    EXPECT_GE(on, 2) << i;
+  }
+  // points relative to the centre of mass
+  const ContactParams off = contact_params(plate, Vec3(0.01, 0, 0), 0.3, 0.5, 0);
+  EXPECT_DOUBLE_EQ(off.points[0], -0.15 - 0.01);
+  // the count per edge is capped
+  EXPECT_EQ(contact_params(Shape::box(10, 0.1, 0.1), Vec3::Zero(), 0, 0, 1e-3).count(),
+            8u + 12 * kContactEdgePoints);
+}
+
+TEST(Contact, MeshPointsAreItsConvexHullVertices) {
+  // a unit cube's 8 corners, the centres of two faces pushed in (a dent) and one pulled out
+  auto mesh = std::make_shared<TriangleMesh>();
+  for (int c = 0; c < 8; ++c)
+    mesh->vertices.push_back(Vec3(c & 1 ? 0.5 : -0.5, c & 2 ? 0.5 : -0.5, c & 4 ? 0.5 : -0.5));
+  mesh->vertices.push_back(Vec3(0, 0, 0.3));    // dent in the top: inside the hull
+  mesh->vertices.push_back(Vec3(0.2, 0, -0.4));  // dent in the bottom: inside
+  mesh->vertices.push_back(Vec3(0, 0.9, 0));     // a bump: on the hull
+  Shape s;
+  s.type = ShapeType::Mesh;
+  s.mesh = mesh;
+  const ContactParams k = contact_params(s, Vec3(0, 0.1, 0), 0.2, 0.4, 0);
+  EXPECT_FALSE(k.support);
+  ASSERT_EQ(k.count(), 9u);
+  bool bump = false;
+  for (size_t i = 0; i < k.count(); ++i) {
+    EXPECT_NE(k.points[3 * i + 2], 0.3);
+    bump |= std::abs(k.points[3 * i + 1] - 0.8) < 1e-15;  // relative to the centre of mass
+  }
+  EXPECT_TRUE(bump);
+}
+
+TEST(Contact, ParamsRejectRestitutionOutsideZeroOneAndNegativeFriction) {
+  const Shape s = Shape::sphere(0.1);
+  EXPECT_THROW(contact_params(s, Vec3::Zero(), -0.1, 0.5, 0), Error);
+  EXPECT_THROW(contact_params(s, Vec3::Zero(), 1.2, 0.5, 0), Error);
+  EXPECT_THROW(contact_params(s, Vec3::Zero(), 0.5, -1, 0), Error);
+  EXPECT_THROW(contact_params(s, Vec3::Zero(), std::nan(""), 0.5, 0), Error);
+  EXPECT_NO_THROW(contact_params(s, Vec3::Zero(), 1.0, 0, 0));
+}
+
+}  // namespace
+}  // namespace lrigid
