@@ -63,7 +63,9 @@ TEST(Foam2gridWallDistance, MatchesTheClosedFormOfTheCubeOnTheGround) {
     const double got = d->GetValue(i), want = closed_form(x);
     worst = std::max(worst, std::fabs(got - want));
     // the sign is the validity: positive (or 0 on a wall) in the fluid, negative in the cube
-    if (valid->GetTuple1(i) != 0) EXPECT_GE(got, 0.0) << i;
+    if (valid->GetTuple1(i) != 0) {
+      EXPECT_GE(got, 0.0) << i;
+    }
     else EXPECT_LT(got, 0.0) << i;
     negative += got < 0;
   }

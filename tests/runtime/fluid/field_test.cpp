@@ -161,7 +161,9 @@ TEST(FluidField, WallDistanceIsTheTrilinearBlendAndCrossesZeroAtThePlane) {
     const Vec3 x(-0.3, 0.37, z);
     const bool in = f.sample(x, 0, false, &s);
     EXPECT_NEAR(s.wall_distance, z - 2.7, 1e-6) << z;
-    if (z < 2.5) EXPECT_FALSE(in) << z;  // all corners below the plane are solid
+    if (z < 2.5) {
+      EXPECT_FALSE(in) << z;  // all corners below the plane are solid
+    }
   }
   // outside the grid's box there is no wall: +infinity
   EXPECT_FALSE(f.sample(Vec3(5, 0.5, 3), 0, false, &s));
