@@ -215,11 +215,15 @@ bool FluidField::sample_frame(const std::vector<GridRecord>& frame, const Vec3& 
   const double W = v[6];
   // the wall distance (slot 7) with the plain trilinear weights: invalid corners hold negative
   // distances, so the blend crosses 0 at the wall (trilinear_record weighs slots by validity)
-  double wall = 0;
-  for (int c = 0; c < 8; ++c)
-    wall += ((c & 1) ? f[0] : 1 - f[0]) * ((c & 2) ? f[1] : 1 - f[1]) *
-            ((c & 4) ? f[2] : 1 - f[2]) * double(r0[off[c] + 7]);
-  out->wall_distance = has_wall_distance_ ? wall : HUGE_VAL;
+  // (only when the grid has the array: grids without it answer +infinity)
+  double wall = HUGE_VAL;
+  if (has_wall_distance_) {
+    wall = 0;
+    for (int c = 0; c < 8; ++c)
+      wall += ((c & 1) ? f[0] : 1 - f[0]) * ((c & 2) ? f[1] : 1 - f[1]) *
+              ((c & 4) ? f[2] : 1 - f[2]) * double(r0[off[c] + 7]);
+  }
+  out->wall_distance = wall;
   // the wall lies between a valid and an invalid grid point: x is in the fluid when the valid
   // corners carry at least half of the trilinear weight (the wall at mid-spacing, error <= h/2)
   if (nvalid == 0 || W < 0.5) return false;
