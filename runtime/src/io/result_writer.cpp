@@ -92,7 +92,10 @@ ResultWriter::ResultWriter(const std::string& dir, const Model& model, const Out
   // a resumed run goes on with the interrupted one's temporaries, under their names (renaming
   // them would leave the checkpoint pointing at nothing if this run were killed before its
   // first checkpoint)
-  if (!resume_tag.empty()) tag_ = resume_tag;
+  if (!resume_tag.empty()) {
+    tag_ = resume_tag;
+    remove_stale_temporaries();
+  }
   auto take_over = [&](const std::string& name) {
     const fs::path p = fs::path(dir_) / (name + tag_);
     std::error_code ec;
@@ -132,6 +135,22 @@ ResultWriter::ResultWriter(const std::string& dir, const Model& model, const Out
       throw Error(ExitCode::Resource, where(model_.scene_file, "output.formats", buf));
     }
     for (const BodyType& t : model_.types) gltf_.types.push_back({t.name, body_surface(t, 320)});
+  }
+}
+
+void ResultWriter::remove_stale_temporaries() const {
+  // A run killed while finishing leaves the final files it had begun under the interrupted run's
+  // tag (landings.csv.tmp42, animation.glb.tmp42.tmp42, ...). This run writes them all again, so
+  // they go; the output so far (the trajectories, the frame folders) stays: it goes on from it.
+  const std::string keep[] = {"trajectories.csv" + tag_, "bodies" + tag_, "shapes" + tag_};
+  std::error_code ec;
+  for (const fs::directory_entry& e : fs::directory_iterator(dir_, ec)) {
+    const std::string name = e.path().filename().string();
+    const size_t at = name.find(tag_);
+    if (at == std::string::npos || std::find(std::begin(keep), std::end(keep), name) != std::end(keep))
+      continue;
+    const size_t after = at + tag_.size();
+    if (after == name.size() || name[after] == '.') fs::remove_all(e.path(), ec);
   }
 }
 

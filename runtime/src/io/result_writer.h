@@ -81,6 +81,7 @@ class ResultWriter {
  private:
   void cleanup();
   void write_partial_pvds() const;
+  void remove_stale_temporaries() const;
 
   std::string dir_;
   const Model& model_;

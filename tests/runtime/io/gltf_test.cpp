@@ -4,6 +4,7 @@
 #include <tiny_gltf.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -210,6 +211,40 @@ TEST(Gltf, RunTooLongToKeepInMemoryIsRefusedUpFront) {
     EXPECT_EQ(e.code(), ExitCode::Resource);
     EXPECT_NE(std::string(e.what()).find("output.formats"), std::string::npos) << e.what();
   }
+  fs::remove_all(dir);
+}
+
+// A run killed while writing its animation leaves animation.glb.tmpPID.tmpPID (the staged name's
+// own temporary); the resumed run must clear what the interrupted one began of its final files
+// and keep its output so far, or the results folder differs from an uninterrupted run's.
+TEST(Gltf, ResumeClearsTheInterruptedRunsUnfinishedFiles) {
+  const std::string dir = ::testing::TempDir() + "gltf_resume_" + std::to_string(::getpid());
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::string tag = ".tmp42";
+  for (const char* name : {"trajectories.csv", "animation.glb", "animation.glb.tmp42",
+                           "landings.csv.tmp42", "bodies.pvd.tmp42", "notes.tmp421"})
+    std::ofstream(dir + "/" + name + (std::string(name) == "trajectories.csv" ? tag : ""))
+        << "x\n";
+  std::ofstream(dir + "/animation.glb.tmp42.tmp42") << "half\n";
+  fs::create_directories(dir + "/bodies" + tag);
+  fs::create_directories(dir + "/shapes" + tag);
+  std::ofstream(dir + "/bodies" + tag + "/bodies_0000.vtp") << "frame\n";
+  const Scene scene = tumbling_scene(dir);
+  const Model model = test::compile(scene);
+  {
+    ResultWriter w(dir, model, scene.output, tag);
+  }
+  std::vector<std::string> left;
+  for (const auto& e : fs::recursive_directory_iterator(dir))
+    left.push_back(fs::relative(e.path(), dir).string());
+  std::sort(left.begin(), left.end());
+  // what is not the interrupted run's stays (another run's animation.glb, notes.tmp421)
+  for (const char* gone : {"animation.glb.tmp42", "animation.glb.tmp42.tmp42",
+                           "landings.csv.tmp42", "bodies.pvd.tmp42"})
+    EXPECT_EQ(std::count(left.begin(), left.end(), gone), 0) << gone;
+  for (const char* kept : {"animation.glb", "notes.tmp421"})
+    EXPECT_EQ(std::count(left.begin(), left.end(), kept), 1) << kept;
   fs::remove_all(dir);
 }
 
