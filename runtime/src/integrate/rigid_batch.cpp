@@ -225,32 +225,37 @@ LRIGID_IVDEP
     alignas(64) T lu[36][kBatch], last_step[kBatch];
     int newton[kBatch], refactor[kBatch];
     int any_newton = 0;
-LRIGID_IVDEP
     for (int j = 0; j < kBatch; ++j) {
-      const int nt = scalar[j] | active[j];
-      newton[j] = nt;
-      refactor[j] = 1;
-      last_step[j] = T(0);
-      any_newton |= nt;
-      // the start: where the fixed point stopped, or Y0 if that is not finite or far off
-      T y0[6], dy[6];
-      int fin = 1;
-#pragma GCC unroll 6
-      for (int a = 0; a < 6; ++a) {
-        y0[a] = Y0[a][j];
-        dy[a] = Y[a][j] - y0[a];
-        fin &= int(std::isfinite(Y[a][j]));
-      }
-      const T dist = energy_norm2(tc.mass, dy), norm0 = energy_norm2(tc.mass, y0);
-      const int reset = nt & ((1 - fin) | int(dist > T(4) * norm0));
-#pragma GCC unroll 6
-      for (int a = 0; a < 6; ++a) Y[a][j] = reset ? Y0[a][j] : Y[a][j];
+      newton[j] = scalar[j] | active[j];
+      any_newton |= newton[j];
     }
-    for (int j = 0; j < kBatch; ++j)
-      lanes->newton += uint64_t(newton[j] != 0) & uint64_t(lanes->live[j]);
-    if (any_newton)
+    // most blocks have no lane here: they skip the start and the counting (one pass over the
+    // flags above)
+    if (any_newton) {
+LRIGID_IVDEP
+      for (int j = 0; j < kBatch; ++j) {
+        const int nt = newton[j];
+        refactor[j] = 1;
+        last_step[j] = T(0);
+        // the start: where the fixed point stopped, or Y0 if that is not finite or far off
+        T y0[6], dy[6];
+        int fin = 1;
+#pragma GCC unroll 6
+        for (int a = 0; a < 6; ++a) {
+          y0[a] = Y0[a][j];
+          dy[a] = Y[a][j] - y0[a];
+          fin &= int(std::isfinite(Y[a][j]));
+        }
+        const T dist = energy_norm2(tc.mass, dy), norm0 = energy_norm2(tc.mass, y0);
+        const int reset = nt & ((1 - fin) | int(dist > T(4) * norm0));
+#pragma GCC unroll 6
+        for (int a = 0; a < 6; ++a) Y[a][j] = reset ? Y0[a][j] : Y[a][j];
+      }
+      for (int j = 0; j < kBatch; ++j)
+        lanes->newton += uint64_t(newton[j] != 0) & uint64_t(lanes->live[j]);
       for (int e = 0; e < 36; ++e)
         for (int j = 0; j < kBatch; ++j) lu[e][j] = T(0);
+    }
     for (int it = 0; any_newton && it < kLaneKirchhoffNewton; ++it) {
       // a new factorization at the current iterate for the lanes that need one (all of them in
       // the first iteration), the kept one for the others
