@@ -32,6 +32,12 @@ Fitting: no coefficient is fitted to these data. Which plate terms follow the as
 drops, another on Field et al.'s disks (validation/falling_plates); the circles played no part
 and are the independent check.
 
+Which term slows the descent (notes, no checks): the squares' drops again with the effects added one
+at a time — gravity, buoyancy and drag; then added mass; then lift (the full "auto" set) — per
+radius bin: median segment speed, median speed over the whole drop (0.95 m over the time to
+reach 5 cm), median lateral displacement, tumbling fraction, and the fastest upward speed of any
+plate (docs/physics/lift.md, "Why paper falls too slowly").
+
 Terminal velocities: one square (R = 2.5 cm), one disk (R = 2.5 cm) and one 5:1 rectangle of the
 same paper held broadside (effects gravity, buoyancy, drag only: nothing turns them), 3 s; the
 speed of the last 0.5 s against sqrt(2 (m − ρV) g / (ρ S C_D)) with White's Table 7.3 (after
@@ -145,6 +151,37 @@ def bin_stats(segs):
                 tumbling_fraction=nt / (nt + nc) if nt + nc else math.nan)
 
 
+def ladder(args, st, n_per):
+    """The squares' drops with the effects added one at a time: which term slows the descent."""
+    steps = (("gravity, buoyancy, drag", ["gravity", "buoyancy", "drag"]),
+             ("+ added mass", ["gravity", "buoyancy", "drag", "added_mass"]),
+             ("+ lift (auto)", "auto"))
+    lines = ["| effects | R (cm) | median segment speed (m/s) | median whole-drop speed (m/s) | "
+             "median lateral (m) | tumbling fraction | fastest rise (m/s) |", "|---|---|---|---|---|---|---|"]
+    for label, eff in steps:
+        sc, meta = drop_scene("square", n_per, 7)
+        sc["effects"] = eff
+        tr, _, _ = vc.run_scene(args, sc, st.path("ladder_%d" % len(lines)))
+        for R in RADII:
+            segs, whole, rise = [], [], 0.0
+            for j, (Rj, vertical) in enumerate(meta):
+                if Rj != R:
+                    continue
+                segs += segments(tr, j, R, vertical)
+                low = np.nonzero(tr["z"][:, j] <= 0.05)[0]
+                if len(low):
+                    whole.append((Z0 - 0.05) / tr["t"][low[0], j])
+                rise = max(rise, float(np.max(tr["vz"][:, j])))
+            m = bin_stats(segs)
+            lines.append("| %s | %.3g | %.2f | %s | %.2f | %s | %.2f |" % (
+                label, 100 * R, m["median_speed"],
+                "%.2f (%d of %d landed)" % (np.median(whole), len(whole), 2 * n_per) if whole
+                else "none landed in 6 s", m["median_lateral"],
+                "%.2f" % m["tumbling_fraction"] if m["n_tumbling"] + m["n_chaotic"] else "–", rise))
+    st.table(["Squares, the effects added one at a time (%d drops per release and radius; "
+              "data: 0.70–0.73 m/s):" % n_per, ""] + lines)
+
+
 def terminal_checks(args, st):
     """Broadside terminal velocity of a square, a disk and a 5:1 rectangle of paper."""
     cases = (("square", 1.0, 1.18), ("circle", 1.0, 1.17), ("square", 5.0, 1.2))
@@ -219,6 +256,7 @@ def main():
             "lateral %.2f m" % (100 * R, m["n"], m["n_steady"], m["n_tumbling"], m["n_chaotic"],
                                 m["median_speed"], m["median_lateral"])
             for R, m in zip(RADII, model[kind])))
+    ladder(args, st, n_per)
     with open(st.path("model_bins.json"), "w") as f:
         json.dump(model, f, indent=1)
     fig, axs = plt.subplots(1, 3, figsize=(12, 3.6))
