@@ -157,7 +157,8 @@ def ladder(args, st, n_per):
              ("+ added mass", ["gravity", "buoyancy", "drag", "added_mass"]),
              ("+ lift (auto)", "auto"))
     lines = ["| effects | R (cm) | median segment speed (m/s) | median whole-drop speed (m/s) | "
-             "median lateral (m) | tumbling fraction | fastest rise (m/s) |", "|---|---|---|---|---|---|---|"]
+             "median lateral (m) | tumbling fraction | fastest rise (m/s) |",
+             "|---|---|---|---|---|---|---|"]
     for label, eff in steps:
         sc, meta = drop_scene("square", n_per, 7)
         sc["effects"] = eff
@@ -177,7 +178,8 @@ def ladder(args, st, n_per):
                 label, 100 * R, m["median_speed"],
                 "%.2f (%d of %d landed)" % (np.median(whole), len(whole), 2 * n_per) if whole
                 else "none landed in 6 s", m["median_lateral"],
-                "%.2f" % m["tumbling_fraction"] if m["n_tumbling"] + m["n_chaotic"] else "–", rise))
+                "%.2f" % m["tumbling_fraction"] if m["n_tumbling"] + m["n_chaotic"] else "–",
+                rise))
     st.table(["Squares, the effects added one at a time (%d drops per release and radius; "
               "data: 0.70–0.73 m/s):" % n_per, ""] + lines)
 
