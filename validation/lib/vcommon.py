@@ -53,7 +53,7 @@ class Study:
         self.key, self.title, self.args = key, title, args
         self.dir = os.path.join(args.work, key)
         os.makedirs(self.dir, exist_ok=True)
-        self.rows, self.plots, self.notes = [], [], []
+        self.rows, self.plots, self.notes, self.tables = [], [], [], []
         self.t0 = time.time()
 
     def path(self, *p):
@@ -96,9 +96,14 @@ class Study:
     def note(self, text):
         self.notes.append(text)
 
+    def table(self, lines):
+        """a Markdown block (list of lines) for the report, after the notes"""
+        self.tables.append(list(lines))
+
     def finish(self):
         out = dict(study=self.key, title=self.title, rows=self.rows, plots=self.plots,
-                   notes=self.notes, seconds=time.time() - self.t0, quick=self.args.quick)
+                   notes=self.notes, tables=self.tables, seconds=time.time() - self.t0,
+                   quick=self.args.quick)
         tmp = self.path("results.json.tmp")
         with open(tmp, "w") as f:
             json.dump(out, f, indent=1)

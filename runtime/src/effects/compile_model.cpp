@@ -8,6 +8,7 @@
 #include "effects/basset.h"
 #include "effects/drag.h"
 #include "effects/plan.h"
+#include "effects/plate.h"
 #include "effects/registry.h"
 #include "fluid/turbulence_coefficients.h"
 #include "util/error.h"
@@ -36,7 +37,7 @@ double median(std::vector<double> v) {
 // drag force on the body at relative speed U (quasi-steady, broadside for flat bodies), N
 double drag_force(const BodyType& t, double U, double rho, double nu) {
   if (!(U > 0)) return 0;
-  if (t.flat) return 0.5 * rho * t.plate_area * (kPlateDragA + kPlateDragB) * U * U;
+  if (t.flat) return 0.5 * rho * t.plate_area * plate_coefficients(t).cd90 * U * U;
   const double d = 2.0 * t.r_eq;
   return 0.5 * rho * schiller_naumann(U * d / nu) * M_PI * t.r_eq * t.r_eq * U * U;
 }

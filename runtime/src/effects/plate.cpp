@@ -4,6 +4,50 @@
 
 namespace lrigid {
 
+namespace {
+
+// Broadside drag coefficient of rectangular plates against the side ratio (docs/physics/lift.md):
+// 1.18 (square) ... 1.5 (20:1) after Hoerner (1965) as tabulated by White (Fluid Mechanics,
+// Table 7.3); the infinite strip takes APW's 2D value A + B = 2.4 (Hoerner's steady
+// strip: 1.98-2.0), so that long strips keep APW's model. Linear in 1 / aspect between the points.
+constexpr double kCd90InvAspect[] = {1.0, 0.2, 0.1, 0.05, 0.0};
+constexpr double kCd90Rect[] = {1.18, 1.2, 1.3, 1.5, kPlateDragA + kPlateDragB};
+constexpr double kCd90Disk = 1.17;  // circular disk broadside (White Table 7.3; Hoerner)
+
+}  // namespace
+
+double plate_broadside_cd(double aspect, bool box) {
+  const double x = 1.0 / std::max(aspect, 1.0);
+  double cd = kCd90Rect[4];
+  for (int i = 0; i < 4; ++i) {
+    if (x <= kCd90InvAspect[i] && x >= kCd90InvAspect[i + 1]) {
+      const double s = (x - kCd90InvAspect[i + 1]) / (kCd90InvAspect[i] - kCd90InvAspect[i + 1]);
+      cd = kCd90Rect[i + 1] + s * (kCd90Rect[i] - kCd90Rect[i + 1]);
+      break;
+    }
+  }
+  // ellipses: the disk's value at aspect 1, the difference fading with 1 / aspect
+  return box ? cd : cd + (kCd90Disk - kCd90Rect[0]) * x;
+}
+
+PlateCoeffs plate_coefficients(const BodyType& type) {
+  PlateCoeffs c;
+  const int na = type.normal_axis, i1 = (na + 1) % 3, i2 = (na + 2) % 3;
+  const bool box = type.shape.type == ShapeType::Box;
+  const Vec3& ext = box ? type.half_extents : type.ell;
+  const double lo = std::min(ext[i1], ext[i2]), hi = std::max(ext[i1], ext[i2]);
+  c.aspect = lo > 0 ? hi / lo : 1.0;
+  c.cd90 = plate_broadside_cd(c.aspect, box);
+  // APW's edgewise coefficient A - B is kept and the normal-force part 2 B scales to the
+  // planform's broadside value. The circulation (C_T, C_R) and the damping torque (mu1, mu2) stay
+  // APW's: scaling them with the same factor made heavy disks and strips stop tumbling and paper
+  // squares descend steadily broadside (docs/physics/lift.md, "The 3D model").
+  c.span_factor = (c.cd90 - (kPlateDragA - kPlateDragB)) / (2.0 * kPlateDragB);
+  c.B = kPlateDragB * c.span_factor;
+  c.A = (kPlateDragA - kPlateDragB) + c.B;
+  return c;
+}
+
 PlateParams plate_params(const BodyType& type, double rho, double nu, bool drag, bool lift) {
   PlateParams k;
   k.rho = rho;
@@ -27,6 +71,13 @@ PlateParams plate_params(const BodyType& type, double rho, double nu, bool drag,
   k.rot_n = 0.5 * rho * kDragRotation * type.rot_drag_len5[na];
   k.drag = drag ? 1.0 : 0.0;
   k.lift = lift ? 1.0 : 0.0;
+  const PlateCoeffs c = plate_coefficients(type);
+  k.drag_a = c.A;
+  k.drag_b = c.B;
+  k.lift_t = c.C_T;
+  k.lift_r = c.C_R;
+  k.mu1 = c.mu1;
+  k.mu2 = c.mu2;
   return k;
 }
 

@@ -34,6 +34,24 @@ LRIGID_LANE T circulation_gate(T re) {
   return x / (T(1) + x);
 }
 
+// The plate's finite-span coefficients (docs/physics/lift.md, "The 3D model"): APW's 2D
+// constants, with the drag's normal-force part B scaled so that the broadside drag coefficient
+// A + B is the planform's; C_T, C_R, mu1, mu2 are APW's. aspect: the planform's side ratio
+// (long / short side of a rectangle, major / minor axis of an ellipse or of a mesh's equivalent
+// ellipse), >= 1.
+struct PlateCoeffs {
+  double aspect = 1;       // planform side ratio
+  double cd90 = 0;         // broadside drag coefficient C_D(90 deg) of the planform
+  double span_factor = 1;  // (cd90 - (A - B)) / (2 B) of APW's A, B: 1 for an infinite strip
+  double A = kPlateDragA, B = kPlateDragB;  // drag (A - B cos 2a)
+  double C_T = kLiftTranslational, C_R = kLiftRotational;
+  double mu1 = kPlateTorqueMu1;  // linear damping torque (at Re_fit)
+  double mu2 = kPlateTorqueMu2;  // quadratic (pressure) damping torque
+};
+// broadside C_D of a flat plate of side ratio `aspect` (rectangle, or ellipse if !box)
+double plate_broadside_cd(double aspect, bool box);
+PlateCoeffs plate_coefficients(const BodyType& type);
+
 // What the plate model needs of a flat body type and the fluid, built once per body type.
 struct PlateParams {
   double rho = 0, nu = 0;  // kg/m^3, m^2/s
@@ -47,6 +65,10 @@ struct PlateParams {
   double st[3] = {0, 0, 0}, st_in = 0;   // mu r_i; mu max r_i over the in-plane axes, N m s
   double rot_n = 0;                      // out-of-roundness drag of the spin about n, N m s^2
   double drag = 0, lift = 0;             // the effects as factors 1 or 0
+  // the finite-span coefficients (PlateCoeffs)
+  double drag_a = kPlateDragA, drag_b = kPlateDragB;
+  double lift_t = kLiftTranslational, lift_r = kLiftRotational;
+  double mu1 = kPlateTorqueMu1, mu2 = kPlateTorqueMu2;
 };
 // drag, lift: whether the drag (and torque) and the lift are computed
 PlateParams plate_params(const BodyType& type, double rho, double nu, bool drag, bool lift);
@@ -72,7 +94,7 @@ LRIGID_LANE void plate_kernel(const PlateParams& k, const T* u, const T* w, Drag
   // APW's drag 1/2 rho S (A - B cos 2a) |u| u, cos 2a = (|u_t|^2 - u_n^2) / |u|^2
   const T cos2a = (s2 - T(2) * un * un) * (inv * inv);
   const T c_lin =
-      moving ? T(0.5) * rho * T(k.S) * (T(kPlateDragA) - T(kPlateDragB) * cos2a) * speed : T(0);
+      moving ? T(0.5) * rho * T(k.S) * (T(k.drag_a) - T(k.drag_b) * cos2a) * speed : T(0);
   // the in-plane part of the spin and the chord across it (plate_chord)
   const T wn = dot3(n, w);
   T wp[3];
@@ -100,9 +122,9 @@ LRIGID_LANE void plate_kernel(const PlateParams& k, const T* u, const T* w, Drag
   const T kk = T(M_PI) * rho * (c * c) * (c * c) * span;
   const T re_w = speed * T(k.width_over_nu);
   const T re = re_w > T(kPlateTorqueReMin) ? re_w : T(kPlateTorqueReMin);
-  const T mu1 = T(kPlateTorqueMu1) * std::sqrt(T(kPlateTorqueFitRe) / re);
-  const T pitch = spinning ? kk * (mu1 * Uv / c + T(kPlateTorqueMu2) * wp_norm) : T(0);
-  const T c_pitch = spinning ? kk * (mu1 * Uv / c + T(2 * kPlateTorqueMu2) * wp_norm) : T(0);
+  const T mu1 = T(k.mu1) * std::sqrt(T(kPlateTorqueFitRe) / re);
+  const T pitch = spinning ? kk * (mu1 * Uv / c + T(k.mu2) * wp_norm) : T(0);
+  const T c_pitch = spinning ? kk * (mu1 * Uv / c + T(2 * k.mu2) * wp_norm) : T(0);
   // spin about the normal: the Stokes torque plus the out-of-roundness drag
   const T c_n = T(k.st[0]) * T(k.n[0]) + T(k.st[1]) * T(k.n[1]) + T(k.st[2]) * T(k.n[2]) +
                 T(k.rot_n) * std::abs(wn);
@@ -129,8 +151,8 @@ LRIGID_LANE void plate_kernel(const PlateParams& k, const T* u, const T* w, Drag
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) ut[a] = u[a] - un * n[a];
     const T ut2 = dot3(ut, ut);
-    const T lt = moving ? -rho * gate * T(kLiftTranslational * k.S) * (un * inv) : T(0);
-    const T lr = spinning ? T(0.5) * rho * gate * T(kLiftRotational) * chord * T(k.S) : T(0);
+    const T lt = moving ? -rho * gate * T(k.lift_t * k.S) * (un * inv) : T(0);
+    const T lr = spinning ? T(0.5) * rho * gate * T(k.lift_r) * chord * T(k.S) : T(0);
     T wxu[3];
     cross3(wp, u, wxu);
 #pragma GCC unroll 3

@@ -56,6 +56,14 @@ namespace {  // NOLINT(build/namespaces): internal to the two batched-step files
 #define LRIGID_IVDEP
 #endif
 
+// A lambda holding one lane's update, written once for a vectorised loop over a whole block and a
+// loop over a few chosen lanes: inlined into both (and so into each multiversioned copy).
+#if defined(__GNUC__)
+#define LRIGID_LANE_LAMBDA __attribute__((always_inline))
+#else
+#define LRIGID_LANE_LAMBDA
+#endif
+
 // What every batched step needs of the model and the body type: the field and the switches of
 // the Langevin model.
 struct FieldConsts {

@@ -121,6 +121,9 @@ LRIGID_LANE DragOut<T> body_forces(const StepConsts& tc, const T* u, const T* w,
 template <typename T>
 constexpr double kLaneKirchhoffTol = std::is_same_v<T, float> ? 1e-5 : kKirchhoffTol;
 constexpr int kLaneKirchhoffNewton = kKirchhoffMaxNewton / 2;
+// the stiff-drag Newton runs over only its lanes when at most kBatch / kSparseNewton of a block's
+// lanes need it, and vectorised over the whole block (masked) when more do
+constexpr int kSparseNewton = 4;
 
 // Advances every lane of lanes by one step (see rigid_batch.h); lanes that are not kOk keep their
 // state at the start of the step. landed: the lane is on or below the ground after the step.
@@ -416,49 +419,74 @@ LRIGID_IVDEP
     for (int a = 0; a < 4; ++a) qn[a][j] = q[a];
   }
   // stiff drag: Newton on R(dPi) = dPi - h (G_other + F_drag(xi(dPi))) - b_B (h a - dv), lanes
-  // drop out as they converge (integrators.cpp split_deterministic_step)
+  // drop out as they converge (integrators.cpp split_deterministic_step). One Newton update of
+  // lane j, written once for both loops below; returns whether j goes on.
+  auto newton_lane = [&](int j) LRIGID_LANE_LAMBDA {
+    const int act = stiff[j];
+    T vr[3], w[3], lift[3];
+#pragma GCC unroll 3
+    for (int a = 0; a < 3; ++a) {
+      vr[a] = vn[a][j] - ufs[a][j];
+      w[a] = wn[a][j];
+    }
+    const DragOut<T> drag = body_forces<T, Plate>(tc, vr, w, lift);
+    // the Newton step -M (M + h J + b_B P)^-1 res, J the drag's stiffness here
+    T res[6], x[6];
+#pragma GCC unroll 3
+    for (int a = 0; a < 3; ++a) {
+      res[a] = dPL[a][j] - G[a][j] - h * drag.f[a] +
+               T(tc.basset_mass) * T(tc.mass.Mi[a]) * dPL[a][j];
+      res[3 + a] = dPL[3 + a][j] - h * drag.tq[a];
+    }
+    implicit_impulse(tc.mass, T(tc.basset_mass), drag, h, res, x);
+    T conv = 0;
+#pragma GCC unroll 3
+    for (int a = 0; a < 3; ++a) {
+      const T ddP = -x[a], ddL = -x[3 + a];
+      const T dP = dPL[a][j] + ddP, dL = dPL[3 + a][j] + ddL;
+      const T v = T(tc.mass.Mi[a]) * (Pl[a][j] + dP + T(tc.K[a]) * ufe[a][j]);
+      const T wa = T(tc.mass.Mi[3 + a]) * (Pl[3 + a][j] + dL);
+      dPL[a][j] = act ? dP : dPL[a][j];
+      dPL[3 + a][j] = act ? dL : dPL[3 + a][j];
+      vn[a][j] = act ? v : vn[a][j];
+      wn[a][j] = act ? wa : wn[a][j];
+      conv += ddP * ddP * T(tc.mass.Mi[a]) + ddL * ddL * T(tc.mass.Mi[3 + a]);
+    }
+    const int more = act & int(conv > T(kDragTol * kDragTol) * norm_r[j]);
+    stiff[j] = more;
+    return more;
+  };
   if (tc.drag != 0 && any_stiff) {
-    for (int j = 0; j < kBatch; ++j)
+    int idx[kBatch], m = 0;
+    for (int j = 0; j < kBatch; ++j) {
       lanes->newton += uint64_t(stiff[j] != 0) & uint64_t(lanes->live[j]);
-    for (int it = 0; it < kDragMaxNewton; ++it) {
-      int any = 0;
+      idx[m] = j;
+      m += stiff[j];
+    }
+    for (int it = 0; it < kDragMaxNewton && m > 0; ++it) {
+      if (m * kSparseNewton > kBatch) {
+        // many stiff lanes: every lane, vectorised, the others masked
+        int any = 0;
 LRIGID_IVDEP
-      for (int j = 0; j < kBatch; ++j) {
-        const int act = stiff[j];
-        T vr[3], w[3], lift[3];
-#pragma GCC unroll 3
-        for (int a = 0; a < 3; ++a) {
-          vr[a] = vn[a][j] - ufs[a][j];
-          w[a] = wn[a][j];
+        for (int j = 0; j < kBatch; ++j) any |= newton_lane(j);
+        if (!any) break;
+        m = 0;
+        for (int j = 0; j < kBatch; ++j) {
+          idx[m] = j;
+          m += stiff[j];
         }
-        const DragOut<T> drag = body_forces<T, Plate>(tc, vr, w, lift);
-        // the Newton step -M (M + h J + b_B P)^-1 res, J the drag's stiffness here
-        T res[6], x[6];
-#pragma GCC unroll 3
-        for (int a = 0; a < 3; ++a) {
-          res[a] = dPL[a][j] - G[a][j] - h * drag.f[a] +
-                   T(tc.basset_mass) * T(tc.mass.Mi[a]) * dPL[a][j];
-          res[3 + a] = dPL[3 + a][j] - h * drag.tq[a];
+      } else {
+        // a few: only those (a lane that needs Newton is rare and usually alone in its block;
+        // the masked loop cost all kBatch lanes per iteration, 93 % of them idle on
+        // scenes/art_flow_scales.json)
+        int k = 0;
+        for (int i = 0; i < m; ++i) {
+          const int j = idx[i];
+          idx[k] = j;
+          k += newton_lane(j);
         }
-        implicit_impulse(tc.mass, T(tc.basset_mass), drag, h, res, x);
-        T conv = 0;
-#pragma GCC unroll 3
-        for (int a = 0; a < 3; ++a) {
-          const T ddP = -x[a], ddL = -x[3 + a];
-          const T dP = dPL[a][j] + ddP, dL = dPL[3 + a][j] + ddL;
-          const T v = T(tc.mass.Mi[a]) * (Pl[a][j] + dP + T(tc.K[a]) * ufe[a][j]);
-          const T wa = T(tc.mass.Mi[3 + a]) * (Pl[3 + a][j] + dL);
-          dPL[a][j] = act ? dP : dPL[a][j];
-          dPL[3 + a][j] = act ? dL : dPL[3 + a][j];
-          vn[a][j] = act ? v : vn[a][j];
-          wn[a][j] = act ? wa : wn[a][j];
-          conv += ddP * ddP * T(tc.mass.Mi[a]) + ddL * ddL * T(tc.mass.Mi[3 + a]);
-        }
-        const int more = act & int(conv > T(kDragTol * kDragTol) * norm_r[j]);
-        stiff[j] = more;
-        any |= more;
+        m = k;
       }
-      if (!any) break;
     }
   }
   // 4. x by the trapezoidal rule on the world velocity

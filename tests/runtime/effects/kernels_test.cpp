@@ -161,20 +161,66 @@ TEST(Kernels, SphereDragIsSchillerNaumann) {
   }
 }
 
-TEST(Kernels, PlateBroadsideAndEdgewiseDragAreApw) {
-  // inviscid limit: broadside 1/2 rho S (A + B) U^2, edgewise 1/2 rho S (A - B) U^2
+TEST(Kernels, PlateBroadsideAndEdgewiseDragFollowTheAspectRatio) {
+  // inviscid limit: broadside 1/2 rho S C_D90 U^2 with the rectangle's C_D90 (side ratio 1.5:
+  // between 1.18 at 1 and 1.2 at 5, linear in 1 / aspect), edgewise APW's 1/2 rho S (A - B) U^2
   const BodyType& box = models()[2].types[0];  // 6 x 4 cm, normal along z
   PlateParams k = plate_params(box, kRho, kNu, true, false);
   for (double& s : k.sf) s = 0;  // no Stokes part
   const double S = 0.06 * 0.04, U = 2.0, w[3] = {0, 0, 0};
+  const double cd90 = 1.18 + (1.0 / 1.5 - 1.0) / (0.2 - 1.0) * (1.2 - 1.18);
   DragOut<double> d;
   double lift[3];
   const double broad[3] = {0, 0, -U}, edge[3] = {U, 0, 0};
   plate_kernel(k, broad, w, &d, lift);
-  EXPECT_NEAR(d.f[2], 0.5 * kRho * S * (kPlateDragA + kPlateDragB) * U * U, 1e-12);
+  EXPECT_NEAR(d.f[2], 0.5 * kRho * S * cd90 * U * U, 1e-12);
   EXPECT_EQ(lift[0], 0.0);  // the lift factor is 0
   plate_kernel(k, edge, w, &d, lift);
   EXPECT_NEAR(d.f[0], -0.5 * kRho * S * (kPlateDragA - kPlateDragB) * U * U, 1e-12);
+}
+
+// The finite-span coefficients: the broadside C_D of the table (White Table 7.3 after Hoerner:
+// square 1.18, disk 1.17, side ratio 5: 1.2, 10: 1.3, 20: 1.5), APW's 2D constants in the limit
+// of an infinite strip; the circulation and the damping torque are APW's
+TEST(Kernels, PlateCoefficientsReduceToApwForLongStrips) {
+  EXPECT_NEAR(plate_broadside_cd(1, true), 1.18, 1e-12);
+  EXPECT_NEAR(plate_broadside_cd(1, false), 1.17, 1e-12);
+  EXPECT_NEAR(plate_broadside_cd(5, true), 1.2, 1e-12);
+  EXPECT_NEAR(plate_broadside_cd(10, true), 1.3, 1e-12);
+  EXPECT_NEAR(plate_broadside_cd(20, true), 1.5, 1e-12);
+  EXPECT_NEAR(plate_broadside_cd(40, true), 1.95, 1e-12);   // halfway to APW's 2.4 in 1 / aspect
+  EXPECT_NEAR(plate_broadside_cd(0.5, true), 1.18, 1e-12);  // aspect is >= 1 by definition
+  double last = 0;
+  for (double ar = 1; ar < 1e4; ar *= 1.3) {  // monotone in the aspect ratio
+    EXPECT_GE(plate_broadside_cd(ar, true), last) << ar;
+    last = plate_broadside_cd(ar, true);
+  }
+  auto type_of = [](const Shape& sh) { return model_of(sh, 600, all_forces()).types[0]; };
+  const PlateCoeffs sq = plate_coefficients(type_of(Shape::box(0.05, 0.05, 0.0001)));
+  EXPECT_NEAR(sq.aspect, 1.0, 1e-12);
+  EXPECT_NEAR(sq.A + sq.B, 1.18, 1e-12);
+  EXPECT_NEAR(sq.A - sq.B, kPlateDragA - kPlateDragB, 1e-12);
+  const double r = (1.18 - 0.4) / 2.0;
+  EXPECT_NEAR(sq.span_factor, r, 1e-12);
+  EXPECT_NEAR(sq.B, kPlateDragB * r, 1e-12);
+  EXPECT_NEAR(sq.C_T, kLiftTranslational, 1e-12);  // the circulation and damping: APW's
+  EXPECT_NEAR(sq.C_R, kLiftRotational, 1e-12);
+  EXPECT_NEAR(sq.mu1, kPlateTorqueMu1, 1e-12);
+  EXPECT_NEAR(sq.mu2, kPlateTorqueMu2, 1e-12);
+  // the aspect ratio of a plate whose normal is not body z, and of an ellipse
+  const PlateCoeffs rect = plate_coefficients(type_of(Shape::box(0.0002, 0.02, 0.1)));
+  EXPECT_NEAR(rect.aspect, 5.0, 1e-12);
+  EXPECT_NEAR(rect.A + rect.B, 1.2, 1e-12);
+  const PlateCoeffs ell = plate_coefficients(type_of(Shape::ellipsoid(0.03, 0.01, 0.0005)));
+  EXPECT_NEAR(ell.aspect, 3.0, 1e-12);
+  EXPECT_NEAR(ell.A + ell.B, plate_broadside_cd(3, false), 1e-12);
+  // a long strip (side ratio 10^6) has APW's 2D constants
+  const PlateCoeffs strip = plate_coefficients(type_of(Shape::ellipsoid(0.01, 1e4, 0.001)));
+  EXPECT_NEAR(strip.A, kPlateDragA, 1e-4 * kPlateDragA);
+  EXPECT_NEAR(strip.B, kPlateDragB, 1e-4 * kPlateDragB);
+  EXPECT_NEAR(strip.C_T, kLiftTranslational, 1e-4 * kLiftTranslational);
+  EXPECT_NEAR(strip.C_R, kLiftRotational, 1e-4 * kLiftRotational);
+  EXPECT_NEAR(strip.mu2, kPlateTorqueMu2, 1e-4 * kPlateTorqueMu2);
 }
 
 TEST(Kernels, CirculationGateIsTheCalibratedLaw) {

@@ -8,6 +8,7 @@
 #include "effects/lift.h"
 #include "effects/magnus.h"
 #include "effects/plan.h"
+#include "effects/plate.h"
 #include "support/fixture.h"
 
 namespace lrigid {
@@ -44,6 +45,7 @@ TEST(Lift, TranslationalLiftIsNormalToVelocityAndPeaksAt45Degrees) {
   const Model m = disk_model(effects({Effect::Lift}));
   const BodyType& t = m.types[0];
   const double rho = 1000, U = 0.3, S = t.plate_area;
+  const double C_T = plate_coefficients(t).C_T;  // APW's for every plate (physics/lift.md)
   for (double deg : {0.0, 10.0, 30.0, 45.0, 60.0, 90.0}) {
     const double a = deg * M_PI / 180;
     const Vec3 u(U * std::cos(a), 0, -U * std::sin(a));
@@ -53,13 +55,13 @@ TEST(Lift, TranslationalLiftIsNormalToVelocityAndPeaksAt45Degrees) {
     EXPECT_NEAR(f.y(), 0.0, 1e-15) << deg;             // in the plane of u and n
     // |F| = rho C_T S U^2 |sin a cos a|
     const double sc = std::abs(std::sin(a) * std::cos(a));
-    EXPECT_NEAR(f.norm(), rho * kLiftTranslational * S * U * U * sc, 1e-12) << deg;
+    EXPECT_NEAR(f.norm(), rho * C_T * S * U * U * sc, 1e-12) << deg;
   }
   // sign as in APW's 2D equations: F_x = -rho Gamma v_y, F_y = rho Gamma v_x with
   // Gamma = -C_T l v_x v_y / |v| (per unit span; x along the plate, y = n)
   const Vec3 u(0.2, 0, -0.1);
   const Vec3 f = lift_wrench(t, u, Vec3::Zero(), rho, kNuInviscid).head<3>();
-  const double gamma_per_area = -kLiftTranslational * u.x() * u.z() / u.norm();
+  const double gamma_per_area = -C_T * u.x() * u.z() / u.norm();
   EXPECT_NEAR(f.x(), -rho * S * gamma_per_area * u.z(), 1e-12);
   EXPECT_NEAR(f.z(), rho * S * gamma_per_area * u.x(), 1e-12);
 }
@@ -70,7 +72,8 @@ TEST(Lift, RotationalLiftIsHalfRhoCRChordAreaOmegaCrossU) {
   const double rho = 1000;
   const Vec3 u(0.2, 0, 0), w(0, 3, 0);  // edgewise motion: no translational lift
   const Vec3 f = lift_wrench(t, u, w, rho, kNuInviscid).head<3>();
-  const Vec3 expect = 0.5 * rho * kLiftRotational * (2 * 0.02) * t.plate_area * w.cross(u);
+  const double C_R = plate_coefficients(t).C_R;
+  const Vec3 expect = 0.5 * rho * C_R * (2 * 0.02) * t.plate_area * w.cross(u);
   EXPECT_TRUE(test::near(f, expect, 1e-12));
   // spin about the normal gives no lift
   EXPECT_NEAR(lift_wrench(t, u, Vec3(0, 0, 5), rho, kNuInviscid).norm(), 0.0, 1e-15);
@@ -105,11 +108,14 @@ TEST(PlateDrag, BroadsideAndEdgewiseCoefficients) {
   const double rho = 1000, U = 0.1, S = t.plate_area;
   // APW's quadratic drag plus the Stokes drag of the disk (16 mu a broadside, 32/3 mu a edgewise)
   const double nu = 1e-6, mu = rho * nu, a = 0.02;
+  const PlateCoeffs pc = plate_coefficients(t);
+  EXPECT_NEAR(pc.A + pc.B, 1.17, 1e-12);                       // a disk's broadside C_D
+  EXPECT_NEAR(pc.A - pc.B, kPlateDragA - kPlateDragB, 1e-12);  // APW's edgewise value
   const Vec3 fb = plate_drag_wrench(t, Vec3(0, 0, U), Vec3::Zero(), rho, nu).head<3>();
-  EXPECT_NEAR(fb.z(), -0.5 * rho * S * (kPlateDragA + kPlateDragB) * U * U - 16 * mu * a * U,
+  EXPECT_NEAR(fb.z(), -0.5 * rho * S * (pc.A + pc.B) * U * U - 16 * mu * a * U,
               2e-3 * 16 * mu * a * U);
   const Vec3 fe = plate_drag_wrench(t, Vec3(U, 0, 0), Vec3::Zero(), rho, nu).head<3>();
-  EXPECT_NEAR(fe.x(), -0.5 * rho * S * (kPlateDragA - kPlateDragB) * U * U - 32.0 / 3 * mu * a * U,
+  EXPECT_NEAR(fe.x(), -0.5 * rho * S * (pc.A - pc.B) * U * U - 32.0 / 3 * mu * a * U,
               0.1 * 32.0 / 3 * mu * a * U);
 }
 
@@ -157,7 +163,8 @@ TEST(PlateDrag, DissipativeTorqueOpposesPitch) {
   // at rest (Re below kPlateTorqueReMin) mu1 is scaled by (Re_fit / Re_min)^(1/2)
   const double mu1 = kPlateTorqueMu1 * std::sqrt(kPlateTorqueFitRe / kPlateTorqueReMin);
   const double expect =
-      -M_PI * rho * std::pow(c, 4) * span * (mu1 * t.apw_speed / c + kPlateTorqueMu2 * wy) * wy -
+      -M_PI * rho * std::pow(c, 4) * span *
+          (mu1 * t.apw_speed / c + plate_coefficients(t).mu2 * wy) * wy -
       rho * nu * t.stokes_torque.y() * wy;
   EXPECT_NEAR(tq.y(), expect, 1e-15);
   EXPECT_GT(t.stokes_torque.y(), 0);

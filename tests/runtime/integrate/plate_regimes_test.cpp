@@ -69,7 +69,9 @@ TEST(PlateRegimes, ThinPlateFlutters) {
   for (size_t i = 0; i < m.t.size(); ++i)
     if (m.t[i] > 1.0) lo = std::min(lo, m.angle[i]), hi = std::max(hi, m.angle[i]);
   EXPECT_LT(hi - lo, M_PI) << "no net rotation: the pitch stays within half a turn";
-  EXPECT_GT(m.x.back() * m.x.back(), 1e-6) << "drifts sideways";
+  double x_max = 0;  // the swings carry it sideways (the end point may be near the start)
+  for (double x : m.x) x_max = std::max(x_max, std::abs(x));
+  EXPECT_GT(x_max, 1e-3) << "swings sideways";
   if (crossings.size() >= 3) {
     const double period = 2 * (crossings.back() - crossings.front()) / (crossings.size() - 1);
     std::printf("flutter: period %.3f s, pitch swing %.1f deg, descent %.3f m/s\n", period,

@@ -128,12 +128,15 @@ TEST(RigidBatch, AllNineEffectsMatchTheScalarStep) {
 
 TEST(RigidBatch, StiffDragTakesTheNewtonPathLikeTheScalarStep) {
   // light cards and paper disks at a coarse step (20 ms): the drag is stiff, and the loops
-  // iterate Newton themselves (with the Basset history's implicit mass in the second run)
+  // iterate Newton themselves (with the Basset history's implicit mass in the second run). Over
+  // the first 0.5 s: with the aspect-ratio plate drag (issue 30, lower broadside C_D) the cards
+  // later spin up into free flows that Newton is slow on (handed to the scalar step, 24 % of the
+  // steps over 1 s) and their chaotic motion amplifies rounding past 1e-9.
   for (const Shape& shape : {Shape::box(0.06, 0.04, 4e-4), Shape::ellipsoid(0.03, 0.02, 6e-4)}) {
     for (const bool basset : {false, true}) {
       Scene s = rigid_scene(shape, 500, 64);
       s.dt = 0.02;
-      s.duration = 1.0;
+      s.duration = 0.5;
       if (basset) s.effects.add(Effect::Basset);
       const FluidField field = wind_grid(1.5e-5);
       expect_eligible(s, field);

@@ -1,0 +1,291 @@
+#!/usr/bin/python3
+"""Study 9: paper drops — printer paper circles and squares falling 1 m in still air, against the
+measured drops of Howison, Hughes & Iida (Nature Machine Intelligence 2020), and the broadside
+terminal velocity of square plates and disks against the textbook drag coefficients.
+
+Paper: 70 g/m² (thickness 0.0694 mm, 1008 kg/m³, as in Howison et al.'s analysis scripts).
+Shapes: squares (box 2R × 2R × h) and circles (thin oblate ellipsoid of radius R whose mass per
+area is the paper's; its moment of inertia about a diameter is 4/5 of the flat disk's) of
+"radius" R (a square's half side, as in the data) at the centres of the data's bins 1.5–2.5,
+2.5–3.5, 3.5–4.5 and 4.5–5 cm. Air 1.2 kg/m³, ν = 1.5e-5 m²/s (20 °C). Released from rest with
+the centre 1 m above the floor, half of them horizontal and half vertical (as in the experiments,
+which used both), each tilted by a random 0–5° about a random axis (the release is never exactly
+symmetric); effects "auto" (gravity, buoyancy, added mass, plate drag and lift), splitting,
+dt = 5e-4 s, states every 0.01 s.
+
+Each simulated trajectory is cut into segments the way the experiments' were
+(Classification/classifyBehaviour.m of github.com/th533/Falling-Paper): samples below 5 cm are
+trimmed; a horizontal release's first segment, until the plate has moved 0.2 R sideways, is
+"steady/periodic"; the rest (from 1 cm sideways for a vertical release) is one segment if longer
+than 10 samples. Per segment: descent speed dz/time and lateral displacement sqrt(dx² + dy²).
+Howison et al. label the later segments tumbling or chaotic by k-means on two features of their
+video (projected-area oscillation frequency, spread of the vertical speed), which a simulation
+cannot reproduce; here a segment tumbles when the plate's normal turns over at least twice
+(n_z changes sign four or more times). The tumbling fraction is tumbling / (tumbling + chaotic),
+in the data and in the model.
+
+Checks per shape and radius bin: median descent speed within 15 % of the data's, median lateral
+displacement within a factor 1.5; per shape, the tumbling fraction's trend: at least 0.5 in the
+smallest bin and at most 0.3 in the largest (data: 0.82–0.85 and 0.0–0.08).
+Fitting: no coefficient is fitted to these data. Which plate terms follow the aspect ratio
+(docs/physics/lift.md) was chosen among three variants, one of them rejected on the squares'
+drops, another on Field et al.'s disks (validation/falling_plates); the circles played no part
+and are the independent check.
+
+Which term slows the descent (notes, no checks): the squares' drops again with the effects added one
+at a time — gravity, buoyancy and drag; then added mass; then lift (the full "auto" set) — per
+radius bin: median segment speed, median speed over the whole drop (0.95 m over the time to
+reach 5 cm), median lateral displacement, tumbling fraction, and the fastest upward speed of any
+plate (docs/physics/lift.md, "Why paper falls too slowly").
+
+Terminal velocities: one square (R = 2.5 cm), one disk (R = 2.5 cm) and one 5:1 rectangle of the
+same paper held broadside (effects gravity, buoyancy, drag only: nothing turns them), 3 s; the
+speed of the last 0.5 s against sqrt(2 (m − ρV) g / (ρ S C_D)) with White's Table 7.3 (after
+Hoerner 1965) C_D = 1.18 (square), 1.17 (disk), 1.2 (5:1), within 5 %. The model adds the Stokes
+resistance, about 0.3 % at these Re ≈ 4000.
+"""
+import json
+import math
+import os
+import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "lib"))
+import vcommon as vc  # noqa: E402
+from vcommon import np, plt  # noqa: E402
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+RHO_F, NU, G = 1.2, 1.5e-5, 9.81
+AREAL, H = 0.070, 6.94e-5            # kg/m², m (Howison et al.: 70 gsm, 2.5/36 mm)
+RHO_BOX = AREAL / H                   # 1008 kg/m³
+RHO_ELL = AREAL / (4.0 / 3.0 * H / 2)  # oblate ellipsoid of centre thickness H, same mass per area
+RADII = (0.02, 0.03, 0.04, 0.0475)    # bin centres, m
+DT_OUT = 0.01
+Z0 = 1.0
+
+
+def shape_of(kind, R, aspect=1.0):
+    if kind == "square":
+        return {"type": "box", "size": [2 * R * aspect, 2 * R, H]}, RHO_BOX
+    return {"type": "ellipsoid", "semi_axes": [R * aspect, R, H / 2]}, RHO_ELL
+
+
+def tilt_quat(rng, vertical):
+    """Unit quaternion: a random 0-5° tilt about a random horizontal axis, after turning the plate
+    vertical (90° about x) for a vertical release."""
+    th = math.radians(rng.uniform(0, 5))
+    ax = rng.uniform(0, 2 * math.pi)
+    q_tilt = np.array([math.cos(th / 2), math.sin(th / 2) * math.cos(ax),
+                       math.sin(th / 2) * math.sin(ax), 0.0])
+    if not vertical:
+        return q_tilt.tolist()
+    q_v = np.array([math.cos(math.pi / 4), math.sin(math.pi / 4), 0, 0])
+    w1, x1, y1, z1 = q_tilt
+    w2, x2, y2, z2 = q_v
+    return [w1 * w2 - x1 * x2 - y1 * y2 - z1 * z2, w1 * x2 + x1 * w2 + y1 * z2 - z1 * y2,
+            w1 * y2 - x1 * z2 + y1 * w2 + z1 * x2, w1 * z2 + x1 * y2 - y1 * x2 + z1 * w2]
+
+
+def drop_scene(kind, n_per_release, seed):
+    rng = np.random.default_rng(seed)
+    bodies, meta = [], []
+    for R in RADII:
+        sh, rho = shape_of(kind, R)
+        for vertical in (False, True):
+            for _ in range(n_per_release):
+                bodies.append({"name": "%s_R%g_%s" % (kind, R, "v" if vertical else "h"),
+                               "shape": sh, "density": rho, "count": 1,
+                               "position": [0, 0, Z0],
+                               "orientation": tilt_quat(rng, vertical)})
+                meta.append((R, vertical))
+    sc = {"version": 1, "fluid": vc.uniform_fluid(RHO_F, NU), "gravity": [0, 0, -G],
+          "effects": "auto", "integrator": {"scheme": "splitting", "dt": 5e-4},
+          "duration": 6.0, "seed": seed, "ground": {"z": 0.0}, "bodies": bodies,
+          "output": {"every": DT_OUT, "formats": ["csv"]}}
+    return sc, meta
+
+
+def segments(tr, j, R, vertical):
+    """Howison et al.'s segmentation of body j's trajectory: list of (label, dz/time, lateral),
+    label "steady" (initial steady/periodic part), "tumbling" or "chaotic"."""
+    x, y, z = tr["x"][:, j] - tr["x"][0, j], tr["y"][:, j] - tr["y"][0, j], tr["z"][:, j]
+    qw, qx, qy = tr["qw"][:, j], tr["qx"][:, j], tr["qy"][:, j]
+    nz = 1 - 2 * (qx * qx + qy * qy)   # world z of the body's z axis (the plate normal)
+    keep = np.nonzero(z >= 0.05)[0]
+    n = keep[-1] + 1 if len(keep) else 0
+    if n < 3:
+        return []
+    lat = np.hypot(x[:n], y[:n])
+    out = []
+
+    def seg(a, b, label=None):
+        dz = abs(z[b - 1] - z[a])
+        t = (b - a) * DT_OUT
+        if label is None:
+            s = np.sign(nz[a:b])
+            label = "tumbling" if np.count_nonzero(np.diff(s[s != 0]) != 0) >= 4 else "chaotic"
+        out.append((label, dz / t, math.hypot(x[b - 1] - x[a], y[b - 1] - y[a])))
+
+    if not vertical:
+        tc = int(np.argmax(lat >= 0.2 * R)) if (lat >= 0.2 * R).any() else n - 1
+        if tc > 2:
+            seg(0, tc + 1, "steady")
+            if n - tc > 10:
+                seg(tc, n)
+        else:
+            seg(0, n)
+    else:
+        tc = int(np.argmax(lat >= 0.01)) if (lat >= 0.01).any() else n - 1
+        if n - tc > 10:
+            seg(tc, n)
+    return out
+
+
+def bin_stats(segs):
+    v = [s[1] for s in segs]
+    lat = [s[2] for s in segs]
+    nt = sum(s[0] == "tumbling" for s in segs)
+    nc = sum(s[0] == "chaotic" for s in segs)
+    return dict(n=len(segs), median_speed=float(np.median(v)) if v else math.nan,
+                median_lateral=float(np.median(lat)) if lat else math.nan,
+                n_tumbling=nt, n_chaotic=nc, n_steady=sum(s[0] == "steady" for s in segs),
+                tumbling_fraction=nt / (nt + nc) if nt + nc else math.nan)
+
+
+def ladder(args, st, n_per):
+    """The squares' drops with the effects added one at a time: which term slows the descent."""
+    steps = (("gravity, buoyancy, drag", ["gravity", "buoyancy", "drag"]),
+             ("+ added mass", ["gravity", "buoyancy", "drag", "added_mass"]),
+             ("+ lift (auto)", "auto"))
+    lines = ["| effects | R (cm) | median segment speed (m/s) | median whole-drop speed (m/s) | "
+             "median lateral (m) | tumbling fraction | fastest rise (m/s) |",
+             "|---|---|---|---|---|---|---|"]
+    for label, eff in steps:
+        sc, meta = drop_scene("square", n_per, 7)
+        sc["effects"] = eff
+        tr, _, _ = vc.run_scene(args, sc, st.path("ladder_%d" % len(lines)))
+        for R in RADII:
+            segs, whole, rise = [], [], 0.0
+            for j, (Rj, vertical) in enumerate(meta):
+                if Rj != R:
+                    continue
+                segs += segments(tr, j, R, vertical)
+                low = np.nonzero(tr["z"][:, j] <= 0.05)[0]
+                if len(low):
+                    whole.append((Z0 - 0.05) / tr["t"][low[0], j])
+                rise = max(rise, float(np.max(tr["vz"][:, j])))
+            m = bin_stats(segs)
+            lines.append("| %s | %.3g | %.2f | %s | %.2f | %s | %.2f |" % (
+                label, 100 * R, m["median_speed"],
+                "%.2f (%d of %d landed)" % (np.median(whole), len(whole), 2 * n_per) if whole
+                else "none landed in 6 s", m["median_lateral"],
+                "%.2f" % m["tumbling_fraction"] if m["n_tumbling"] + m["n_chaotic"] else "–",
+                rise))
+    st.table(["Squares, the effects added one at a time (%d drops per release and radius; "
+              "data: 0.70–0.73 m/s):" % n_per, ""] + lines)
+
+
+def terminal_checks(args, st):
+    """Broadside terminal velocity of a square, a disk and a 5:1 rectangle of paper."""
+    cases = (("square", 1.0, 1.18), ("circle", 1.0, 1.17), ("square", 5.0, 1.2))
+    bodies = []
+    for kind, ar, _ in cases:
+        sh, rho = shape_of(kind, 0.025, ar)
+        bodies.append({"name": "%s_%g" % (kind, ar), "shape": sh, "density": rho, "count": 1,
+                       "position": [0, 0, 0]})
+    sc = {"version": 1, "fluid": vc.uniform_fluid(RHO_F, NU), "gravity": [0, 0, -G],
+          "effects": ["gravity", "buoyancy", "drag"],
+          "integrator": {"scheme": "splitting", "dt": 5e-4}, "duration": 3.0, "seed": 1,
+          "bodies": bodies, "output": {"every": 0.01, "formats": ["csv"]}}
+    tr, _, _ = vc.run_scene(args, sc, st.path("terminal"))
+    t = tr["t"][:, 0]
+    last = t >= t[-1] - 0.5
+    for j, (kind, ar, cd) in enumerate(cases):
+        R = 0.025
+        if kind == "square":
+            S, vol = 4 * R * R * ar, 4 * R * R * ar * H
+            m = RHO_BOX * vol
+        else:
+            S, vol = math.pi * R * R * ar, 4.0 / 3.0 * math.pi * R * R * ar * H / 2
+            m = RHO_ELL * vol
+        ref = math.sqrt(2 * (m - RHO_F * vol) * G / (RHO_F * S * cd))
+        meas = -float(np.mean(tr["vz"][last, j]))
+        label = {("square", 1.0): "square", ("circle", 1.0): "disk",
+                 ("square", 5.0): "5:1 rectangle"}[(kind, ar)]
+        st.check("broadside terminal velocity, paper %s (%s, Re = %.0f)" % (
+            label, "R = 2.5 cm" if ar == 1 else "2.5 × 12.5 cm half sides", meas * 2 * R / NU),
+            meas, ref, 0.05, "White, Fluid Mechanics, Table 7.3 (after Hoerner 1965): "
+            "C_D = %.2f" % cd, unit="m/s", rel=True,
+            note="the model's Stokes part adds ~0.3 %%; tilt stays %.1g°" % math.degrees(
+                math.acos(min(1.0, abs(1 - 2 * (tr["qx"][-1, j] ** 2 + tr["qy"][-1, j] ** 2))))))
+
+
+def main():
+    args = vc.parse_args()
+    st = vc.Study("paper_drops", "Paper drops: 70 g/m² circles and squares against Howison et "
+                  "al. 2020; broadside terminal velocities", args)
+    with open(os.path.join(HERE, "reference.json")) as f:
+        ref = json.load(f)
+    terminal_checks(args, st)
+    n_per = 3 if args.quick else 10
+    model = {}
+    for kind, ref_key, seed in (("square", "square", 7), ("circle", "circle", 8)):
+        sc, meta = drop_scene(kind, n_per, seed)
+        tr, summ, _ = vc.run_scene(args, sc, st.path("drops_%s" % kind))
+        per_bin = {R: [] for R in RADII}
+        for j, (R, vertical) in enumerate(meta):
+            per_bin[R] += segments(tr, j, R, vertical)
+        model[kind] = [bin_stats(per_bin[R]) for R in RADII]
+        role = "used to reject a model variant" if kind == "square" else "independent check"
+        for R, m, r in zip(RADII, model[kind], ref[ref_key]):
+            rng_txt = "R %.1f–%.1f cm" % (100 * r["r_lo"], 100 * r["r_hi"])
+            src = "Howison et al. 2020 data (%d segments), %s" % (r["n"], role)
+            st.check("%s %s: median descent speed (%d segments)" % (kind, rng_txt, m["n"]),
+                     m["median_speed"], r["median_speed"], 0.15, src, unit="m/s", rel=True)
+            ratio = m["median_lateral"] / r["median_lateral"]
+            st.check("%s %s: median lateral displacement" % (kind, rng_txt),
+                     m["median_lateral"], r["median_lateral"], 0, src, unit="m",
+                     tol_text="factor 1.5", verdict="PASS" if 1 / 1.5 <= ratio <= 1.5 else "FAIL",
+                     note="ratio %.2f" % ratio)
+        fr_m = [m["tumbling_fraction"] for m in model[kind]]
+        fr_r = [r["n_tumbling"] / max(1, r["n_tumbling"] + r["n_chaotic"]) for r in ref[ref_key]]
+        ok = fr_m[0] >= 0.5 and fr_m[-1] <= 0.3
+        st.check("%s: tumbling fraction, smallest → largest bin" % kind,
+                 " ".join("%.2f" % f for f in fr_m), " ".join("%.2f" % f for f in fr_r), 0,
+                 "Howison et al. 2020 data, %s" % role,
+                 tol_text="≥ 0.5 smallest, ≤ 0.3 largest", verdict="PASS" if ok else "FAIL")
+        st.note("%s drops (%d per release and radius): " % (kind, n_per) + "; ".join(
+            "R = %.3g cm: %d segments (%d steady start, %d tumbling, %d chaotic), median %.2f m/s, "
+            "lateral %.2f m" % (100 * R, m["n"], m["n_steady"], m["n_tumbling"], m["n_chaotic"],
+                                m["median_speed"], m["median_lateral"])
+            for R, m in zip(RADII, model[kind])))
+    ladder(args, st, n_per)
+    with open(st.path("model_bins.json"), "w") as f:
+        json.dump(model, f, indent=1)
+    fig, axs = plt.subplots(1, 3, figsize=(12, 3.6))
+    for kind, col in (("square", "tab:blue"), ("circle", "tab:red")):
+        rc = [100 * 0.5 * (r["r_lo"] + r["r_hi"]) for r in ref[kind]]
+        mc = [100 * R for R in RADII]
+        axs[0].plot(rc, [r["median_speed"] for r in ref[kind]], "o-", color=col,
+                    label="%s, data" % kind)
+        axs[0].plot(mc, [m["median_speed"] for m in model[kind]], "s--", color=col, mfc="none",
+                    label="%s, lrigid" % kind)
+        axs[1].plot(rc, [r["median_lateral"] for r in ref[kind]], "o-", color=col)
+        axs[1].plot(mc, [m["median_lateral"] for m in model[kind]], "s--", color=col, mfc="none")
+        axs[2].plot(rc, [r["n_tumbling"] / max(1, r["n_tumbling"] + r["n_chaotic"])
+                         for r in ref[kind]], "o-", color=col)
+        axs[2].plot(mc, [m["tumbling_fraction"] for m in model[kind]], "s--", color=col,
+                    mfc="none")
+    for a, yl in zip(axs, ("median descent speed (m/s)", "median lateral displacement (m)",
+                           "tumbling fraction")):
+        a.set_xlabel("radius or half side R (cm)")
+        a.set_ylabel(yl)
+    axs[0].legend(fontsize=7)
+    fig.tight_layout()
+    st.savefig(fig, "paper_drops.png", "Paper drops (70 g/m², 1 m, still air): Howison et al. "
+               "2020's medians per radius bin (circles, full lines) against lrigid (squares, "
+               "dashed), per segment as in their classification")
+    st.finish()
+
+
+if __name__ == "__main__":
+    main()
