@@ -18,6 +18,7 @@
 #include "effects/registry.h"
 #include "effects/turbulence.h"
 #include "fluid/trilinear.h"
+#include "integrate/contacts.h"
 #include "integrate/dynamics.h"
 #include "integrate/integrators.h"
 #include "integrate/sphere_batch.h"
@@ -82,6 +83,10 @@ struct FieldConsts {
   bool ground = false;
   double ground_z = 0, half[3] = {0, 0, 0};
   uint64_t seed = 0;
+  // contacts (integrate/contacts.h): the ground or the grid's solids collide; has_wall: the
+  // samples carry the wall distance (Samples::wall); reach: the body type's bounding radius, m
+  bool contacts = false, walls_collide = false, has_wall = false;
+  double reach = 0;
 };
 
 void set_field_consts(const Model& model, const BodyType& type, FieldConsts* fc) {
@@ -119,6 +124,10 @@ void set_field_consts(const Model& model, const BodyType& type, FieldConsts* fc)
   }
   fc->ground = model.has_ground;
   fc->ground_z = model.ground_z;
+  fc->contacts = model.contacts();
+  fc->walls_collide = model.walls_collide();
+  fc->has_wall = fc->grid && model.field.has_wall_distance();
+  fc->reach = type.reach;
   for (int a = 0; a < 3; ++a) fc->half[a] = type.half_extents[a];
   fc->seed = model.seed;
 }
@@ -152,6 +161,10 @@ struct Samples {
   alignas(64) T gs[3][kBatch];   // grad sigma2
   alignas(64) T acc[3][kBatch];  // (grad U) U: the mean flow's acceleration (steady field)
   alignas(64) T inside[kBatch];  // 1 in the fluid, 0 outside
+  // the wall distance at the sample where all 8 corners are valid (m), -1 where some is not (a
+  // wall within a cell), +infinity outside the grid's box or without the array: the batched
+  // steps' one comparison with the body's reach (integrate/contacts.h)
+  alignas(64) T wall[kBatch];
   // the exact OU half step's coefficients at the sample (ou_exact): a steady field gives the
   // second half step of one step and the first of the next the same ones
   alignas(64) T decay[kBatch];  // exp(-alpha h/2)
@@ -188,6 +201,7 @@ LRIGID_IVDEP
       lanes->sigma2[j] = T(u.sigma2);
       const bool fin = std::isfinite(x[0][j]) && std::isfinite(x[1][j]) && std::isfinite(x[2][j]);
       lanes->inside[j] = fin ? T(1) : T(0);
+      lanes->wall[j] = T(HUGE_VAL);
     }
     return;
   }
@@ -245,6 +259,8 @@ LRIGID_IVDEP
     in = in & (nvalid > 0) & (v[6] >= T(0.5));
     allv[j] = nvalid == 8 ? T(1) : T(0);
     lanes->inside[j] = in ? T(1) : T(0);
+    // slot 7: the valid-weighted wall distance, the plain blend where all corners are valid
+    lanes->wall[j] = (!fc.has_wall || inbox[j] == 0) ? T(HUGE_VAL) : (nvalid == 8 ? v[7] : T(-1));
 #pragma GCC unroll 8
     for (int p = 0; p < 8; ++p) {
       val[p][j] = v[p];
@@ -418,11 +434,14 @@ LRIGID_IVDEP
     for (int a = 0; a < 3; ++a) next->us[a][j] = us[a];
     // & rather than && on the lanes' conditions: no branches in the loop
     const bool in = (inside0[j] != T(0)) & (!sample | (lanes->inside[j] != T(0)));
+    // colliding walls: a lane that left the fluid by the half-weight rule within the grid's box
+    // takes the scalar step, whose sample counts a wall distance >= 0 as fluid (field.h)
+    const bool at_wall = fc.walls_collide & !in & (lanes->wall[j] < T(HUGE_VAL));
     const T x[3] = {next->x[0][j], next->x[1][j], next->x[2][j]};
     const T v[3] = {next->vel[0][j], next->vel[1][j], next->vel[2][j]};
     const T w[3] = {next->w[0][j], next->w[1][j], next->w[2][j]};
     const T q[4] = {next->q[0][j], next->q[1][j], next->q[2][j], next->q[3][j]};
-    outcome[j] = outcome_bits(x, q, v, w, us, in, next->scalar[j] != 0);
+    outcome[j] = outcome_bits(x, q, v, w, us, in, (next->scalar[j] != 0) | at_wall);
     landed[j] = lane_landed(fc, q, x[2]);
   }
   for (int j = 0; j < kBatch; ++j) outcome[j] = decode_outcome(outcome[j]);
@@ -524,7 +543,15 @@ BlockStats drive_block(const Model& model, const BodyType& type, const FieldCons
       StepOutcome out = StepOutcome::Ok;
       std::string reason;
       bool land = landed[j] != 0;
-      if (outcome[j] == kScalar) {
+      // the lane kept its state at the start of the step: a lane heading into a colliding
+      // ground below the grid's bottom takes the speculative contact and the scalar step
+      bool redo = outcome[j] == kScalar;
+      if (outcome[j] == kOutside && fc.contacts) {
+        lanes->store(j, &b);
+        redo = heads_into_ground(model, type, b) && speculative_ground_contact(model, type, &b);
+        if (redo) lanes->load(j, b);
+      }
+      if (redo) {
         lanes->store(j, &b);
         b.history = lanes->history[j];  // step_body appends to it
         ++stats.scalar_steps;
@@ -544,6 +571,21 @@ BlockStats drive_block(const Model& model, const BodyType& type, const FieldCons
       }
       if (out == StepOutcome::Ok) {
         ++stats.body_steps;
+        if (fc.contacts) {
+          // one comparison per surface: near the ground (the bounding box reaches it) or a wall
+          const bool near = land | (fc.walls_collide & (double(lanes->wall[j]) <= fc.reach));
+          if (!near) {
+            mark_flying(&st, i);
+            continue;
+          }
+          lanes->store(j, &b);
+          b.history = lanes->history[j];
+          const bool asleep = contact_after_step(model, type, i, t + model.dt, &b, &st);
+          lanes->load(j, b);
+          resample(j, j + 1);
+          if (asleep) lanes->live[j] = false;
+          continue;
+        }
         if (!land) continue;
         st.status[i] = BodyStatus::Landed;
         st.t_stop[i] = t + model.dt;
