@@ -198,10 +198,14 @@ RunStats simulate(const Model& model, State* state, const RunOptions& options) {
   }
   stats.steps = st.step;
   stats.wall_seconds = wall;
-  for (const BodyStatus s : st.status) {
+  stats.resting = 0;
+  for (size_t i = 0; i < st.size(); ++i) {
+    const BodyStatus s = st.status[i];
     if (s == BodyStatus::Landed) ++stats.landed;
     if (s == BodyStatus::Exited) ++stats.exited;
     if (s == BodyStatus::Failed) ++stats.failed;
+    stats.resting += s == BodyStatus::Sleeping ||
+                     (s == BodyStatus::Moving && st.contact[i] == ContactState::Resting);
   }
   return stats;
 }

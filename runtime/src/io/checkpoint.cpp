@@ -12,7 +12,7 @@ namespace lrigid {
 
 namespace {
 
-constexpr char kMagic[8] = {'L', 'R', 'I', 'G', 'C', 'K', 'P', '1'};
+constexpr char kMagic[8] = {'L', 'R', 'I', 'G', 'C', 'K', 'P', '2'};
 
 struct Fnv {
   uint64_t h = 1469598103934665603ull;
