@@ -326,6 +326,9 @@ Model compile_model(const Scene& scene, FluidField field, const AddedMassProvide
   m.body_count = first;
   m.field = std::move(field);
   m.field.set_walls_collide(m.walls_contact == ContactMode::Collide);
+  // a colliding ground at (or just below) the grid's bottom
+  m.field.set_floor_clamp(m.ground_collides() && !m.field.is_uniform() &&
+                          m.ground_z <= m.field.geometry().origin.z() + 1e-9);
   // the shapes' contact points: edge points of boxes at most half a grid cell apart (below that
   // the interpolated wall distance rounds a solid's corner off anyway)
   const double gap = m.field.is_uniform() ? 0.0 : 0.5 * m.field.geometry().spacing.minCoeff();

@@ -186,6 +186,12 @@ void FluidField::set_walls_collide(bool on) {
   id_ = next_field_id++;
 }
 
+void FluidField::set_floor_clamp(bool on) {
+  if (on == floor_clamp_) return;
+  floor_clamp_ = on;
+  id_ = next_field_id++;
+}
+
 bool FluidField::wall_distance(const Vec3& x, double t, double* d, Vec3* gradient) const {
   *d = HUGE_VAL;
   gradient->setZero();
@@ -240,7 +246,9 @@ bool FluidField::sample_frame(const std::vector<GridRecord>& frame, const Vec3& 
   int i0[3];
   double f[3];
   for (int a = 0; a < 3; ++a) {
-    const double s = (x[a] - g.origin[a]) / g.spacing[a];
+    double s = (x[a] - g.origin[a]) / g.spacing[a];
+    // within a cell below the bottom face: the bottom layer (set_floor_clamp)
+    if (a == 2 && floor_clamp_ && s < 0.0 && s >= -1.0) s = 0.0;
     if (!(s >= 0.0 && s <= double(g.n[a] - 1))) {  // also false for NaN
       out->wall_distance = HUGE_VAL;
       return false;
@@ -274,7 +282,9 @@ bool FluidField::sample_frame(const std::vector<GridRecord>& frame, const Vec3& 
   out->wall_distance = wall;
   // the wall lies between a valid and an invalid grid point: x is in the fluid when the valid
   // corners carry at least half of the trilinear weight (the wall at mid-spacing, error <= h/2)
-  if (nvalid == 0 || (W < 0.5 && !(walls_collide_ && has_wall_distance_ && wall >= 0))) return false;
+  // (with colliding walls the contacts keep the bodies out of the solids: any valid corner
+  // gives the flow, field.h set_walls_collide)
+  if (nvalid == 0 || (W < 0.5 && !(walls_collide_ && has_wall_distance_))) return false;
   const double inv = 1.0 / W;
   out->U = Vec3(v[0], v[1], v[2]) * inv;
   out->alpha = v[3] * inv;

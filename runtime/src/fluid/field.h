@@ -124,12 +124,19 @@ class FluidField {
   // (and d = +infinity) outside the grid's box, on a uniform field or a grid without the array.
   bool wall_distance(const Vec3& x, double t, double* d, Vec3* gradient) const;
   // Bodies collide with the grid's solids (scene key walls.contact = "collide", on a grid with
-  // the wall distance): a point counts as in the fluid also where the valid corners carry less
-  // than half of the weight, if its wall distance is >= 0 (the collision keeps the bodies'
-  // contact points there; the half-weight rule alone would stop a body lying on a roof whose
-  // real surface is below the mid-point between a valid and an invalid grid point).
+  // the wall distance): a point counts as in the fluid wherever some corner is valid, also where
+  // the valid corners carry less than half of the weight (the contacts keep the bodies' points
+  // at wall distance >= 0; the half-weight rule would stop a body lying on a roof or the ground
+  // whose real surface is below the mid-point between a valid and an invalid grid point).
   void set_walls_collide(bool on);  // (a new content id: the sample cache forgets)
   bool walls_collide() const { return walls_collide_ && has_wall_distance_; }
+  // A colliding ground at the grid's bottom (scene key ground.contact = "collide"): a point at
+  // most one grid cell below the grid's bottom face samples the bottom layer instead of being
+  // outside. A step may end a little below the ground (turbulence pushing a body lying on it),
+  // and the contact after the step moves it back up; without this the ground, which usually
+  // is the grid's bottom, would stop such a body.
+  void set_floor_clamp(bool on);
+  bool floor_clamp() const { return floor_clamp_; }
   const GridGeometry& geometry() const { return geometry_; }
   size_t frame_count() const { return frames_.size(); }
   const std::vector<double>& times() const { return times_; }
@@ -162,6 +169,7 @@ class FluidField {
   // the first frame has a wall distance (set when it is read, by prepare() for a stream)
   mutable bool has_wall_distance_ = false;
   bool walls_collide_ = false;
+  bool floor_clamp_ = false;
 };
 
 }  // namespace lrigid

@@ -86,6 +86,7 @@ struct FieldConsts {
   // contacts (integrate/contacts.h): the ground or the grid's solids collide; has_wall: the
   // samples carry the wall distance (Samples::wall); reach: the body type's bounding radius, m
   bool contacts = false, walls_collide = false, has_wall = false;
+  bool floor_clamp = false;  // FluidField::floor_clamp
   double reach = 0;
 };
 
@@ -127,6 +128,7 @@ void set_field_consts(const Model& model, const BodyType& type, FieldConsts* fc)
   fc->contacts = model.contacts();
   fc->walls_collide = model.walls_collide();
   fc->has_wall = fc->grid && model.field.has_wall_distance();
+  fc->floor_clamp = fc->grid && model.field.floor_clamp();
   fc->reach = type.reach;
   for (int a = 0; a < 3; ++a) fc->half[a] = type.half_extents[a];
   fc->seed = model.seed;
@@ -224,6 +226,8 @@ LRIGID_IVDEP
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
       T s = (x[a][j] - T(fc.origin[a])) / T(fc.spacing[a]);
+      // within a cell below the bottom face: the bottom layer (FluidField::set_floor_clamp)
+      s = (a == 2) & fc.floor_clamp & (s < T(0)) & (s >= T(-1)) ? T(0) : s;
       in &= int(s >= T(0)) & int(s <= T(fc.upper_index[a]));
       // clamped so that every lane reads inside the grid, also lanes outside it
       s = s > T(0) ? s : T(0);
@@ -256,7 +260,8 @@ LRIGID_IVDEP
     V8 v, d0, d1, d2;
     const int nvalid = trilinear_record<T, true>(rec + idx, off, f, &v, &d0, &d1, &d2);
     // slot 6 of v: the weight W of the valid corners
-    in = in & (nvalid > 0) & (v[6] >= T(0.5));
+    // (colliding walls: any valid corner, as FluidField::sample_frame)
+    in = in & (nvalid > 0) & ((v[6] >= T(0.5)) | fc.walls_collide);
     allv[j] = nvalid == 8 ? T(1) : T(0);
     lanes->inside[j] = in ? T(1) : T(0);
     // slot 7: the valid-weighted wall distance, the plain blend where all corners are valid
@@ -434,14 +439,11 @@ LRIGID_IVDEP
     for (int a = 0; a < 3; ++a) next->us[a][j] = us[a];
     // & rather than && on the lanes' conditions: no branches in the loop
     const bool in = (inside0[j] != T(0)) & (!sample | (lanes->inside[j] != T(0)));
-    // colliding walls: a lane that left the fluid by the half-weight rule within the grid's box
-    // takes the scalar step, whose sample counts a wall distance >= 0 as fluid (field.h)
-    const bool at_wall = fc.walls_collide & !in & (lanes->wall[j] < T(HUGE_VAL));
     const T x[3] = {next->x[0][j], next->x[1][j], next->x[2][j]};
     const T v[3] = {next->vel[0][j], next->vel[1][j], next->vel[2][j]};
     const T w[3] = {next->w[0][j], next->w[1][j], next->w[2][j]};
     const T q[4] = {next->q[0][j], next->q[1][j], next->q[2][j], next->q[3][j]};
-    outcome[j] = outcome_bits(x, q, v, w, us, in, (next->scalar[j] != 0) | at_wall);
+    outcome[j] = outcome_bits(x, q, v, w, us, in, next->scalar[j] != 0);
     landed[j] = lane_landed(fc, q, x[2]);
   }
   for (int j = 0; j < kBatch; ++j) outcome[j] = decode_outcome(outcome[j]);

@@ -1,5 +1,6 @@
 #include "integrate/contacts.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "effects/contact.h"
@@ -104,6 +105,14 @@ bool contact_after_step(const Model& model, const BodyType& type, size_t i, doub
     return false;
   }
   const Vec3 v0 = b->v, w0 = b->w;
+  // the fastest approach of a touching point: an impact (a contact event) when it is above the
+  // resting threshold, or when the body was flying
+  double approach = 0;
+  for (int p = 0; p < c.count; ++p) {
+    const Vec3 rb(c.r[3 * p], c.r[3 * p + 1], c.r[3 * p + 2]);
+    const Vec3 nb(c.n[3 * p], c.n[3 * p + 1], c.n[3 * p + 2]);
+    approach = std::max(approach, -(v0 + w0.cross(rb)).dot(nb));
+  }
   double dx[3];
   // M^-1 is symmetric: its column-major data is its row-major data
   contact_resolve(*type.contact, type.M_inv.data(), b->v.data(), b->w.data(), c.count, c.r, c.n,
@@ -131,7 +140,7 @@ bool contact_after_step(const Model& model, const BodyType& type, size_t i, doub
     rests = (b->v + b->w.cross(rb)).norm() < still;
   }
   rests = rests && b->w.norm() * type.reach < still;
-  if (st->contact[i] == ContactState::Flying) ++st->impacts[i];
+  if (st->contact[i] == ContactState::Flying && approach > model.rest_speed) ++st->impacts[i];
   if (c.ground && std::isnan(st->t_touch[i])) {
     st->t_touch[i] = t_end;
     st->x_touch[i] = b->x;

@@ -33,7 +33,8 @@ struct State {
   // contacts (integrate/contacts.h)
   std::vector<ContactState> contact;  // (nbody) after the body's last step
   std::vector<uint32_t> rest_steps;   // (nbody) steps it has rested in a row
-  std::vector<uint32_t> impacts;      // (nbody) contact events: touches after flying
+  std::vector<uint32_t> impacts;      // (nbody) contact events: impacts after flying, faster
+                                      // than Model::rest_speed
   std::vector<double> t_touch;        // (nbody) first touchdown on the ground, s (NaN: none)
   std::vector<Vec3> x_touch;          // (nbody) where (centre of mass), world, m
   std::vector<uint8_t> hidden;        // (nbody) 1: left the grid, "outside" is "remove"
