@@ -227,7 +227,7 @@ LRIGID_LANE ContactOut<T> contact_kernel(const ContactParams& k, const T* Minv, 
 
 // Several contact points touching at once (a box flat on the ground, a plate across a roof
 // edge): projected Gauss-Seidel on the accumulated impulses (Catto's sequential impulses),
-// `passes` sweeps over the points. Each sweep gives point i first the normal impulse change
+// at most `passes` sweeps over the points (fewer once converged, kContactTolerance). Each sweep gives point i first the normal impulse change
 // that brings its normal velocity to target_i -- -e times its normal velocity before the first
 // sweep, 0 when it approached slower than k.rest_speed -- with the accumulated normal impulse
 // kept >= 0 (points never pull); then the friction impulse along its slip velocity that would
@@ -240,6 +240,9 @@ LRIGID_LANE ContactOut<T> contact_kernel(const ContactParams& k, const T* Minv, 
 // that carry a normal impulse. At most kContactMaxPoints points. It loops and branches per
 // point: one body at a time (a batched loop calls it per lane).
 constexpr int kContactMaxPoints = 64;
+// contact_resolve stops sweeping when a sweep changes no impulse by more than this fraction of
+// the largest accumulated normal impulse
+constexpr double kContactTolerance = 1e-6;
 template <typename T>
 int contact_resolve(const ContactParams& k, const T* Minv, T* v, T* w, int count, const T* r,
                     const T* n, const T* depth, int passes, T* dx) {
@@ -280,7 +283,10 @@ int contact_resolve(const ContactParams& k, const T* Minv, T* v, T* w, int count
     cross3(w, ri, wxr);
     for (int a = 0; a < 3; ++a) vc[a] = v[a] + wxr[a];
   };
-  for (int p = 0; p < passes; ++p)
+  for (int p = 0; p < passes; ++p) {
+    // the sweep's largest impulse change against the largest accumulated impulse: converged
+    // when it is below kContactTolerance of it (a resting body: after 2 or 3 sweeps)
+    T change = T(0), scale = T(0);
     for (int i = 0; i < m; ++i) {
       if (!(depth[i] >= T(0))) continue;
       const T *ri = r + 3 * i, *ni = n + 3 * i;
@@ -291,6 +297,8 @@ int contact_resolve(const ContactParams& k, const T* Minv, T* v, T* w, int count
       const T jn_new = std::max(T(0), Jn[i] + (target[i] - dot3(vc, ni)) / dot3(ni, Kn));
       T J[3];
       for (int a = 0; a < 3; ++a) J[a] = (jn_new - Jn[i]) * ni[a];
+      change = std::max(change, std::abs(jn_new - Jn[i]));
+      scale = std::max(scale, jn_new);
       Jn[i] = jn_new;
       apply(ri, J);
       // friction: along the slip, the impulse that stops it (effective mass t.K t), the
@@ -308,14 +316,17 @@ int contact_resolve(const ContactParams& k, const T* Minv, T* v, T* w, int count
       T Jt_new[3];
       for (int a = 0; a < 3; ++a) Jt_new[a] = Jt[i][a] + jt * t[a];
       const T norm = std::sqrt(dot3(Jt_new, Jt_new)), cap = mu * Jn[i];
-      const T scale = norm > cap ? cap / norm : T(1);
+      const T clip = norm > cap ? cap / norm : T(1);
       for (int a = 0; a < 3; ++a) {
-        Jt_new[a] *= scale;
+        Jt_new[a] *= clip;
         J[a] = Jt_new[a] - Jt[i][a];
         Jt[i][a] = Jt_new[a];
       }
+      change = std::max(change, std::sqrt(dot3(J, J)));
       apply(ri, J);
     }
+    if (change <= T(kContactTolerance) * scale) break;
+  }
   int carrying = 0;
   for (int i = 0; i < m; ++i) carrying += Jn[i] > T(0);
   return carrying;

@@ -30,6 +30,9 @@ void gather(const Model& m, const BodyType& type, const BodyState& b, const Mat3
             double ahead, Touching* out) {
   const ContactParams& k = *type.contact;
   const Mat3 Rt = R.transpose();
+  // points on the ground need no wall check: the grid's floor is the ground, twice the same
+  // constraint would only cost
+  uint8_t on_ground[kContactMaxPoints * 4] = {};
   auto point_velocity = [&](const Vec3& rb) { return R * (b.v + b.w.cross(rb)); };
   if (m.ground_collides() && b.x.z() - type.reach <= m.ground_z) {
     const Vec3 ez(0, 0, 1);
@@ -48,7 +51,11 @@ void gather(const Model& m, const BodyType& type, const BodyState& b, const Mat3
       for (size_t p = 0; p < k.count(); ++p) {
         const Vec3 rb(k.points[3 * p], k.points[3 * p + 1], k.points[3 * p + 2]);
         const double d = ground_depth(rb);
-        if (d >= 0) out->add(rb, nb, d), out->ground = true;
+        if (d >= 0) {
+          out->add(rb, nb, d);
+          out->ground = true;
+          if (p < sizeof on_ground) on_ground[p] = 1;
+        }
       }
     }
   }
@@ -72,6 +79,8 @@ void gather(const Model& m, const BodyType& type, const BodyState& b, const Mat3
     // the support point against the wall's normal at the centre
     const double gn = gc.norm();
     if (!(gn > 0)) return;
+    // the grid's floor under a body already on the ground: the same constraint
+    if (out->ground && gc.z() > 0.99 * gn) return;
     const Vec3 nb = Rt * (gc / gn);
     Vec3 rb;
     ellipsoid_support_point(k, nb.data(), rb.data());
@@ -79,6 +88,7 @@ void gather(const Model& m, const BodyType& type, const BodyState& b, const Mat3
     if (d >= 0) out->add(rb, Rt * nw, d);
   } else {
     for (size_t p = 0; p < k.count(); ++p) {
+      if (p < sizeof on_ground && on_ground[p]) continue;
       const Vec3 rb(k.points[3 * p], k.points[3 * p + 1], k.points[3 * p + 2]);
       const double d = wall(rb, &nw);
       if (d >= 0) out->add(rb, Rt * nw, d);
