@@ -168,6 +168,7 @@ void ResultWriter::save(BinaryOut& out) {
   out.vec(gltf_.times);
   out.vec(gltf_.x);
   out.vec(gltf_.q);
+  out.vec(gltf_.hidden);
 }
 
 void ResultWriter::restore(BinaryIn& in) {
@@ -186,6 +187,7 @@ void ResultWriter::restore(BinaryIn& in) {
   in.vec(&gltf_.times);
   in.vec(&gltf_.x);
   in.vec(&gltf_.q);
+  in.vec(&gltf_.hidden);
   if (csv_) {
     // lines written after the checkpoint are written again
     if (std::fflush(csv_) != 0 || ::ftruncate(fileno(csv_), off_t(csv_bytes)) != 0 ||
