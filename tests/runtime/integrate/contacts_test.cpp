@@ -256,3 +256,52 @@ TEST(ContactsBatched, LeavesAndBeadsOnTheGroundMatchTheScalarStep) {
 
 }  // namespace
 }  // namespace lrigid
+
+namespace lrigid {
+namespace {
+
+// A ball at rest on the ground falls asleep after Model::sleep_time; in a time-dependent field
+// it wakes at the next frame time (the flow around it changed) and, still at rest, sleeps again.
+TEST(Sleeping, RestingBallSleepsAndWakesWhenTheFlowChanges) {
+  const GridGeometry g = test::grid_geometry(3, 3, 3, Vec3(-1, -1, 0), Vec3(1, 1, 1));
+  RawGridFrame a = test::grid_frame(g, [](const Vec3&, Vec3*, double*, double*) { return true; });
+  RawGridFrame b = a;
+  a.time = 0;
+  b.time = 1.5;
+  for (const bool transient : {false, true}) {
+    Scene s = test::sphere_scene(0.05, 1000, 1.2, 1.5e-5);
+    s.uniform_field = false;
+    s.effects = test::effects({Effect::Gravity, Effect::MeanFlow, Effect::Drag});
+    s.bodies[0].position = Vec3(0, 0, 0.05);
+    s.has_ground = true;
+    s.dt = 1e-3;
+    s.duration = 2.0;
+    std::vector<RawGridFrame> frames{a};
+    if (transient) frames.push_back(b);
+    const Model m = test::compile(
+        s, FluidField::grid(g, frames, 1.5e-5, Drift::Stationary, TimeMode::Clamp));
+    State st = initial_state(m, s);
+    std::vector<std::pair<double, BodyStatus>> seen;
+    RunOptions o;
+    o.every = 0.1;
+    o.on_output = [&](const State& x) { seen.emplace_back(x.t, x.status[0]); };
+    const RunStats stats = simulate(m, &st, o);
+    // asleep from about sleep_time on
+    for (const auto& [t, status] : seen) {
+      if (t > m.sleep_time + 0.05 && t < 1.45) {
+        EXPECT_EQ(status, BodyStatus::Sleeping) << "t = " << t;
+      }
+      if (t < m.sleep_time - 0.05) {
+        EXPECT_EQ(status, BodyStatus::Moving) << "t = " << t;
+      }
+    }
+    // the steps it took: about sleep_time of them, plus sleep_time again after the wake
+    const double steps = double(stats.body_steps) * s.dt;
+    EXPECT_NEAR(steps, transient ? 2 * m.sleep_time : m.sleep_time, 0.15)
+        << (transient ? "transient" : "steady");
+    EXPECT_NEAR(st.x[0].z(), 0.05, 1e-6);
+  }
+}
+
+}  // namespace
+}  // namespace lrigid
