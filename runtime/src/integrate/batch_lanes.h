@@ -87,6 +87,7 @@ struct FieldConsts {
   // samples carry the wall distance (Samples::wall); reach: the body type's bounding radius, m
   bool contacts = false, walls_collide = false, has_wall = false;
   bool floor_clamp = false;  // FluidField::floor_clamp
+  bool ground_collide = false;  // Model::ground_collides
   double reach = 0;
 };
 
@@ -127,6 +128,7 @@ void set_field_consts(const Model& model, const BodyType& type, FieldConsts* fc)
   fc->ground_z = model.ground_z;
   fc->contacts = model.contacts();
   fc->walls_collide = model.walls_collide();
+  fc->ground_collide = model.ground_collides();
   fc->has_wall = fc->grid && model.field.has_wall_distance();
   fc->floor_clamp = fc->grid && model.field.floor_clamp();
   fc->reach = type.reach;
@@ -574,19 +576,22 @@ BlockStats drive_block(const Model& model, const BodyType& type, const FieldCons
       if (out == StepOutcome::Ok) {
         ++stats.body_steps;
         if (fc.contacts) {
-          // one comparison per surface: near the ground (the bounding box reaches it) or a wall
-          const bool near = land | (fc.walls_collide & (double(lanes->wall[j]) <= fc.reach));
+          // one comparison per surface: near a colliding ground (the bounding box reaches it)
+          // or a wall
+          const bool near = (land & fc.ground_collide) |
+                            (fc.walls_collide & (double(lanes->wall[j]) <= fc.reach));
           if (!near) {
             mark_flying(&st, i);
-            continue;
+          } else {
+            lanes->store(j, &b);
+            b.history = lanes->history[j];
+            const bool asleep = contact_after_step(model, type, i, t + model.dt, &b, &st);
+            lanes->load(j, b);
+            resample(j, j + 1);
+            if (asleep) lanes->live[j] = false;
           }
-          lanes->store(j, &b);
-          b.history = lanes->history[j];
-          const bool asleep = contact_after_step(model, type, i, t + model.dt, &b, &st);
-          lanes->load(j, b);
-          resample(j, j + 1);
-          if (asleep) lanes->live[j] = false;
-          continue;
+          // a ground with "stop" still lands the bodies (walls colliding)
+          if (!lanes->live[j] || fc.ground_collide) continue;
         }
         if (!land) continue;
         st.status[i] = BodyStatus::Landed;

@@ -305,3 +305,32 @@ TEST(Sleeping, RestingBallSleepsAndWakesWhenTheFlowChanges) {
 
 }  // namespace
 }  // namespace lrigid
+
+namespace lrigid {
+namespace {
+
+// ground.contact "stop" with colliding walls: the ground still lands the bodies, on the scalar
+// and on the batched step.
+TEST(GroundStopWallsCollide, TheGroundStillLandsTheBody) {
+  for (const bool batched : {false, true}) {
+    Scene s = test::sphere_scene(0.05, 1000, 1.2, 1.5e-5);
+    s.uniform_field = false;
+    s.effects = test::effects({Effect::Gravity, Effect::MeanFlow, Effect::Drag});
+    s.bodies[0].position = Vec3(0, 0, 0.5);
+    s.has_ground = true;
+    s.ground_z = 0;
+    s.ground_contact = ContactMode::Stop;
+    s.dt = 1e-3;
+    s.duration = 1.0;
+    s.batched = batched;
+    const Model m = test::compile(s, inclined_wall_grid(Vec3(1, 0, 0), Vec3(-0.9, 0, 0)));
+    ASSERT_TRUE(m.walls_collide());
+    ASSERT_FALSE(m.ground_collides());
+    State st = initial_state(m, s);
+    simulate(m, &st, RunOptions{});
+    EXPECT_EQ(st.status[0], BodyStatus::Landed) << (batched ? "batched" : "scalar");
+  }
+}
+
+}  // namespace
+}  // namespace lrigid
