@@ -242,7 +242,7 @@ LRIGID_LANE ContactOut<T> contact_kernel(const ContactParams& k, const T* Minv, 
 constexpr int kContactMaxPoints = 64;
 // contact_resolve stops sweeping when a sweep changes no impulse by more than this fraction of
 // the largest accumulated normal impulse
-constexpr double kContactTolerance = 1e-6;
+constexpr double kContactTolerance = 1e-9;
 template <typename T>
 int contact_resolve(const ContactParams& k, const T* Minv, T* v, T* w, int count, const T* r,
                     const T* n, const T* depth, int passes, T* dx) {
