@@ -17,8 +17,9 @@ Error.__doc__ = ("Bad input (scene, shape, grid, arguments): the message names t
                  "dict, the key and the value, as the lrigid command's does.")
 
 # status codes of Simulation.status (as in bodies.pvd's "status" array)
-MOVING, LANDED, EXITED, FAILED = 0, 1, 2, 3
-STATUS_NAMES = ("moving", "landed", "exited", "failed")
+# SLEEPING: resting on a surface where the flow cannot move it (docs/contacts.md)
+MOVING, LANDED, EXITED, FAILED, SLEEPING = 0, 1, 2, 3, 4
+STATUS_NAMES = ("moving", "landed", "exited", "failed", "sleeping")
 
 
 def _dumps(d, what):
@@ -73,7 +74,7 @@ class Simulation(_lrigid.Simulation):
     State (NumPy arrays, copies; one row per body, in the order of trajectories.csv):
     ``positions`` (N, 3) centre of mass, m; ``orientations`` (N, 4) body -> world quaternion
     w, x, y, z; ``velocities`` (N, 3) m/s and ``angular_velocities`` (N, 3) rad/s in world axes
-    (as trajectories.csv); ``status`` (N,) uint8 (MOVING, LANDED, EXITED, FAILED); ``types``
+    (as trajectories.csv); ``status`` (N,) uint8 (MOVING, LANDED, EXITED, FAILED, SLEEPING); ``types``
     (N,) index into ``type_names``; ``stop_times`` (s) and ``reasons`` of stopped bodies.
 
     Changing the state between steps: assign a whole array, e.g.
@@ -136,4 +137,4 @@ class Grid(_lrigid.Grid):
 
 
 __all__ = ["Error", "Scene", "Simulation", "Grid", "added_mass", "explain", "MOVING", "LANDED",
-           "EXITED", "FAILED", "STATUS_NAMES"]
+           "EXITED", "FAILED", "SLEEPING", "STATUS_NAMES"]

@@ -206,9 +206,11 @@ class Simulation {
     const Vec6 after = type.M_inv_times(type.M_times(nu) + dp);
     state_.v[i] = after.head<3>();
     state_.w[i] = after.tail<3>();
-    if (state_.status[i] == BodyStatus::Landed) {  // a landed body pushed moves again
+    // a landed or sleeping body pushed moves again
+    if (state_.status[i] == BodyStatus::Landed || state_.status[i] == BodyStatus::Sleeping) {
       state_.status[i] = BodyStatus::Moving;
       state_.t_stop[i] = 0;
+      if (i < state_.rest_steps.size()) state_.rest_steps[i] = 0;
     }
   }
 

@@ -62,6 +62,7 @@ vtkSmartPointer<vtkPolyData> bodies_at(const GltfAnimation& a, size_t f,
   col->SetName("colour");
   col->SetNumberOfComponents(3);
   for (size_t b = 0; b < nb; ++b) {
+    if (a.hidden_at(f, b)) continue;  // removed at the grid's edge ("outside": "remove")
     const TriangleMesh& s = a.types[size_t(a.body_type[b])].surface;
     const Mat3 R = a.q[f * nb + b].normalized().toRotationMatrix();
     const Vec3& x = a.x[f * nb + b];

@@ -133,15 +133,21 @@ void run(const RunArgs& a, const Ranks& ranks) {
   Progress progress("lrigid", quiet ? Progress::Mode::Quiet : Progress::Mode::Auto);
   if (!quiet)
     opt.on_progress = [&](const State& s, double f) {
-      size_t moving = 0, landed = 0, exited = 0;
-      for (const BodyStatus b : s.status) {
+      size_t moving = 0, landed = 0, exited = 0, resting = 0;
+      for (size_t i = 0; i < s.size(); ++i) {
+        const BodyStatus b = s.status[i];
         moving += b == BodyStatus::Moving;
         landed += b == BodyStatus::Landed;
         exited += b == BodyStatus::Exited || b == BodyStatus::Failed;
+        // resting on a surface or asleep there (integrate/contacts.h)
+        resting += b == BodyStatus::Sleeping ||
+                   (b == BodyStatus::Moving && i < s.contact.size() &&
+                    s.contact[i] == ContactState::Resting);
       }
-      char buf[160];
-      std::snprintf(buf, sizeof buf, "t = %.3f / %.3f s, moving %zu, landed %zu, stopped %zu", s.t,
-                    model.duration, moving, landed, exited);
+      char buf[200];
+      std::snprintf(buf, sizeof buf,
+                    "t = %.3f / %.3f s, moving %zu, resting %zu, landed %zu, stopped %zu", s.t,
+                    model.duration, moving, resting, landed, exited);
       progress.update(f, buf);
     };
   RunStats stats = simulate(model, &state, opt);
@@ -169,11 +175,12 @@ void run(const RunArgs& a, const Ranks& ranks) {
   if (!a.quiet) {
     std::fprintf(stderr,
                  "lrigid: %zu bodies, %llu body-steps in %.3f s (%.3g body-steps/s); landed %zu, "
-                 "exited %zu, failed %zu\nlrigid: results in %s\n",
+                 "exited %zu, failed %zu; resting or asleep on a surface %zu\n"
+                 "lrigid: results in %s\n",
                  state.size(), static_cast<unsigned long long>(stats.body_steps),
                  stats.wall_seconds,
                  stats.wall_seconds > 0 ? stats.body_steps / stats.wall_seconds : 0.0, stats.landed,
-                 stats.exited, stats.failed, writer->dir().c_str());
+                 stats.exited, stats.failed, stats.resting, writer->dir().c_str());
   }
 }
 

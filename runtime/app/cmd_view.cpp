@@ -325,7 +325,10 @@ class Viewer {
   // the bodies still in the domain (flying or resting) as glyph points
   void update_bodies(const ViewFrame& f) {
     size_t n = 0;
-    for (const BodyStatus s : f.status) n += s == BodyStatus::Moving || s == BodyStatus::Landed;
+    auto shown = [](BodyStatus s) {
+      return s == BodyStatus::Moving || s == BodyStatus::Landed || s == BodyStatus::Sleeping;
+    };
+    for (const BodyStatus s : f.status) n += shown(s);
     pts_->SetNumberOfPoints(vtkIdType(n));
     q_->SetNumberOfTuples(vtkIdType(n));
     index_->SetNumberOfTuples(vtkIdType(n));
@@ -334,7 +337,7 @@ class Viewer {
     vtkIdType k = 0;
     float vmax = 0;
     for (size_t i = 0; i < f.x.size(); ++i) {
-      if (f.status[i] != BodyStatus::Moving && f.status[i] != BodyStatus::Landed) continue;
+      if (!shown(f.status[i])) continue;
       pts_->SetPoint(k, f.x[i].data());
       const Quat& q = f.q[i];
       q_->SetTuple4(k, q.w(), q.x(), q.y(), q.z());

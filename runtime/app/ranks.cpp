@@ -28,7 +28,9 @@ void block(size_t n, size_t r, size_t p, size_t* begin, size_t* end) {
   *end = *begin + base + (r < extra ? 1 : 0);
 }
 
-constexpr int kPerBody = 18;  // doubles: x 3, q 4, v 3, w 3, u_seen 3, t_stop, status
+// doubles: x 3, q 4, v 3, w 3, u_seen 3, t_stop, status, contact, impacts, t_touch, x_touch 3,
+// hidden
+constexpr int kPerBody = 25;
 
 }  // namespace
 
@@ -73,7 +75,10 @@ void Ranks::gather(State* state, bool reasons) const {
                                   s.q[i].z(),      s.v[i].x(),      s.v[i].y(),
                                   s.v[i].z(),      s.w[i].x(),      s.w[i].y(),
                                   s.w[i].z(),      s.u_seen[i].x(), s.u_seen[i].y(),
-                                  s.u_seen[i].z(), s.t_stop[i],     double(s.status[i])};
+                                  s.u_seen[i].z(), s.t_stop[i],     double(s.status[i]),
+                                  double(s.contact[i]), double(s.impacts[i]),
+                                  s.t_touch[i],    s.x_touch[i].x(), s.x_touch[i].y(),
+                                  s.x_touch[i].z(), double(s.hidden[i])};
     mine.insert(mine.end(), rec, rec + kPerBody);
   }
   const size_t nr = static_cast<size_t>(size_);
@@ -98,6 +103,12 @@ void Ranks::gather(State* state, bool reasons) const {
       s.u_seen[i] = Vec3(p[13], p[14], p[15]);
       s.t_stop[i] = p[16];
       s.status[i] = static_cast<BodyStatus>(static_cast<int>(p[17]));
+      // contacts (integrate/contacts.h): the state, events and first touchdown the outputs show
+      s.contact[i] = static_cast<ContactState>(static_cast<int>(p[18]));
+      s.impacts[i] = static_cast<uint32_t>(p[19]);
+      s.t_touch[i] = p[20];
+      s.x_touch[i] = Vec3(p[21], p[22], p[23]);
+      s.hidden[i] = static_cast<uint8_t>(p[24]);
     }
   }
   if (!reasons) return;

@@ -174,7 +174,7 @@ void ViewSimulation::publish() {
     f.speed[i] = float(state_.v[i].norm());
     const BodyStatus s = state_.status[i];
     f.flying += s == BodyStatus::Moving;
-    f.resting += s == BodyStatus::Landed;
+    f.resting += s == BodyStatus::Landed || s == BodyStatus::Sleeping;
     f.exited += s == BodyStatus::Exited || s == BodyStatus::Failed;
   }
   f.body_steps_per_second = rate_body_steps_;

@@ -255,7 +255,9 @@ def study_case(st, args, name, cfg):
     scene = {"version": 1, "fluid": {"density": RHO_F, "kinematic_viscosity": NU, "field": grid},
              "gravity": [0, 0, -9.81], "effects": ["gravity", "buoyancy", "drag", "mean_flow"],
              "integrator": {"scheme": "splitting", "dt": cfg["dt"]}, "duration": end, "seed": 1,
-             "ground": {"z": 0.0}, "bodies": bodies,
+             "ground": {"z": 0.0, "contact": "stop"}, "walls": {"contact": "stop"},
+             "outside": "stop",  # OpenFOAM's parcels stick where they land or hit the cube
+             "bodies": bodies,
              "output": {"every": cfg["write"], "formats": ["csv"]}}
     tr, summ, out = vc.run_scene(args, scene, st.path("%s_lrigid_nodisp" % name))
     land_lr = {}

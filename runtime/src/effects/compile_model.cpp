@@ -1,5 +1,7 @@
 #include "effects/compile_model.h"
 
+#include "effects/contact.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -287,6 +289,11 @@ Model compile_model(const Scene& scene, FluidField field, const AddedMassProvide
   m.drift = scene.drift;
   m.has_ground = scene.has_ground;
   m.ground_z = scene.ground_z;
+  m.ground_contact = scene.ground_contact;
+  m.walls_contact = scene.walls_contact;
+  m.outside = scene.outside;
+  // an impact slower than what gravity adds in a few steps does not bounce (no jitter at rest)
+  m.rest_speed = std::max(0.02, 4 * scene.gravity.norm() * scene.dt);
   m.mean_flow_scale = scene.mean_flow_scale;
   m.turbulence_scale = scene.turbulence_scale;
   const FlowScales flow = scene.effects_auto ? flow_scales(scene, field) : FlowScales();
@@ -319,6 +326,21 @@ Model compile_model(const Scene& scene, FluidField field, const AddedMassProvide
   if (m.types.size() > 65535) fail_input(scene.file, "bodies", "more than 65535 body variants");
   m.body_count = first;
   m.field = std::move(field);
+  m.field.set_walls_collide(m.walls_contact == ContactMode::Collide);
+  // a colliding ground at (or just below) the grid's bottom
+  m.field.set_floor_clamp(m.ground_collides() && !m.field.is_uniform() &&
+                          m.ground_z <= m.field.geometry().origin.z() + 1e-9);
+  // the shapes' contact points: edge points of boxes at most half a grid cell apart (below that
+  // the interpolated wall distance rounds a solid's corner off anyway)
+  const double gap = m.field.is_uniform() ? 0.0 : 0.5 * m.field.geometry().spacing.minCoeff();
+  for (BodyType& t : m.types) {
+    const BodySpec& b = scene.bodies[t.spec];
+    auto k = std::make_shared<ContactParams>(
+        contact_params(t, b.contact.restitution, b.contact.friction, gap));
+    k->rest_speed = m.rest_speed;
+    t.contact = std::move(k);
+    t.reach = t.half_extents.norm() + t.com.norm();
+  }
   return m;
 }
 
@@ -334,6 +356,12 @@ State initial_state(const Model& model, const Scene& scene) {
   s.status.assign(n, BodyStatus::Moving);
   s.t_stop.assign(n, 0.0);
   s.reason.assign(n, std::string());
+  s.contact.assign(n, ContactState::Flying);
+  s.rest_steps.assign(n, 0);
+  s.impacts.assign(n, 0);
+  s.t_touch.assign(n, std::nan(""));
+  s.x_touch.assign(n, Vec3::Zero());
+  s.hidden.assign(n, 0);
   s.history_offset.assign(n, State::kNoHistory);
   size_t hist = 0;
   for (const BodyType& type : model.types)

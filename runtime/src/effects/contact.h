@@ -9,9 +9,10 @@
 // centre of mass), as the state's v and w and the model's M^-1 are: the caller turns the wall's
 // normal into the body frame and the position correction back into the world frame.
 //
-// NOT YET CALLED BY THE STEPS: the scalar and batched steps still stop a body at the ground and
-// at the solids (integrate/stops.cpp); wiring these kernels in is the next part of issue 23.
+// Called after each step by integrate/contacts.h (the scalar step and the batched steps alike,
+// for bodies near a surface), with the scene's ground.contact / walls.contact "collide".
 #pragma once
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -27,6 +28,9 @@ struct BodyType;
 struct ContactParams {
   double restitution = 0;  // e in [0, 1]: normal velocity after / before (Newton), -
   double friction = 0;     // mu >= 0: Coulomb friction coefficient, -
+  // contact_resolve: a point approaching slower than this does not bounce (its target normal
+  // velocity is 0, not -e v_n): no jitter of resting bodies under gravity, m/s
+  double rest_speed = 0;
   // sphere and ellipsoid: the contact point is the support point of the surface against the
   // wall's normal (ellipsoid_support_point); semi-axes along the body axes and the shape's
   // centre minus the centre of mass, m
@@ -223,21 +227,29 @@ LRIGID_LANE ContactOut<T> contact_kernel(const ContactParams& k, const T* Minv, 
 
 // Several contact points touching at once (a box flat on the ground, a plate across a roof
 // edge): projected Gauss-Seidel on the accumulated impulses (Catto's sequential impulses),
-// `passes` sweeps over the points. Each sweep gives point i the impulse change that would bring
-// its velocity to (target_i n) -- normal rebound target -e times its normal velocity before the
-// first sweep, no slip -- then projects its accumulated impulse J_i onto the friction cone
-// (J_i.n >= 0, |J_i,t| <= mu J_i.n): points never pull, and friction never exceeds mu times
-// the normal impulse. Points with depth < 0 (not touching) take none. v and w (body frame) are
-// updated in place; dx receives the deepest point's position correction (body frame). Returns
-// the number of points that carry a normal impulse. At most kContactMaxPoints points. It loops
-// and branches per point: one body at a time (a batched loop calls it per lane).
+// at most `passes` sweeps over the points (fewer once converged, kContactTolerance). Each sweep gives point i first the normal impulse change
+// that brings its normal velocity to target_i -- -e times its normal velocity before the first
+// sweep, 0 when it approached slower than k.rest_speed -- with the accumulated normal impulse
+// kept >= 0 (points never pull); then the friction impulse along its slip velocity that would
+// stop it (effective mass 1 / t.K t), with the accumulated tangential impulse scaled back onto
+// the cone |J_t| <= mu J_n. Normal and friction impulses are solved one after the other, so a
+// sliding point's friction is mu J_n against its slip exactly (a 3x3 solve with a radial
+// projection of the coupled impulse would lose part of it to the rotation coupling). Points
+// with depth < 0 (not touching) take none. v and w (body frame) are updated in place; dx
+// receives the deepest point's position correction (body frame). Returns the number of points
+// that carry a normal impulse. At most kContactMaxPoints points. It loops and branches per
+// point: one body at a time (a batched loop calls it per lane).
 constexpr int kContactMaxPoints = 64;
+// contact_resolve stops sweeping when a sweep changes no impulse by more than this fraction of
+// the largest accumulated normal impulse
+constexpr double kContactTolerance = 1e-9;
 template <typename T>
 int contact_resolve(const ContactParams& k, const T* Minv, T* v, T* w, int count, const T* r,
                     const T* n, const T* depth, int passes, T* dx) {
   const int m = count < kContactMaxPoints ? count : kContactMaxPoints;
   const T mu = T(k.friction);
-  T target[kContactMaxPoints], Ki[kContactMaxPoints][9], Jacc[kContactMaxPoints][3];
+  T target[kContactMaxPoints], K[kContactMaxPoints][9], Jn[kContactMaxPoints],
+      Jt[kContactMaxPoints][3];
   T best = T(0);
   dx[0] = dx[1] = dx[2] = T(0);
   for (int i = 0; i < m; ++i) {
@@ -246,59 +258,77 @@ int contact_resolve(const ContactParams& k, const T* Minv, T* v, T* w, int count
     cross3(w, ri, wxr);
     for (int a = 0; a < 3; ++a) vc[a] = v[a] + wxr[a];
     const T vn = dot3(vc, n + 3 * i);
-    target[i] = vn < T(0) ? -T(k.restitution) * vn : T(0);
-    // K^-1 of the point (K: velocity change per unit impulse, symmetric positive definite)
-    T K[9], dvc[3], dv[3], dw[3];
+    target[i] = vn < -T(k.rest_speed) ? -T(k.restitution) * vn : T(0);
+    // K of the point: its velocity change per unit impulse (symmetric positive definite)
+    T dvc[3], dv[3], dw[3];
     for (int j = 0; j < 3; ++j) {
       const T ej[3] = {T(j == 0), T(j == 1), T(j == 2)};
       contact_response(Minv, ri, ej, dvc, dv, dw);
-      K[j] = dvc[0], K[3 + j] = dvc[1], K[6 + j] = dvc[2];
+      K[i][j] = dvc[0], K[i][3 + j] = dvc[1], K[i][6 + j] = dvc[2];
     }
-    const T idet = T(1) / (K[0] * (K[4] * K[8] - K[5] * K[7]) -
-                           K[1] * (K[3] * K[8] - K[5] * K[6]) +
-                           K[2] * (K[3] * K[7] - K[4] * K[6]));
-    const T inv[9] = {(K[4] * K[8] - K[5] * K[7]), (K[2] * K[7] - K[1] * K[8]),
-                      (K[1] * K[5] - K[2] * K[4]), (K[5] * K[6] - K[3] * K[8]),
-                      (K[0] * K[8] - K[2] * K[6]), (K[2] * K[3] - K[0] * K[5]),
-                      (K[3] * K[7] - K[4] * K[6]), (K[1] * K[6] - K[0] * K[7]),
-                      (K[0] * K[4] - K[1] * K[3])};
-    for (int q = 0; q < 9; ++q) Ki[i][q] = inv[q] * idet;
-    Jacc[i][0] = Jacc[i][1] = Jacc[i][2] = T(0);
+    Jn[i] = T(0);
+    Jt[i][0] = Jt[i][1] = Jt[i][2] = T(0);
     if (depth[i] > best) {
       best = depth[i];
       for (int a = 0; a < 3; ++a) dx[a] = depth[i] * n[3 * i + a];
     }
   }
-  for (int p = 0; p < passes; ++p)
+  auto apply = [&](const T* ri, const T* J) {
+    T dvc[3], dv[3], dw[3];
+    contact_response(Minv, ri, J, dvc, dv, dw);
+    for (int a = 0; a < 3; ++a) v[a] += dv[a], w[a] += dw[a];
+  };
+  auto point_velocity = [&](const T* ri, T* vc) {
+    T wxr[3];
+    cross3(w, ri, wxr);
+    for (int a = 0; a < 3; ++a) vc[a] = v[a] + wxr[a];
+  };
+  for (int p = 0; p < passes; ++p) {
+    // the sweep's largest impulse change against the largest accumulated impulse: converged
+    // when it is below kContactTolerance of it (a resting body: after 2 or 3 sweeps)
+    T change = T(0), scale = T(0);
     for (int i = 0; i < m; ++i) {
       if (!(depth[i] >= T(0))) continue;
       const T *ri = r + 3 * i, *ni = n + 3 * i;
-      T wxr[3], vc[3];
-      cross3(w, ri, wxr);
-      for (int a = 0; a < 3; ++a) vc[a] = v[a] + wxr[a];
-      T want[3], dJ[3], Jn[3];
-      for (int a = 0; a < 3; ++a) want[a] = target[i] * ni[a] - vc[a];
-      mul(Ki[i], want, dJ);
-      for (int a = 0; a < 3; ++a) Jn[a] = Jacc[i][a] + dJ[a];
-      // onto the friction cone
-      const T jn = dot3(Jn, ni);
-      T jt[3];
-      for (int a = 0; a < 3; ++a) jt[a] = Jn[a] - jn * ni[a];
-      const T jt_norm = std::sqrt(dot3(jt, jt));
-      const T jn_c = jn > T(0) ? jn : T(0);
-      const T scale = jt_norm > mu * jn_c ? mu * jn_c / jt_norm : T(1);
-      T delta[3];
+      // the normal impulse: the point's normal velocity to its target, never pulling
+      T vc[3], Kn[3];
+      point_velocity(ri, vc);
+      mul(K[i], ni, Kn);
+      const T jn_new = std::max(T(0), Jn[i] + (target[i] - dot3(vc, ni)) / dot3(ni, Kn));
+      T J[3];
+      for (int a = 0; a < 3; ++a) J[a] = (jn_new - Jn[i]) * ni[a];
+      change = std::max(change, std::abs(jn_new - Jn[i]));
+      scale = std::max(scale, jn_new);
+      Jn[i] = jn_new;
+      apply(ri, J);
+      // friction: along the slip, the impulse that stops it (effective mass t.K t), the
+      // accumulated tangential impulse kept within the cone |J_t| <= mu J_n
+      point_velocity(ri, vc);
+      const T vn = dot3(vc, ni);
+      T vt[3];
+      for (int a = 0; a < 3; ++a) vt[a] = vc[a] - vn * ni[a];
+      const T slip = std::sqrt(dot3(vt, vt));
+      if (!(slip > T(0))) continue;
+      T t[3], Kt[3];
+      for (int a = 0; a < 3; ++a) t[a] = vt[a] / slip;
+      mul(K[i], t, Kt);
+      const T jt = -slip / dot3(t, Kt);
+      T Jt_new[3];
+      for (int a = 0; a < 3; ++a) Jt_new[a] = Jt[i][a] + jt * t[a];
+      const T norm = std::sqrt(dot3(Jt_new, Jt_new)), cap = mu * Jn[i];
+      const T clip = norm > cap ? cap / norm : T(1);
       for (int a = 0; a < 3; ++a) {
-        Jn[a] = jn_c * ni[a] + scale * jt[a];
-        delta[a] = Jn[a] - Jacc[i][a];
-        Jacc[i][a] = Jn[a];
+        Jt_new[a] *= clip;
+        J[a] = Jt_new[a] - Jt[i][a];
+        Jt[i][a] = Jt_new[a];
       }
-      T dvc[3], dv[3], dw[3];
-      contact_response(Minv, ri, delta, dvc, dv, dw);
-      for (int a = 0; a < 3; ++a) v[a] += dv[a], w[a] += dw[a];
+      change = std::max(change, std::sqrt(dot3(J, J)));
+      apply(ri, J);
     }
+    if (change <= T(kContactTolerance) * scale) break;
+  }
   int carrying = 0;
-  for (int i = 0; i < m; ++i) carrying += dot3(Jacc[i], n + 3 * i) > T(0);
+  for (int i = 0; i < m; ++i) carrying += Jn[i] > T(0);
   return carrying;
 }
 

@@ -180,6 +180,60 @@ bool FluidField::in_box(const Vec3& x) const {
   return true;
 }
 
+void FluidField::set_walls_collide(bool on) {
+  if (on == walls_collide_) return;
+  walls_collide_ = on;
+  id_ = next_field_id++;
+}
+
+void FluidField::set_floor_clamp(bool on) {
+  if (on == floor_clamp_) return;
+  floor_clamp_ = on;
+  id_ = next_field_id++;
+}
+
+bool FluidField::wall_distance(const Vec3& x, double t, double* d, Vec3* gradient) const {
+  *d = HUGE_VAL;
+  gradient->setZero();
+  if (frames_.empty() || !has_wall_distance_) return false;
+  const GridGeometry& g = geometry_;
+  int i0[3];
+  double f[3];
+  for (int a = 0; a < 3; ++a) {
+    const double s = (x[a] - g.origin[a]) / g.spacing[a];
+    if (!(s >= 0.0 && s <= double(g.n[a] - 1))) return false;
+    int i = static_cast<int>(s);
+    if (i > g.n[a] - 2) i = g.n[a] - 2;
+    i0[a] = i;
+    f[a] = s - i;
+  }
+  // the solids do not move: any resident frame holds the same distances
+  size_t i, j;
+  double lam;
+  bracket(t, &i, &j, &lam);
+  const std::vector<GridRecord>& frame = frames_[i];
+  const int sy = g.n[0], sz = g.n[0] * g.n[1];
+  const size_t base = size_t(i0[0]) + size_t(i0[1]) * sy + size_t(i0[2]) * sz;
+  const size_t off[8] = {0, 1, size_t(sy), size_t(1 + sy), size_t(sz), size_t(1 + sz),
+                         size_t(sy + sz), size_t(1 + sy + sz)};
+  double dist = 0;
+  Vec3 grad = Vec3::Zero();
+  for (int c = 0; c < 8; ++c) {
+    const double w[3] = {(c & 1) ? f[0] : 1 - f[0], (c & 2) ? f[1] : 1 - f[1],
+                         (c & 4) ? f[2] : 1 - f[2]};
+    const double s[3] = {(c & 1) ? 1.0 : -1.0, (c & 2) ? 1.0 : -1.0, (c & 4) ? 1.0 : -1.0};
+    const double r = double(frame[base + off[c]].wall_distance);
+    dist += w[0] * w[1] * w[2] * r;
+    grad[0] += s[0] * w[1] * w[2] * r;
+    grad[1] += w[0] * s[1] * w[2] * r;
+    grad[2] += w[0] * w[1] * s[2] * r;
+  }
+  for (int a = 0; a < 3; ++a) grad[a] /= g.spacing[a];
+  *d = dist;
+  *gradient = grad;
+  return true;
+}
+
 size_t FluidField::bytes() const {
   size_t b = 0;
   for (const auto& fr : frames_) b += fr.size() * sizeof(GridRecord);
@@ -192,7 +246,9 @@ bool FluidField::sample_frame(const std::vector<GridRecord>& frame, const Vec3& 
   int i0[3];
   double f[3];
   for (int a = 0; a < 3; ++a) {
-    const double s = (x[a] - g.origin[a]) / g.spacing[a];
+    double s = (x[a] - g.origin[a]) / g.spacing[a];
+    // within a cell below the bottom face: the bottom layer (set_floor_clamp)
+    if (a == 2 && floor_clamp_ && s < 0.0 && s >= -1.0) s = 0.0;
     if (!(s >= 0.0 && s <= double(g.n[a] - 1))) {  // also false for NaN
       out->wall_distance = HUGE_VAL;
       return false;
@@ -226,7 +282,9 @@ bool FluidField::sample_frame(const std::vector<GridRecord>& frame, const Vec3& 
   out->wall_distance = wall;
   // the wall lies between a valid and an invalid grid point: x is in the fluid when the valid
   // corners carry at least half of the trilinear weight (the wall at mid-spacing, error <= h/2)
-  if (nvalid == 0 || W < 0.5) return false;
+  // (with colliding walls the contacts keep the bodies out of the solids: any valid corner
+  // gives the flow, field.h set_walls_collide)
+  if (nvalid == 0 || (W < 0.5 && !(walls_collide_ && has_wall_distance_))) return false;
   const double inv = 1.0 / W;
   out->U = Vec3(v[0], v[1], v[2]) * inv;
   out->alpha = v[3] * inv;

@@ -119,6 +119,24 @@ class FluidField {
   bool has_wall_distance() const { return has_wall_distance_; }
   // x lies in the grid's box (always true for a uniform field)
   bool in_box(const Vec3& x) const;
+  // The wall distance at x (m, the plain trilinear blend of FluidSample::wall_distance) and its
+  // gradient (1, world frame; the wall's normal where it is not zero), at time t's frame. false
+  // (and d = +infinity) outside the grid's box, on a uniform field or a grid without the array.
+  bool wall_distance(const Vec3& x, double t, double* d, Vec3* gradient) const;
+  // Bodies collide with the grid's solids (scene key walls.contact = "collide", on a grid with
+  // the wall distance): a point counts as in the fluid wherever some corner is valid, also where
+  // the valid corners carry less than half of the weight (the contacts keep the bodies' points
+  // at wall distance >= 0; the half-weight rule would stop a body lying on a roof or the ground
+  // whose real surface is below the mid-point between a valid and an invalid grid point).
+  void set_walls_collide(bool on);  // (a new content id: the sample cache forgets)
+  bool walls_collide() const { return walls_collide_ && has_wall_distance_; }
+  // A colliding ground at the grid's bottom (scene key ground.contact = "collide"): a point at
+  // most one grid cell below the grid's bottom face samples the bottom layer instead of being
+  // outside. A step may end a little below the ground (turbulence pushing a body lying on it),
+  // and the contact after the step moves it back up; without this the ground, which usually
+  // is the grid's bottom, would stop such a body.
+  void set_floor_clamp(bool on);
+  bool floor_clamp() const { return floor_clamp_; }
   const GridGeometry& geometry() const { return geometry_; }
   size_t frame_count() const { return frames_.size(); }
   const std::vector<double>& times() const { return times_; }
@@ -150,6 +168,8 @@ class FluidField {
   std::shared_ptr<Stream> stream_;  // null unless streamed
   // the first frame has a wall distance (set when it is read, by prepare() for a stream)
   mutable bool has_wall_distance_ = false;
+  bool walls_collide_ = false;
+  bool floor_clamp_ = false;
 };
 
 }  // namespace lrigid

@@ -18,6 +18,7 @@
 #include "effects/registry.h"
 #include "effects/turbulence.h"
 #include "fluid/trilinear.h"
+#include "integrate/contacts.h"
 #include "integrate/dynamics.h"
 #include "integrate/integrators.h"
 #include "integrate/sphere_batch.h"
@@ -90,6 +91,12 @@ struct FieldConsts {
   bool ground = false;
   double ground_z = 0, half[3] = {0, 0, 0};
   uint64_t seed = 0;
+  // contacts (integrate/contacts.h): the ground or the grid's solids collide; has_wall: the
+  // samples carry the wall distance (Samples::wall); reach: the body type's bounding radius, m
+  bool contacts = false, walls_collide = false, has_wall = false;
+  bool floor_clamp = false;  // FluidField::floor_clamp
+  bool ground_collide = false;  // Model::ground_collides
+  double reach = 0;
 };
 
 void set_field_consts(const Model& model, const BodyType& type, FieldConsts* fc) {
@@ -127,6 +134,12 @@ void set_field_consts(const Model& model, const BodyType& type, FieldConsts* fc)
   }
   fc->ground = model.has_ground;
   fc->ground_z = model.ground_z;
+  fc->contacts = model.contacts();
+  fc->walls_collide = model.walls_collide();
+  fc->ground_collide = model.ground_collides();
+  fc->has_wall = fc->grid && model.field.has_wall_distance();
+  fc->floor_clamp = fc->grid && model.field.floor_clamp();
+  fc->reach = type.reach;
   for (int a = 0; a < 3; ++a) fc->half[a] = type.half_extents[a];
   fc->seed = model.seed;
 }
@@ -160,6 +173,10 @@ struct Samples {
   alignas(64) T gs[3][kBatch];   // grad sigma2
   alignas(64) T acc[3][kBatch];  // (grad U) U: the mean flow's acceleration (steady field)
   alignas(64) T inside[kBatch];  // 1 in the fluid, 0 outside
+  // the wall distance at the sample where all 8 corners are valid (m), -1 where some is not (a
+  // wall within a cell), +infinity outside the grid's box or without the array: the batched
+  // steps' one comparison with the body's reach (integrate/contacts.h)
+  alignas(64) T wall[kBatch];
   // the exact OU half step's coefficients at the sample (ou_exact): a steady field gives the
   // second half step of one step and the first of the next the same ones
   alignas(64) T decay[kBatch];  // exp(-alpha h/2)
@@ -196,6 +213,7 @@ LRIGID_IVDEP
       lanes->sigma2[j] = T(u.sigma2);
       const bool fin = std::isfinite(x[0][j]) && std::isfinite(x[1][j]) && std::isfinite(x[2][j]);
       lanes->inside[j] = fin ? T(1) : T(0);
+      lanes->wall[j] = T(HUGE_VAL);
     }
     return;
   }
@@ -218,6 +236,8 @@ LRIGID_IVDEP
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
       T s = (x[a][j] - T(fc.origin[a])) / T(fc.spacing[a]);
+      // within a cell below the bottom face: the bottom layer (FluidField::set_floor_clamp)
+      s = (a == 2) & fc.floor_clamp & (s < T(0)) & (s >= T(-1)) ? T(0) : s;
       in &= int(s >= T(0)) & int(s <= T(fc.upper_index[a]));
       // clamped so that every lane reads inside the grid, also lanes outside it
       s = s > T(0) ? s : T(0);
@@ -250,9 +270,12 @@ LRIGID_IVDEP
     V8 v, d0, d1, d2;
     const int nvalid = trilinear_record<T, true>(rec + idx, off, f, &v, &d0, &d1, &d2);
     // slot 6 of v: the weight W of the valid corners
-    in = in & (nvalid > 0) & (v[6] >= T(0.5));
+    // (colliding walls: any valid corner, as FluidField::sample_frame)
+    in = in & (nvalid > 0) & ((v[6] >= T(0.5)) | fc.walls_collide);
     allv[j] = nvalid == 8 ? T(1) : T(0);
     lanes->inside[j] = in ? T(1) : T(0);
+    // slot 7: the valid-weighted wall distance, the plain blend where all corners are valid
+    lanes->wall[j] = (!fc.has_wall || inbox[j] == 0) ? T(HUGE_VAL) : (nvalid == 8 ? v[7] : T(-1));
 #pragma GCC unroll 8
     for (int p = 0; p < 8; ++p) {
       val[p][j] = v[p];
@@ -532,7 +555,15 @@ BlockStats drive_block(const Model& model, const BodyType& type, const FieldCons
       StepOutcome out = StepOutcome::Ok;
       std::string reason;
       bool land = landed[j] != 0;
-      if (outcome[j] == kScalar) {
+      // the lane kept its state at the start of the step: a lane heading into a colliding
+      // ground below the grid's bottom takes the speculative contact and the scalar step
+      bool redo = outcome[j] == kScalar;
+      if (outcome[j] == kOutside && fc.contacts) {
+        lanes->store(j, &b);
+        redo = heads_into_ground(model, type, b) && speculative_ground_contact(model, type, &b);
+        if (redo) lanes->load(j, b);
+      }
+      if (redo) {
         lanes->store(j, &b);
         b.history = lanes->history[j];  // step_body appends to it
         ++stats.scalar_steps;
@@ -552,6 +583,24 @@ BlockStats drive_block(const Model& model, const BodyType& type, const FieldCons
       }
       if (out == StepOutcome::Ok) {
         ++stats.body_steps;
+        if (fc.contacts) {
+          // one comparison per surface: near a colliding ground (the bounding box reaches it)
+          // or a wall
+          const bool near = (land & fc.ground_collide) |
+                            (fc.walls_collide & (double(lanes->wall[j]) <= fc.reach));
+          if (!near) {
+            mark_flying(&st, i);
+          } else {
+            lanes->store(j, &b);
+            b.history = lanes->history[j];
+            const bool asleep = contact_after_step(model, type, i, t + model.dt, &b, &st);
+            lanes->load(j, b);
+            resample(j, j + 1);
+            if (asleep) lanes->live[j] = false;
+          }
+          // a ground with "stop" still lands the bodies (walls colliding)
+          if (!lanes->live[j] || fc.ground_collide) continue;
+        }
         if (!land) continue;
         st.status[i] = BodyStatus::Landed;
         st.t_stop[i] = t + model.dt;

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <string>
 
+#include "integrate/contacts.h"
 #include "integrate/integrators.h"
 #include "integrate/rigid_batch.h"
 #include "integrate/sphere_batch.h"
@@ -42,10 +43,15 @@ uint64_t advance_body(const Model& model, State& st, int64_t i, uint64_t first, 
   uint64_t body_steps = 0;
   const BodyType& type = model.types[st.type[i]];
   BodyState b = load_body(st, size_t(i));
+  const bool contacts = model.contacts();
+  const bool lands = model.has_ground && !model.ground_collides();
   for (uint64_t k = first; k < last; ++k) {
     const double t = static_cast<double>(k) * model.dt;
     std::string reason;
-    const StepOutcome out = step_body(model, type, static_cast<uint32_t>(i), k, t, &b, &reason);
+    StepOutcome out = step_body(model, type, static_cast<uint32_t>(i), k, t, &b, &reason);
+    if (out == StepOutcome::Exited && heads_into_ground(model, type, b) &&
+        speculative_ground_contact(model, type, &b))
+      out = step_body(model, type, static_cast<uint32_t>(i), k, t, &b, &reason);
     if (out != StepOutcome::Ok) {
       if (stop_body(model, type, size_t(i), t, out, reason, b, &st) == BodyStatus::Landed) {
         b.v.setZero();
@@ -54,7 +60,8 @@ uint64_t advance_body(const Model& model, State& st, int64_t i, uint64_t first, 
       break;
     }
     ++body_steps;
-    if (model.has_ground && touches_ground(model, type, b)) {
+    if (contacts && contact_after_step(model, type, size_t(i), t + model.dt, &b, &st)) break;
+    if (lands && touches_ground(model, type, b)) {
       st.status[i] = BodyStatus::Landed;
       st.t_stop[i] = t + model.dt;
       b.v.setZero();
@@ -121,6 +128,14 @@ RunStats simulate(const Model& model, State* state, const RunOptions& options) {
   RunStats stats;
   if (options.live_stats) stats = *options.live_stats;
   State& st = *state;
+  // states built by hand (tests) may lack the contact arrays
+  const size_t nb = st.size();
+  if (st.contact.size() != nb) st.contact.assign(nb, ContactState::Flying);
+  if (st.rest_steps.size() != nb) st.rest_steps.assign(nb, 0);
+  if (st.impacts.size() != nb) st.impacts.assign(nb, 0);
+  if (st.t_touch.size() != nb) st.t_touch.assign(nb, std::nan(""));
+  if (st.x_touch.size() != nb) st.x_touch.assign(nb, Vec3::Zero());
+  if (st.hidden.size() != nb) st.hidden.assign(nb, 0);
   const uint64_t total_steps =
       static_cast<uint64_t>(std::llround(model.duration / model.dt));
   const uint64_t stride = output_stride(model, options.every);
@@ -142,6 +157,7 @@ RunStats simulate(const Model& model, State* state, const RunOptions& options) {
     model.field.prepare(static_cast<double>(first) * model.dt, stream_window_end(model, last));
     uint64_t body_steps = 0, handoffs = 0, newton = 0;
     const auto t0 = std::chrono::steady_clock::now();
+    wake_bodies(model, &st, size_t(n0), size_t(n));
     const WorkList work = work_list(model, st, kinds, n0, n);
     const auto nblocks = static_cast<int64_t>(work.blocks.size());
     const auto nscalar = static_cast<int64_t>(work.scalar.size());
@@ -182,10 +198,14 @@ RunStats simulate(const Model& model, State* state, const RunOptions& options) {
   }
   stats.steps = st.step;
   stats.wall_seconds = wall;
-  for (const BodyStatus s : st.status) {
+  stats.resting = 0;
+  for (size_t i = 0; i < st.size(); ++i) {
+    const BodyStatus s = st.status[i];
     if (s == BodyStatus::Landed) ++stats.landed;
     if (s == BodyStatus::Exited) ++stats.exited;
     if (s == BodyStatus::Failed) ++stats.failed;
+    stats.resting += s == BodyStatus::Sleeping ||
+                     (s == BodyStatus::Moving && st.contact[i] == ContactState::Resting);
   }
   return stats;
 }

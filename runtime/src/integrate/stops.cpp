@@ -13,6 +13,8 @@ bool touches_ground(const Model& m, const BodyType& type, const BodyState& s) {
 
 namespace {
 
+const char* const kLeftTheGrid = "left the grid";
+
 // where one more step would take the body: its world velocity R v, plus the turbulent velocity
 // u' for the body turbulence model (which carries the body directly; for the seen model u' is
 // the fluid's and acts through the forces)
@@ -28,14 +30,21 @@ std::string exit_reason(const Model& m, const BodyType& type, const BodyState& b
   const Vec3 next = predicted_position(m, type, b);
   if (m.field.in_box(next) && m.field.in_box(b.x))
     return "hit a solid: no valid grid point around it (a wall, a building, an obstacle)";
-  return "left the grid";
+  return kLeftTheGrid;
 }
 
 }  // namespace
 
+bool heads_into_ground(const Model& m, const BodyType& type, const BodyState& b) {
+  if (!m.ground_collides()) return false;
+  BodyState next = b;
+  next.x = predicted_position(m, type, b);
+  return touches_ground(m, type, next);
+}
+
 BodyStatus stop_body(const Model& m, const BodyType& type, size_t i, double t, StepOutcome out,
                      const std::string& failure, const BodyState& b, State* st) {
-  if (out == StepOutcome::Exited && m.has_ground) {
+  if (out == StepOutcome::Exited && m.has_ground && !m.ground_collides()) {
     // a step that would cross the ground (often also the grid's bottom) lands the body, even
     // when a stage of it sampled below the grid first
     BodyState next = b;
@@ -50,6 +59,9 @@ BodyStatus stop_body(const Model& m, const BodyType& type, size_t i, double t, S
   st->status[i] = exited ? BodyStatus::Exited : BodyStatus::Failed;
   st->t_stop[i] = t;
   st->reason[i] = exited ? exit_reason(m, type, b) : failure;
+  if (exited && m.outside == OutsideMode::Remove && !st->hidden.empty() &&
+      st->reason[i] == kLeftTheGrid)
+    st->hidden[i] = 1;
   return st->status[i];
 }
 

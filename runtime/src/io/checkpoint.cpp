@@ -12,7 +12,7 @@ namespace lrigid {
 
 namespace {
 
-constexpr char kMagic[8] = {'L', 'R', 'I', 'G', 'C', 'K', 'P', '1'};
+constexpr char kMagic[8] = {'L', 'R', 'I', 'G', 'C', 'K', 'P', '2'};
 
 struct Fnv {
   uint64_t h = 1469598103934665603ull;
@@ -88,6 +88,13 @@ void write_checkpoint(const std::string& path, const CheckpointId& id, int rank,
     for (const std::string& r : st.reason) b.str(r);
     b.vec(st.history);
     b.vec(st.history_offset);
+    // contacts (integrate/contacts.h)
+    b.vec(st.contact);
+    b.vec(st.rest_steps);
+    b.vec(st.impacts);
+    b.vec(st.t_touch);
+    b.vec(st.x_touch);
+    b.vec(st.hidden);
     b.pod(stats);
     extra(b);
     o.flush();
@@ -140,9 +147,17 @@ void read_checkpoint(const std::string& path, const CheckpointId& id, int rank, 
   for (std::string& s : st->reason) b.str(&s);
   b.vec(&st->history);
   b.vec(&st->history_offset);
+  b.vec(&st->contact);
+  b.vec(&st->rest_steps);
+  b.vec(&st->impacts);
+  b.vec(&st->t_touch);
+  b.vec(&st->x_touch);
+  b.vec(&st->hidden);
   for (size_t k : {st->x.size(), st->q.size(), st->v.size(), st->w.size(), st->u_seen.size(),
                    st->type.size(), st->status.size(), st->t_stop.size(),
-                   st->history_offset.size()})
+                   st->history_offset.size(), st->contact.size(), st->rest_steps.size(),
+                   st->impacts.size(), st->t_touch.size(), st->x_touch.size(),
+                   st->hidden.size()})
     if (k != n) fail_input(path, "", "holds another number of bodies");
   b.pod(stats);
   extra(b);

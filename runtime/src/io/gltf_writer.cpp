@@ -177,6 +177,26 @@ void write_gltf(const std::string& path, const GltfAnimation& a) {
       c.target_path = prop;
       anim.channels.push_back(c);
     }
+    // a body removed at the grid's edge: scale 0 from then on (a STEP channel)
+    bool ever_hidden = false;
+    for (size_t f = 0; f < nf && !ever_hidden; ++f) ever_hidden = a.hidden_at(f, b);
+    if (ever_hidden) {
+      std::vector<float> sc(3 * nf);
+      for (size_t f = 0; f < nf; ++f)
+        sc[3 * f] = sc[3 * f + 1] = sc[3 * f + 2] = a.hidden_at(f, b) ? 0.f : 1.f;
+      const int sv = add_view(&m, append(&buf, sc.data(), sc.size() * 4), sc.size() * 4, 0);
+      tinygltf::AnimationSampler s;
+      s.input = ta;
+      s.output = add_accessor(&m, sv, 0, nf, TINYGLTF_TYPE_VEC3, kFloat);
+      s.interpolation = "STEP";
+      anim.samplers.push_back(s);
+      tinygltf::AnimationChannel c;
+      c.sampler = int(anim.samplers.size()) - 1;
+      c.target_node = node;
+      c.target_path = "scale";
+      anim.channels.push_back(c);
+      if (a.hidden_at(0, b)) m.nodes[size_t(node)].scale = {0, 0, 0};
+    }
   }
   if (nf > 1) m.animations.push_back(anim);
   tinygltf::Buffer buffer;

@@ -29,6 +29,13 @@ struct GltfAnimation {
   std::vector<double> times;   // (nframe) s, increasing
   std::vector<Vec3> x;         // (nframe * nbody) centre of mass, world, m
   std::vector<Quat> q;         // (nframe * nbody) orientation, body -> world
+  // (nframe * nbody) 1: the body is hidden (it left the grid with "outside": "remove"); may be
+  // empty (none is)
+  std::vector<uint8_t> hidden;
+  bool hidden_at(size_t frame, size_t body) const {
+    const size_t k = frame * bodies() + body;
+    return k < hidden.size() && hidden[k] != 0;
+  }
   size_t bodies() const { return body_type.size(); }
 };
 

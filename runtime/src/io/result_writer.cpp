@@ -107,7 +107,7 @@ ResultWriter::ResultWriter(const std::string& dir, const Model& model, const Out
     csv_tmp_ = (fs::path(dir_) / ("trajectories.csv" + tag_)).string();
     csv_ = std::fopen(csv_tmp_.c_str(), resume_tag.empty() ? "w" : "r+");
     if (!csv_) throw Error(ExitCode::Output, where(csv_tmp_, "", "cannot open for writing"));
-    if (resume_tag.empty()) std::fputs("body,type,t,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz\n", csv_);
+    if (resume_tag.empty()) std::fputs("body,type,t,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz,state\n", csv_);
   }
   if (spec_.pvd) {
     take_over("bodies");
@@ -187,6 +187,7 @@ void ResultWriter::save(BinaryOut& out) {
   out.vec(gltf_.times);
   out.vec(gltf_.x);
   out.vec(gltf_.q);
+  out.vec(gltf_.hidden);
 }
 
 void ResultWriter::restore(BinaryIn& in) {
@@ -205,6 +206,7 @@ void ResultWriter::restore(BinaryIn& in) {
   in.vec(&gltf_.times);
   in.vec(&gltf_.x);
   in.vec(&gltf_.q);
+  in.vec(&gltf_.hidden);
   if (csv_) {
     // lines written after the checkpoint are written again
     if (std::fflush(csv_) != 0 || ::ftruncate(fileno(csv_), off_t(csv_bytes)) != 0 ||
@@ -255,6 +257,8 @@ void ResultWriter::write_frame(const State& st) {
         csv_line_ += ',';
         num(x);
       }
+      csv_line_ += ',';
+      csv_line_ += st.state_name(i);
       csv_line_ += '\n';
     }
     if (std::fwrite(csv_line_.data(), 1, csv_line_.size(), csv_) != csv_line_.size() ||
@@ -282,6 +286,8 @@ void ResultWriter::write_frame(const State& st) {
     gltf_.times.push_back(st.t);
     gltf_.x.insert(gltf_.x.end(), st.x.begin(), st.x.end());
     gltf_.q.insert(gltf_.q.end(), st.q.begin(), st.q.end());
+    gltf_.hidden.insert(gltf_.hidden.end(), st.hidden.begin(), st.hidden.end());
+    gltf_.hidden.resize(gltf_.x.size(), 0);
   }
 }
 
@@ -300,10 +306,16 @@ void ResultWriter::finish(const State& st, const RunStats& stats, const nlohmann
   if (model_.has_ground) {
     write_file_atomically(staged("landings.csv"), [&](std::ostream& o) {
       o << "body,type,t,x,y,z\n" << std::setprecision(9);
-      for (size_t i = 0; i < st.size(); ++i)
+      // each body's first touchdown: where it landed (ground.contact "stop") or first touched
+      // the ground (integrate/contacts.h), so the landing statistics keep their meaning
+      for (size_t i = 0; i < st.size(); ++i) {
         if (st.status[i] == BodyStatus::Landed)
           o << i << ',' << model_.types[st.type[i]].name << ',' << st.t_stop[i] << ','
             << st.x[i].x() << ',' << st.x[i].y() << ',' << st.x[i].z() << '\n';
+        else if (i < st.t_touch.size() && !std::isnan(st.t_touch[i]))
+          o << i << ',' << model_.types[st.type[i]].name << ',' << st.t_touch[i] << ','
+            << st.x_touch[i].x() << ',' << st.x_touch[i].y() << ',' << st.x_touch[i].z() << '\n';
+      }
     });
   }
   if (csv_) {
@@ -370,6 +382,29 @@ void ResultWriter::finish(const State& st, const RunStats& stats, const nlohmann
   s["landed"] = stats.landed;
   s["exited"] = stats.exited;
   s["failed"] = stats.failed;
+  // contacts (docs/contacts.md): each body's state at the end, the contact events (touches
+  // after flying) and the first touchdowns on the ground, bodies removed at the grid's edge
+  {
+    json states = {{"flying", 0}, {"sliding", 0}, {"resting", 0}, {"sleeping", 0},
+                   {"exited", 0}, {"landed", 0},  {"failed", 0}};
+    uint64_t events = 0;
+    size_t touched = 0, hidden = 0;
+    for (size_t i = 0; i < st.size(); ++i) {
+      states[st.state_name(i)] = states[st.state_name(i)].get<size_t>() + 1;
+      if (i < st.impacts.size()) events += st.impacts[i];
+      if (i < st.t_touch.size()) touched += !std::isnan(st.t_touch[i]);
+      if (i < st.hidden.size()) hidden += st.hidden[i];
+    }
+    s["states"] = states;
+    s["contacts"] = {{"ground", model_.has_ground ? contact_mode_name(model_.ground_contact)
+                                                  : "none"},
+                     {"walls", contact_mode_name(model_.walls_contact)},
+                     {"walls_active", model_.walls_collide()},
+                     {"outside", outside_mode_name(model_.outside)},
+                     {"events", events},
+                     {"touched_ground", touched},
+                     {"removed", hidden}};
+  }
   json stopped = json::array();
   for (size_t i = 0; i < st.size() && stopped.size() < 1000; ++i)
     if (st.status[i] == BodyStatus::Exited || st.status[i] == BodyStatus::Failed)
@@ -469,6 +504,18 @@ Results read_results(const std::string& dir, int target_faces) {
   std::getline(in, line);
   if (line.rfind("body,type,t,x,y,z,qw,qx,qy,qz", 0) != 0)
     fail_input(csv, "line 1", "unexpected header \"" + line + "\"");
+  // the state column (newer runs): bodies removed at the grid's edge ("outside": "remove") are
+  // hidden from their exit on; a body exited otherwise (stopped at a solid) stays visible
+  const bool has_state = line.size() >= 6 && line.compare(line.size() - 6, 6, ",state") == 0;
+  std::vector<uint8_t> removed(nb, 0);
+  if (has_state && r.summary.contains("contacts") &&
+      r.summary["contacts"].value("outside", "") == "remove") {
+    std::fill(removed.begin(), removed.end(), 1);
+    if (r.summary.contains("stopped"))
+      for (const auto& e : r.summary["stopped"])
+        if (e.value("reason", "") != "left the grid" && e.value("body", nb) < nb)
+          removed[e.value("body", nb)] = 0;
+  }
   size_t row = 0;
   while (std::getline(in, line)) {
     if (line.empty()) continue;
@@ -492,6 +539,10 @@ Results read_results(const std::string& dir, int target_faces) {
     if (row % nb == 0) a.times.push_back(v[0]);
     a.x.emplace_back(v[1], v[2], v[3]);
     a.q.emplace_back(v[4], v[5], v[6], v[7]);  // Eigen order w, x, y, z
+    if (has_state) {
+      const size_t c = line.rfind(',');
+      a.hidden.push_back(removed[body] && line.compare(c + 1, std::string::npos, "exited") == 0);
+    }
     ++row;
   }
   if (nb == 0 || row == 0) fail_input(csv, "", "no rows");

@@ -100,7 +100,7 @@ struct BodiesFrames::Impl {
   size_t n = ~size_t(0);
   vtkSmartPointer<vtkPolyData> poly;
   vtkSmartPointer<vtkDoubleArray> xyz, orient, vel, angvel;
-  vtkSmartPointer<vtkUnsignedCharArray> status;
+  vtkSmartPointer<vtkUnsignedCharArray> status, state;
 
   // the arrays and the vertices, once: the bodies and their types do not change during a run
   void build(const State& st) {
@@ -115,19 +115,22 @@ struct BodiesFrames::Impl {
     auto id = named<vtkIntArray>("body", 1, nb);
     auto type = named<vtkIntArray>("type", 1, nb);
     status = named<vtkUnsignedCharArray>("status", 1, nb);  // 0 moving, 1 landed, 2 exited, 3 failed
+    // 0 flying, 1 sliding, 2 resting, 3 sleeping, 4 exited, 5 landed, 6 failed (State::state_code)
+    state = named<vtkUnsignedCharArray>("state", 1, nb);
     for (vtkIdType i = 0; i < nb; ++i) id->SetValue(i, int(i)), type->SetValue(i, st.type[i]);
     poly = vtkSmartPointer<vtkPolyData>::New();
     poly->SetPoints(pts);
     poly->SetVerts(cells_in_order(nb, 1));
     for (vtkDataArray* a : {static_cast<vtkDataArray*>(orient), static_cast<vtkDataArray*>(vel),
                             static_cast<vtkDataArray*>(angvel), static_cast<vtkDataArray*>(id),
-                            static_cast<vtkDataArray*>(type), static_cast<vtkDataArray*>(status)})
+                            static_cast<vtkDataArray*>(type), static_cast<vtkDataArray*>(status),
+                            static_cast<vtkDataArray*>(state)})
       poly->GetPointData()->AddArray(a);
   }
 };
 
 BodiesFrames::BodiesFrames(const Model& model, VtpCompression c)
-    : p_(new Impl{model, c, ~size_t(0), {}, {}, {}, {}, {}, {}}) {}
+    : p_(new Impl{model, c, ~size_t(0), {}, {}, {}, {}, {}, {}, {}}) {}
 BodiesFrames::~BodiesFrames() = default;
 
 void BodiesFrames::write(const State& st, const std::string& path) {
@@ -138,7 +141,9 @@ void BodiesFrames::write(const State& st, const std::string& path) {
   double* v = p.vel->GetPointer(0);
   double* w = p.angvel->GetPointer(0);
   unsigned char* s = p.status->GetPointer(0);
+  unsigned char* c = p.state->GetPointer(0);
   for (size_t i = 0; i < p.n; ++i) {
+    c[i] = st.state_code(i);
     const Mat3 R = st.q[i].toRotationMatrix();
     const Vec3 vi = body_velocity(p.model, st, i, R), wi = R * st.w[i];
     for (int k = 0; k < 3; ++k) x[3 * i + k] = st.x[i][k], v[3 * i + k] = vi[k], w[3 * i + k] = wi[k];
@@ -148,7 +153,7 @@ void BodiesFrames::write(const State& st, const std::string& path) {
   }
   for (vtkDataArray* a : {static_cast<vtkDataArray*>(p.xyz), static_cast<vtkDataArray*>(p.orient),
                           static_cast<vtkDataArray*>(p.vel), static_cast<vtkDataArray*>(p.angvel),
-                          static_cast<vtkDataArray*>(p.status)})
+                          static_cast<vtkDataArray*>(p.status), static_cast<vtkDataArray*>(p.state)})
     a->Modified();
   p.poly->Modified();
   write_polydata(p.poly, path, p.compression);
@@ -161,7 +166,7 @@ struct ShapesFrames::Impl {
   std::vector<std::vector<float>> local;  // (ntype) the surfaces' vertices as float, body frame
   vtkSmartPointer<vtkPolyData> poly;
   vtkSmartPointer<vtkFloatArray> xyz;     // float is plenty for display and halves the files
-  vtkSmartPointer<vtkUnsignedCharArray> status;
+  vtkSmartPointer<vtkUnsignedCharArray> status, state;
 
   void build(const State& st) {
     n = st.size();
@@ -185,6 +190,7 @@ struct ShapesFrames::Impl {
     auto id = named<vtkIntArray>("body", 1, nc);
     auto type = named<vtkIntArray>("type", 1, nc);
     status = named<vtkUnsignedCharArray>("status", 1, nc);  // 0 moving, 1 landed, 2 exited, 3 failed
+    state = named<vtkUnsignedCharArray>("state", 1, nc);    // State::state_code
     vtkIdType p0 = 0, c = 0;
     for (size_t i = 0; i < n; ++i) {
       const TriangleMesh& s = surfaces[st.type[i]];
@@ -206,11 +212,12 @@ struct ShapesFrames::Impl {
     poly->GetCellData()->AddArray(id);
     poly->GetCellData()->AddArray(type);
     poly->GetCellData()->AddArray(status);
+    poly->GetCellData()->AddArray(state);
   }
 };
 
 ShapesFrames::ShapesFrames(std::vector<TriangleMesh> surfaces, VtpCompression c)
-    : p_(new Impl{std::move(surfaces), c, ~size_t(0), {}, {}, {}, {}}) {}
+    : p_(new Impl{std::move(surfaces), c, ~size_t(0), {}, {}, {}, {}, {}}) {}
 ShapesFrames::~ShapesFrames() = default;
 
 void ShapesFrames::write(const State& st, const std::string& path) {
@@ -218,8 +225,11 @@ void ShapesFrames::write(const State& st, const std::string& path) {
   if (p.n != st.size()) p.build(st);
   float* out = p.xyz->GetPointer(0);
   unsigned char* s = p.status->GetPointer(0);
+  unsigned char* c = p.state->GetPointer(0);
   for (size_t i = 0; i < p.n; ++i) {
-    const Eigen::Matrix3f R = st.q[i].toRotationMatrix().cast<float>();
+    // a body removed at the grid's edge ("outside": "remove") shrinks to a point: hidden
+    const float shown = i < st.hidden.size() && st.hidden[i] ? 0.f : 1.f;
+    const Eigen::Matrix3f R = shown * st.q[i].toRotationMatrix().cast<float>();
     const Eigen::Vector3f x = st.x[i].cast<float>();
     const std::vector<float>& loc = p.local[st.type[i]];
     for (size_t k = 0; k < loc.size(); k += 3, out += 3) {
@@ -228,10 +238,13 @@ void ShapesFrames::write(const State& st, const std::string& path) {
     }
     const size_t faces = p.surfaces[st.type[i]].faces.size();
     std::fill(s, s + faces, static_cast<unsigned char>(st.status[i]));
+    std::fill(c, c + faces, st.state_code(i));
     s += faces;
+    c += faces;
   }
   p.xyz->Modified();
   p.status->Modified();
+  p.state->Modified();
   p.poly->Modified();
   write_polydata(p.poly, path, p.compression);
 }
@@ -263,6 +276,8 @@ void FramesThread::write(const State& st, std::string bodies_path, std::string s
   copy_.u_seen = st.u_seen;
   copy_.type = st.type;
   copy_.status = st.status;
+  copy_.contact = st.contact;
+  copy_.hidden = st.hidden;
   pending_ = std::async(std::launch::async, [this, b = std::move(bodies_path),
                                              s = std::move(shapes_path)] {
     bodies_.write(copy_, b);

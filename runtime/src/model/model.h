@@ -18,6 +18,7 @@ namespace lrigid {
 // step loops over these only, so an effect that is not selected costs nothing.
 struct EffectContext;  // effects/context.h
 struct EffectParams;   // effects/plan.h: the kernels' Params of the body type
+struct ContactParams;  // effects/contact.h: restitution, friction, the shape's contact points
 using WrenchTerm = Vec6 (*)(const EffectContext&);
 struct EffectPlan {
   std::vector<WrenchTerm> terms;   // evaluation order of all_effects()
@@ -98,6 +99,12 @@ struct BodyType {
   Vec3 stokes_torque = Vec3::Zero();  // Stokes torque T_i = -mu r_i w_i of the ellipsoid, m^3
   BassetKernel basset;
   EffectPlan plan;
+  // contact (docs/contacts.md): the material and the shape's contact points (effects/contact.h),
+  // built once by compile_model; and the distance from the centre of mass to the farthest point
+  // of the shape's bounding box, m: a body whose centre is farther than this from the ground
+  // and from the walls cannot touch them (the one comparison bodies far from surfaces pay)
+  std::shared_ptr<const ContactParams> contact;
+  double reach = 0;
 };
 
 // thickness / width below which a body counts as flat
@@ -121,6 +128,23 @@ struct Model {
   Drift drift = Drift::Stationary;
   bool has_ground = false;
   double ground_z = 0;           // m
+  // how bodies meet the ground, the grid's solids and the grid's edge (docs/contacts.md). The
+  // scene's defaults are collide and remove (compile_model copies them); a Model built by hand
+  // keeps the seed's behaviour: stop at the ground and at solids, stay where the grid ends
+  ContactMode ground_contact = ContactMode::Stop;
+  ContactMode walls_contact = ContactMode::Stop;
+  OutsideMode outside = OutsideMode::Stop;
+  // resting (integrate/contacts.h): an impact slower than rest_speed does not bounce (m/s); a
+  // body whose contact points all move slower than rest_speed rests, and one that rested for
+  // sleep_time (s) sleeps: it is not stepped until the flow around it changes
+  double rest_speed = 0.05;
+  double sleep_time = 0.5;
+  bool ground_collides() const { return has_ground && ground_contact == ContactMode::Collide; }
+  // the grid's solids collide: walls.contact = "collide" and the grid has the wall distance
+  bool walls_collide() const {
+    return walls_contact == ContactMode::Collide && field.has_wall_distance();
+  }
+  bool contacts() const { return ground_collides() || walls_collide(); }
   // Thomson's well-mixed drift for the seen model; off only to show what it prevents
   bool well_mixed_correction = true;
   // Brownian path resolution: each step's noise is the sum of this many finer increments, so a

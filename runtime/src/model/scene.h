@@ -17,8 +17,8 @@ enum class TurbulenceModel { Body, Seen };
 enum class Precision { Double, Float };
 
 // How bodies meet the ground, the grid's solids and the grid's outer boundary (scene keys
-// ground.contact, walls.contact, outside; docs/scene-format.md, docs/contacts.md). Parsed and
-// validated; NOT YET APPLIED by the steps, which still stop a body there (issue 23).
+// ground.contact, walls.contact, outside; docs/scene-format.md, docs/contacts.md), applied by
+// integrate/contacts.h after each step.
 enum class ContactMode { Collide, Stop };
 enum class OutsideMode { Remove, Stop };
 const char* contact_mode_name(ContactMode m);
@@ -91,7 +91,7 @@ struct Scene {
   std::vector<BodySpec> bodies;
   bool has_ground = false;
   double ground_z = 0;                    // m
-  // contacts (docs/contacts.md): parsed, not yet applied by the steps
+  // contacts (docs/contacts.md)
   ContactSpec contact;                    // defaults of the body types' "contact"
   ContactMode ground_contact = ContactMode::Collide;
   ContactMode walls_contact = ContactMode::Collide;

@@ -8,8 +8,26 @@ const char* body_status_name(BodyStatus s) {
     case BodyStatus::Landed: return "landed";
     case BodyStatus::Exited: return "exited";
     case BodyStatus::Failed: return "failed";
+    case BodyStatus::Sleeping: return "sleeping";
   }
   return "?";
+}
+
+uint8_t State::state_code(size_t i) const {
+  switch (status[i]) {
+    case BodyStatus::Moving: return i < contact.size() ? uint8_t(contact[i]) : 0;
+    case BodyStatus::Sleeping: return 3;
+    case BodyStatus::Exited: return 4;
+    case BodyStatus::Landed: return 5;
+    case BodyStatus::Failed: return 6;
+  }
+  return 0;
+}
+
+const char* State::state_name(size_t i) const {
+  static const char* const names[7] = {"flying", "sliding", "resting", "sleeping",
+                                       "exited", "landed",  "failed"};
+  return names[state_code(i)];
 }
 
 }  // namespace lrigid

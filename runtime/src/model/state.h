@@ -9,8 +9,14 @@
 
 namespace lrigid {
 
-enum class BodyStatus : uint8_t { Moving = 0, Landed = 1, Exited = 2, Failed = 3 };
+// Moving: stepped (flying, sliding or resting: ContactState); Sleeping: resting where the flow
+// cannot move it, not stepped until it changes (integrate/contacts.h); Landed: stopped at the
+// ground (ground.contact "stop"); Exited: left the grid (hidden from then on with "outside":
+// "remove") or stopped at a solid (walls.contact "stop"); Failed: a non-finite state.
+enum class BodyStatus : uint8_t { Moving = 0, Landed = 1, Exited = 2, Failed = 3, Sleeping = 4 };
 const char* body_status_name(BodyStatus s);
+// How a moving body meets the surfaces after its last step (integrate/contacts.h).
+enum class ContactState : uint8_t { Flying = 0, Sliding = 1, Resting = 2 };
 
 struct State {
   double t = 0;                 // simulated time, s
@@ -24,6 +30,14 @@ struct State {
   std::vector<BodyStatus> status;  // (nbody)
   std::vector<double> t_stop;   // (nbody) time the body stopped (landed, exited, failed), s
   std::vector<std::string> reason;  // (nbody) why a body failed (empty otherwise)
+  // contacts (integrate/contacts.h)
+  std::vector<ContactState> contact;  // (nbody) after the body's last step
+  std::vector<uint32_t> rest_steps;   // (nbody) steps it has rested in a row
+  std::vector<uint32_t> impacts;      // (nbody) contact events: impacts after flying, faster
+                                      // than Model::rest_speed
+  std::vector<double> t_touch;        // (nbody) first touchdown on the ground, s (NaN: none)
+  std::vector<Vec3> x_touch;          // (nbody) where (centre of mass), world, m
+  std::vector<uint8_t> hidden;        // (nbody) 1: left the grid, "outside" is "remove"
   // Basset history (effects/basset.h), only for body types with the effect:
   // body i owns history[history_offset[i], + model.types[type[i]].basset.stride())
   std::vector<double> history;        // (sum of strides)
@@ -33,6 +47,12 @@ struct State {
   }
   static constexpr size_t kNoHistory = ~size_t(0);
   size_t size() const { return x.size(); }
+  // What the outputs call the body's state: flying, sliding, resting, sleeping, exited, landed
+  // or failed.
+  const char* state_name(size_t i) const;
+  // the same as a number for the .pvd: 0 flying, 1 sliding, 2 resting, 3 sleeping, 4 exited,
+  // 5 landed, 6 failed
+  uint8_t state_code(size_t i) const;
 };
 
 }  // namespace lrigid

@@ -176,6 +176,81 @@ void expect_matches_csv(const std::string& glb, const std::string& csv, size_t n
   for (size_t b = 1; b <= nb; ++b) EXPECT_EQ(m.nodes[b].mesh, b <= 3 ? 0 : 1);
 }
 
+// "outside": "remove" (docs/contacts.md): a body that leaves the grid is written "exited" in
+// trajectories.csv, counted in summary.json, scaled to 0 from its exit in animation.glb (a STEP
+// scale channel) and left out by read_results (lrigid render, export-gltf); the others are not.
+TEST(Gltf, BodiesRemovedAtTheGridsEdgeAreHidden) {
+  const std::string dir = (fs::temp_directory_path() / ("lrigid_gltf_removed_" +
+                                                        std::to_string(::getpid()))).string();
+  fs::remove_all(dir);
+  Scene s = test::sphere_scene(0.01, 500, 1.2, 1.5e-5, 2);
+  s.uniform_field = false;
+  s.effects = test::effects({Effect::MeanFlow, Effect::Drag});  // samples the field
+  s.bodies[0].spawn_in_box = true;
+  s.bodies[0].box_lo = Vec3(0.4, 0, 0.5);
+  s.bodies[0].box_hi = Vec3(0.5, 0.1, 0.6);
+  BodySpec still = s.bodies[0];
+  still.name = "still";
+  still.count = 1;
+  still.spawn_in_box = false;
+  still.position = Vec3(0, 0, 0.5);
+  s.bodies[0].velocity = Vec3(4, 0, 0);  // leaves x = 1 at t = 0.13 s
+  s.bodies.push_back(still);
+  s.dt = 0.01;
+  s.duration = 0.5;
+  s.output.dir = dir;
+  s.output.every = 0.1;
+  s.output.glb = true;
+  const GridGeometry g = test::grid_geometry(3, 3, 3, Vec3(-1, -1, 0), Vec3(1, 1, 1));
+  const RawGridFrame f = test::grid_frame(g, [](const Vec3&, Vec3*, double*, double*) {
+    return true;
+  });
+  const Model model =
+      test::compile(s, FluidField::grid(g, {f}, 1.5e-5, Drift::Stationary, TimeMode::Clamp));
+  ASSERT_EQ(model.outside, OutsideMode::Remove);
+  State st = initial_state(model, s);
+  ResultWriter w(dir, model, s.output);
+  RunOptions opt;
+  opt.every = s.output.every;
+  opt.on_output = [&](const State& x) { w.write_frame(x); };
+  const RunStats stats = simulate(model, &st, opt);
+  w.finish(st, stats, nlohmann::json::object());
+  ASSERT_EQ(st.status[0], BodyStatus::Exited);
+  ASSERT_EQ(st.status[1], BodyStatus::Exited);
+  ASSERT_EQ(st.status[2], BodyStatus::Moving);
+
+  const Results r = read_results(dir, 80);
+  EXPECT_EQ(r.summary["states"]["exited"], 2);
+  EXPECT_EQ(r.summary["states"]["flying"], 1);
+  EXPECT_EQ(r.summary["contacts"]["removed"], 2);
+  const size_t nf = r.frames.times.size();
+  ASSERT_EQ(nf, 6u);
+  for (size_t fr = 0; fr < nf; ++fr) {
+    const bool gone = r.frames.times[fr] > 0.15;
+    EXPECT_EQ(r.frames.hidden_at(fr, 0), gone) << "t = " << r.frames.times[fr];
+    EXPECT_EQ(r.frames.hidden_at(fr, 1), gone) << "t = " << r.frames.times[fr];
+    EXPECT_FALSE(r.frames.hidden_at(fr, 2));
+  }
+  tinygltf::TinyGLTF loader;
+  tinygltf::Model m;
+  std::string err, warn;
+  ASSERT_TRUE(loader.LoadBinaryFromFile(&m, &err, &warn, dir + "/animation.glb")) << err;
+  size_t scale_channels = 0;
+  for (const auto& ch : m.animations.at(0).channels) {
+    if (ch.target_path != "scale") continue;
+    ++scale_channels;
+    EXPECT_NE(ch.target_node, 3) << "the body still in the grid keeps its size";
+    const tinygltf::AnimationSampler& sm = m.animations[0].samplers[size_t(ch.sampler)];
+    EXPECT_EQ(sm.interpolation, "STEP");
+    const auto k = accessor_data<float>(m, sm.output, 3);
+    ASSERT_EQ(k.size(), 3 * nf);
+    EXPECT_EQ(k[0], 1.f);
+    EXPECT_EQ(k[3 * (nf - 1)], 0.f);
+  }
+  EXPECT_EQ(scale_channels, 2u);
+  fs::remove_all(dir);
+}
+
 TEST(Gltf, RunAnimationMatchesTrajectories) {
   const std::string dir = ::testing::TempDir() + "gltf_run_" + std::to_string(::getpid());
   run_to(dir);

@@ -1,0 +1,192 @@
+#include "integrate/contacts.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "effects/contact.h"
+
+namespace lrigid {
+
+namespace {
+
+// The touching points of one body: body-frame offsets from the centre of mass, body-frame unit
+// normals (from the surface into the fluid) and depths (m, >= 0).
+struct Touching {
+  double r[3 * kContactMaxPoints];
+  double n[3 * kContactMaxPoints];
+  double depth[kContactMaxPoints];
+  int count = 0;
+  bool ground = false;
+  void add(const Vec3& rb, const Vec3& nb, double d) {
+    if (count == kContactMaxPoints) return;
+    for (int a = 0; a < 3; ++a) r[3 * count + a] = rb[a], n[3 * count + a] = nb[a];
+    depth[count++] = d;
+  }
+};
+
+// The shape's points that reach a surface, with the positions `ahead` seconds ahead at the
+// points' current velocities (0: where they are).
+void gather(const Model& m, const BodyType& type, const BodyState& b, const Mat3& R, double t,
+            double ahead, Touching* out) {
+  const ContactParams& k = *type.contact;
+  const Mat3 Rt = R.transpose();
+  // points on the ground need no wall check: the grid's floor is the ground, twice the same
+  // constraint would only cost
+  uint8_t on_ground[kContactMaxPoints * 4] = {};
+  auto point_velocity = [&](const Vec3& rb) { return R * (b.v + b.w.cross(rb)); };
+  if (m.ground_collides() && b.x.z() - type.reach <= m.ground_z) {
+    const Vec3 ez(0, 0, 1);
+    auto ground_depth = [&](const Vec3& rb) {
+      const Vec3 p = b.x + R * rb + ahead * point_velocity(rb);
+      return m.ground_z - p.z();
+    };
+    if (k.support) {
+      const Vec3 nb = Rt * ez;
+      Vec3 rb;
+      ellipsoid_support_point(k, nb.data(), rb.data());
+      const double d = ground_depth(rb);
+      if (d >= 0) out->add(rb, nb, d), out->ground = true;
+    } else {
+      const Vec3 nb = Rt * ez;
+      for (size_t p = 0; p < k.count(); ++p) {
+        const Vec3 rb(k.points[3 * p], k.points[3 * p + 1], k.points[3 * p + 2]);
+        const double d = ground_depth(rb);
+        if (d >= 0) {
+          out->add(rb, nb, d);
+          out->ground = true;
+          if (p < sizeof on_ground) on_ground[p] = 1;
+        }
+      }
+    }
+  }
+  if (!m.walls_collide()) return;
+  double dc;
+  Vec3 gc;
+  if (!m.field.wall_distance(b.x, t, &dc, &gc) || dc > type.reach) return;
+  // a point touches where the wall distance is <= 0; its normal is the distance's gradient
+  auto wall = [&](const Vec3& rb, Vec3* nw) {
+    const Vec3 p = b.x + R * rb + ahead * point_velocity(rb);
+    double d;
+    Vec3 g;
+    if (!m.field.wall_distance(p, t, &d, &g) || d > 0) return -1.0;
+    const double gn = g.norm();
+    if (!(gn > 0)) return -1.0;
+    *nw = g / gn;
+    return -d;
+  };
+  Vec3 nw;
+  if (k.support) {
+    // the support point against the wall's normal at the centre
+    const double gn = gc.norm();
+    if (!(gn > 0)) return;
+    // the grid's floor under a body already on the ground: the same constraint
+    if (out->ground && gc.z() > 0.99 * gn) return;
+    const Vec3 nb = Rt * (gc / gn);
+    Vec3 rb;
+    ellipsoid_support_point(k, nb.data(), rb.data());
+    const double d = wall(rb, &nw);
+    if (d >= 0) out->add(rb, Rt * nw, d);
+  } else {
+    for (size_t p = 0; p < k.count(); ++p) {
+      if (p < sizeof on_ground && on_ground[p]) continue;
+      const Vec3 rb(k.points[3 * p], k.points[3 * p + 1], k.points[3 * p + 2]);
+      const double d = wall(rb, &nw);
+      if (d >= 0) out->add(rb, Rt * nw, d);
+    }
+  }
+}
+
+// The weight of the step's end velocity in its position update: x += h/2 (V0 + V1) for the
+// splitting step (and the batched steps, which are splitting), about that for rk4; explicit
+// Euler moves x by h V0 only.
+double end_velocity_weight(const Model& m) {
+  return m.integrator == Integrator::Euler ? 0.0 : 0.5;
+}
+
+}  // namespace
+
+bool contact_after_step(const Model& model, const BodyType& type, size_t i, double t_end,
+                        BodyState* b, State* st) {
+  const Mat3 R = b->q.toRotationMatrix();
+  Touching c;
+  gather(model, type, *b, R, t_end, 0.0, &c);
+  if (c.count == 0) {
+    mark_flying(st, i);
+    return false;
+  }
+  const Vec3 v0 = b->v, w0 = b->w;
+  // the fastest approach of a touching point: an impact (a contact event) when it is above the
+  // resting threshold, or when the body was flying
+  double approach = 0;
+  for (int p = 0; p < c.count; ++p) {
+    const Vec3 rb(c.r[3 * p], c.r[3 * p + 1], c.r[3 * p + 2]);
+    const Vec3 nb(c.n[3 * p], c.n[3 * p + 1], c.n[3 * p + 2]);
+    approach = std::max(approach, -(v0 + w0.cross(rb)).dot(nb));
+  }
+  double dx[3];
+  // M^-1 is symmetric: its column-major data is its row-major data
+  contact_resolve(*type.contact, type.M_inv.data(), b->v.data(), b->w.data(), c.count, c.r, c.n,
+                  c.depth, kContactPasses, dx);
+  const double h = model.dt, cw = end_velocity_weight(model) * h;
+  const Vec3 dv = b->v - v0, dw = b->w - w0;
+  // the position update with the velocity after the impulse, then what remains of the deepest
+  // penetration
+  b->x += cw * (R * dv);
+  b->q = rotate_body(b->q, cw * dw);
+  double worst = 0;
+  Vec3 worst_n = Vec3::Zero();
+  for (int p = 0; p < c.count; ++p) {
+    const Vec3 rb(c.r[3 * p], c.r[3 * p + 1], c.r[3 * p + 2]);
+    const Vec3 nb(c.n[3 * p], c.n[3 * p + 1], c.n[3 * p + 2]);
+    const double left = c.depth[p] - cw * (dv + dw.cross(rb)).dot(nb);
+    if (left > worst) worst = left, worst_n = nb;
+  }
+  if (worst > 0) b->x += R * (worst * worst_n);
+  // what the body does now: resting when every touching point (nearly) stands still
+  const double still = kRestFraction * model.rest_speed;
+  bool rests = true;
+  for (int p = 0; p < c.count && rests; ++p) {
+    const Vec3 rb(c.r[3 * p], c.r[3 * p + 1], c.r[3 * p + 2]);
+    rests = (b->v + b->w.cross(rb)).norm() < still;
+  }
+  rests = rests && b->w.norm() * type.reach < still;
+  if (st->contact[i] == ContactState::Flying && approach > model.rest_speed) ++st->impacts[i];
+  if (c.ground && std::isnan(st->t_touch[i])) {
+    st->t_touch[i] = t_end;
+    st->x_touch[i] = b->x;
+  }
+  st->contact[i] = rests ? ContactState::Resting : ContactState::Sliding;
+  st->rest_steps[i] = rests ? st->rest_steps[i] + 1 : 0;
+  if (rests && double(st->rest_steps[i]) * h >= model.sleep_time) {
+    st->status[i] = BodyStatus::Sleeping;
+    st->t_stop[i] = t_end;
+    b->v.setZero();
+    b->w.setZero();
+    return true;
+  }
+  return false;
+}
+
+bool speculative_ground_contact(const Model& model, const BodyType& type, BodyState* b) {
+  if (!model.ground_collides()) return false;
+  const Mat3 R = b->q.toRotationMatrix();
+  Touching c;
+  gather(model, type, *b, R, 0.0, model.dt, &c);
+  if (c.count == 0 || !c.ground) return false;
+  double dx[3];
+  return contact_resolve(*type.contact, type.M_inv.data(), b->v.data(), b->w.data(), c.count,
+                         c.r, c.n, c.depth, kContactPasses, dx) > 0;
+}
+
+void wake_bodies(const Model& model, State* st, size_t n0, size_t n) {
+  if (model.field.frame_count() < 2 && !model.field.is_streamed()) return;
+  for (size_t i = n0; i < n; ++i) {
+    if (st->status[i] != BodyStatus::Sleeping) continue;
+    if (model.field.next_frame_time(st->t_stop[i]) > st->t) continue;
+    st->status[i] = BodyStatus::Moving;
+    st->rest_steps[i] = 0;
+    st->t_stop[i] = 0;
+  }
+}
+
+}  // namespace lrigid

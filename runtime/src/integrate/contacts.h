@@ -1,0 +1,54 @@
+// Bodies meeting the ground and the grid's solids in the steps (docs/contacts.md): after each
+// step, a body near a surface gets the contact kernel's impulses (effects/contact.h
+// contact_resolve, through its generalized 6x6 mass) and a position correction; it is then
+// flying, sliding or resting, and a body that rested long enough sleeps. The scalar step
+// (simulation.cpp) and the batched steps (batch_lanes.h drive_block) call the same functions
+// here, so the contact is written once; the batched steps call them only for the lanes their
+// one comparison finds near a surface.
+#pragma once
+#include "integrate/integrators.h"
+#include "model/model.h"
+#include "model/state.h"
+
+namespace lrigid {
+
+// Sweeps of the projected Gauss-Seidel over a body's touching points.
+constexpr int kContactPasses = 12;
+// A body rests when each of its touching points moves slower than this fraction of
+// Model::rest_speed (and sleeps after Model::sleep_time of rest).
+constexpr double kRestFraction = 0.1;
+
+// The contact pass on body i after a step to t_end that succeeded, with b its new state:
+// gathers the shape's points that reach the ground plane (ground.contact "collide") or a wall
+// distance <= 0 (walls.contact "collide"; the normal is the normalised gradient of the wall
+// distance), resolves them with contact_resolve, and moves the body out of the surface. The
+// trapezoidal position update of the splitting step (x += h/2 (V0 + V1)) used the velocity
+// before the impulse: it is moved by h/2 times the velocity change (h/2 Δw for the rotation), so
+// a body held still by friction does not creep by g h^2 / 2 a step; what remains of the
+// penetration after that is removed along the deepest point's normal. Updates st's contact
+// state, rest counter, impact count and first ground touchdown; a body that has rested for
+// model.sleep_time is put to sleep (status Sleeping, at rest). Returns true when it fell asleep
+// (the caller stops stepping it).
+bool contact_after_step(const Model& model, const BodyType& type, size_t i, double t_end,
+                        BodyState* b, State* st);
+
+// A step from b that left the fluid below the grid while heading into the ground (the ground
+// often is the grid's bottom): the contact at the start of the step with the points' positions
+// one step ahead (velocity only, a speculative contact), so that the step can be taken again.
+// Returns true when an impulse was applied.
+bool speculative_ground_contact(const Model& model, const BodyType& type, BodyState* b);
+
+// Sleeping bodies whose flow has changed since they fell asleep (a time-dependent field has
+// passed a frame time since st.t_stop) wake up: status Moving again, resting count reset.
+// Bodies [n0, n).
+void wake_bodies(const Model& model, State* st, size_t n0, size_t n);
+
+// Marks body i as flying (no surface near it after its step): one comparison when it already is.
+inline void mark_flying(State* st, size_t i) {
+  if (st->contact[i] != ContactState::Flying) {
+    st->contact[i] = ContactState::Flying;
+    st->rest_steps[i] = 0;
+  }
+}
+
+}  // namespace lrigid

@@ -1,0 +1,336 @@
+// Bodies meeting the ground and the grid's solids in the steps (integrate/contacts.h), against
+// closed forms: a sphere bouncing on the ground (apex ratio e^2), a box on an inclined plane
+// (sliding with g (sin th - mu cos th), staying when mu > tan th), a sphere on an inclined wall
+// of a grid (reflection about the wall's normal), and the grid's edge (remove / stop).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "effects/compile_model.h"
+#include "effects/contact.h"
+#include "integrate/contacts.h"
+#include "integrate/simulation.h"
+#include "support/batch_compare.h"
+#include "support/fixture.h"
+
+namespace lrigid {
+namespace {
+
+constexpr double kG = 9.81;
+
+// the apexes (local maxima of z) of a trajectory sampled every step
+std::vector<double> apexes(const std::vector<double>& z) {
+  std::vector<double> a;
+  for (size_t k = 1; k + 1 < z.size(); ++k)
+    if (z[k] > z[k - 1] && z[k] >= z[k + 1]) a.push_back(z[k]);
+  return a;
+}
+
+Scene bounce_scene(double e, bool batched) {
+  Scene s = test::sphere_scene(0.05, 1000, 1.2, 1.5e-5);
+  s.effects = test::effects({Effect::Gravity});  // the fluid's forces off
+  s.bodies[0].position = Vec3(0, 0, 1.0);
+  s.bodies[0].contact.restitution = e;
+  s.bodies[0].contact.friction = 0.3;
+  s.has_ground = true;
+  s.ground_z = 0;
+  s.dt = 1e-4;
+  s.duration = 2.5;
+  s.batched = batched;
+  return s;
+}
+
+class SphereBounce : public ::testing::TestWithParam<bool> {};
+
+TEST_P(SphereBounce, ApexHeightRatioIsESquared) {
+  const double e = 0.8, r = 0.05;
+  Scene s = bounce_scene(e, GetParam());
+  const Model m = test::compile(s);
+  ASSERT_TRUE(m.ground_collides());
+  State st = initial_state(m, s);
+  std::vector<double> z;
+  RunOptions o;
+  o.every = s.dt;
+  o.on_output = [&](const State& x) { z.push_back(x.x[0].z() - r); };
+  simulate(m, &st, o);
+  ASSERT_EQ(st.status[0], BodyStatus::Moving);
+  std::vector<double> a = apexes(z);
+  a.insert(a.begin(), z.front());  // the drop height is the first apex
+  ASSERT_GE(a.size(), 4u);
+  for (size_t n = 0; n + 1 < 4; ++n)
+    EXPECT_NEAR(a[n + 1] / a[n] / (e * e), 1.0, 0.02)
+        << "bounce " << n << ": apex " << a[n] << " -> " << a[n + 1] << " m";
+  // never below the ground by more than one step's travel
+  double lowest = 1;
+  for (double h : z) lowest = std::min(lowest, h);
+  EXPECT_GT(lowest, -std::sqrt(2 * kG * 1.0) * s.dt);
+  EXPECT_GE(st.impacts[0], 4u);
+  EXPECT_FALSE(std::isnan(st.t_touch[0]));
+  EXPECT_NEAR(st.t_touch[0], std::sqrt(2 * 0.95 / kG), 2 * s.dt);
+}
+
+INSTANTIATE_TEST_SUITE_P(ScalarAndBatched, SphereBounce, ::testing::Values(false, true),
+                         [](const auto& info) { return info.param ? "batched" : "scalar"; });
+
+TEST(SphereBounce, StopModeStillLandsTheBody) {
+  Scene s = bounce_scene(0.8, false);
+  s.ground_contact = ContactMode::Stop;
+  const Model m = test::compile(s);
+  State st = initial_state(m, s);
+  simulate(m, &st, RunOptions{});
+  EXPECT_EQ(st.status[0], BodyStatus::Landed);
+  EXPECT_NEAR(st.t_stop[0], std::sqrt(2 * 0.95 / kG), 2 * s.dt);
+}
+
+// A box resting on the ground under gravity tilted by th about y: the same as a box on a plane
+// inclined by th, with the slope along +x.
+Scene incline_scene(double th, double mu, bool batched) {
+  Scene s;
+  s.file = "<test>";
+  s.fluid_density = 1.2;
+  s.kinematic_viscosity = 1.5e-5;
+  BodySpec b;
+  b.name = "box";
+  b.shape = Shape::box(0.1, 0.08, 0.04);
+  b.density = 600;
+  b.position = Vec3(0, 0, 0.02);
+  b.contact.restitution = 0;
+  b.contact.friction = mu;
+  s.bodies.push_back(b);
+  s.effects = test::effects({Effect::Gravity});
+  s.gravity = kG * Vec3(std::sin(th), 0, -std::cos(th));
+  s.has_ground = true;
+  s.ground_z = 0;
+  s.dt = 1e-3;
+  s.batched = batched;
+  return s;
+}
+
+class Incline : public ::testing::TestWithParam<bool> {};
+
+TEST_P(Incline, BoxSlidesWithGTimesSinMinusMuCos) {
+  const double th = 20 * M_PI / 180, mu = 0.2;
+  Scene s = incline_scene(th, mu, GetParam());
+  s.duration = 2;
+  const Model m = test::compile(s);
+  State st = initial_state(m, s);
+  simulate(m, &st, RunOptions{});
+  const double a = kG * (std::sin(th) - mu * std::cos(th));
+  const Vec3 V = st.q[0] * st.v[0];
+  EXPECT_NEAR(V.x() / (a * s.duration), 1.0, 0.02) << "speed " << V.x() << " m/s";
+  EXPECT_NEAR(st.x[0].x() / (0.5 * a * s.duration * s.duration), 1.0, 0.02);
+  EXPECT_NEAR(st.x[0].z(), 0.02, 1e-4) << "it stays on the plane";
+  EXPECT_EQ(st.contact[0], ContactState::Sliding);
+  EXPECT_EQ(st.status[0], BodyStatus::Moving);
+}
+
+TEST_P(Incline, BoxStaysWhenMuAboveTanTheta) {
+  const double th = 20 * M_PI / 180, mu = 0.5;
+  ASSERT_GT(mu, std::tan(th));
+  for (const bool sleep : {true, false}) {
+    Scene s = incline_scene(th, mu, GetParam());
+    s.duration = 10;
+    Model m = test::compile(s);
+    if (!sleep) m.sleep_time = 1e9;  // the contact alone must hold it
+    State st = initial_state(m, s);
+    const Vec3 x0 = st.x[0];
+    simulate(m, &st, RunOptions{});
+    EXPECT_LT((st.x[0] - x0).norm(), 1e-6) << (sleep ? "with" : "without") << " sleeping";
+    if (sleep) {
+      EXPECT_EQ(st.status[0], BodyStatus::Sleeping);
+    } else {
+      EXPECT_EQ(st.contact[0], ContactState::Resting);
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(ScalarAndBatched, Incline, ::testing::Values(false, true),
+                         [](const auto& info) { return info.param ? "batched" : "scalar"; });
+
+// A grid whose wall distance is the inclined plane n.(x - p0) (n unit, pointing into the fluid):
+// fluid at rest, points below the plane invalid.
+FluidField inclined_wall_grid(const Vec3& n, const Vec3& p0) {
+  const GridGeometry g = test::grid_geometry(21, 5, 21, Vec3(-1, -0.2, -1), Vec3(0.1, 0.1, 0.1));
+  RawGridFrame f = test::grid_frame(g, [&](const Vec3& x, Vec3*, double* k, double* eps) {
+    *k = 1e-6;
+    *eps = 1e-6;
+    return n.dot(x - p0) >= 0;
+  });
+  f.wall_distance.resize(g.points());
+  for (size_t p = 0; p < g.points(); ++p) {
+    const size_t i = p % size_t(g.n[0]), j = (p / size_t(g.n[0])) % size_t(g.n[1]);
+    const size_t l = p / (size_t(g.n[0]) * size_t(g.n[1]));
+    const Vec3 x = g.origin + Vec3(double(i), double(j), double(l)).cwiseProduct(g.spacing);
+    f.wall_distance[p] = float(n.dot(x - p0));
+  }
+  return FluidField::grid(g, {f}, 1.5e-5, Drift::Stationary, TimeMode::Clamp);
+}
+
+TEST(Walls, SphereReflectsAboutTheInclinedWallsNormal) {
+  const double th = 30 * M_PI / 180, e = 0.6, r = 0.05;
+  const Vec3 n(-std::sin(th), 0, std::cos(th));  // the wall rises along +x
+  for (const bool batched : {false, true}) {
+    Scene s = test::sphere_scene(r, 1000, 1.2, 1.5e-5);
+    s.uniform_field = false;
+    s.effects = test::effects({Effect::Gravity});
+    s.gravity = Vec3::Zero();
+    s.bodies[0].position = Vec3(0, 0, 0.3);
+    s.bodies[0].velocity = Vec3(0, 0, -2);
+    s.bodies[0].contact.restitution = e;
+    s.bodies[0].contact.friction = 0;
+    s.dt = 1e-4;
+    s.duration = 0.3;
+    s.batched = batched;
+    const Model m = test::compile(s, inclined_wall_grid(n, Vec3::Zero()));
+    ASSERT_TRUE(m.walls_collide());
+    State st = initial_state(m, s);
+    simulate(m, &st, RunOptions{});
+    ASSERT_EQ(st.status[0], BodyStatus::Moving) << st.reason[0];
+    const Vec3 V0(0, 0, -2), V = st.q[0] * st.v[0];
+    const double vn0 = V0.dot(n);
+    const Vec3 vt0 = V0 - vn0 * n;
+    EXPECT_NEAR(V.dot(n), -e * vn0, 1e-6 * std::abs(vn0)) << (batched ? "batched" : "scalar");
+    EXPECT_TRUE(test::near(Vec3(V - V.dot(n) * n), vt0, 1e-6));
+    EXPECT_EQ(st.impacts[0], 1u);
+    // the sphere never went into the wall by more than one step's travel
+    EXPECT_GT(n.dot(st.x[0]) - r, -2.0 * s.dt);
+  }
+}
+
+TEST(Outside, RemoveHidesABodyThatLeavesTheGridStopKeepsIt) {
+  for (const OutsideMode mode : {OutsideMode::Remove, OutsideMode::Stop}) {
+    Scene s = test::sphere_scene(0.02, 1000, 1.2, 1.5e-5);
+    s.uniform_field = false;
+    // the mean flow: the body samples the field (one that does not never learns it left)
+    s.effects = test::effects({Effect::Gravity, Effect::Drag, Effect::MeanFlow});
+    s.gravity = Vec3::Zero();
+    s.bodies[0].position = Vec3(0.5, 0, 0.5);
+    s.bodies[0].velocity = Vec3(5, 0, 0);
+    s.outside = mode;
+    s.dt = 1e-3;
+    s.duration = 0.3;
+    const Model m = test::compile(s, inclined_wall_grid(Vec3(0, 0, 1), Vec3(0, 0, -0.9)));
+    State st = initial_state(m, s);
+    simulate(m, &st, RunOptions{});
+    EXPECT_EQ(st.status[0], BodyStatus::Exited);
+    EXPECT_EQ(st.reason[0], "left the grid");
+    EXPECT_EQ(st.hidden[0], mode == OutsideMode::Remove ? 1 : 0);
+    EXPECT_STREQ(st.state_name(0), "exited");
+  }
+}
+
+}  // namespace
+}  // namespace lrigid
+
+namespace lrigid {
+namespace {
+
+// The batched steps hand the lanes near the ground to the same contact pass as the scalar step:
+// with contacts on, the wind scene of the batched-step tests ends in the same states.
+TEST(ContactsBatched, LeavesAndBeadsOnTheGroundMatchTheScalarStep) {
+  for (const bool plates : {false, true}) {
+    Scene s = plates ? test::sphere_scene(0.01, 400, 1.2, 1.5e-5, 96)
+                     : test::sphere_scene(2.5e-4, 2500, 1.2, 1.5e-5, 96);
+    if (plates) s.bodies[0].shape = Shape::box(0.04, 0.03, 0.0005);
+    s.effects = test::effects({Effect::Gravity, Effect::Buoyancy, Effect::Drag,
+                               Effect::AddedMass, Effect::MeanFlow, Effect::Turbulence});
+    if (plates) s.effects.add(Effect::Lift);
+    batch_test::release_in_wind_grid(&s, 7);
+    s.ground_contact = ContactMode::Collide;
+    s.duration = 2.0;
+    const FluidField field = batch_test::wind_grid(1.5e-5);
+    const auto [scalar, batched, d] = batch_test::scalar_and_batched(s, field);
+    size_t touched = 0, states_differ = 0;
+    for (size_t i = 0; i < batched.state.size(); ++i) {
+      touched += !std::isnan(batched.state.t_touch[i]);
+      states_differ += scalar.state.state_code(i) != batched.state.state_code(i);
+    }
+    EXPECT_GT(touched, 10u) << "the scene puts bodies on the ground";
+    EXPECT_EQ(states_differ, 0u);
+    EXPECT_EQ(batch_test::count(batched.state, BodyStatus::Landed), 0u);
+    EXPECT_LT(d.x, plates ? 1e-6 : 1e-9) << (plates ? "plates" : "beads");
+    EXPECT_LT(d.v, plates ? 1e-4 : 1e-9) << (plates ? "plates" : "beads");
+  }
+}
+
+}  // namespace
+}  // namespace lrigid
+
+namespace lrigid {
+namespace {
+
+// A ball at rest on the ground falls asleep after Model::sleep_time; in a time-dependent field
+// it wakes at the next frame time (the flow around it changed) and, still at rest, sleeps again.
+TEST(Sleeping, RestingBallSleepsAndWakesWhenTheFlowChanges) {
+  const GridGeometry g = test::grid_geometry(3, 3, 3, Vec3(-1, -1, 0), Vec3(1, 1, 1));
+  RawGridFrame a = test::grid_frame(g, [](const Vec3&, Vec3*, double*, double*) { return true; });
+  RawGridFrame b = a;
+  a.time = 0;
+  b.time = 1.5;
+  for (const bool transient : {false, true}) {
+    Scene s = test::sphere_scene(0.05, 1000, 1.2, 1.5e-5);
+    s.uniform_field = false;
+    s.effects = test::effects({Effect::Gravity, Effect::MeanFlow, Effect::Drag});
+    s.bodies[0].position = Vec3(0, 0, 0.05);
+    s.has_ground = true;
+    s.dt = 1e-3;
+    s.duration = 2.0;
+    std::vector<RawGridFrame> frames{a};
+    if (transient) frames.push_back(b);
+    const Model m = test::compile(
+        s, FluidField::grid(g, frames, 1.5e-5, Drift::Stationary, TimeMode::Clamp));
+    State st = initial_state(m, s);
+    std::vector<std::pair<double, BodyStatus>> seen;
+    RunOptions o;
+    o.every = 0.1;
+    o.on_output = [&](const State& x) { seen.emplace_back(x.t, x.status[0]); };
+    const RunStats stats = simulate(m, &st, o);
+    // asleep from about sleep_time on
+    for (const auto& [t, status] : seen) {
+      if (t > m.sleep_time + 0.05 && t < 1.45) {
+        EXPECT_EQ(status, BodyStatus::Sleeping) << "t = " << t;
+      }
+      if (t < m.sleep_time - 0.05) {
+        EXPECT_EQ(status, BodyStatus::Moving) << "t = " << t;
+      }
+    }
+    // the steps it took: about sleep_time of them, plus sleep_time again after the wake
+    const double steps = double(stats.body_steps) * s.dt;
+    EXPECT_NEAR(steps, transient ? 2 * m.sleep_time : m.sleep_time, 0.15)
+        << (transient ? "transient" : "steady");
+    EXPECT_NEAR(st.x[0].z(), 0.05, 1e-6);
+  }
+}
+
+}  // namespace
+}  // namespace lrigid
+
+namespace lrigid {
+namespace {
+
+// ground.contact "stop" with colliding walls: the ground still lands the bodies, on the scalar
+// and on the batched step.
+TEST(GroundStopWallsCollide, TheGroundStillLandsTheBody) {
+  for (const bool batched : {false, true}) {
+    Scene s = test::sphere_scene(0.05, 1000, 1.2, 1.5e-5);
+    s.uniform_field = false;
+    s.effects = test::effects({Effect::Gravity, Effect::MeanFlow, Effect::Drag});
+    s.bodies[0].position = Vec3(0, 0, 0.5);
+    s.has_ground = true;
+    s.ground_z = 0;
+    s.ground_contact = ContactMode::Stop;
+    s.dt = 1e-3;
+    s.duration = 1.0;
+    s.batched = batched;
+    const Model m = test::compile(s, inclined_wall_grid(Vec3(1, 0, 0), Vec3(-0.9, 0, 0)));
+    ASSERT_TRUE(m.walls_collide());
+    ASSERT_FALSE(m.ground_collides());
+    State st = initial_state(m, s);
+    simulate(m, &st, RunOptions{});
+    EXPECT_EQ(st.status[0], BodyStatus::Landed) << (batched ? "batched" : "scalar");
+  }
+}
+
+}  // namespace
+}  // namespace lrigid
