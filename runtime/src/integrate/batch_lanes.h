@@ -237,7 +237,7 @@ LRIGID_IVDEP
     for (int a = 0; a < 3; ++a) {
       T s = (x[a][j] - T(fc.origin[a])) / T(fc.spacing[a]);
       // within a cell below the bottom face: the bottom layer (FluidField::set_floor_clamp)
-      s = (a == 2) & fc.floor_clamp & (s < T(0)) & (s >= T(-1)) ? T(0) : s;
+      s = ((a == 2) & fc.floor_clamp & (s < T(0)) & (s >= T(-1))) ? T(0) : s;
       in &= int(s >= T(0)) & int(s <= T(fc.upper_index[a]));
       // clamped so that every lane reads inside the grid, also lanes outside it
       s = s > T(0) ? s : T(0);
