@@ -152,6 +152,18 @@ void ResultWriter::remove_stale_temporaries() const {
     const size_t after = at + tag_.size();
     if (after == name.size() || name[after] == '.') fs::remove_all(e.path(), ec);
   }
+  // inside the frame folders: the partial series' own temporaries (bodies.partial.pvd.tmp42,
+  // io/atomic_file.h) of a run killed while rewriting them
+  for (const char* folder : {"bodies", "shapes"}) {
+    const fs::path d = fs::path(dir_) / (folder + tag_);
+    for (const fs::directory_entry& e : fs::directory_iterator(d, ec)) {
+      const std::string name = e.path().filename().string();
+      const size_t at = name.rfind(".tmp");
+      if (at != std::string::npos && at + 4 < name.size() &&
+          name.find_first_not_of("0123456789", at + 4) == std::string::npos)
+        fs::remove(e.path(), ec);
+    }
+  }
 }
 
 ResultWriter::~ResultWriter() {
