@@ -84,17 +84,22 @@ Scene tumbling_scene(const std::string& dir) {
   return s;
 }
 
+// runs the model from *st, writing the scene's outputs into dir as lrigid run does
+void run_with_outputs(const Model& model, const Scene& scene, const std::string& dir, State* st) {
+  ResultWriter w(dir, model, scene.output);
+  RunOptions opt;
+  opt.every = scene.output.every;
+  opt.on_output = [&](const State& s) { w.write_frame(s); };
+  const RunStats stats = simulate(model, st, opt);
+  w.finish(*st, stats, nlohmann::json::object());
+}
+
 std::string run_to(const std::string& dir) {
   fs::remove_all(dir);
   const Scene scene = tumbling_scene(dir);
   const Model model = test::compile(scene);
   State st = initial_state(model, scene);
-  ResultWriter w(dir, model, scene.output);
-  RunOptions opt;
-  opt.every = scene.output.every;
-  opt.on_output = [&](const State& s) { w.write_frame(s); };
-  const RunStats stats = simulate(model, &st, opt);
-  w.finish(st, stats, nlohmann::json::object());
+  run_with_outputs(model, scene, dir, &st);
   return dir;
 }
 
@@ -209,12 +214,7 @@ TEST(Gltf, BodiesRemovedAtTheGridsEdgeAreHidden) {
       test::compile(s, FluidField::grid(g, {f}, 1.5e-5, Drift::Stationary, TimeMode::Clamp));
   ASSERT_EQ(model.outside, OutsideMode::Remove);
   State st = initial_state(model, s);
-  ResultWriter w(dir, model, s.output);
-  RunOptions opt;
-  opt.every = s.output.every;
-  opt.on_output = [&](const State& x) { w.write_frame(x); };
-  const RunStats stats = simulate(model, &st, opt);
-  w.finish(st, stats, nlohmann::json::object());
+  run_with_outputs(model, s, dir, &st);
   ASSERT_EQ(st.status[0], BodyStatus::Exited);
   ASSERT_EQ(st.status[1], BodyStatus::Exited);
   ASSERT_EQ(st.status[2], BodyStatus::Moving);
