@@ -50,7 +50,7 @@ Wrench ellipsoid_drag(const BodyType& type, const DragParams& k, const Vec3& u_r
                       DragStiffness* stiffness) {
   // relative velocity of the volume centroid (where the drag acts)
   const Vec3 u = u_rel + w.cross(type.r_cob);
-  return wrench_about_com(type, ellipsoid_drag_kernel(k, u.data(), w.data()), stiffness);
+  return wrench_about_com(type, ellipsoid_drag_kernel<ScalarMath>(k, u.data(), w.data()), stiffness);
 }
 
 Wrench plate_drag(const BodyType& type, const PlateParams& k, const Vec3& u_rel, const Vec3& w,

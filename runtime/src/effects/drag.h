@@ -67,8 +67,9 @@ LRIGID_LANE void ellipsoid_projected_area(const DragParams& k, const T* uh, T* a
 // The drag law on relative velocity u (of the volume centroid) and spin w, both in the body
 // frame: Schiller-Naumann on the projected area area(u_hat, &a_perp, &d_perp) (m^2, and the
 // diameter of the disk of that area, m) across the flow, the edgewise skin drag and the
-// rotational drag. The torque is about the centroid.
-template <typename T, class Area>
+// rotational drag. The torque is about the centroid. Math: LaneMath in the batched loops,
+// ScalarMath in the scalar step (util/fast_math.h).
+template <class Math = LaneMath, typename T, class Area>
 LRIGID_LANE DragOut<T> drag_kernel(const DragParams& k, const T* u, const T* w, Area area) {
   DragOut<T> d;
   const T speed = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
@@ -80,11 +81,15 @@ LRIGID_LANE DragOut<T> drag_kernel(const DragParams& k, const T* u, const T* w, 
   area(d.u_hat, &a_perp, &d_perp);
   const T re = speed * d_perp / T(k.nu);
   const T re_safe = moving ? re : T(1);
-  // C_D Re = 24 (1 + 0.15 Re^0.687) below Re = 1000, 0.44 above; force ~ speed^(1 + p)
-  const T s = T(0.15 * exp_fast(0.687 * log_fast(double(re_safe))));
-  const bool newton_regime = re >= T(1000);
-  const T cd = newton_regime ? T(0.44) : T(24) / re_safe * (T(1) + s);
-  const T p = newton_regime ? T(1) : T(0.687) * s / (T(1) + s);
+  // C_D Re = 24 (1 + 0.15 Re^0.687) below Re = 1000, 0.44 above; force ~ speed^(1 + p).
+  // Written as a branch so that the scalar step skips the power in the Newton regime; the
+  // batched loops (built with -fno-trapping-math) if-convert it into a blend.
+  T cd = T(0.44), p = T(1);
+  if (!(re >= T(1000))) {
+    const T s = T(0.15 * Math::pow(double(re_safe), 0.687));
+    cd = T(24) / re_safe * (T(1) + s);
+    p = T(0.687) * s / (T(1) + s);
+  }
   const T c_moving =
       T(0.5 * k.rho) * speed * (cd * a_perp + T(kDragEdgewise) * (T(k.area_max) - a_perp));
   const T c_lin = moving ? c_moving : T(0);
@@ -100,9 +105,9 @@ LRIGID_LANE DragOut<T> drag_kernel(const DragParams& k, const T* u, const T* w, 
 }
 
 // drag_kernel with the equivalent ellipsoid's projected area (any body that is not flat)
-template <typename T>
+template <class Math = LaneMath, typename T>
 LRIGID_LANE DragOut<T> ellipsoid_drag_kernel(const DragParams& k, const T* u, const T* w) {
-  return drag_kernel(k, u, w, [&k](const T* uh, T* a_perp, T* d_perp) {
+  return drag_kernel<Math>(k, u, w, [&k](const T* uh, T* a_perp, T* d_perp) {
     ellipsoid_projected_area(k, uh, a_perp, d_perp);
   });
 }

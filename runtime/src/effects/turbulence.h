@@ -32,19 +32,20 @@ struct OUStep {
 // The exact update's coefficients, written once (ou_exact and the batched steps' loops call it):
 // decay = exp(-alpha h), noise = beta sqrt((1 - exp(-2 alpha h)) / (2 alpha)), m/s, with
 // 1 - exp(-y) kept precise for small y; the alpha -> 0 limit is beta sqrt(h). alpha in 1/s, beta
-// in m/s^1.5, h in s.
+// in m/s^1.5, h in s. Math: util/fast_math.h (LaneMath in the batched loops).
+template <class Math = LaneMath>
 LRIGID_LANE void ou_exact_kernel(double alpha, double beta, double h, double* decay,
                                  double* noise) {
   const double ah = alpha * h;
   const double a_safe = alpha > 0 ? alpha : 1.0;
-  *decay = exp_fast(-ah);
-  *noise = beta * (ah > 1e-12 ? std::sqrt(one_minus_exp_neg(2.0 * ah) / (2.0 * a_safe))
+  *decay = Math::exp(-ah);
+  *noise = beta * (ah > 1e-12 ? std::sqrt(Math::one_minus_exp_neg(2.0 * ah) / (2.0 * a_safe))
                               : std::sqrt(h));
 }
 
 inline OUStep ou_exact(double alpha, double beta, double h) {
   OUStep s;
-  ou_exact_kernel(alpha, beta, h, &s.decay, &s.noise_std);
+  ou_exact_kernel<ScalarMath>(alpha, beta, h, &s.decay, &s.noise_std);
   return s;
 }
 

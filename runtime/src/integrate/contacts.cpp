@@ -27,7 +27,7 @@ struct Touching {
 // The shape's points that reach a surface, with the positions `ahead` seconds ahead at the
 // points' current velocities (0: where they are).
 void gather(const Model& m, const BodyType& type, const BodyState& b, const Mat3& R, double t,
-            double ahead, Touching* out) {
+            double ahead, Touching* out, WallClearance* clearance = nullptr) {
   const ContactParams& k = *type.contact;
   const Mat3 Rt = R.transpose();
   // points on the ground need no wall check: the grid's floor is the ground, twice the same
@@ -60,9 +60,16 @@ void gather(const Model& m, const BodyType& type, const BodyState& b, const Mat3
     }
   }
   if (!m.walls_collide()) return;
+  if (clearance && clearance->radius >= 0 && (b.x - clearance->x).norm() < clearance->radius)
+    return;
   double dc;
   Vec3 gc;
-  if (!m.field.wall_distance(b.x, t, &dc, &gc) || dc > type.reach) return;
+  const bool inside = m.field.wall_distance(b.x, t, &dc, &gc);
+  if (clearance) {
+    clearance->x = b.x;
+    clearance->radius = inside ? (dc - type.reach) / std::sqrt(3.0) : -1;
+  }
+  if (!inside || dc > type.reach) return;
   // a point touches where the wall distance is <= 0; its normal is the distance's gradient
   auto wall = [&](const Vec3& rb, Vec3* nw) {
     const Vec3 p = b.x + R * rb + ahead * point_velocity(rb);
@@ -106,10 +113,10 @@ double end_velocity_weight(const Model& m) {
 }  // namespace
 
 bool contact_after_step(const Model& model, const BodyType& type, size_t i, double t_end,
-                        BodyState* b, State* st) {
+                        BodyState* b, State* st, WallClearance* clearance) {
   const Mat3 R = b->q.toRotationMatrix();
   Touching c;
-  gather(model, type, *b, R, t_end, 0.0, &c);
+  gather(model, type, *b, R, t_end, 0.0, &c, clearance);
   if (c.count == 0) {
     mark_flying(st, i);
     return false;

@@ -29,8 +29,20 @@ constexpr double kRestFraction = 0.1;
 // state, rest counter, impact count and first ground touchdown; a body that has rested for
 // model.sleep_time is put to sleep (status Sleeping, at rest). Returns true when it fell asleep
 // (the caller stops stepping it).
+// What the last wall query of a body found: its centre x and the wall distance d there. The
+// grid's wall distance is trilinear in node values that differ by at most the spacing between
+// neighbouring nodes (an exact distance), so each of its partial derivatives is at most 1 and its
+// gradient at most sqrt(3): while the centre stays within (d - reach) / sqrt(3) of x, no point of
+// the body can reach a wall, and the scalar step skips the query (the batched steps compare the
+// wall distance their samples carry instead). Not valid across the sign jump where a grid box
+// reaches beyond a non-rectangular mesh (docs/grid-format.md); bodies there leave the grid.
+struct WallClearance {
+  Vec3 x = Vec3::Zero();
+  double radius = -1;  // m; < 0: no query yet
+};
+
 bool contact_after_step(const Model& model, const BodyType& type, size_t i, double t_end,
-                        BodyState* b, State* st);
+                        BodyState* b, State* st, WallClearance* clearance = nullptr);
 
 // A step from b that left the fluid below the grid while heading into the ground (the ground
 // often is the grid's bottom): the contact at the start of the step with the points' positions

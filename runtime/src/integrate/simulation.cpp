@@ -45,6 +45,7 @@ uint64_t advance_body(const Model& model, State& st, int64_t i, uint64_t first, 
   BodyState b = load_body(st, size_t(i));
   const bool contacts = model.contacts();
   const bool lands = model.has_ground && !model.ground_collides();
+  WallClearance clearance;
   for (uint64_t k = first; k < last; ++k) {
     const double t = static_cast<double>(k) * model.dt;
     std::string reason;
@@ -60,7 +61,8 @@ uint64_t advance_body(const Model& model, State& st, int64_t i, uint64_t first, 
       break;
     }
     ++body_steps;
-    if (contacts && contact_after_step(model, type, size_t(i), t + model.dt, &b, &st)) break;
+    if (contacts && contact_after_step(model, type, size_t(i), t + model.dt, &b, &st, &clearance))
+      break;
     if (lands && touches_ground(model, type, b)) {
       st.status[i] = BodyStatus::Landed;
       st.t_stop[i] = t + model.dt;

@@ -101,4 +101,21 @@ inline double one_minus_exp_neg(double y) {
   return y < 0.5 ? series : direct;
 }
 
+// The elementary functions a kernel written once (effects/*.h) calls, chosen by its caller. The
+// batched lanes take LaneMath, the straight-line polynomials above: a loop over them vectorizes.
+// The scalar step takes ScalarMath, the C library's: on one number at a time a 14-term Horner
+// chain is a long run of dependent multiplies and adds, slower than libm's table-driven
+// functions (beads_wind on the scalar step: 7-10 % of its CPU time, issue 22). The two agree to
+// a few ulp (tests/runtime/util/rng_test.cpp).
+struct LaneMath {
+  static double exp(double x) { return exp_fast(x); }
+  static double pow(double x, double y) { return exp_fast(y * log_fast(x)); }
+  static double one_minus_exp_neg(double y) { return lrigid::one_minus_exp_neg(y); }
+};
+struct ScalarMath {
+  static double exp(double x) { return std::exp(x); }
+  static double pow(double x, double y) { return std::pow(x, y); }
+  static double one_minus_exp_neg(double y) { return -std::expm1(-y); }
+};
+
 }  // namespace lrigid
