@@ -34,6 +34,29 @@ inline FluidField wind_grid(double nu) {
   return FluidField::grid(g, {f}, nu, Drift::Stationary, TimeMode::Clamp);
 }
 
+// The same box with a gusting wind: frames at 0, 0.3, 0.55 and 0.9 s (uneven: the steps' blend
+// weights and dU/dt change from bracket to bracket) whose wind speed and k swing by up to 40 %,
+// clamped after the last frame (the 1 s runs pass it). A time-dependent field: samples blend two
+// frames and carry dU/dt.
+inline FluidField gusty_wind_grid(double nu) {
+  const GridGeometry g = test::grid_geometry(25, 17, 13, Vec3(-6, -4, -0.5), Vec3(0.5, 0.5, 0.5));
+  std::vector<RawGridFrame> frames;
+  for (double t : {0.0, 0.3, 0.55, 0.9}) {
+    const double gust = 1 + 0.4 * std::sin(7.0 * t);
+    RawGridFrame f = test::grid_frame(g, [gust](const Vec3& x, Vec3* U, double* k, double* eps) {
+      const double z = std::max(x.z(), 0.0);
+      *U = Vec3(1.5 * gust * std::sqrt(z) * (1 + 0.05 * x.x()), 0.3 * std::sin(0.5 * x.x() + gust),
+                -0.05 * gust * x.y());
+      *k = (0.05 + 0.2 * z / 5.5) * gust;
+      *eps = 0.4 * *k;
+      return !(std::abs(x.x()) <= 1.0 && std::abs(x.y()) <= 1.0 && x.z() <= 2.0);
+    });
+    f.time = t;
+    frames.push_back(std::move(f));
+  }
+  return FluidField::grid(g, frames, nu, Drift::Stationary, TimeMode::Clamp);
+}
+
 // Splitting at 2 ms for 1 s (seed `seed`), the first body entry spawned with random orientations
 // west of the grid's block, and the ground at z = 0 where bodies land (ground.contact "stop").
 inline void release_in_wind_grid(Scene* s, uint64_t seed) {

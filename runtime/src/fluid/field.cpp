@@ -118,6 +118,21 @@ void FluidField::bracket(double t, size_t* i, size_t* j, double* lam) const {
   *lam = (tt - times_[*i]) / (times_[*j] - times_[*i]);
 }
 
+FluidField::FrameBlend FluidField::frames_at(double t) const {
+  FrameBlend f;
+  if (frames_.empty()) return f;
+  size_t i, j;
+  bracket(t, &i, &j, &f.lam);
+  f.a = frame_records(i);
+  if (i != j) {
+    f.b = frame_records(j);
+    f.inv_dt = 1.0 / (times_[j] - times_[i]);
+  } else {
+    f.lam = 0;
+  }
+  return f;
+}
+
 double FluidField::next_frame_time(double t) const {
   if (times_.size() < 2) return HUGE_VAL;
   const double t0 = times_.front(), t1 = times_.back();

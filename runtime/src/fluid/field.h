@@ -146,6 +146,15 @@ class FluidField {
   const float* frame_records(size_t i) const {
     return reinterpret_cast<const float*>(frames_[i].data());
   }
+  // The frames a sample at time t blends, as sample() does: the records of frames a and b (b is
+  // nullptr when one frame serves), the weight lam of b, and 1 / (t_b - t_a) (1/s) for dU/dt.
+  // The frames must be resident (prepare).
+  struct FrameBlend {
+    const float* a = nullptr;
+    const float* b = nullptr;
+    double lam = 0, inv_dt = 0;
+  };
+  FrameBlend frames_at(double t) const;
 
  private:
   struct Stream;

@@ -22,24 +22,39 @@ struct Record8 {
 //                                      since valid_c is 1 or 0),
 //   dk = sum_c (dw_c / df_k) rec_c   (k = 0, 1, 2: per unit index; with Gradients only).
 // Returns the number of valid corners. Gradients are meaningful only when all 8 are valid.
-template <typename T, bool Gradients>
+// Blend: the records of two frames of a time-dependent field, r0 (frame a) and r0b (frame b,
+// the same cell), blended as rec_a + lam (rec_b - rec_a) before the sums (the sums are linear:
+// the blend of the two frames' sums, for one pass over the corners), and in dv the sum
+// sum_c valid_c w_c (rec_b - rec_a) (times 1 / (t_b - t_a): the rate of change in time). The
+// frames share the valid points (the mesh does not move).
+template <typename T, bool Gradients, bool Blend = false>
 LRIGID_LANE int trilinear_record(const float* r0, const int* off, const T* f,
                                  typename Record8<T>::type* v, typename Record8<T>::type* d0,
-                                 typename Record8<T>::type* d1, typename Record8<T>::type* d2) {
+                                 typename Record8<T>::type* d1, typename Record8<T>::type* d2,
+                                 const float* r0b = nullptr, T lam = T(0),
+                                 typename Record8<T>::type* dv = nullptr) {
   typedef typename Record8<T>::type V8;
   typedef float F8 __attribute__((vector_size(32)));
   const T gx[2] = {T(1) - f[0], f[0]}, gy[2] = {T(1) - f[1], f[1]}, gz[2] = {T(1) - f[2], f[2]};
-  V8 sv = {}, s0 = {}, s1 = {}, s2 = {};
+  V8 sv = {}, s0 = {}, s1 = {}, s2 = {}, sd = {};
   int nvalid = 0;
 #pragma GCC unroll 8
   for (int c = 0; c < 8; ++c) {
     const int cx = c & 1, cy = (c >> 1) & 1, cz = c >> 2;
     F8 gf;
     std::memcpy(&gf, r0 + off[c], sizeof gf);
-    const V8 g = __builtin_convertvector(gf, V8);
+    V8 g = __builtin_convertvector(gf, V8);
     const T valid = g[6];
     nvalid += valid != T(0);
-    sv += (valid * (gx[cx] * gy[cy] * gz[cz])) * g;
+    const T wv = valid * (gx[cx] * gy[cy] * gz[cz]);
+    if constexpr (Blend) {
+      F8 hf;
+      std::memcpy(&hf, r0b + off[c], sizeof hf);
+      const V8 diff = __builtin_convertvector(hf, V8) - g;
+      sd += wv * diff;
+      g += lam * diff;
+    }
+    sv += wv * g;
     if constexpr (Gradients) {
       s0 += ((cx ? T(1) : T(-1)) * gy[cy] * gz[cz]) * g;
       s1 += (gx[cx] * (cy ? T(1) : T(-1)) * gz[cz]) * g;
@@ -50,6 +65,7 @@ LRIGID_LANE int trilinear_record(const float* r0, const int* off, const T* f,
   *d0 = s0;
   *d1 = s1;
   *d2 = s2;
+  if constexpr (Blend) *dv = sd;
   return nvalid;
 }
 

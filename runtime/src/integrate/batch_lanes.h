@@ -152,7 +152,6 @@ std::string batch_exclusion(const Model& model, const BodyType& type) {
   if (type.effects.has(Effect::Turbulence) && model.turbulence_model != TurbulenceModel::Seen)
     return "the body turbulence model";
   if (model.noise_substeps > 1) return "noise substeps";
-  if (model.field.is_streamed() || model.field.frame_count() > 1) return "a time-dependent field";
   // the registry (effects/registry.cpp) says which effects the loops implement
   if (const EffectInfo* e = first_unbatched(type.effects))
     return std::string("effect ") + e->name + " has no batched kernel";
@@ -171,7 +170,7 @@ struct Samples {
   alignas(64) T beta[kBatch];
   alignas(64) T sigma2[kBatch];
   alignas(64) T gs[3][kBatch];   // grad sigma2
-  alignas(64) T acc[3][kBatch];  // (grad U) U: the mean flow's acceleration (steady field)
+  alignas(64) T acc[3][kBatch];  // dU/dt + (grad U) U: the mean flow's acceleration, m/s^2
   alignas(64) T inside[kBatch];  // 1 in the fluid, 0 outside
   // the wall distance at the sample where all 8 corners are valid (m), -1 where some is not (a
   // wall within a cell), +infinity outside the grid's box or without the array: the batched
@@ -186,6 +185,9 @@ struct Samples {
   alignas(64) T fb[3][kBatch];
   alignas(64) T gb[3][kBatch];  // u_f - V at the end of the step (end_step), m/s
   double* history[kBatch];
+  // the field's frames at the time of the next sample (a time-dependent field: set by the driver
+  // before each step, FluidField::frames_at; frames.a == nullptr: FieldConsts::records)
+  FluidField::FrameBlend frames;
   uint32_t body[kBatch];
   bool live[kBatch];
   uint64_t newton = 0;  // steps of live lanes on which the loops ran Newton (BlockStats)
@@ -217,7 +219,11 @@ LRIGID_IVDEP
     }
     return;
   }
-  const float* rec = fc.records;
+  // a time-dependent field: the blend of two frames at the sample's time, as FluidField::sample
+  // (the frames share the valid points and the wall distance: the mesh does not move)
+  const float* rec = lanes->frames.a ? lanes->frames.a : fc.records;
+  const float* rec_b = lanes->frames.b;
+  const T lam = T(lanes->frames.lam), rate = T(lanes->frames.inv_dt);
   // 32-bit float offsets of the 8 corners' records (batch_exclusion bounds the grid)
   const int sy = int(fc.sy), sz = int(fc.sz);
   const int off[8] = {
@@ -228,6 +234,7 @@ LRIGID_IVDEP
   // weights' derivatives times them (the gradients).
   typedef typename Record8<T>::type V8;
   alignas(64) T val[8][kBatch], grad[3][8][kBatch], allv[kBatch], frac[3][kBatch];
+  alignas(64) T dudt[3][kBatch];  // the weighted sums' rate of change in time (slots 0-2), 1/s
   alignas(64) int base[kBatch], inbox[kBatch];
   // the cells first (across lanes), so that their records can be fetched ahead
 LRIGID_IVDEP
@@ -259,6 +266,11 @@ LRIGID_IVDEP
       const float* r = rec + base[j] + off[c];
       __builtin_prefetch(r);
       __builtin_prefetch(r + 15);
+      if (rec_b) {
+        const float* rb = rec_b + base[j] + off[c];
+        __builtin_prefetch(rb);
+        __builtin_prefetch(rb + 15);
+      }
     }
   };
   for (int j = lo; j < hi && j < lo + kAhead; ++j) prefetch(j);
@@ -268,7 +280,18 @@ LRIGID_IVDEP
     const int idx = base[j];
     bool in = inbox[j] != 0;
     V8 v, d0, d1, d2;
-    const int nvalid = trilinear_record<T, true>(rec + idx, off, f, &v, &d0, &d1, &d2);
+    int nvalid;
+    if (rec_b) {
+      V8 dv;
+      nvalid = trilinear_record<T, true, true>(rec + idx, off, f, &v, &d0, &d1, &d2, rec_b + idx,
+                                               lam, &dv);
+#pragma GCC unroll 3
+      for (int p = 0; p < 3; ++p) dudt[p][j] = dv[p] * rate;
+    } else {
+      nvalid = trilinear_record<T, true>(rec + idx, off, f, &v, &d0, &d1, &d2);
+#pragma GCC unroll 3
+      for (int p = 0; p < 3; ++p) dudt[p][j] = T(0);
+    }
     // slot 6 of v: the weight W of the valid corners
     // (colliding walls: any valid corner, as FluidField::sample_frame)
     in = in & (nvalid > 0) & ((v[6] >= T(0.5)) | fc.walls_collide);
@@ -303,8 +326,9 @@ LRIGID_IVDEP
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
       lanes->gs[a][j] = ts2 * all * grad[a][5][j] / T(fc.spacing[a]);
-      lanes->acc[a][j] =
-          gu[a][0] * lanes->U[0][j] + gu[a][1] * lanes->U[1][j] + gu[a][2] * lanes->U[2][j];
+      // DU/Dt = dU/dt + (grad U) U (effects/mean_flow.h)
+      lanes->acc[a][j] = mfs * dudt[a][j] * inv + gu[a][0] * lanes->U[0][j] +
+                         gu[a][1] * lanes->U[1][j] + gu[a][2] * lanes->U[2][j];
     }
   }
 }
@@ -522,6 +546,10 @@ BlockStats drive_block(const Model& model, const BodyType& type, const FieldCons
     if (fc.sample) sample_lanes(fc, lanes->x, lanes, lo, hi);
     if (fc.turb) ou_coefficients(fc, lanes, lo, hi);
   };
+  // a time-dependent field: the frames of each sample's time (the samples at the end of a step
+  // are at its end time)
+  const bool unsteady = fc.grid && model.field.frame_count() > 1;
+  if (unsteady) lanes->frames = model.field.frames_at(static_cast<double>(first) * model.dt);
   resample(0, kBatch);
   alignas(64) int outcome[kBatch];
   alignas(64) int landed[kBatch];
@@ -530,6 +558,8 @@ BlockStats drive_block(const Model& model, const BodyType& type, const FieldCons
     for (int j = 0; j < count; ++j) any = any || lanes->live[j];
     if (!any) break;
     const double t = static_cast<double>(s) * model.dt;
+    // (the end time as the next stretch's start, first * dt: bitwise the same blend)
+    if (unsteady) lanes->frames = model.field.frames_at(static_cast<double>(s + 1) * model.dt);
     if (fc.basset) {
       for (int j = 0; j < kBatch; ++j) {
         const Vec3 f =

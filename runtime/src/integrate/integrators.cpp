@@ -321,6 +321,9 @@ StepOutcome step_body(const Model& model, const BodyType& type, uint32_t body, u
                       double t, BodyState* s, std::string* reason) {
   const BodyState before = *s;
   const double h = model.dt;
+  // the end of the step as the next step's start time (step + 1) dt, not t + h (which may
+  // differ in the last bit): the sample there is the one the next step starts from
+  const double t_end = static_cast<double>(step + 1) * h;
   const bool turb = uses_turbulence(model, type, TurbulenceModel::Seen) ||
                     uses_turbulence(model, type, TurbulenceModel::Body);
   double z[6], z1[6], z2[6];
@@ -351,9 +354,20 @@ StepOutcome step_body(const Model& model, const BodyType& type, uint32_t body, u
       // body model: the turbulent velocity at mid-step carries the body directly
       if (out == StepOutcome::Ok && turb && model.turbulence_model == TurbulenceModel::Body)
         s->x += h * s->u_seen;
+      // the second half step's coefficients at the end of the step, (x1, t_end): symmetric with
+      // the first's at (x0, t), and the sample the next step starts from (the batched steps take
+      // it once for both)
       if (out == StepOutcome::Ok && turb)
-        out = turbulence_update(model, type, t + 0.5 * h, 0.5 * h, true, z2, s);
+        out = turbulence_update(model, type, t_end, 0.5 * h, true, z2, s);
       break;
+  }
+  // A step that ends outside the fluid exits the body at the start of the step, its last place
+  // in the fluid, as a failing turbulence half step and the batched steps find it. The sample is
+  // the one the next step starts from: the field's per-thread cache answers it again.
+  if (out == StepOutcome::Ok && type.plan.sample_field && !model.field.is_uniform()) {
+    FluidSample end;
+    if (!sample_fluid(model, s->x, t_end, turb || type.plan.gradients, &end))
+      out = StepOutcome::Exited;
   }
   // checked first: a state that went non-finite within the step also samples as "outside", and
   // it failed, not exited
@@ -371,7 +385,7 @@ StepOutcome step_body(const Model& model, const BodyType& type, uint32_t body, u
     // relative velocity g = u_f - v at the end of the step enters the history
     Vec3 uf = Vec3::Zero();
     FluidSample fs;
-    if (type.plan.mean_flow && sample_fluid(model, s->x, t + h, false, &fs)) uf += fs.U;
+    if (type.plan.mean_flow && sample_fluid(model, s->x, t_end, false, &fs)) uf += fs.U;
     if (type.plan.seen) uf += s->u_seen;
     basset_push(type.basset, uf - s->q.toRotationMatrix() * s->v, h, s->history);
   }

@@ -19,7 +19,7 @@
 // Kirchhoff tensor K diagonal and the centre of buoyancy at the centre of mass, effects among
 // gravity, buoyancy, drag, lift, added mass, mean flow and turbulence, and what every batched step
 // needs (batch_lanes.h batch_exclusion: splitting, the seen model, one noise increment per step, a
-// steady field).
+// steady field or a series).
 #pragma once
 #include <cstdint>
 #include <string>

@@ -15,8 +15,8 @@
 //
 // What qualifies (sphere_batch_eligible): a uniform sphere (centre of mass at the centroid) with
 // effects among gravity, buoyancy, drag, added mass, mean flow and turbulence; the seen
-// turbulence model; the splitting integrator; one noise increment per step; a uniform field or a
-// steady grid (one frame). Other body types take the scalar step; a scene can mix both.
+// turbulence model; the splitting integrator; one noise increment per step; a uniform field, a
+// grid or a series of grids. Other body types take the scalar step; a scene can mix both.
 #pragma once
 #include <cstdint>
 #include <string>

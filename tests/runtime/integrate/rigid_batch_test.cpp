@@ -78,6 +78,26 @@ TEST(RigidBatch, LeavesInAGridMatchTheScalarStep) {
               static_cast<unsigned long long>(batched.stats.body_steps));
 }
 
+TEST(RigidBatch, LeavesInAGustingSeriesMatchTheScalarStep) {
+  // a time-dependent field (four frames): the lanes blend two frames at each sample's time and
+  // add dU/dt to the mean flow's acceleration, as FluidField::sample does
+  const Scene s = rigid_scene(Shape::box(0.06, 0.04, 4e-4), 600, 100);
+  const FluidField field = batch_test::gusty_wind_grid(1.5e-5);
+  ASSERT_EQ(field.frame_count(), 4u);
+  expect_eligible(s, field);
+  const auto [scalar, batched, d] = scalar_and_batched(s, field);
+  EXPECT_EQ(scalar.stats.body_steps, batched.stats.body_steps);
+  expect_close(d, 1e-8);
+  EXPECT_LT(batched.stats.scalar_handoffs, batched.stats.body_steps / 100);
+  // the gusts matter: the same leaves in the first frame alone end elsewhere
+  const FluidField steady = wind_grid(1.5e-5);
+  const Outcome first = run(s, steady, true, Precision::Double, 1);
+  double apart = 0;
+  for (size_t i = 0; i < first.state.size(); ++i)
+    apart = std::max(apart, (first.state.x[i] - batched.state.x[i]).norm());
+  EXPECT_GT(apart, 0.05);  // m
+}
+
 TEST(RigidBatch, EllipsoidsAndDisksMatchTheScalarStep) {
   // a seed pod (prolate, not flat: ellipsoid drag) and a disk (flat: the ellipse's chord)
   for (const Shape& shape :
