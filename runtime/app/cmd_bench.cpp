@@ -65,11 +65,10 @@ struct BenchArgs {
 };
 
 Integrator integrator_from(const std::string& s) {
-  if (s == "euler") return Integrator::Euler;
-  if (s == "rk4") return Integrator::RK4;
-  if (s == "splitting") return Integrator::Splitting;
-  throw Error(ExitCode::Usage, "--integrators: unknown integrator \"" + s +
-                                   "\" (euler, rk4, splitting)");
+  Integrator i;
+  if (integrator_from_name(s, &i)) return i;
+  throw Error(ExitCode::Usage, "--integrators: unknown integrator \"" + s + "\" (" +
+                                   kIntegratorNames + ")");
 }
 
 EffectSet effects_from(const std::string& s, bool* is_auto) {

@@ -17,6 +17,8 @@ bool sphere_batch_eligible(const Model& model, const BodyType& type, std::string
   };
   if (const std::string all = batch_exclusion(model, type); !all.empty()) return no(all);
   if (type.shape.type != ShapeType::Sphere) return no("not a sphere");
+  // the sphere step's loops are the splitting scheme's only (rigid_batch.cpp runs both)
+  if (model.integrator == Integrator::Strang) return no("strang on the sphere step: not yet");
   if (!type.M_isotropic || !type.r_cob.isZero(0.0))
     return no("the centre of mass is off the centroid");
   return true;

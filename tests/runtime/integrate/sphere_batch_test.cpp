@@ -222,7 +222,10 @@ TEST(SphereBatch, EligibilitySaysWhatExcludesABodyType) {
       {
           {[](Scene& e) { e.bodies[0].shape = Shape::ellipsoid(3e-4, 2.5e-4, 2e-4); },
            "not a sphere"},
-          {[](Scene& e) { e.integrator = Integrator::RK4; }, "the integrator is not splitting"},
+          {[](Scene& e) { e.integrator = Integrator::Strang; },
+           "strang on the sphere step: not yet"},
+          {[](Scene& e) { e.integrator = Integrator::RK4; },
+           "the integrator is not splitting or strang"},
           {[](Scene& e) { e.turbulence_model = TurbulenceModel::Body; },
            "the body turbulence model"},
           {[](Scene& e) { e.batched = false; }, "the scene turns the batched step off"},
