@@ -173,6 +173,7 @@ struct Samples {
   alignas(64) T sigma2[kBatch];
   alignas(64) T gs[3][kBatch];   // grad sigma2
   alignas(64) T acc[3][kBatch];  // (grad U) U: the mean flow's acceleration (steady field)
+  alignas(64) T gU[9][kBatch];   // grad U, dU_p/dx_a at p * 3 + a, 1/s (0 without gradients)
   alignas(64) T inside[kBatch];  // 1 in the fluid, 0 outside
   // the wall distance at the sample where all 8 corners are valid (m), -1 where some is not (a
   // wall within a cell), +infinity outside the grid's box or without the array: the batched
@@ -209,6 +210,8 @@ LRIGID_IVDEP
         lanes->gs[a][j] = T(0);
         lanes->acc[a][j] = T(0);
       }
+#pragma GCC unroll 9
+      for (int e = 0; e < 9; ++e) lanes->gU[e][j] = T(0);
       lanes->alpha[j] = T(u.alpha);
       lanes->beta[j] = T(u.beta);
       lanes->sigma2[j] = T(u.sigma2);
@@ -296,7 +299,10 @@ LRIGID_IVDEP
     for (int p = 0; p < 3; ++p) {
       lanes->U[p][j] = mfs * val[p][j] * inv;
 #pragma GCC unroll 3
-      for (int a = 0; a < 3; ++a) gu[p][a] = mfs * all * grad[a][p][j] / T(fc.spacing[a]);
+      for (int a = 0; a < 3; ++a) {
+        gu[p][a] = mfs * all * grad[a][p][j] / T(fc.spacing[a]);
+        lanes->gU[p * 3 + a][j] = gu[p][a];
+      }
     }
     lanes->alpha[j] = val[3][j] * inv;
     lanes->beta[j] = ts * val[4][j] * inv;

@@ -274,8 +274,7 @@ void strang_force_step(const Model& model, const BodyType& type, const FluidSamp
 // held) and the free Kirchhoff flow (kirchhoff_flow, implicit midpoint + Cayley, with x by the
 // trapezoidal rule on the world velocity). Both parts are second order, the composition too.
 // The field is sampled at the start and at the end of the step; the flow moves relative to the
-// fluid velocity at the start (with added mass in a non-uniform mean flow that coupling is first
-// order: an error O(h |grad U|) in the flow's relative velocity).
+// fluid velocity at the midpoint, U + grad U (h/2 V) from the start's sample.
 StepOutcome strang_deterministic_step(const Model& model, const BodyType& type, double t,
                                       BodyState* s) {
   const double h = model.dt, hh = 0.5 * h;
@@ -288,6 +287,10 @@ StepOutcome strang_deterministic_step(const Model& model, const BodyType& type, 
   if (plan.mean_flow) uf += fluid.U;
   if (plan.seen) uf += s->u_seen;
   const Vec3 V0 = s->q * s->v;
+  // the flow moves relative to the fluid velocity at the step's midpoint, predicted to first
+  // order along the start's velocity (second order in a non-uniform mean flow with added mass;
+  // without added mass, or for an isotropic M, the flow does not depend on it)
+  if (plan.gradients) uf += fluid.grad_U * (hh * V0);
   kirchhoff_flow(type, uf, h, &s->q, &s->v, &s->w);
   s->x += hh * (V0 + s->q * s->v);
   if (plan.sample_field && !sample_fluid(model, s->x, t + h, plan.gradients, &fluid))

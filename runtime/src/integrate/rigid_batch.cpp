@@ -237,6 +237,14 @@ LRIGID_IVDEP
       const T acc[3] = {lanes->acc[0][j], lanes->acc[1][j], lanes->acc[2][j]};
       strang_force_lane<T, Plate, Extra>(tc, R, u_f, acc, hh, v, w);
       mul(R, v, V);
+      // the flow moves relative to the fluid velocity at the midpoint (integrators.cpp
+      // strang_deterministic_step): U + grad U (h/2 V)
+#pragma GCC unroll 3
+      for (int p = 0; p < 3; ++p)
+        u_f[p] += T(tc.gu) * hh *
+                  (lanes->gU[p * 3][j] * V[0] + lanes->gU[p * 3 + 1][j] * V[1] +
+                   lanes->gU[p * 3 + 2][j] * V[2]);
+      mul_t(R, u_f, ufb);
     }
     // 2. the free Kirchhoff flow of the motion relative to the fluid, implicit midpoint from the
     //    explicit midpoint predictor (dynamics.cpp kirchhoff_midpoint)
