@@ -297,7 +297,7 @@ int study(int argc, char** argv) {
   std::string out = src + "/docs/accuracy";
   std::vector<std::string> only, grid_spec, field_override;
   std::vector<std::string> sweeps = {"det", "stoch", "effects"};
-  std::vector<std::string> schemes = {"euler", "rk4", "splitting"};
+  std::vector<std::string> schemes = {"euler", "rk4", "splitting", "strang"};
   bool quick = false;
   int threads = 1;
   for (int i = 1; i < argc; ++i) {

@@ -23,10 +23,9 @@ const char* effect_mode_name(EffectMode m) {
 }
 
 Integrator integrator_from_name(const std::string& name) {
-  if (name == "euler") return Integrator::Euler;
-  if (name == "rk4") return Integrator::RK4;
-  if (name == "splitting") return Integrator::Splitting;
-  throw Error(ExitCode::Usage, "unknown integrator '" + name + "' (euler, rk4, splitting)");
+  Integrator i;
+  if (lrigid::integrator_from_name(name, &i)) return i;
+  throw Error(ExitCode::Usage, "unknown integrator '" + name + "' (" + kIntegratorNames + ")");
 }
 
 void scale_bodies(Scene* scene, int n) {

@@ -54,7 +54,7 @@ std::string default_scene() {
 struct BenchArgs {
   std::string scene;  // empty: default_scene()
   std::vector<long long> n = {1000, 10000, 100000, 1000000};
-  std::vector<std::string> integrators = {"euler", "rk4", "splitting"};
+  std::vector<std::string> integrators = {"euler", "rk4", "splitting", "strang"};
   std::vector<int> threads = {1, 2};
   std::string effects = "scene";  // the scene's own ("auto" or its list), "all", or a list
   double body_steps = 3e6;  // measured body-steps per point (at least min_steps steps)
@@ -65,11 +65,10 @@ struct BenchArgs {
 };
 
 Integrator integrator_from(const std::string& s) {
-  if (s == "euler") return Integrator::Euler;
-  if (s == "rk4") return Integrator::RK4;
-  if (s == "splitting") return Integrator::Splitting;
-  throw Error(ExitCode::Usage, "--integrators: unknown integrator \"" + s +
-                                   "\" (euler, rk4, splitting)");
+  Integrator i;
+  if (integrator_from_name(s, &i)) return i;
+  throw Error(ExitCode::Usage, "--integrators: unknown integrator \"" + s + "\" (" +
+                                   kIntegratorNames + ")");
 }
 
 EffectSet effects_from(const std::string& s, bool* is_auto) {
@@ -240,7 +239,7 @@ void add_bench_command(CLI::App& app) {
                   "Scene file (default: the repository's scenes/leaves_wind.json, wherever "
                   "lrigid is run from)");
   cmd->add_option("--n", args->n, "Body counts")->delimiter(',')->check(CLI::PositiveNumber);
-  cmd->add_option("--integrators", args->integrators, "euler, rk4, splitting")->delimiter(',');
+  cmd->add_option("--integrators", args->integrators, kIntegratorNames)->delimiter(',');
   cmd->add_option("--threads", args->threads, "Thread counts")
       ->delimiter(',')
       ->check(CLI::Range(1, 1024));

@@ -54,9 +54,7 @@ std::string scene_fingerprint(const std::string& scene_file, const Scene& s) {
   text << in.rdbuf();
   char buf[160];
   std::snprintf(buf, sizeof buf, "\nseed=%llu integrator=%s dt=%.17g", (unsigned long long)s.seed,
-                s.integrator == Integrator::Euler ? "euler"
-                : s.integrator == Integrator::RK4 ? "rk4"
-                                                  : "splitting",
+                integrator_name(s.integrator),
                 s.dt);
   return text_fingerprint(text.str() + buf);
 }
@@ -67,9 +65,8 @@ void apply_tolerance(const RunArgs& a, Scene* scene) {
       a.tolerance_table.empty() ? default_tolerance_table_path() : a.tolerance_table;
   const ToleranceChoice c =
       choose_for_tolerance(read_tolerance_table(path), scene_kind(*scene), a.tolerance);
-  scene->integrator = c.entry.integrator == "euler" ? Integrator::Euler
-                      : c.entry.integrator == "rk4" ? Integrator::RK4
-                                                    : Integrator::Splitting;
+  if (!integrator_from_name(c.entry.integrator, &scene->integrator))
+    scene->integrator = Integrator::Splitting;  // read_tolerance_table checked the names
   scene->dt = c.entry.dt;
   if (!a.quiet) std::fprintf(stderr, "lrigid: %s; from %s\n", c.explanation.c_str(), path.c_str());
 }

@@ -19,12 +19,12 @@ import csv, math, sys
 rows = list(csv.DictReader(open(sys.argv[1])))
 det = [r for r in rows if r["sweep"] == "dt_det" and r["metric"] == "trajectory"]
 det1 = [r for r in rows if r["sweep"] == "dt_det" and r["metric"] == "trajectory_t1"]
-assert len(det1) == 12, len(det1)
+assert len(det1) == 15, len(det1)
 for a, b in zip(det, det1):             # the first compared time is one of the times
     assert float(b["error"]) <= float(a["error"]), (a, b)
 sto = [r for r in rows if r["sweep"] == "dt_stoch" and r["metric"] == "strong"]
-assert len(det) == 12, len(det)         # 3 integrators and splitting in float x 3 dt
-assert len(sto) == 9, len(sto)
+assert len(det) == 15, len(det)         # 4 integrators and splitting in float x 3 dt
+assert len(sto) == 12, len(sto)
 for r in det + sto:
     assert r["valid"] == "1" and r["failed"] == "0", r
     assert math.isfinite(float(r["error"])) and float(r["error"]) > 0, r

@@ -219,6 +219,87 @@ StepOutcome split_deterministic_step(const Model& model, const BodyType& type, d
   return StepOutcome::Ok;
 }
 
+// The Strang scheme's force step over h at the body's position and orientation (both held), on
+// the fluid sample taken there: ROS2 on the impulse (integrate/kirchhoff.h ros2_impulse), the
+// stiffness J the drag's. The added-mass term is all in the Kirchhoff flow but for the fluid's
+// own acceleration, a constant force K (R^T Du/Dt; 0) here; the forces see the fluid velocity at
+// the body's (held) position.
+void strang_force_step(const Model& model, const BodyType& type, const FluidSample& fluid,
+                       double h, BodyState* s) {
+  const EffectPlan& plan = type.plan;
+  const Kinematics k = kinematics(*s);
+  EffectContext c;
+  Vec3 uf;
+  context_from_sample(model, type, k, true, &fluid, &c, &uf);
+  DragStiffness ds, J;
+  bool has_drag = false;
+  c.stiffness = &ds;
+  const bool fluid_inertia = type.effects.has(Effect::AddedMass);
+  const Vec3 uf_b = c.Rt * uf;
+  Vec6 drag_along = Vec6::Zero();
+  if (fluid_inertia && plan.mean_flow)
+    drag_along = type.K_fluid.leftCols<3>() * (c.Rt * mean_flow_acceleration(fluid));
+  Vec6 xi;
+  xi << s->v, s->w;
+  Vec6 Pi = type.M_times(xi);
+  if (fluid_inertia) Pi -= type.K_fluid.leftCols<3>() * uf_b;
+  auto forces = [&](const double* dPi, bool first, double* F) {
+    const Vec6 x = velocity_from_impulse(type, Pi + Eigen::Map<const Vec6>(dPi), uf_b, fluid_inertia);
+    c.v_rel = x.head<3>() - uf_b;
+    c.w = x.tail<3>();
+    Vec6 rate = drag_along;
+    for (size_t i = 0; i < plan.terms.size(); ++i) {
+      const Effect e = plan.term_effect[i];
+      if (e == Effect::AddedMass) continue;
+      rate += plan.terms[i](c);
+      if (first && e == Effect::Drag) has_drag = true;
+    }
+    if (first) J = ds;
+    Eigen::Map<Vec6> out(F);
+    out = rate;
+  };
+  auto solve = [&](double gh, const double* b, double* x) {
+    Eigen::Map<Vec6> out(x);
+    out = implicit_impulse_change(type, 0.0, has_drag ? &J : nullptr, gh, Eigen::Map<const Vec6>(b));
+  };
+  Vec6 dPi;
+  ros2_impulse(h, forces, solve, dPi.data());
+  const Vec6 xi_new = velocity_from_impulse(type, Pi + dPi, uf_b, fluid_inertia);
+  s->v = xi_new.head<3>();
+  s->w = xi_new.tail<3>();
+}
+
+// Deterministic part of the Strang scheme (docs/physics/integrators.md): the symmetric
+// composition F(h/2) K(h) F(h/2) of the force step (strang_force_step, position and orientation
+// held) and the free Kirchhoff flow (kirchhoff_flow, implicit midpoint + Cayley, with x by the
+// trapezoidal rule on the world velocity). Both parts are second order, the composition too.
+// The field is sampled at the start and at the end of the step (t_end: (step + 1) dt, as the
+// next step's start); the flow moves relative to the fluid velocity at the midpoint,
+// U + grad U (h/2 V) from the start's sample.
+StepOutcome strang_deterministic_step(const Model& model, const BodyType& type, double t,
+                                      double t_end, BodyState* s) {
+  const double h = model.dt, hh = 0.5 * h;
+  const EffectPlan& plan = type.plan;
+  FluidSample fluid;
+  if (plan.sample_field && !sample_fluid(model, s->x, t, plan.gradients, &fluid))
+    return StepOutcome::Exited;
+  strang_force_step(model, type, fluid, hh, s);
+  Vec3 uf = Vec3::Zero();
+  if (plan.mean_flow) uf += fluid.U;
+  if (plan.seen) uf += s->u_seen;
+  const Vec3 V0 = s->q * s->v;
+  // the flow moves relative to the fluid velocity at the step's midpoint, predicted to first
+  // order along the start's velocity (second order in a non-uniform mean flow with added mass;
+  // without added mass, or for an isotropic M, the flow does not depend on it)
+  if (plan.gradients) uf += fluid.grad_U * (hh * V0);
+  kirchhoff_flow(type, uf, h, &s->q, &s->v, &s->w);
+  s->x += hh * (V0 + s->q * s->v);
+  if (plan.sample_field && !sample_fluid(model, s->x, t_end, plan.gradients, &fluid))
+    return StepOutcome::Exited;
+  strang_force_step(model, type, fluid, hh, s);
+  return StepOutcome::Ok;
+}
+
 // dexp^-1 for the right-trivialized (body frame) chart q exp(theta), to O(|theta|^3):
 // theta' = w + 1/2 theta x w + 1/12 theta x (theta x w)
 Vec3 dexpinv(const Vec3& theta, const Vec3& w) {
@@ -349,8 +430,15 @@ StepOutcome step_body(const Model& model, const BodyType& type, uint32_t body, u
       break;
     }
     case Integrator::Splitting:
+    case Integrator::Strang:
       if (turb) out = turbulence_update(model, type, t, 0.5 * h, true, z1, s);
-      if (out == StepOutcome::Ok) out = split_deterministic_step(model, type, t, s);
+      // strang with the Basset history: the splitting step (its current interval is a
+      // first-order implicit term, see the header)
+      if (out == StepOutcome::Ok) {
+        out = model.integrator == Integrator::Strang && !type.plan.basset
+                  ? strang_deterministic_step(model, type, t, t_end, s)
+                  : split_deterministic_step(model, type, t, s);
+      }
       // body model: the turbulent velocity at mid-step carries the body directly
       if (out == StepOutcome::Ok && turb && model.turbulence_model == TurbulenceModel::Body)
         s->x += h * s->u_seen;

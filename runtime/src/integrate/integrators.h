@@ -14,6 +14,13 @@
 //              Newton-iterated to backward Euler when the drag is stiff). Order 1
 //              deterministic, stable for any alpha h, any drag stiffness and any added-mass
 //              anisotropy (paper-thin plates).
+//   strang     the same OU half steps around a symmetric deterministic step: force half step,
+//              free Kirchhoff flow (implicit midpoint, full step), force half step, the force
+//              steps by the Rosenbrock-W method ROS2 (drag stiffness in its matrix; second order
+//              for any such matrix, L-stable; the flow relative to the fluid velocity at the
+//              midpoint). Order 2 deterministic, weak order 2 measured on a smooth case (the OU
+//              part exact); stable for any alpha h and drag stiffness. Body types with the
+//              Basset history take the splitting step.
 // Basset history force: its past part is a wrench term like any other effect; the current
 // interval's part acts as a mass 2 C sqrt(h) on the translation and is taken implicitly (impulse
 // step: on the left-hand side with the drag stiffness; rk4: a correction after the step). The

@@ -275,4 +275,35 @@ LRIGID_LANE bool implicit_impulse(const FullMass& m, T basset_mass, const DragOu
   return ok != 0;
 }
 
+// ---- the force step of the Strang scheme --------------------------------------------------------
+
+// The Strang scheme's force step (integrators.cpp strang_force_step, rigid_batch.cpp): Verwer,
+// Spee, Blom and Hundsdorfer's (1999) two-stage Rosenbrock-W method ROS2 on the impulse change
+// of the forces over h, position and orientation held:
+//   (I + g h J M^-1) k1 = F(0),   (I + g h J M^-1) k2 = F(h k1) - 2 k1,
+//   dPi = h (3/2 k1 + 1/2 k2),   g = 1 + 1/sqrt(2).
+// Second order for any matrix J (a W-method: the drag's stiffness leaves out the lift and the
+// drag's cross terms), L-stable where J is the forces' exact stiffness; without drag (J = 0) it
+// is Heun's method. forces(dPi, first, F) fills the impulse rate F (6: force, torque, body frame)
+// at the velocity of impulse change dPi (first: the first stage, which also sets the stiffness
+// J); solve(gh, b, x) sets x = M (M + gh J)^-1 b with the J of the first stage.
+constexpr double kRos2Gamma = 1.0 + M_SQRT1_2;
+template <typename T, class Forces, class Solve>
+LRIGID_LANE void ros2_impulse(T h, Forces forces, Solve solve, T* dPi) {
+  T F[6], k1[6], k2[6], y[6];
+#pragma GCC unroll 6
+  for (int a = 0; a < 6; ++a) y[a] = T(0);
+  forces(y, true, F);
+  const T gh = T(kRos2Gamma) * h;
+  solve(gh, F, k1);
+#pragma GCC unroll 6
+  for (int a = 0; a < 6; ++a) y[a] = h * k1[a];
+  forces(y, false, F);
+#pragma GCC unroll 6
+  for (int a = 0; a < 6; ++a) F[a] -= T(2) * k1[a];
+  solve(gh, F, k2);
+#pragma GCC unroll 6
+  for (int a = 0; a < 6; ++a) dPi[a] = h * (T(1.5) * k1[a] + T(0.5) * k2[a]);
+}
+
 }  // namespace lrigid

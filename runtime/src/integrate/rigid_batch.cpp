@@ -33,6 +33,7 @@ namespace {
 // What the step needs of the body type.
 struct StepConsts : FieldConsts {
   bool plate = false;       // flat: plate drag and lift (with turb, the step's template switches)
+  bool strang = false;      // the Strang scheme (not with the Basset history: integrators.h)
   DiagonalMass mass;        // M (integrate/kirchhoff.h)
   double K[3] = {0, 0, 0};  // K's linear diagonal (0 without added mass)
   double drag = 0;          // the drag effect as a factor 1 or 0 (bodies that are not flat)
@@ -46,6 +47,7 @@ StepConsts make_consts(const Model& model, const BodyType& type) {
   set_field_consts(model, type, &tc);
   const EffectSet& e = type.effects;
   tc.plate = type.flat;
+  tc.strang = model.integrator == Integrator::Strang && !tc.basset;
   tc.mass = diagonal_mass(type);
   for (int a = 0; a < 3; ++a) tc.K[a] = e.has(Effect::AddedMass) ? type.K_fluid(a, a) : 0.0;
   tc.drag = e.has(Effect::Drag) ? 1.0 : 0.0;
@@ -116,6 +118,74 @@ LRIGID_LANE DragOut<T> body_forces(const StepConsts& tc, const T* u, const T* w,
   }
 }
 
+// The Strang scheme's force step over hs on a lane's body-frame velocities v, w (in place), at
+// orientation R (body -> world) and the fluid velocity u_f (world) with its material derivative
+// acc (world, the gu factor applied here): ROS2 (integrate/kirchhoff.h ros2_impulse), as
+// integrators.cpp strang_force_step. Not with the Basset history (tc.strang).
+template <typename T, bool Plate, bool Extra>
+LRIGID_LANE void strang_force_lane(const StepConsts& tc, const T* R, const T* u_f, const T* acc,
+                                   T hs, T* v, T* w) {
+  const T F[3] = {T(tc.F[0]), T(tc.F[1]), T(tc.F[2])};
+  const T a_f[3] = {T(tc.gu) * acc[0], T(tc.gu) * acc[1], T(tc.gu) * acc[2]};
+  T ufb[3], ab[3], Fb[3], P[6];
+  mul_t(R, u_f, ufb);
+  mul_t(R, a_f, ab);
+  mul_t(R, F, Fb);
+#pragma GCC unroll 3
+  for (int a = 0; a < 3; ++a) {
+    Fb[a] += T(tc.K[a]) * ab[a];  // the fluid's acceleration drags the added mass along
+    P[a] = T(tc.mass.M[a]) * v[a] - T(tc.K[a]) * ufb[a];
+    P[3 + a] = T(tc.mass.M[3 + a]) * w[a];
+  }
+  DragOut<T> J{};
+  auto forces = [&](const T* dPi, bool first, T* f) LRIGID_LANE_LAMBDA {
+    T vr[3], ws[3], lift[3] = {0, 0, 0}, fx[3] = {0, 0, 0};
+#pragma GCC unroll 3
+    for (int a = 0; a < 3; ++a) {
+      vr[a] = T(tc.mass.Mi[a]) * (P[a] + dPi[a] + T(tc.K[a]) * ufb[a]) - ufb[a];
+      ws[a] = T(tc.mass.Mi[3 + a]) * (P[3 + a] + dPi[3 + a]);
+    }
+    const DragOut<T> d = body_forces<T, Plate>(tc, vr, ws, lift);
+    if constexpr (Extra) magnus_kernel(T(tc.magnus), ws, vr, fx);
+#pragma GCC unroll 3
+    for (int a = 0; a < 3; ++a) {
+      f[a] = Fb[a] + lift[a] + fx[a] + d.f[a];
+      f[3 + a] = d.tq[a];
+    }
+    if (first) J = d;
+  };
+  auto solve = [&](T gh, const T* b, T* x) LRIGID_LANE_LAMBDA {
+    implicit_impulse(tc.mass, T(0), J, gh, b, x);
+  };
+  T dPi[6];
+  ros2_impulse(hs, forces, solve, dPi);
+#pragma GCC unroll 3
+  for (int a = 0; a < 3; ++a) {
+    v[a] = T(tc.mass.Mi[a]) * (P[a] + dPi[a] + T(tc.K[a]) * ufb[a]);
+    w[a] = T(tc.mass.Mi[3 + a]) * (P[3 + a] + dPi[3 + a]);
+  }
+}
+
+// The end of the free Kirchhoff flow of lane j from the converged iterate: the orientation
+// q <- q cay(h w_mid) (q: the lane's at the start), its rotation R, and the body-frame v, w
+// relative to the fluid velocity u_f (world) the flow moved in
+template <typename T>
+LRIGID_LANE void flow_end(const StepConsts& tc, const T* q0, const T* y0, const T* y,
+                          const T* u_f, T* q, T* R, T* ufb, T* v, T* w) {
+  const T hh = T(0.5 * tc.h);
+  const T a[3] = {hh * T(tc.mass.Mi[3]) * (T(0.5) * (y0[3] + y[3])),
+                  hh * T(tc.mass.Mi[4]) * (T(0.5) * (y0[4] + y[4])),
+                  hh * T(tc.mass.Mi[5]) * (T(0.5) * (y0[5] + y[5]))};
+  cayley_rotate(q0, a, q);
+  rotation(q, R);
+  mul_t(R, u_f, ufb);
+#pragma GCC unroll 3
+  for (int a = 0; a < 3; ++a) {
+    v[a] = T(tc.mass.Mi[a]) * y[a] + ufb[a];
+    w[a] = T(tc.mass.Mi[3 + a]) * y[3 + a];
+  }
+}
+
 // the scalar step's Kirchhoff tolerance (integrate/dynamics.h); float converges to its own
 // round-off
 template <typename T>
@@ -127,7 +197,7 @@ constexpr int kSparseNewton = 4;
 
 // Advances every lane of lanes by one step (see rigid_batch.h); lanes that are not kOk keep their
 // state at the start of the step. landed: the lane is on or below the ground after the step.
-template <typename T, bool Turb, bool Plate, bool Extra>
+template <typename T, bool Turb, bool Plate, bool Extra, bool Strang>
 LRIGID_MULTIVERSION void step_lanes(const StepConsts& tc, Lanes<T>* lanes, uint64_t step,
                                     int* outcome, int* landed) {
   const T h = T(tc.h), hh = T(0.5 * tc.h), wm = T(tc.wm);
@@ -147,8 +217,8 @@ LRIGID_IVDEP
   for (int j = 0; j < kBatch; ++j) {
     T us[3] = {lanes->us[0][j], lanes->us[1][j], lanes->us[2][j]};
     const T q[4] = {lanes->q[0][j], lanes->q[1][j], lanes->q[2][j], lanes->q[3][j]};
-    const T v[3] = {lanes->v[0][j], lanes->v[1][j], lanes->v[2][j]};
-    const T w[3] = {lanes->w[0][j], lanes->w[1][j], lanes->w[2][j]};
+    T v[3] = {lanes->v[0][j], lanes->v[1][j], lanes->v[2][j]};
+    T w[3] = {lanes->w[0][j], lanes->w[1][j], lanes->w[2][j]};
     T R[9], V[3];
     rotation(q, R);
     mul(R, v, V);
@@ -162,6 +232,20 @@ LRIGID_IVDEP
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) u_f[a] = T(tc.mf) * lanes->U[a][j] + (Turb ? us[a] : T(0));
     mul_t(R, u_f, ufb);
+    if constexpr (Strang) {
+      // strang: the first force half step at the start's position and orientation
+      const T acc[3] = {lanes->acc[0][j], lanes->acc[1][j], lanes->acc[2][j]};
+      strang_force_lane<T, Plate, Extra>(tc, R, u_f, acc, hh, v, w);
+      mul(R, v, V);
+      // the flow moves relative to the fluid velocity at the midpoint (integrators.cpp
+      // strang_deterministic_step): U + grad U (h/2 V)
+#pragma GCC unroll 3
+      for (int p = 0; p < 3; ++p)
+        u_f[p] += T(tc.gu) * hh *
+                  (lanes->gU[p * 3][j] * V[0] + lanes->gU[p * 3 + 1][j] * V[1] +
+                   lanes->gU[p * 3 + 2][j] * V[2]);
+      mul_t(R, u_f, ufb);
+    }
     // 2. the free Kirchhoff flow of the motion relative to the fluid, implicit midpoint from the
     //    explicit midpoint predictor (dynamics.cpp kirchhoff_midpoint)
     T y0[6], y[6];
@@ -324,6 +408,56 @@ LRIGID_IVDEP
   T(&qn)[4][kBatch] = next.q;
   T(&vn)[3][kBatch] = next.vel;
   T(&wn)[3][kBatch] = next.w;
+  if constexpr (Strang) {
+    // strang: x by the trapezoidal rule over the flow, the field at the new positions, the
+    // second force half step there, and the second OU half step (end_step, on that sample)
+    alignas(64) T Vn[3][kBatch], inside0[kBatch];
+LRIGID_IVDEP
+    for (int j = 0; j < kBatch; ++j) {
+      T y0[6], y[6];
+#pragma GCC unroll 6
+      for (int a = 0; a < 6; ++a) {
+        y0[a] = Y0[a][j];
+        y[a] = Y[a][j];
+      }
+      const T q0[4] = {lanes->q[0][j], lanes->q[1][j], lanes->q[2][j], lanes->q[3][j]};
+      const T u_f[3] = {uf[0][j], uf[1][j], uf[2][j]};
+      T q[4], R[9], ufb[3], v[3], w[3], Vend[3];
+      flow_end(tc, q0, y0, y, u_f, q, R, ufb, v, w);
+      mul(R, v, Vend);
+      scalar[j] |= active[j];
+#pragma GCC unroll 3
+      for (int a = 0; a < 3; ++a) {
+        xn[a][j] = lanes->x[a][j] + hh * (V0[a][j] + Vend[a]);
+        vn[a][j] = v[a];
+        wn[a][j] = w[a];
+      }
+#pragma GCC unroll 4
+      for (int a = 0; a < 4; ++a) qn[a][j] = q[a];
+    }
+    for (int j = 0; j < kBatch; ++j) inside0[j] = tc.sample ? lanes->inside[j] : T(1);
+    if (tc.sample) sample_lanes(tc, next.x, lanes);
+LRIGID_IVDEP
+    for (int j = 0; j < kBatch; ++j) {
+      const T q[4] = {qn[0][j], qn[1][j], qn[2][j], qn[3][j]};
+      const T acc[3] = {lanes->acc[0][j], lanes->acc[1][j], lanes->acc[2][j]};
+      T R[9], u_f[3], v[3] = {vn[0][j], vn[1][j], vn[2][j]}, w[3] = {wn[0][j], wn[1][j], wn[2][j]};
+      rotation(q, R);
+#pragma GCC unroll 3
+      for (int a = 0; a < 3; ++a) u_f[a] = T(tc.mf) * lanes->U[a][j] + (Turb ? usn[a][j] : T(0));
+      strang_force_lane<T, Plate, Extra>(tc, R, u_f, acc, hh, v, w);
+      T Vend[3];
+      mul(R, v, Vend);
+#pragma GCC unroll 3
+      for (int a = 0; a < 3; ++a) {
+        vn[a][j] = v[a];
+        wn[a][j] = w[a];
+        Vn[a][j] = Vend[a];
+      }
+    }
+    end_step<T, Turb>(tc, z2, Vn, &next, lanes, outcome, landed, inside0);
+    return;
+  }
   // what Newton needs: the impulse P (linear, relative to the fluid's added-mass impulse) and lanes
   // before the forces, their changes dP and dL, h times the forces other than drag G (linear;
   // none of them has a torque), the fluid velocity (body frame) at the end, and the norm of the
@@ -341,25 +475,12 @@ LRIGID_IVDEP
       y[a] = Y[a][j];
     }
     // q <- q cay(h w_mid)
-    T q[4];
-    {
-      const T q0[4] = {lanes->q[0][j], lanes->q[1][j], lanes->q[2][j], lanes->q[3][j]};
-      const T a[3] = {hh * T(tc.mass.Mi[3]) * (T(0.5) * (y0[3] + y[3])),
-                      hh * T(tc.mass.Mi[4]) * (T(0.5) * (y0[4] + y[4])),
-                      hh * T(tc.mass.Mi[5]) * (T(0.5) * (y0[5] + y[5]))};
-      cayley_rotate(q0, a, q);
-    }
-    T R[9];
-    rotation(q, R);
+    const T q0[4] = {lanes->q[0][j], lanes->q[1][j], lanes->q[2][j], lanes->q[3][j]};
     const T u_f[3] = {uf[0][j], uf[1][j], uf[2][j]};
-    T ufb[3], v[3], w[3], vr[3];
-    mul_t(R, u_f, ufb);
+    T q[4], R[9], ufb[3], v[3], w[3], vr[3];
+    flow_end(tc, q0, y0, y, u_f, q, R, ufb, v, w);
 #pragma GCC unroll 3
-    for (int a = 0; a < 3; ++a) {
-      v[a] = T(tc.mass.Mi[a]) * y[a] + ufb[a];
-      w[a] = T(tc.mass.Mi[3 + a]) * y[3 + a];
-      vr[a] = v[a] - ufb[a];
-    }
+    for (int a = 0; a < 3; ++a) vr[a] = v[a] - ufb[a];
     T lift[3] = {0, 0, 0};
     const DragOut<T> drag = body_forces<T, Plate>(tc, vr, w, lift);
     T F[3] = {T(tc.F[0]), T(tc.F[1]), T(tc.F[2])};
@@ -514,8 +635,12 @@ BlockStats advance(const Model& model, const BodyType& type, State* state, const
   const StepConsts tc = make_consts(model, type);
   auto step = [&tc](auto turb, auto plate, auto extra, Lanes<T>* lanes, uint64_t s, int* outcome,
                     int* landed) {
-    step_lanes<T, decltype(turb)::value, decltype(plate)::value, decltype(extra)::value>(
-        tc, lanes, s, outcome, landed);
+    constexpr bool A = decltype(turb)::value, B = decltype(plate)::value,
+                   C = decltype(extra)::value;
+    if (tc.strang)
+      step_lanes<T, A, B, C, true>(tc, lanes, s, outcome, landed);
+    else
+      step_lanes<T, A, B, C, false>(tc, lanes, s, outcome, landed);
   };
   return drive_block<T, Lanes<T>>(model, type, tc, tc.turb, tc.plate, state, body, count, first,
                                   last, step);

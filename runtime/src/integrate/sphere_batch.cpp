@@ -27,6 +27,7 @@ namespace {
 // What the step needs of the sphere type, in the world frame.
 struct StepConsts : FieldConsts {
   bool drag = false;            // with turb, the step's two template switches
+  bool strang = false;          // the Strang scheme (not with the Basset history: integrators.h)
   double m = 0, ma = 0, J = 0;  // M's linear and angular diagonal; K's linear diagonal (0 without)
   IsotropicMass mass;           // M = diag(m, m, m, J, J, J) (integrate/kirchhoff.h)
   // sphere drag (effects/drag.h drag_kernel, r_cob = 0): the law and the sphere's area
@@ -39,6 +40,7 @@ StepConsts make_consts(const Model& model, const BodyType& type) {
   set_field_consts(model, type, &tc);
   const EffectSet& e = type.effects;
   tc.drag = e.has(Effect::Drag);
+  tc.strang = model.integrator == Integrator::Strang && !tc.basset;
   tc.m = type.M(0, 0);
   tc.ma = e.has(Effect::AddedMass) ? type.K_fluid(0, 0) : 0.0;
   tc.J = type.M(3, 3);
@@ -97,14 +99,121 @@ LRIGID_LANE DragOut<T> sphere_drag(const StepConsts& tc, const T* u, const T* w)
   });
 }
 
+// The Strang scheme's force step over hs on a sphere lane's world velocity V and body-frame spin
+// w (in place), at orientation q (Magnus: the world spin) and the fluid velocity u_f (world) with
+// its material derivative acc (world, the gu factor applied here): ROS2 (integrate/kirchhoff.h
+// ros2_impulse), as integrators.cpp strang_force_step (for an isotropic M the world and body
+// frames give the same step). Not with the Basset history (tc.strang).
+template <typename T, bool WithDrag, bool Extra>
+LRIGID_LANE void strang_force_lane(const StepConsts& tc, const T* q, const T* u_f, const T* acc,
+                                   T hs, T* V, T* w) {
+  T Fw[3], P[6];
+#pragma GCC unroll 3
+  for (int a = 0; a < 3; ++a) {
+    // the fluid's acceleration drags the added mass along
+    Fw[a] = T(tc.F[a]) + T(tc.ma) * T(tc.gu) * acc[a];
+    P[a] = T(tc.m) * V[a] - T(tc.ma) * u_f[a];
+    P[3 + a] = T(tc.J) * w[a];
+  }
+  DragOut<T> J{};
+  auto forces = [&](const T* dPi, bool first, T* f) LRIGID_LANE_LAMBDA {
+    T vr[3], ws[3], fm[3] = {0, 0, 0};
+#pragma GCC unroll 3
+    for (int a = 0; a < 3; ++a) {
+      vr[a] = (P[a] + dPi[a] + T(tc.ma) * u_f[a]) / T(tc.m) - u_f[a];
+      ws[a] = (P[3 + a] + dPi[3 + a]) / T(tc.J);
+    }
+    DragOut<T> d = {};
+    if constexpr (WithDrag) d = sphere_drag(tc, vr, ws);
+    if constexpr (Extra) {
+      T wW[3];
+      rotate_by(q, ws, wW);
+      magnus_kernel(T(tc.magnus), wW, vr, fm);
+    }
+#pragma GCC unroll 3
+    for (int a = 0; a < 3; ++a) {
+      f[a] = Fw[a] + fm[a] + d.f[a];
+      f[3 + a] = d.tq[a];
+    }
+    if (first) J = d;
+  };
+  auto solve = [&](T gh, const T* b, T* x) LRIGID_LANE_LAMBDA {
+    implicit_impulse(tc.mass, T(0), J, gh, b, x);
+  };
+  T dPi[6];
+  ros2_impulse(hs, forces, solve, dPi);
+#pragma GCC unroll 3
+  for (int a = 0; a < 3; ++a) {
+    V[a] = (P[a] + dPi[a] + T(tc.ma) * u_f[a]) / T(tc.m);
+    w[a] = (P[3 + a] + dPi[3 + a]) / T(tc.J);
+  }
+}
+
 // Advances every lane of lanes by one step; lanes that are not kOk keep their state at the start of
 // the step. landed: the lane is on or below the ground after the step.
-template <typename T, bool Turb, bool WithDrag, bool Extra>
+template <typename T, bool Turb, bool WithDrag, bool Extra, bool Strang>
 LRIGID_MULTIVERSION void step_lanes(const StepConsts& tc, Lanes<T>* lanes, uint64_t step,
                                     int* outcome, int* landed) {
   const T h = T(tc.h), hh = T(0.5 * tc.h), wm = T(tc.wm);
   alignas(64) T z1[3][kBatch], z2[3][kBatch];
   if constexpr (Turb) lane_normals(tc, *lanes, step, z1, z2);
+  if constexpr (Strang) {
+    // strang: first OU half step, force half step, the free flow (for isotropic M: V unchanged,
+    // q <- q cay(h w)) with x by the trapezoidal rule, the field at the new positions, the
+    // second force half step there, and the second OU half step (end_step, on that sample)
+    NewState<T> next;
+    alignas(64) T inside0[kBatch];
+LRIGID_IVDEP
+    for (int j = 0; j < kBatch; ++j) {
+      T us[3] = {lanes->us[0][j], lanes->us[1][j], lanes->us[2][j]};
+      T V[3] = {lanes->V[0][j], lanes->V[1][j], lanes->V[2][j]};
+      T w[3] = {lanes->w[0][j], lanes->w[1][j], lanes->w[2][j]};
+      if constexpr (Turb) {
+        const T gs[3] = {lanes->gs[0][j], lanes->gs[1][j], lanes->gs[2][j]};
+        const T z[3] = {z1[0][j], z1[1][j], z1[2][j]};
+        ou_update(wm, lanes->decay[j], lanes->noise[j], lanes->sigma2[j], V, gs, z, hh, us);
+      }
+      const T q0[4] = {lanes->q[0][j], lanes->q[1][j], lanes->q[2][j], lanes->q[3][j]};
+      const T acc[3] = {lanes->acc[0][j], lanes->acc[1][j], lanes->acc[2][j]};
+      T u_f[3];
+#pragma GCC unroll 3
+      for (int a = 0; a < 3; ++a) u_f[a] = T(tc.mf) * lanes->U[a][j] + (Turb ? us[a] : T(0));
+      strang_force_lane<T, WithDrag, Extra>(tc, q0, u_f, acc, hh, V, w);
+      const T a[3] = {hh * w[0], hh * w[1], hh * w[2]};
+      T q[4];
+      cayley_rotate(q0, a, q);
+#pragma GCC unroll 4
+      for (int c = 0; c < 4; ++c) next.q[c][j] = q[c];
+#pragma GCC unroll 3
+      for (int c = 0; c < 3; ++c) {
+        next.x[c][j] = lanes->x[c][j] + hh * (V[c] + V[c]);
+        next.vel[c][j] = V[c];
+        next.w[c][j] = w[c];
+        next.us[c][j] = us[c];
+      }
+      next.scalar[j] = 0;
+    }
+    for (int j = 0; j < kBatch; ++j) inside0[j] = tc.sample ? lanes->inside[j] : T(1);
+    if (tc.sample) sample_lanes(tc, next.x, lanes);
+LRIGID_IVDEP
+    for (int j = 0; j < kBatch; ++j) {
+      const T q[4] = {next.q[0][j], next.q[1][j], next.q[2][j], next.q[3][j]};
+      const T acc[3] = {lanes->acc[0][j], lanes->acc[1][j], lanes->acc[2][j]};
+      T u_f[3], V[3] = {next.vel[0][j], next.vel[1][j], next.vel[2][j]},
+                w[3] = {next.w[0][j], next.w[1][j], next.w[2][j]};
+#pragma GCC unroll 3
+      for (int a = 0; a < 3; ++a)
+        u_f[a] = T(tc.mf) * lanes->U[a][j] + (Turb ? next.us[a][j] : T(0));
+      strang_force_lane<T, WithDrag, Extra>(tc, q, u_f, acc, hh, V, w);
+#pragma GCC unroll 3
+      for (int a = 0; a < 3; ++a) {
+        next.vel[a][j] = V[a];
+        next.w[a][j] = w[a];
+      }
+    }
+    end_step<T, Turb>(tc, z2, next.vel, &next, lanes, outcome, landed, inside0);
+    return;
+  }
   // new state, committed at the end for the lanes whose step succeeded
   NewState<T> next;
   T(&xn)[3][kBatch] = next.x;
@@ -268,8 +377,12 @@ BlockStats advance(const Model& model, const BodyType& type, State* state, const
   const StepConsts tc = make_consts(model, type);
   auto step = [&tc](auto turb, auto drag, auto extra, Lanes<T>* lanes, uint64_t s, int* outcome,
                     int* landed) {
-    step_lanes<T, decltype(turb)::value, decltype(drag)::value, decltype(extra)::value>(
-        tc, lanes, s, outcome, landed);
+    constexpr bool A = decltype(turb)::value, B = decltype(drag)::value,
+                   C = decltype(extra)::value;
+    if (tc.strang)
+      step_lanes<T, A, B, C, true>(tc, lanes, s, outcome, landed);
+    else
+      step_lanes<T, A, B, C, false>(tc, lanes, s, outcome, landed);
   };
   return drive_block<T, Lanes<T>>(model, type, tc, tc.turb, tc.drag, state, body, count, first,
                                   last, step);

@@ -149,7 +149,9 @@ std::vector<SanityFinding> check_scene(const Scene& scene, const Model& model) {
     // the time step against the scheme's measured limit (docs/stability.md section 2)
     if (a.tau_p > 0 && std::isfinite(a.tau_p)) {
       const double dt = scene.dt;
-      const bool splitting = scene.integrator == Integrator::Splitting;
+      // strang takes the same implicit parts as splitting (and an L-stable force step)
+      const bool splitting =
+          scene.integrator == Integrator::Splitting || scene.integrator == Integrator::Strang;
       const double limit = (scene.integrator == Integrator::Euler ? kEulerLimit
                             : scene.integrator == Integrator::RK4 ? kRk4Limit
                                                                   : kSplittingMeasured) *
@@ -158,7 +160,7 @@ std::vector<SanityFinding> check_scene(const Scene& scene, const Model& model) {
       if (dt > limit)
         add("dt_stability", "integrator.dt",
             "dt = " + g3(dt) + " s is " + g3(dt / limit) + " times " +
-                (splitting ? "the largest step the splitting scheme was measured stable at"
+                (splitting ? "the largest step the " + name + " scheme was measured stable at"
                            : "the measured stability limit of " + name) +
                 " for " + who + " (response time tau_p = " + g3(a.tau_p) + " s: dt <= " +
                 g3(limit) + " s, docs/stability.md section 2); " +

@@ -386,10 +386,8 @@ Scene parse_scene_unchecked(const std::string& text, const std::string& path) {
   {
     Obj in = top.object("integrator", {"scheme", "dt", "batched", "precision"});
     const std::string scheme = in.string("scheme");
-    if (scheme == "euler") s.integrator = Integrator::Euler;
-    else if (scheme == "rk4") s.integrator = Integrator::RK4;
-    else if (scheme == "splitting") s.integrator = Integrator::Splitting;
-    else in.fail("scheme", "must be euler, rk4 or splitting, got \"" + scheme + "\"");
+    if (!integrator_from_name(scheme, &s.integrator))
+      in.fail("scheme", std::string("must be ") + kIntegratorNames + ", got \"" + scheme + "\"");
     s.dt = in.positive("dt");
     if (in.has("batched")) s.batched = in.boolean("batched");
     if (in.has("precision")) {

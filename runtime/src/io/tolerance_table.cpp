@@ -9,6 +9,7 @@
 #include <sstream>
 #include <vector>
 
+#include "model/scene.h"
 #include "util/error.h"
 
 namespace lrigid {
@@ -55,7 +56,8 @@ ToleranceTable read_tolerance_table(const std::string& path) {
       if (!e.contains("integrator") || !e["integrator"].is_string())
         fail_input(path, k + ".integrator", "missing or not a string");
       x.integrator = e["integrator"].get<std::string>();
-      if (x.integrator != "euler" && x.integrator != "rk4" && x.integrator != "splitting")
+      Integrator scheme;
+      if (!integrator_from_name(x.integrator, &scheme))
         fail_input(path, k + ".integrator", "unknown scheme '" + x.integrator + "'");
       x.dt = positive(e, path, k, "dt");
       x.error = positive(e, path, k, "error");

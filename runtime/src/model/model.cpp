@@ -7,8 +7,20 @@ const char* integrator_name(Integrator i) {
     case Integrator::Euler: return "euler";
     case Integrator::RK4: return "rk4";
     case Integrator::Splitting: return "splitting";
+    case Integrator::Strang: return "strang";
   }
   return "?";
+}
+
+bool integrator_from_name(const std::string& name, Integrator* out) {
+  for (Integrator i :
+       {Integrator::Euler, Integrator::RK4, Integrator::Splitting, Integrator::Strang}) {
+    if (name == integrator_name(i)) {
+      *out = i;
+      return true;
+    }
+  }
+  return false;
 }
 
 const char* turbulence_model_name(TurbulenceModel m) {

@@ -11,7 +11,7 @@
 
 namespace lrigid {
 
-enum class Integrator { Euler, RK4, Splitting };
+enum class Integrator { Euler, RK4, Splitting, Strang };
 enum class TurbulenceModel { Body, Seen };
 // arithmetic of the batched steps (integrate/sphere_batch.h, rigid_batch.h); the scalar step is double
 enum class Precision { Double, Float };
@@ -31,6 +31,10 @@ struct ContactSpec {
 };
 
 const char* integrator_name(Integrator i);
+// The scheme named `name` ("euler", "rk4", "splitting", "strang"); false for another name.
+bool integrator_from_name(const std::string& name, Integrator* out);
+// The scheme names as a list for messages: "euler, rk4, splitting or strang"
+constexpr const char* kIntegratorNames = "euler, rk4, splitting or strang";
 const char* turbulence_model_name(TurbulenceModel m);
 const char* drift_name(Drift d);
 

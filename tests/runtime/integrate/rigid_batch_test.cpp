@@ -146,6 +146,44 @@ TEST(RigidBatch, AllNineEffectsMatchTheScalarStep) {
   }
 }
 
+TEST(RigidBatch, StrangMatchesTheScalarStep) {
+  // the Strang scheme (integrator "strang": force half steps around the free flow) on the loops
+  // and on the scalar step: leaves (plate drag and lift) with Magnus, and seed pods, in the wind
+  // grid with seen turbulence, a short flight; then light cards at a coarse step (stiff drag:
+  // ROS2 takes it without Newton)
+  for (const Shape& shape : {Shape::box(0.06, 0.04, 4e-4), Shape::ellipsoid(0.004, 0.002, 0.002)}) {
+    for (const double dt : {2e-3, 2e-2}) {
+      Scene s = rigid_scene(shape, dt > 1e-2 ? 500 : 600, 100);
+      s.integrator = Integrator::Strang;
+      s.dt = dt;
+      s.duration = 0.3;
+      s.effects.add(Effect::Magnus);
+      s.bodies[0].angular_velocity = Vec3(5, 20, -10);
+      const FluidField field = wind_grid(1.5e-5);
+      expect_eligible(s, field);
+      const auto [scalar, batched, d] = scalar_and_batched(s, field);
+      EXPECT_EQ(scalar.stats.body_steps, batched.stats.body_steps);
+      expect_close(d, 1e-9);
+      // at 20 ms the free flow of some fast-spinning lanes needs the scalar step's substeps
+      // (as with splitting: HardLanesGoToTheScalarStepAndStillMatch)
+      EXPECT_LT(batched.stats.scalar_handoffs, batched.stats.body_steps / (dt > 1e-2 ? 20 : 100));
+      EXPECT_GT(count(batched.state, BodyStatus::Moving), 0u);
+      // and it is not the splitting scheme: the same scene with splitting ends elsewhere
+      Scene split = s;
+      split.integrator = Integrator::Splitting;
+      const Outcome o = run(split, field, true, Precision::Double);
+      Diff ds;
+      for (size_t i = 0; i < o.state.size(); ++i)
+        ds.x = std::max(ds.x, (o.state.x[i] - batched.state.x[i]).norm());
+      EXPECT_GT(ds.x, 1e-6);
+      std::printf("strang dt %g: scalar vs batched |dx| %.2e, strang vs splitting |dx| %.2e, "
+                  "%llu of %llu steps handed to the scalar step\n",
+                  dt, d.x, ds.x, static_cast<unsigned long long>(batched.stats.scalar_handoffs),
+                  static_cast<unsigned long long>(batched.stats.body_steps));
+    }
+  }
+}
+
 TEST(RigidBatch, StiffDragTakesTheNewtonPathLikeTheScalarStep) {
   // light cards and paper disks at a coarse step (20 ms): the drag is stiff, and the loops
   // iterate Newton themselves (with the Basset history's implicit mass in the second run). Over
@@ -247,7 +285,8 @@ TEST(RigidBatch, EligibilitySaysWhatExcludesABodyType) {
            "an isotropic generalized mass (the sphere step's)"},
           {[](Scene& e) { e.bodies[0].mass_offset = Vec3(0, 0, -1e-4); },
            "the generalized mass is not diagonal"},
-          {[](Scene& e) { e.integrator = Integrator::RK4; }, "the integrator is not splitting"},
+          {[](Scene& e) { e.integrator = Integrator::RK4; },
+           "the integrator is not splitting or strang"},
           {[](Scene& e) { e.turbulence_model = TurbulenceModel::Body; },
            "the body turbulence model"},
           {[](Scene& e) { e.batched = false; }, "the scene turns the batched step off"},

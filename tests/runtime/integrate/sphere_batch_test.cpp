@@ -69,6 +69,14 @@ TEST(SphereBatch, BeadsInAGustingSeriesMatchTheScalarStep) {
   EXPECT_LT(d.x, 1e-9);
   EXPECT_LT(d.v, 1e-9);
   EXPECT_LT(d.u, 1e-9);
+  // and with the strang scheme (its samples within the step take the same frames)
+  Scene st = s;
+  st.integrator = Integrator::Strang;
+  const auto [scalar_s, batched_s, ds] = scalar_and_batched(st, field);
+  EXPECT_EQ(scalar_s.stats.body_steps, batched_s.stats.body_steps);
+  EXPECT_LT(ds.x, 1e-9);
+  EXPECT_LT(ds.v, 1e-9);
+  EXPECT_GT((scalar_s.state.x[0] - scalar.state.x[0]).norm(), 0.0);
 }
 
 TEST(SphereBatch, LightSpheresInAGustingSeriesFeelDUDt) {
@@ -169,6 +177,55 @@ TEST(SphereBatch, BassetHistoryAndMagnusMatchTheScalarStep) {
   }
 }
 
+TEST(SphereBatch, StrangMatchesTheScalarStep) {
+  // the Strang scheme on the loops and on the scalar step: spinning beads in the wind grid
+  // (Magnus, seen turbulence), stiff droplets at 20 ms (ROS2, no Newton), and light spheres in
+  // a uniform water flow (added mass)
+  for (int c = 0; c < 3; ++c) {
+    Scene s = c == 1 ? bead_scene(2e-5, 1000, 100) : bead_scene(2.5e-4, 2500, 150);
+    FluidField field = wind_grid(1.5e-5);
+    if (c == 1) s.dt = 0.02;
+    if (c < 2) {
+      s.effects.add(Effect::Magnus);
+      s.bodies[0].angular_velocity = Vec3(300, -150, 80);
+    } else {
+      s = test::sphere_scene(1e-3, 50, 1000, 1e-6, 64);
+      s.effects = test::effects({Effect::Gravity, Effect::Buoyancy, Effect::Drag,
+                                 Effect::AddedMass, Effect::MeanFlow, Effect::Turbulence});
+      s.uniform_U = Vec3(0.2, 0, 0.05);
+      s.uniform_k = 1e-3;
+      s.uniform_epsilon = 1e-3;
+      s.dt = 1e-3;
+      s.duration = 0.5;
+      s.bodies[0].spawn_in_box = true;
+      s.bodies[0].box_hi = Vec3(0.1, 0.1, 0.1);
+      field = FluidField::uniform(s.uniform_U, s.uniform_k, s.uniform_epsilon,
+                                  s.kinematic_viscosity, s.drift);
+    }
+    s.integrator = Integrator::Strang;
+    const Model m = test::compile(s, field);
+    std::string why;
+    ASSERT_TRUE(sphere_batch_eligible(m, m.types[0], &why)) << why;
+    const auto [scalar, batched, d] = scalar_and_batched(s, field);
+    EXPECT_EQ(scalar.stats.body_steps, batched.stats.body_steps) << c;
+    EXPECT_LT(d.x, 1e-9) << c;
+    EXPECT_LT(d.v, 1e-9) << c;
+    EXPECT_LT(d.w, 1e-9) << c;
+    EXPECT_LT(d.u, 1e-9) << c;
+    EXPECT_EQ(batched.stats.scalar_handoffs, 0u) << c;
+    // not the splitting scheme: with it the spheres end elsewhere
+    Scene split = s;
+    split.integrator = Integrator::Splitting;
+    const batch_test::Outcome o = batch_test::run(split, field, true, Precision::Double);
+    double apart = 0;
+    for (size_t i = 0; i < o.state.size(); ++i)
+      apart = std::max(apart, (o.state.x[i] - batched.state.x[i]).norm());
+    EXPECT_GT(apart, 1e-9) << c;
+    std::printf("strang spheres %d: scalar vs batched |dx| %.2e, strang vs splitting %.2e m\n", c,
+                d.x, apart);
+  }
+}
+
 TEST(SphereBatch, SpheresInFluidAtRestMatchTheScalarStep) {
   // no effect samples the field (gravity and drag, or nothing at all): the fluid is at rest
   for (const EffectSet& e : {test::effects({Effect::Gravity, Effect::Drag}), test::effects({})}) {
@@ -264,7 +321,8 @@ TEST(SphereBatch, EligibilitySaysWhatExcludesABodyType) {
       {
           {[](Scene& e) { e.bodies[0].shape = Shape::ellipsoid(3e-4, 2.5e-4, 2e-4); },
            "not a sphere"},
-          {[](Scene& e) { e.integrator = Integrator::RK4; }, "the integrator is not splitting"},
+          {[](Scene& e) { e.integrator = Integrator::RK4; },
+           "the integrator is not splitting or strang"},
           {[](Scene& e) { e.turbulence_model = TurbulenceModel::Body; },
            "the body turbulence model"},
           {[](Scene& e) { e.batched = false; }, "the scene turns the batched step off"},

@@ -166,7 +166,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"unknown effect", [](json& j) { j["effects"].push_back("magic"); },
                 "effects[3]: unknown effect \"magic\""},
         BadCase{"unknown scheme", [](json& j) { j["integrator"]["scheme"] = "leapfrog"; },
-                "integrator.scheme: must be euler, rk4 or splitting, got \"leapfrog\""},
+                "integrator.scheme: must be euler, rk4, splitting or strang, got \"leapfrog\""},
         BadCase{"unknown precision", [](json& j) { j["integrator"]["precision"] = "half"; },
                 "integrator.precision: must be double or float, got \"half\""},
         BadCase{"batched not a bool", [](json& j) { j["integrator"]["batched"] = "yes"; },
