@@ -11,6 +11,7 @@
 #include "effects/contact.h"
 #include "integrate/contacts.h"
 #include "integrate/simulation.h"
+#include "integrate/stops.h"
 #include "support/batch_compare.h"
 #include "support/fixture.h"
 
@@ -218,6 +219,28 @@ TEST(Outside, RemoveHidesABodyThatLeavesTheGridStopKeepsIt) {
     EXPECT_EQ(st.hidden[0], mode == OutsideMode::Remove ? 1 : 0);
     EXPECT_STREQ(st.state_name(0), "exited");
   }
+}
+
+// A body that could not be sampled while on the fluid's side of every wall (wall distance > 0)
+// left the grid, even when one more step with its velocity would keep it in the box (a batched
+// step's turbulence can carry it past the edge): removed and hidden, not "hit a solid" (which
+// left it visible at the grid's edge in the wind scene). Inside a solid it still hit one.
+TEST(Outside, AStepPastTheEdgeFromTheFluidSideIsLeavingTheGrid) {
+  Scene s = test::sphere_scene(0.02, 1000, 1.2, 1.5e-5);
+  s.uniform_field = false;
+  s.effects = test::effects({Effect::Gravity, Effect::Drag, Effect::MeanFlow});
+  s.outside = OutsideMode::Remove;
+  const Model m = test::compile(s, inclined_wall_grid(Vec3(0, 0, 1), Vec3(0, 0, -0.9)));
+  ASSERT_TRUE(m.walls_collide());
+  State st = initial_state(m, s);
+  BodyState b = load_body(st, 0);
+  b.x = Vec3(0.999, 0, 0.5);  // 1 mm from the edge x = 1, at rest
+  stop_body(m, m.types[0], 0, 0.1, StepOutcome::Exited, "", b, &st);
+  EXPECT_EQ(st.reason[0], "left the grid");
+  EXPECT_EQ(st.hidden[0], 1);
+  b.x = Vec3(0.5, 0, -0.95);  // below the wall z = -0.9
+  stop_body(m, m.types[0], 0, 0.1, StepOutcome::Exited, "", b, &st);
+  EXPECT_EQ(st.reason[0].rfind("hit a solid", 0), 0u) << st.reason[0];
 }
 
 }  // namespace
