@@ -61,9 +61,9 @@ void gather(const Model& m, const BodyType& type, const BodyState& b, const Mat3
     }
   }
   if (!m.walls_collide()) return;
-  // a body on a colliding ground that is the grid's floor, away from every other wall: the
-  // ground above was the only surface it could touch
-  if (out->ground && m.field.only_floor_near(b.x, type.reach, m.ground_z, t)) return;
+  // a body near a colliding ground that is the grid's floor, away from every other wall: the
+  // ground above was the only surface it could touch (touching or not)
+  if (m.ground_collides() && m.field.only_floor_near(b.x, type.reach, m.ground_z, t)) return;
   if (clearance && clearance->radius >= 0 && (b.x - clearance->x).norm() < clearance->radius)
     return;
   double dc;
