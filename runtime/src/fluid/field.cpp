@@ -239,8 +239,11 @@ bool FluidField::only_floor_near(const Vec3& x, double reach, double floor_z, do
   const GridGeometry& g = geometry_;
   int lo[3], hi[3];
   for (int a = 0; a < 3; ++a) {
-    const double s0 = (x[a] - reach - g.origin[a]) / g.spacing[a];
+    double s0 = (x[a] - reach - g.origin[a]) / g.spacing[a];
     const double s1 = (x[a] + reach - g.origin[a]) / g.spacing[a];
+    // below the grid's bottom is the floor's side (a body lying on a floor at the bottom
+    // reaches below it): the bottom layer
+    if (a == 2 && s0 < 0.0 && s1 >= 0.0) s0 = 0.0;
     if (!(s0 >= 0.0 && s1 <= double(g.n[a] - 1))) return false;
     lo[a] = static_cast<int>(s0);
     hi[a] = std::min(static_cast<int>(std::ceil(s1)), g.n[a] - 1);

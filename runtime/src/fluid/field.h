@@ -128,8 +128,9 @@ class FluidField {
   // Then the interpolated wall distance in that cube is exactly z - floor_z (trilinear
   // interpolation reproduces a linear function): no point of a body within it can reach a wall
   // but that floor. One comparison per grid point, no interpolation (integrate/contacts.cpp
-  // skips the wall queries of a body lying on a ground that is the grid's floor). false outside
-  // the grid's box, on a uniform field or a grid without the array.
+  // skips the wall queries of a body lying on a ground that is the grid's floor; a cube reaching
+  // below the grid's bottom takes its bottom layer). false outside the grid's box, on a uniform
+  // field or a grid without the array.
   bool only_floor_near(const Vec3& x, double reach, double floor_z, double t) const;
   // Bodies collide with the grid's solids (scene key walls.contact = "collide", on a grid with
   // the wall distance): a point counts as in the fluid wherever some corner is valid, also where

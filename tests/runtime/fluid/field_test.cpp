@@ -188,6 +188,12 @@ TEST(FluidField, OnlyFloorNearWhereEveryCornersNearestWallIsTheFloor) {
   EXPECT_TRUE(f.only_floor_near(Vec3(0.1, 0.3, 2.75), 0.2, 2.7, 0));
   EXPECT_FALSE(f.only_floor_near(Vec3(-0.3, 0.37, 3.0), 0.05, 2.0, 0)) << "another floor";
   EXPECT_FALSE(f.only_floor_near(Vec3(0.98, 0.37, 3.0), 0.05, 2.7, 0)) << "off the box";
+  // a floor at the grid's bottom z = 2: a body lying on it reaches below the bottom
+  RawGridFrame bottom = walled_frame(g, 0);
+  for (size_t p = 0; p < g.points(); ++p) bottom.wall_distance[p] += 0.7f;  // z - 2
+  const FluidField b = FluidField::grid(g, {bottom}, 1e-5, Drift::Stationary, TimeMode::Clamp);
+  EXPECT_TRUE(b.only_floor_near(Vec3(-0.3, 0.37, 2.01), 0.05, 2.0, 0));
+  EXPECT_FALSE(b.only_floor_near(Vec3(-0.3, 0.37, 1.9), 0.05, 2.0, 0)) << "all below the grid";
   // a wall nearer than the floor at the grid point (x, y, z) = (0.5, 0.5, 3): the cells
   // touching it are not floor-only, the others still are
   const size_t p = 3 + 2 * size_t(g.n[0]) + 1 * size_t(g.n[0]) * g.n[1];
