@@ -145,7 +145,11 @@ def wind_scene(args, st):
     if not os.path.exists(grid):
         st.note("wind scene skipped: no %s (run ./Allrun's precompute first)" % grid)
         return
-    lr = vc.import_lrigid(args)
+    try:
+        lr = vc.import_lrigid(args)
+    except SystemExit as e:
+        st.note("wind scene skipped: %s" % e)
+        return
     s = json.load(open(os.path.join(vc.ROOT, "scenes", "leaves_wind.json")))
     s["fluid"]["field"] = grid
     n = 200 if args.quick else 1000
