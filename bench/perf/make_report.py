@@ -330,6 +330,14 @@ def main():
             w(line)
         w("")
 
+    # the cost of contacts (issue 23): written by bench/contacts/run.py, copied as it is
+    contacts = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "contacts",
+                            "contacts_cost.md")
+    if os.path.exists(contacts):
+        for line in open(contacts).read().rstrip("\n").split("\n"):
+            w(line)
+        w("")
+
     # peers and targets
     w("## Peers and targets")
     w("")

@@ -255,7 +255,9 @@ class Grid {
     py::gil_scoped_release release;
     g_ = read_grid(path);
   }
-  // (n, 3) points -> dict of U (n, 3), k (n), epsilon (n), valid (n, bool); NaN where invalid
+  // (n, 3) points -> dict of U (n, 3), k (n), epsilon (n), valid (n, bool); NaN where invalid;
+  // wall_distance (n): the plain trilinear blend of the grid's wall_distance (m, negative in
+  // solids, as the runtime's FluidSample::wall_distance), +inf off the box or without the array
   py::dict sample(const py::handle& pts, double t) const {
     Array p = Array::ensure(pts);
     if (!p || p.ndim() != 2 || p.shape(1) != 3)
@@ -264,9 +266,11 @@ class Grid {
     py::array_t<double> U({py::ssize_t(n), py::ssize_t(3)}), k{py::ssize_t(n)},
         eps{py::ssize_t(n)};
     py::array_t<bool> valid{py::ssize_t(n)};
+    py::array_t<double> wall{py::ssize_t(n)};
     {
       const double* x = p.data();
       double *u = U.mutable_data(), *kk = k.mutable_data(), *e = eps.mutable_data();
+      double* wd = wall.mutable_data();
       bool* ok = valid.mutable_data();
       py::gil_scoped_release release;
       size_t f0, f1;
@@ -279,10 +283,12 @@ class Grid {
         std::copy_n(a, 3, u + 3 * i);
         kk[i] = a[3];
         e[i] = a[4];
+        wd[i] = wall_distance(g_.frames[f0], x + 3 * i);
       }
     }
     py::dict d;
     d["U"] = U, d["k"] = k, d["epsilon"] = eps, d["valid"] = valid;
+    d["wall_distance"] = wall;
     return d;
   }
   const GridFile& file() const { return g_; }
@@ -306,6 +312,28 @@ class Grid {
   }
   // U, k, eps at x blended trilinearly over the valid corners of its cell, with the runtime's
   // rule (fluid/field.cpp): x is in the fluid when those carry at least half the weight
+  double wall_distance(const RawGridFrame& f, const double* x) const {
+    const GridGeometry& geo = g_.geometry;
+    if (f.wall_distance.empty()) return HUGE_VAL;
+    size_t idx[3];
+    double w[3];
+    for (int a = 0; a < 3; ++a) {
+      const double s = (x[a] - geo.origin[a]) / geo.spacing[a];
+      if (!(s >= 0 && s <= geo.n[a] - 1)) return HUGE_VAL;
+      const double fl = std::min(std::floor(s), double(geo.n[a] - 2));
+      idx[a] = size_t(fl);
+      w[a] = s - fl;
+    }
+    double d = 0;
+    for (int c = 0; c < 8; ++c) {
+      const size_t i = idx[0] + (c & 1), j = idx[1] + ((c >> 1) & 1), k = idx[2] + (c >> 2);
+      const size_t p = i + size_t(geo.n[0]) * (j + size_t(geo.n[1]) * k);
+      d += ((c & 1) ? w[0] : 1 - w[0]) * (((c >> 1) & 1) ? w[1] : 1 - w[1]) *
+           ((c >> 2) ? w[2] : 1 - w[2]) * double(f.wall_distance[p]);
+    }
+    return d;
+  }
+
   bool point(const RawGridFrame& f, const double* x, double out[5]) const {
     const GridGeometry& geo = g_.geometry;
     size_t idx[3];

@@ -17,7 +17,7 @@ def linear(p, scale=1.0):
     return U, (0.3 + 0.1 * x + 0.05 * y + 0.02 * z) * scale, (0.2 + 0.01 * (x + y + z)) * scale
 
 
-def write_vti(path, scale=1.0, solid=None):
+def write_vti(path, scale=1.0, solid=None, wall=None):
     img = vtkImageData()
     img.SetDimensions(*N)
     img.SetOrigin(*ORIGIN)
@@ -36,6 +36,10 @@ def write_vti(path, scale=1.0, solid=None):
     v = numpy_to_vtk(valid, deep=True)
     v.SetName("valid")
     img.GetPointData().AddArray(v)
+    if wall is not None:
+        a = numpy_to_vtk(np.ascontiguousarray(wall(pts), np.float32), deep=True)
+        a.SetName("wall_distance")
+        img.GetPointData().AddArray(a)
     w = vtkXMLImageDataWriter()
     w.SetFileName(str(path))
     w.SetInputData(img)
@@ -58,6 +62,21 @@ def test_sampling_is_exact_on_a_linear_field(tmp_path):
     assert np.allclose(s["k"], k, atol=1e-6) and np.allclose(s["epsilon"], eps, atol=1e-6)
     out = g.sample([[-1.01, 0, 2], [0, 0, 100], [np.nan, 0, 3]])
     assert not out["valid"].any() and np.isnan(out["k"]).all() and np.isnan(out["U"]).all()
+
+
+def test_wall_distance_is_the_plain_trilinear_blend(tmp_path):
+    # a plane wall 0.3 x + 0.4 y - z + 2.6 = 0 (a signed distance up to the factor): linear,
+    # so reproduced exactly, also where the points are solid (negative); +inf off the box and
+    # on a grid without the array
+    plane = lambda p: 0.3 * p[:, 0] + 0.4 * p[:, 1] - p[:, 2] + 2.6  # noqa: E731
+    g = lrigid.Grid.load(write_vti(tmp_path / "w.vti", wall=plane,
+                                   solid=lambda p: plane(p) < 0))
+    p = np.array([[0.1, 0.5, 2.5], [0.6, 0.2, 3.1], [-0.5, 0.9, 2.2], [0.0, 0.0, 100.0]])
+    w = g.sample(p)["wall_distance"]
+    assert np.allclose(w[:3], plane(p[:3]), atol=1e-5)
+    assert w[3] == np.inf
+    bare = lrigid.Grid.load(write_vti(tmp_path / "bare.vti"))
+    assert np.isinf(bare.sample(p[:1])["wall_distance"]).all()
 
 
 def test_solid_points_and_time_series(tmp_path):

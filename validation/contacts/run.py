@@ -9,8 +9,17 @@
    the slip, N = m g cos theta). Tolerance 2 %.
 3. The same box with mu > tan theta stays: displacement below 1e-6 m over 10 s (friction holds
    it; the contact adds no creep), with and without sleeping.
+4. The wind scene (scenes/leaves_wind.json on the windCourtyard grid with its wall_distance;
+   --quick: 200 bodies, 10 s): at every output time no contact point of a body (box: its
+   corners; ellipsoid: 26 points of its surface) lies deeper than 1 cm inside a solid (the
+   grid's interpolated wall distance, read by the Python module's Grid.sample) or below the
+   ground; no body stopped against a wall (every exited body was removed at the grid's edge);
+   and, reported, how many end up resting or sliding on the roof and ledges (above 0.5 m), on
+   the ground, flying, and how many left the grid.
 Each run is lrigid run on a scene written here, read back from trajectories.csv.
 """
+import csv
+import json
 import math
 import os
 import sys
@@ -105,7 +114,93 @@ def main():
     ax.grid(alpha=0.3)
     st.savefig(fig, "incline.png", "A box on an incline: it slides with g (sin th − mu cos th) "
                "when mu < tan th and stays when mu > tan th.")
+    wind_scene(args, st)
     st.finish()
+
+
+def surface_points(shape):
+    """contact points of a shape in its body frame (box: corners; ellipsoid: 26 directions)"""
+    if shape["type"] == "box":
+        h = np.array(shape["size"]) / 2
+        return np.array([[sx * h[0], sy * h[1], sz * h[2]] for sx in (-1, 1) for sy in (-1, 1)
+                         for sz in (-1, 1)])
+    a = np.array(shape["semi_axes"] if shape["type"] == "ellipsoid" else [shape["radius"]] * 3)
+    u = np.array([[i, j, k] for i in (-1, 0, 1) for j in (-1, 0, 1) for k in (-1, 0, 1)
+                  if (i, j, k) != (0, 0, 0)], dtype=float)
+    return u / np.sqrt(((u / a) ** 2).sum(axis=1))[:, None]
+
+
+def rotate(q, p):
+    """world offsets of body-frame points p (m, 3) for quaternions q (n, 4: w x y z): (n, m, 3)"""
+    w, x, y, z = q[:, 0], q[:, 1], q[:, 2], q[:, 3]
+    R = np.stack([np.stack([1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)], -1),
+                  np.stack([2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)], -1),
+                  np.stack([2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)], -1)],
+                 1)
+    return np.einsum("nij,mj->nmi", R, p)
+
+
+def wind_scene(args, st):
+    grid = os.path.join(vc.ROOT, "results", "grids", "windCourtyard.vti")
+    if not os.path.exists(grid):
+        st.note("wind scene skipped: no %s (run ./Allrun's precompute first)" % grid)
+        return
+    try:
+        lr = vc.import_lrigid(args)
+    except SystemExit as e:
+        st.note("wind scene skipped: %s" % e)
+        return
+    s = json.load(open(os.path.join(vc.ROOT, "scenes", "leaves_wind.json")))
+    s["fluid"]["field"] = grid
+    n = 200 if args.quick else 1000
+    total = sum(b["count"] for b in s["bodies"])
+    for b in s["bodies"]:
+        b["count"] = max(1, round(b["count"] * n / total))
+    if args.quick:
+        s["duration"] = 10.0
+    s["output"] = {"every": 0.5, "formats": ["csv"]}
+    _, summ, out = vc.run_scene(args, s, st.path("wind"), threads=2)
+    rows = list(csv.DictReader(open(os.path.join(out, "trajectories.csv"))))
+    nb = max(int(r["body"]) for r in rows) + 1
+    shapes = {b["name"]: surface_points(b["shape"]) for b in s["bodies"]}
+    g = lr.Grid(grid)
+    ground = s["ground"]["z"]
+    deepest, where = 0.0, ""
+    by_type = {}
+    for r in rows:
+        if r["state"] == "exited":
+            continue
+        by_type.setdefault(r["type"], []).append(r)
+    for name, rs in by_type.items():
+        x = np.array([[float(r[c]) for c in ("x", "y", "z")] for r in rs])
+        q = np.array([[float(r[c]) for c in ("qw", "qx", "qy", "qz")] for r in rs])
+        pts = x[:, None, :] + rotate(q, shapes[name])
+        flat = pts.reshape(-1, 3)
+        wd = np.asarray(g.sample(flat)["wall_distance"]).reshape(pts.shape[:2])
+        depth = np.maximum(-wd, ground - pts[:, :, 2]).max(axis=1)
+        k = int(np.argmax(depth))
+        if depth[k] > deepest:
+            deepest = float(depth[k])
+            where = "%s body %s at t = %s s (%s), (%.2f, %.2f, %.2f) m" % (
+                name, rs[k]["body"], rs[k]["t"], rs[k]["state"], x[k, 0], x[k, 1], x[k, 2])
+    st.check("wind scene (%d bodies, %g s): deepest contact point inside a solid or the ground "
+             "at any output time" % (nb, s["duration"]), deepest, 0.0, 0.01,
+             "contacts keep bodies out of the solids", unit="m", note=where)
+    states = summ["states"]
+    removed = summ["contacts"]["removed"]
+    st.check("wind scene: bodies stopped against a wall (exited but not removed at the grid's "
+             "edge, or landed)", states["exited"] - removed + states.get("landed", 0), 0, 0,
+             "walls and ground collide: nothing stops in mid-air")
+    last = [r for r in rows if float(r["t"]) == max(float(x["t"]) for x in rows[-nb:])]
+    on = [r for r in last if r["state"] in ("resting", "sleeping", "sliding")]
+    roof = sum(float(r["z"]) > 0.5 for r in on)
+    st.note("wind scene, %d bodies, %g s: at the end %d on the roof or a ledge (z > 0.5 m), "
+            "%d on the ground, %d flying, %d left the grid (removed); final states %s; %d "
+            "touched the ground, %d contact events" % (
+                nb, s["duration"], roof, len(on) - roof,
+                sum(r["state"] == "flying" for r in last), removed,
+                ", ".join("%s %d" % kv for kv in sorted(states.items()) if kv[1]),
+                summ["contacts"]["touched_ground"], summ["contacts"]["events"]))
 
 
 if __name__ == "__main__":

@@ -74,21 +74,39 @@ LRIGID_LANE void ellipsoid_support_point(const ContactParams& k, const T* n, T* 
   for (int a = 0; a < 3; ++a) r[a] = T(k.centre[a]) - a2n[a] * inv;
 }
 
+// Is the 6x6 inverse mass Minv (row-major) diagonal? (boxes, ellipsoids and spheres with the
+// centre of mass at the centroid: BodyType::M_diagonal). contact_resolve then multiplies by its
+// diagonal only: the same numbers, a sixth of the products.
+template <typename T>
+bool inverse_mass_is_diagonal(const T* Minv) {
+  for (int i = 0; i < 6; ++i)
+    for (int j = 0; j < 6; ++j)
+      if (i != j && Minv[6 * i + j] != T(0)) return false;
+  return true;
+}
+
 // The velocity change of the contact point r (body frame, from the centre of mass) and of the
 // body (dv, dw) when the impulse J (N s, body frame) acts at r: dxi = M^-1 [J; r x J],
-// dvc = dv + dw x r. Minv: the 6x6 generalized inverse mass [v; w], row-major (symmetric).
+// dvc = dv + dw x r. Minv: the 6x6 generalized inverse mass [v; w], row-major (symmetric);
+// diagonal: Minv is diagonal (inverse_mass_is_diagonal), only its diagonal is read.
 template <typename T>
-LRIGID_LANE void contact_response(const T* Minv, const T* r, const T* J, T* dvc, T* dv, T* dw) {
+LRIGID_LANE void contact_response(const T* Minv, const T* r, const T* J, T* dvc, T* dv, T* dw,
+                                  bool diagonal = false) {
   T p[6];
   p[0] = J[0], p[1] = J[1], p[2] = J[2];
   cross3(r, J, p + 3);
   T d[6];
+  if (diagonal) {
 #pragma GCC unroll 6
-  for (int i = 0; i < 6; ++i) {
-    T s = T(0);
+    for (int i = 0; i < 6; ++i) d[i] = Minv[7 * i] * p[i];
+  } else {
 #pragma GCC unroll 6
-    for (int j = 0; j < 6; ++j) s += Minv[6 * i + j] * p[j];
-    d[i] = s;
+    for (int i = 0; i < 6; ++i) {
+      T s = T(0);
+#pragma GCC unroll 6
+      for (int j = 0; j < 6; ++j) s += Minv[6 * i + j] * p[j];
+      d[i] = s;
+    }
   }
   dv[0] = d[0], dv[1] = d[1], dv[2] = d[2];
   dw[0] = d[3], dw[1] = d[4], dw[2] = d[5];
@@ -96,6 +114,20 @@ LRIGID_LANE void contact_response(const T* Minv, const T* r, const T* J, T* dvc,
   cross3(dw, r, wxr);
 #pragma GCC unroll 3
   for (int a = 0; a < 3; ++a) dvc[a] = dv[a] + wxr[a];
+}
+
+// x = K^-1 b for a 3x3 K (row-major) by its adjugate.
+template <typename T>
+LRIGID_LANE void solve3(const T* K, const T* b, T* x) {
+  const T det = K[0] * (K[4] * K[8] - K[5] * K[7]) - K[1] * (K[3] * K[8] - K[5] * K[6]) +
+                K[2] * (K[3] * K[7] - K[4] * K[6]);
+  const T idet = T(1) / det;
+  const T Ki[9] = {(K[4] * K[8] - K[5] * K[7]) * idet, (K[2] * K[7] - K[1] * K[8]) * idet,
+                   (K[1] * K[5] - K[2] * K[4]) * idet, (K[5] * K[6] - K[3] * K[8]) * idet,
+                   (K[0] * K[8] - K[2] * K[6]) * idet, (K[2] * K[3] - K[0] * K[5]) * idet,
+                   (K[3] * K[7] - K[4] * K[6]) * idet, (K[1] * K[6] - K[0] * K[7]) * idet,
+                   (K[0] * K[4] - K[1] * K[3]) * idet};
+  mul(Ki, b, x);
 }
 
 // What one contact does to a body.
@@ -156,18 +188,10 @@ LRIGID_LANE ContactOut<T> contact_impulse_kernel(const ContactParams& k, const T
   // frictionless: J = j0 n
   const T j0 = dvn / knn;
   // sticking: K J = dvn n - vt
-  const T det = K[0] * (K[4] * K[8] - K[5] * K[7]) - K[1] * (K[3] * K[8] - K[5] * K[6]) +
-                K[2] * (K[3] * K[7] - K[4] * K[6]);
-  const T idet = T(1) / det;
-  const T Ki[9] = {(K[4] * K[8] - K[5] * K[7]) * idet, (K[2] * K[7] - K[1] * K[8]) * idet,
-                   (K[1] * K[5] - K[2] * K[4]) * idet, (K[5] * K[6] - K[3] * K[8]) * idet,
-                   (K[0] * K[8] - K[2] * K[6]) * idet, (K[2] * K[3] - K[0] * K[5]) * idet,
-                   (K[3] * K[7] - K[4] * K[6]) * idet, (K[1] * K[6] - K[0] * K[7]) * idet,
-                   (K[0] * K[4] - K[1] * K[3]) * idet};
   T want[3], Js[3];
 #pragma GCC unroll 3
   for (int a = 0; a < 3; ++a) want[a] = dvn * n[a] - vt[a];
-  mul(Ki, want, Js);
+  solve3(K, want, Js);
   const T jn_s = dot3(Js, n);
   T Jst[3];
 #pragma GCC unroll 3
@@ -248,8 +272,9 @@ int contact_resolve(const ContactParams& k, const T* Minv, T* v, T* w, int count
                     const T* n, const T* depth, int passes, T* dx) {
   const int m = count < kContactMaxPoints ? count : kContactMaxPoints;
   const T mu = T(k.friction);
+  const bool diagonal = inverse_mass_is_diagonal(Minv);
   T target[kContactMaxPoints], K[kContactMaxPoints][9], Jn[kContactMaxPoints],
-      Jt[kContactMaxPoints][3];
+      Jt[kContactMaxPoints][3], inv_knn[kContactMaxPoints];
   T best = T(0);
   dx[0] = dx[1] = dx[2] = T(0);
   for (int i = 0; i < m; ++i) {
@@ -263,9 +288,12 @@ int contact_resolve(const ContactParams& k, const T* Minv, T* v, T* w, int count
     T dvc[3], dv[3], dw[3];
     for (int j = 0; j < 3; ++j) {
       const T ej[3] = {T(j == 0), T(j == 1), T(j == 2)};
-      contact_response(Minv, ri, ej, dvc, dv, dw);
+      contact_response(Minv, ri, ej, dvc, dv, dw, diagonal);
       K[i][j] = dvc[0], K[i][3 + j] = dvc[1], K[i][6 + j] = dvc[2];
     }
+    T Kn[3];
+    mul(K[i], n + 3 * i, Kn);
+    inv_knn[i] = T(1) / dot3(n + 3 * i, Kn);
     Jn[i] = T(0);
     Jt[i][0] = Jt[i][1] = Jt[i][2] = T(0);
     if (depth[i] > best) {
@@ -275,7 +303,7 @@ int contact_resolve(const ContactParams& k, const T* Minv, T* v, T* w, int count
   }
   auto apply = [&](const T* ri, const T* J) {
     T dvc[3], dv[3], dw[3];
-    contact_response(Minv, ri, J, dvc, dv, dw);
+    contact_response(Minv, ri, J, dvc, dv, dw, diagonal);
     for (int a = 0; a < 3; ++a) v[a] += dv[a], w[a] += dw[a];
   };
   auto point_velocity = [&](const T* ri, T* vc) {
@@ -283,6 +311,23 @@ int contact_resolve(const ContactParams& k, const T* Minv, T* v, T* w, int count
     cross3(w, ri, wxr);
     for (int a = 0; a < 3; ++a) vc[a] = v[a] + wxr[a];
   };
+  if (m == 1 && depth[0] >= T(0)) {
+    // one point (a sphere or an ellipsoid, a box on a corner): the impulse that stops it
+    // (normal velocity to its target, no slip), K J = target n - v_c, is where the sweeps below
+    // converge when it pulls not and lies in the friction cone (a body resting or rolling on
+    // one point): taken at once, exactly; otherwise the sweeps find the sliding impulse
+    T vc[3], want[3], J[3];
+    point_velocity(r, vc);
+    for (int a = 0; a < 3; ++a) want[a] = target[0] * n[a] - vc[a];
+    solve3(K[0], want, J);
+    const T jn = dot3(J, n);
+    T jt[3];
+    for (int a = 0; a < 3; ++a) jt[a] = J[a] - jn * n[a];
+    if (jn >= T(0) && std::sqrt(dot3(jt, jt)) <= mu * jn) {
+      apply(r, J);
+      return jn > T(0) ? 1 : 0;
+    }
+  }
   for (int p = 0; p < passes; ++p) {
     // the sweep's largest impulse change against the largest accumulated impulse: converged
     // when it is below kContactTolerance of it (a resting body: after 2 or 3 sweeps)
@@ -291,10 +336,9 @@ int contact_resolve(const ContactParams& k, const T* Minv, T* v, T* w, int count
       if (!(depth[i] >= T(0))) continue;
       const T *ri = r + 3 * i, *ni = n + 3 * i;
       // the normal impulse: the point's normal velocity to its target, never pulling
-      T vc[3], Kn[3];
+      T vc[3];
       point_velocity(ri, vc);
-      mul(K[i], ni, Kn);
-      const T jn_new = std::max(T(0), Jn[i] + (target[i] - dot3(vc, ni)) / dot3(ni, Kn));
+      const T jn_new = std::max(T(0), Jn[i] + (target[i] - dot3(vc, ni)) * inv_knn[i]);
       T J[3];
       for (int a = 0; a < 3; ++a) J[a] = (jn_new - Jn[i]) * ni[a];
       change = std::max(change, std::abs(jn_new - Jn[i]));

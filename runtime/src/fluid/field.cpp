@@ -249,6 +249,37 @@ bool FluidField::wall_distance(const Vec3& x, double t, double* d, Vec3* gradien
   return true;
 }
 
+bool FluidField::only_floor_near(const Vec3& x, double reach, double floor_z, double t) const {
+  if (frames_.empty() || !has_wall_distance_) return false;
+  const GridGeometry& g = geometry_;
+  int lo[3], hi[3];
+  for (int a = 0; a < 3; ++a) {
+    double s0 = (x[a] - reach - g.origin[a]) / g.spacing[a];
+    const double s1 = (x[a] + reach - g.origin[a]) / g.spacing[a];
+    // below the grid's bottom is the floor's side (a body lying on a floor at the bottom
+    // reaches below it): the bottom layer
+    if (a == 2 && s0 < 0.0 && s1 >= 0.0) s0 = 0.0;
+    if (!(s0 >= 0.0 && s1 <= double(g.n[a] - 1))) return false;
+    lo[a] = static_cast<int>(s0);
+    hi[a] = std::min(static_cast<int>(std::ceil(s1)), g.n[a] - 1);
+  }
+  // the solids do not move: any resident frame holds the same distances
+  size_t f0, f1;
+  double lam;
+  bracket(t, &f0, &f1, &lam);
+  const std::vector<GridRecord>& frame = frames_[f0];
+  const size_t sy = size_t(g.n[0]), sz = size_t(g.n[0]) * size_t(g.n[1]);
+  for (int k = lo[2]; k <= hi[2]; ++k) {
+    const double above = g.origin[2] + k * g.spacing[2] - floor_z;
+    for (int j = lo[1]; j <= hi[1]; ++j)
+      for (int i = lo[0]; i <= hi[0]; ++i) {
+        const double d = double(frame[size_t(i) + size_t(j) * sy + size_t(k) * sz].wall_distance);
+        if (!(std::abs(d - above) <= 1e-4)) return false;
+      }
+  }
+  return true;
+}
+
 size_t FluidField::bytes() const {
   size_t b = 0;
   for (const auto& fr : frames_) b += fr.size() * sizeof(GridRecord);

@@ -123,6 +123,15 @@ class FluidField {
   // gradient (1, world frame; the wall's normal where it is not zero), at time t's frame. false
   // (and d = +infinity) outside the grid's box, on a uniform field or a grid without the array.
   bool wall_distance(const Vec3& x, double t, double* d, Vec3* gradient) const;
+  // Is the nearest wall of every grid point of the cells that the cube of half-side `reach`
+  // about x overlaps the plane z = floor_z below it (its wall distance z - floor_z, to 1e-4 m)?
+  // Then the interpolated wall distance in that cube is exactly z - floor_z (trilinear
+  // interpolation reproduces a linear function): no point of a body within it can reach a wall
+  // but that floor. One comparison per grid point, no interpolation (integrate/contacts.cpp
+  // skips the wall queries of a body lying on a ground that is the grid's floor; a cube reaching
+  // below the grid's bottom takes its bottom layer). false outside the grid's box, on a uniform
+  // field or a grid without the array.
+  bool only_floor_near(const Vec3& x, double reach, double floor_z, double t) const;
   // Bodies collide with the grid's solids (scene key walls.contact = "collide", on a grid with
   // the wall distance): a point counts as in the fluid wherever some corner is valid, also where
   // the valid corners carry less than half of the weight (the contacts keep the bodies' points

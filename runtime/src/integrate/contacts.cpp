@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "effects/contact.h"
+#include "integrate/dynamics.h"
 
 namespace lrigid {
 
@@ -60,6 +61,9 @@ void gather(const Model& m, const BodyType& type, const BodyState& b, const Mat3
     }
   }
   if (!m.walls_collide()) return;
+  // a body near a colliding ground that is the grid's floor, away from every other wall: the
+  // ground above was the only surface it could touch (touching or not)
+  if (m.ground_collides() && m.field.only_floor_near(b.x, type.reach, m.ground_z, t)) return;
   if (clearance && clearance->radius >= 0 && (b.x - clearance->x).norm() < clearance->radius)
     return;
   double dc;
@@ -112,6 +116,29 @@ double end_velocity_weight(const Model& m) {
 
 }  // namespace
 
+bool flow_can_move(const Model& model, const BodyType& type, const BodyState& b, const Vec3& n,
+                   double t) {
+  Kinematics k;
+  k.x = b.x;
+  k.R = b.q.toRotationMatrix();
+  k.v.setZero();
+  k.w.setZero();
+  k.u_seen.setZero();
+  // the mean flow and its variance at the body (the sample effect_wrench takes is the same)
+  FluidSample s;
+  if (type.plan.sample_field && !sample_fluid(model, b.x, t, false, &s)) return false;
+  const double un = s.U.norm();
+  const Vec3 along = un > 0 ? Vec3(s.U / un) : Vec3::UnitX();
+  k.u_seen = kGustSigmas * std::sqrt(std::max(0.0, s.sigma2)) * along;
+  Vec6 f;
+  FluidSample used;
+  if (effect_wrench(model, type, k, t, &f, &used) != EvalResult::Ok) return false;
+  const Vec3 F = k.R * f.head<3>();
+  const double press = -F.dot(n);  // what holds the body on the surface, N
+  const double slide = (F + press * n).norm();
+  return !(press > 0) || slide > type.contact->friction * press;
+}
+
 bool contact_after_step(const Model& model, const BodyType& type, size_t i, double t_end,
                         BodyState* b, State* st, WallClearance* clearance) {
   const Mat3 R = b->q.toRotationMatrix();
@@ -140,6 +167,11 @@ bool contact_after_step(const Model& model, const BodyType& type, size_t i, doub
   // penetration
   b->x += cw * (R * dv);
   b->q = rotate_body(b->q, cw * dw);
+  // the deepest point's normal (body frame): the surface the body lies on
+  Vec3 base_n = Vec3::UnitZ();
+  for (int p = 0, deepest = -1; p < c.count; ++p)
+    if (deepest < 0 || c.depth[p] > c.depth[deepest])
+      deepest = p, base_n = Vec3(c.n[3 * p], c.n[3 * p + 1], c.n[3 * p + 2]);
   double worst = 0;
   Vec3 worst_n = Vec3::Zero();
   for (int p = 0; p < c.count; ++p) {
@@ -165,6 +197,12 @@ bool contact_after_step(const Model& model, const BodyType& type, size_t i, doub
   st->contact[i] = rests ? ContactState::Resting : ContactState::Sliding;
   st->rest_steps[i] = rests ? st->rest_steps[i] + 1 : 0;
   if (rests && double(st->rest_steps[i]) * h >= model.sleep_time) {
+    // it sleeps only where the flow cannot move it, gusts included: otherwise it stays awake
+    // (and is asked again after another sleep_time of rest)
+    if (flow_can_move(model, type, *b, R * base_n, t_end)) {
+      st->rest_steps[i] = 0;
+      return false;
+    }
     st->status[i] = BodyStatus::Sleeping;
     st->t_stop[i] = t_end;
     b->v.setZero();

@@ -50,6 +50,18 @@ bool contact_after_step(const Model& model, const BodyType& type, size_t i, doub
 // Returns true when an impulse was applied.
 bool speculative_ground_contact(const Model& model, const BodyType& type, BodyState* b);
 
+// Could the flow move body b, lying at rest on a surface of world normal n (from the surface
+// into the fluid), at time t? The effects' wrench on it held still (gravity, buoyancy, drag,
+// lift, the fluid's acceleration: effect_wrench) with a gust of kGustSigmas standard deviations
+// of the turbulence along the mean flow: true when it would lift the body off (no force
+// pressing it onto the surface) or its tangential part exceeds the friction mu times the
+// pressing force. A body whose flow can move it does not sleep (docs/contacts.md); in a steady
+// field its flow never changes, so one that sleeps could not have been moved. Tipping over
+// (the torque about an edge) is not tested.
+constexpr double kGustSigmas = 3.0;
+bool flow_can_move(const Model& model, const BodyType& type, const BodyState& b, const Vec3& n,
+                   double t);
+
 // Sleeping bodies whose flow has changed since they fell asleep (a time-dependent field has
 // passed a frame time since st.t_stop) wake up: status Moving again, resting count reset.
 // Bodies [n0, n).

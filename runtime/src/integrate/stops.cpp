@@ -27,6 +27,14 @@ Vec3 predicted_position(const Model& m, const BodyType& type, const BodyState& b
 
 // where a body that could not be sampled went: where one more step would take it
 std::string exit_reason(const Model& m, const BodyType& type, const BodyState& b) {
+  // colliding walls keep bodies out of the solids: a body still on the fluid's side of every
+  // wall (positive wall distance) left through the grid's open boundary, whatever one more
+  // step with its velocity predicts (a batched step's turbulence or acceleration can carry it
+  // past the edge when its velocity alone does not)
+  double d;
+  Vec3 grad;
+  if (m.walls_collide() && m.field.wall_distance(b.x, 0.0, &d, &grad) && d > 0)
+    return kLeftTheGrid;
   const Vec3 next = predicted_position(m, type, b);
   if (m.field.in_box(next) && m.field.in_box(b.x))
     return "hit a solid: no valid grid point around it (a wall, a building, an obstacle)";

@@ -177,6 +177,38 @@ TEST(FluidField, WallDistanceIsTheTrilinearBlendAndCrossesZeroAtThePlane) {
   EXPECT_NEAR(s.wall_distance, -0.5, 1e-6);
 }
 
+// only_floor_near: true where every grid point of the cells about the body has the plane below
+// as its nearest wall (its distance is its height above it), false next to another wall, off
+// the box, for another floor height and without the array.
+TEST(FluidField, OnlyFloorNearWhereEveryCornersNearestWallIsTheFloor) {
+  const GridGeometry g = geometry();  // x -1..1 (0.5), y 0..0.75 (0.25), z 2..4 (1)
+  RawGridFrame fr = walled_frame(g, 0);  // the floor z = 2.7: distances z - 2.7
+  const FluidField f = FluidField::grid(g, {fr}, 1e-5, Drift::Stationary, TimeMode::Clamp);
+  EXPECT_TRUE(f.only_floor_near(Vec3(-0.3, 0.37, 3.0), 0.05, 2.7, 0));
+  EXPECT_TRUE(f.only_floor_near(Vec3(0.1, 0.3, 2.75), 0.2, 2.7, 0));
+  EXPECT_FALSE(f.only_floor_near(Vec3(-0.3, 0.37, 3.0), 0.05, 2.0, 0)) << "another floor";
+  EXPECT_FALSE(f.only_floor_near(Vec3(0.98, 0.37, 3.0), 0.05, 2.7, 0)) << "off the box";
+  // a floor at the grid's bottom z = 2: a body lying on it reaches below the bottom
+  RawGridFrame bottom = walled_frame(g, 0);
+  for (size_t p = 0; p < g.points(); ++p) bottom.wall_distance[p] += 0.7f;  // z - 2
+  const FluidField b = FluidField::grid(g, {bottom}, 1e-5, Drift::Stationary, TimeMode::Clamp);
+  EXPECT_TRUE(b.only_floor_near(Vec3(-0.3, 0.37, 2.01), 0.05, 2.0, 0));
+  EXPECT_FALSE(b.only_floor_near(Vec3(-0.3, 0.37, 1.9), 0.05, 2.0, 0)) << "all below the grid";
+  // a wall nearer than the floor at the grid point (x, y, z) = (0.5, 0.5, 3): the cells
+  // touching it are not floor-only, the others still are
+  const size_t p = 3 + 2 * size_t(g.n[0]) + 1 * size_t(g.n[0]) * g.n[1];
+  fr.wall_distance[p] = 0.1f;
+  const FluidField w = FluidField::grid(g, {fr}, 1e-5, Drift::Stationary, TimeMode::Clamp);
+  EXPECT_FALSE(w.only_floor_near(Vec3(0.4, 0.45, 2.8), 0.02, 2.7, 0));
+  EXPECT_FALSE(w.only_floor_near(Vec3(0.6, 0.55, 3.5), 0.02, 2.7, 0));
+  EXPECT_TRUE(w.only_floor_near(Vec3(-0.6, 0.1, 2.8), 0.02, 2.7, 0));
+  const FluidField none =
+      FluidField::grid(g, {linear_frame(g, 0, 1)}, 1e-5, Drift::Stationary, TimeMode::Clamp);
+  EXPECT_FALSE(none.only_floor_near(Vec3(-0.3, 0.37, 3.0), 0.05, 2.7, 0));
+  const FluidField u = FluidField::uniform(Vec3(1, 0, 0), 0.1, 0.01, 1e-5, Drift::Stationary);
+  EXPECT_FALSE(u.only_floor_near(Vec3(0, 0, 0), 0.05, 0, 0));
+}
+
 TEST(FluidField, WithoutAWallDistanceEverySampleIsFarFromWalls) {
   const GridGeometry g = geometry();
   const FluidField f =

@@ -11,6 +11,7 @@
 #include "effects/contact.h"
 #include "integrate/contacts.h"
 #include "integrate/simulation.h"
+#include "integrate/stops.h"
 #include "support/batch_compare.h"
 #include "support/fixture.h"
 
@@ -220,6 +221,28 @@ TEST(Outside, RemoveHidesABodyThatLeavesTheGridStopKeepsIt) {
   }
 }
 
+// A body that could not be sampled while on the fluid's side of every wall (wall distance > 0)
+// left the grid, even when one more step with its velocity would keep it in the box (a batched
+// step's turbulence can carry it past the edge): removed and hidden, not "hit a solid" (which
+// left it visible at the grid's edge in the wind scene). Inside a solid it still hit one.
+TEST(Outside, AStepPastTheEdgeFromTheFluidSideIsLeavingTheGrid) {
+  Scene s = test::sphere_scene(0.02, 1000, 1.2, 1.5e-5);
+  s.uniform_field = false;
+  s.effects = test::effects({Effect::Gravity, Effect::Drag, Effect::MeanFlow});
+  s.outside = OutsideMode::Remove;
+  const Model m = test::compile(s, inclined_wall_grid(Vec3(0, 0, 1), Vec3(0, 0, -0.9)));
+  ASSERT_TRUE(m.walls_collide());
+  State st = initial_state(m, s);
+  BodyState b = load_body(st, 0);
+  b.x = Vec3(0.999, 0, 0.5);  // 1 mm from the edge x = 1, at rest
+  stop_body(m, m.types[0], 0, 0.1, StepOutcome::Exited, "", b, &st);
+  EXPECT_EQ(st.reason[0], "left the grid");
+  EXPECT_EQ(st.hidden[0], 1);
+  b.x = Vec3(0.5, 0, -0.95);  // below the wall z = -0.9
+  stop_body(m, m.types[0], 0, 0.1, StepOutcome::Exited, "", b, &st);
+  EXPECT_EQ(st.reason[0].rfind("hit a solid", 0), 0u) << st.reason[0];
+}
+
 }  // namespace
 }  // namespace lrigid
 
@@ -330,6 +353,102 @@ TEST(GroundStopWallsCollide, TheGroundStillLandsTheBody) {
     simulate(m, &st, RunOptions{});
     EXPECT_EQ(st.status[0], BodyStatus::Landed) << (batched ? "batched" : "scalar");
   }
+}
+
+}  // namespace
+}  // namespace lrigid
+
+namespace lrigid {
+namespace {
+
+// A sheet of paper lying flat on the ground in a uniform wind along x (issue 23, item 6): the
+// speed U* at which the wind's force on it held still (drag, and lift, from the model's own
+// effects: flow_can_move) equals mu (weight - lift) is found by bisection; below it the sheet
+// stays, above it slides.
+Scene plate_in_wind_scene(double U, double k, bool batched, bool turbulent = false) {
+  Scene s = test::sphere_scene(0.05, 600, 1.2, 1.5e-5);
+  s.bodies[0].name = "paper";
+  s.bodies[0].shape = Shape::box(0.15, 0.1, 0.002);
+  s.bodies[0].position = Vec3(0, 0, 0.001);
+  s.bodies[0].contact.restitution = 0;
+  s.bodies[0].contact.friction = 0.4;
+  s.effects = test::effects({Effect::Gravity, Effect::Drag, Effect::Lift, Effect::MeanFlow});
+  if (turbulent) s.effects.add(Effect::Turbulence);
+  s.uniform_U = Vec3(U, 0, 0);
+  s.uniform_k = k;
+  s.uniform_epsilon = k > 0 ? 0.1 : 0;
+  s.has_ground = true;
+  s.ground_z = 0;
+  s.dt = 1e-3;
+  s.duration = 2.0;
+  s.batched = batched;
+  return s;
+}
+
+// Does flow_can_move say the wind U (and turbulence k) moves the sheet at rest? One model,
+// its uniform field replaced (compiling the model is the slow part).
+bool wind_moves_plate(double U, double k, bool turbulent = false) {
+  static Model m = test::compile(plate_in_wind_scene(1, 0, false, false));
+  static Model mt = test::compile(plate_in_wind_scene(1, 0.01, false, true));
+  Model& model = turbulent ? mt : m;
+  model.field = FluidField::uniform(Vec3(U, 0, 0), k, k > 0 ? 0.1 : 0, 1.5e-5, Drift::Stationary);
+  State st = initial_state(model, plate_in_wind_scene(U, k, false, turbulent));
+  return flow_can_move(model, model.types[0], load_body(st, 0), Vec3::UnitZ(), 0);
+}
+
+double threshold_speed() {
+  double lo = 0, hi = 1;
+  while (!wind_moves_plate(hi, 0)) hi *= 2;
+  for (int it = 0; it < 30; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    (wind_moves_plate(mid, 0) ? hi : lo) = mid;
+  }
+  return hi;
+}
+
+class PlateInWind : public ::testing::TestWithParam<bool> {};
+
+TEST_P(PlateInWind, StaysBelowTheFrictionSpeedSlidesAbove) {
+  const double Us = threshold_speed();
+  ASSERT_GT(Us, 0.5);
+  ASSERT_LT(Us, 100);
+  for (const double f : {0.9, 1.1}) {
+    const Scene s = plate_in_wind_scene(f * Us, 0, GetParam());
+    const Model m = test::compile(s);
+    State st = initial_state(m, s);
+    simulate(m, &st, RunOptions{});
+    if (f < 1) {
+      // at rest: it fell asleep where the flow cannot move it, and did not creep
+      EXPECT_EQ(st.status[0], BodyStatus::Sleeping) << f << " U* = " << f * Us << " m/s";
+      EXPECT_LT(std::abs(st.x[0].x()), 1e-4) << "it crept";
+    } else {
+      EXPECT_EQ(st.status[0], BodyStatus::Moving);
+      EXPECT_EQ(st.contact[0], ContactState::Sliding);
+      EXPECT_GT(st.x[0].x(), 0.05) << "it should slide downwind";
+      EXPECT_NEAR(st.x[0].z(), 0.001, 1e-3) << "along the ground";
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(ScalarAndBatched, PlateInWind, ::testing::Values(false, true),
+                         [](const auto& info) { return info.param ? "batched" : "scalar"; });
+
+// A sheet held by friction in a mean wind of 0.9 U* does not sleep when a gust of
+// kGustSigmas standard deviations of the turbulence it feels could move it; the same sheet
+// without turbulence sleeps (PlateInWind).
+TEST(Sleeping, NotWhereAGustCouldMoveTheBody) {
+  const double Us = threshold_speed();
+  // 3 sigma = 0.3 U*: sigma^2 = 2k/3
+  const double sigma = 0.1 * Us, k = 1.5 * sigma * sigma;
+  EXPECT_TRUE(wind_moves_plate(0.9 * Us, k, true));
+  EXPECT_FALSE(wind_moves_plate(0.9 * Us, 0, true));
+  // a turbulence far too weak to move it: it sleeps
+  EXPECT_FALSE(wind_moves_plate(0.9 * Us, 1e-3 * k, true));
+  Scene s = plate_in_wind_scene(0.9 * Us, k, false, true);
+  const Model m = test::compile(s);
+  State st = initial_state(m, s);
+  simulate(m, &st, RunOptions{});
+  EXPECT_EQ(st.status[0], BodyStatus::Moving) << "it fell asleep where a gust could move it";
 }
 
 }  // namespace
