@@ -49,7 +49,10 @@ inline Wrench basset_wrench(const BodyType& type, const Mat3& Rt, const double* 
 }
 
 // the scalar step's term (the registry's row)
-inline Vec6 basset_term(const EffectContext& c) { return basset_wrench(*c.type, c.Rt, c.history); }
+// (no history, as for a body evaluated at rest outside its step: no force)
+inline Vec6 basset_term(const EffectContext& c) {
+  return c.history ? basset_wrench(*c.type, c.Rt, c.history) : Vec6::Zero();
+}
 
 // Starts a history with relative velocity g0 (world frame, m/s).
 void basset_reset(const BassetKernel& k, const Vec3& g0, double* history);

@@ -124,6 +124,7 @@ bool flow_can_move(const Model& model, const BodyType& type, const BodyState& b,
   k.v.setZero();
   k.w.setZero();
   k.u_seen.setZero();
+  k.history = b.history;  // the Basset history's force as it stands (none without the effect)
   // the mean flow and its variance at the body (the sample effect_wrench takes is the same)
   FluidSample s;
   if (type.plan.sample_field && !sample_fluid(model, b.x, t, false, &s)) return false;

@@ -326,6 +326,30 @@ TEST(Sleeping, RestingBallSleepsAndWakesWhenTheFlowChanges) {
   }
 }
 
+TEST(Sleeping, BodiesWithTheBassetHistoryFallAsleepToo) {
+  // the sleep test evaluates the flow's forces on the body held still, through its Basset history
+  // (a crash on a null history once: tests/integration/resume_test.sh's scene); spheres and
+  // chips, on the scalar and the batched step
+  for (const bool batched : {false, true}) {
+    for (const bool chip : {false, true}) {
+      Scene s = test::sphere_scene(0.002, 1100, 1000, 1e-6);
+      if (chip) s.bodies[0].shape = Shape::box(0.01, 0.006, 0.001);
+      s.effects = test::effects({Effect::Gravity, Effect::Buoyancy, Effect::Drag,
+                                 Effect::AddedMass, Effect::Basset});
+      s.bodies[0].position = Vec3(0, 0, 0.01);
+      s.has_ground = true;
+      s.batched = batched;
+      s.dt = 2e-3;
+      s.duration = 3.0;
+      const Model m = test::compile(s);
+      State st = initial_state(m, s);
+      simulate(m, &st, RunOptions{});
+      EXPECT_EQ(st.status[0], BodyStatus::Sleeping) << (chip ? "chip" : "sphere")
+                                                     << (batched ? " batched" : " scalar");
+    }
+  }
+}
+
 }  // namespace
 }  // namespace lrigid
 
