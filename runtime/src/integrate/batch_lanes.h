@@ -264,53 +264,63 @@ LRIGID_IVDEP
   // the grid is larger than the caches: the 4 pairs of corner records of a lane a few lanes
   // ahead are prefetched (each pair is 64 bytes, which may straddle two cache lines)
   constexpr int kAhead = 6;
-  auto prefetch = [&](int j) {
+  // the gather, once per kind of field (a branch on the series inside it doubled the loop's
+  // instructions on a steady grid: GCC kept the records in memory across the two paths)
+  auto gather = [&](auto blend) {
+    constexpr bool kBlend = decltype(blend)::value;
+    auto prefetch = [&](int j) {
 #pragma GCC unroll 4
-    for (int c = 0; c < 8; c += 2) {
-      const float* r = rec + base[j] + off[c];
-      __builtin_prefetch(r);
-      __builtin_prefetch(r + 15);
-      if (rec_b) {
-        const float* rb = rec_b + base[j] + off[c];
-        __builtin_prefetch(rb);
-        __builtin_prefetch(rb + 15);
+      for (int c = 0; c < 8; c += 2) {
+        const float* r = rec + base[j] + off[c];
+        __builtin_prefetch(r);
+        __builtin_prefetch(r + 15);
+        if constexpr (kBlend) {
+          const float* rb = rec_b + base[j] + off[c];
+          __builtin_prefetch(rb);
+          __builtin_prefetch(rb + 15);
+        }
+      }
+    };
+    for (int j = lo; j < hi && j < lo + kAhead; ++j) prefetch(j);
+    for (int j = lo; j < hi; ++j) {
+      if (j + kAhead < hi) prefetch(j + kAhead);
+      const T f[3] = {frac[0][j], frac[1][j], frac[2][j]};
+      const int idx = base[j];
+      bool in = inbox[j] != 0;
+      V8 v, d0, d1, d2;
+      int nvalid;
+      if constexpr (kBlend) {
+        V8 dv;
+        nvalid = trilinear_record<T, true, true>(rec + idx, off, f, &v, &d0, &d1, &d2,
+                                                 rec_b + idx, lam, &dv);
+#pragma GCC unroll 3
+        for (int p = 0; p < 3; ++p) dudt[p][j] = dv[p] * rate;
+      } else {
+        nvalid = trilinear_record<T, true>(rec + idx, off, f, &v, &d0, &d1, &d2);
+#pragma GCC unroll 3
+        for (int p = 0; p < 3; ++p) dudt[p][j] = T(0);
+      }
+      // slot 6 of v: the weight W of the valid corners
+      // (colliding walls: any valid corner, as FluidField::sample_frame)
+      in = in & (nvalid > 0) & ((v[6] >= T(0.5)) | fc.walls_collide);
+      allv[j] = nvalid == 8 ? T(1) : T(0);
+      lanes->inside[j] = in ? T(1) : T(0);
+      // slot 7: the valid-weighted wall distance, the plain blend where all corners are valid
+      lanes->wall[j] =
+          (!fc.has_wall || inbox[j] == 0) ? T(HUGE_VAL) : (nvalid == 8 ? v[7] : T(-1));
+#pragma GCC unroll 8
+      for (int p = 0; p < 8; ++p) {
+        val[p][j] = v[p];
+        grad[0][p][j] = d0[p];
+        grad[1][p][j] = d1[p];
+        grad[2][p][j] = d2[p];
       }
     }
   };
-  for (int j = lo; j < hi && j < lo + kAhead; ++j) prefetch(j);
-  for (int j = lo; j < hi; ++j) {
-    if (j + kAhead < hi) prefetch(j + kAhead);
-    const T f[3] = {frac[0][j], frac[1][j], frac[2][j]};
-    const int idx = base[j];
-    bool in = inbox[j] != 0;
-    V8 v, d0, d1, d2;
-    int nvalid;
-    if (rec_b) {
-      V8 dv;
-      nvalid = trilinear_record<T, true, true>(rec + idx, off, f, &v, &d0, &d1, &d2, rec_b + idx,
-                                               lam, &dv);
-#pragma GCC unroll 3
-      for (int p = 0; p < 3; ++p) dudt[p][j] = dv[p] * rate;
-    } else {
-      nvalid = trilinear_record<T, true>(rec + idx, off, f, &v, &d0, &d1, &d2);
-#pragma GCC unroll 3
-      for (int p = 0; p < 3; ++p) dudt[p][j] = T(0);
-    }
-    // slot 6 of v: the weight W of the valid corners
-    // (colliding walls: any valid corner, as FluidField::sample_frame)
-    in = in & (nvalid > 0) & ((v[6] >= T(0.5)) | fc.walls_collide);
-    allv[j] = nvalid == 8 ? T(1) : T(0);
-    lanes->inside[j] = in ? T(1) : T(0);
-    // slot 7: the valid-weighted wall distance, the plain blend where all corners are valid
-    lanes->wall[j] = (!fc.has_wall || inbox[j] == 0) ? T(HUGE_VAL) : (nvalid == 8 ? v[7] : T(-1));
-#pragma GCC unroll 8
-    for (int p = 0; p < 8; ++p) {
-      val[p][j] = v[p];
-      grad[0][p][j] = d0[p];
-      grad[1][p][j] = d1[p];
-      grad[2][p][j] = d2[p];
-    }
-  }
+  if (rec_b)
+    gather(std::true_type{});
+  else
+    gather(std::false_type{});
 LRIGID_IVDEP
   for (int j = lo; j < hi; ++j) {
     const T W = val[6][j];
