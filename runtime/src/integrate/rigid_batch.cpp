@@ -186,6 +186,24 @@ LRIGID_LANE void flow_end(const StepConsts& tc, const T* q0, const T* y0, const 
   }
 }
 
+// flow_end on lane j of the block's arrays: its start orientation q0 (4 x kBatch), the
+// iteration's start impulse Y0 and converged iterate Y (6 x kBatch) and the fluid velocity uf
+// (3 x kBatch) the flow moved in (the splitting and the strang steps' end of the flow)
+template <typename T>
+LRIGID_LANE void lane_flow_end(const StepConsts& tc, const T (*q0)[kBatch],
+                               const T (*Y0)[kBatch], const T (*Y)[kBatch],
+                               const T (*uf)[kBatch], int j, T* q, T* R, T* ufb, T* v, T* w) {
+  T y0[6], y[6];
+#pragma GCC unroll 6
+  for (int a = 0; a < 6; ++a) {
+    y0[a] = Y0[a][j];
+    y[a] = Y[a][j];
+  }
+  const T q0j[4] = {q0[0][j], q0[1][j], q0[2][j], q0[3][j]};
+  const T u_f[3] = {uf[0][j], uf[1][j], uf[2][j]};
+  flow_end(tc, q0j, y0, y, u_f, q, R, ufb, v, w);
+}
+
 // the scalar step's Kirchhoff tolerance (integrate/dynamics.h); float converges to its own
 // round-off
 template <typename T>
@@ -414,16 +432,8 @@ LRIGID_IVDEP
     alignas(64) T Vn[3][kBatch], inside0[kBatch];
 LRIGID_IVDEP
     for (int j = 0; j < kBatch; ++j) {
-      T y0[6], y[6];
-#pragma GCC unroll 6
-      for (int a = 0; a < 6; ++a) {
-        y0[a] = Y0[a][j];
-        y[a] = Y[a][j];
-      }
-      const T q0[4] = {lanes->q[0][j], lanes->q[1][j], lanes->q[2][j], lanes->q[3][j]};
-      const T u_f[3] = {uf[0][j], uf[1][j], uf[2][j]};
       T q[4], R[9], ufb[3], v[3], w[3], Vend[3];
-      flow_end(tc, q0, y0, y, u_f, q, R, ufb, v, w);
+      lane_flow_end(tc, lanes->q, Y0, Y, uf, j, q, R, ufb, v, w);
       mul(R, v, Vend);
       scalar[j] |= active[j];
 #pragma GCC unroll 3
@@ -468,17 +478,9 @@ LRIGID_IVDEP
   int any_stiff = 0;
 LRIGID_IVDEP
   for (int j = 0; j < kBatch; ++j) {
-    T y0[6], y[6];
-#pragma GCC unroll 6
-    for (int a = 0; a < 6; ++a) {
-      y0[a] = Y0[a][j];
-      y[a] = Y[a][j];
-    }
     // q <- q cay(h w_mid)
-    const T q0[4] = {lanes->q[0][j], lanes->q[1][j], lanes->q[2][j], lanes->q[3][j]};
-    const T u_f[3] = {uf[0][j], uf[1][j], uf[2][j]};
     T q[4], R[9], ufb[3], v[3], w[3], vr[3];
-    flow_end(tc, q0, y0, y, u_f, q, R, ufb, v, w);
+    lane_flow_end(tc, lanes->q, Y0, Y, uf, j, q, R, ufb, v, w);
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) vr[a] = v[a] - ufb[a];
     T lift[3] = {0, 0, 0};
@@ -499,7 +501,7 @@ LRIGID_IVDEP
     }
     mul_t(R, F, Fb);
 #pragma GCC unroll 3
-    for (int a = 0; a < 3; ++a) u_end[a] = u_f[a] + h * T(tc.gu) * lanes->acc[a][j];
+    for (int a = 0; a < 3; ++a) u_end[a] = uf[a][j] + h * T(tc.gu) * lanes->acc[a][j];
     mul_t(R, u_end, ufb_end);
     T Gj[3], rhs[6], dPL_j[6];
 #pragma GCC unroll 3
