@@ -8,6 +8,7 @@
 #include "signals.h"
 
 #include <dirent.h>
+#include <errno.h>
 #include <fcntl.h>
 #include <signal.h>
 #include <sys/syscall.h>
@@ -72,12 +73,17 @@ void clean_directory(const char* dir) {
   for_each_entry(fd, [fd](const char* name, unsigned char type) {
     if (!tagged(name)) return;
     if (type == DT_DIR) {
-      const int sub = openat(fd, name, O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-      if (sub >= 0) {
-        for_each_entry(sub, [sub](const char* f, unsigned char) { unlinkat(sub, f, 0); });
-        close(sub);
+      // the frames thread (io/vtp_frames.cpp) goes on writing while this handler runs: a frame
+      // it creates after the listing makes the folder non-empty again, so empty it and try
+      // again (a bounded number of times; the thread writes one frame file at a time)
+      for (int attempt = 0; attempt < 1000; ++attempt) {
+        const int sub = openat(fd, name, O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+        if (sub >= 0) {
+          for_each_entry(sub, [sub](const char* f, unsigned char) { unlinkat(sub, f, 0); });
+          close(sub);
+        }
+        if (unlinkat(fd, name, AT_REMOVEDIR) == 0 || errno != ENOTEMPTY) break;
       }
-      unlinkat(fd, name, AT_REMOVEDIR);
     } else {
       unlinkat(fd, name, 0);
     }
