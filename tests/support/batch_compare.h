@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <functional>
 #include <initializer_list>
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -97,6 +98,7 @@ inline Outcome run(const Scene& s, const FluidField& field, bool batched, Precis
 // largest differences between two runs' states, per part
 struct Diff {
   double x = 0, v = 0, w = 0, q = 0, u = 0;
+  double t = 0;  // stop times (a landing is located inside its step, so it carries the round-off)
 };
 
 inline Diff compare(const Outcome& a, const Outcome& b) {
@@ -104,7 +106,11 @@ inline Diff compare(const Outcome& a, const Outcome& b) {
   EXPECT_EQ(a.state.size(), b.state.size());
   for (size_t i = 0; i < a.state.size(); ++i) {
     EXPECT_EQ(a.state.status[i], b.state.status[i]) << "body " << i;
-    EXPECT_EQ(a.state.t_stop[i], b.state.t_stop[i]) << "body " << i;
+    const double ta = a.state.t_stop[i], tb = b.state.t_stop[i];
+    if (std::isnan(ta) != std::isnan(tb))
+      d.t = std::numeric_limits<double>::infinity();
+    else if (!std::isnan(ta))
+      d.t = std::max(d.t, std::abs(ta - tb));
     EXPECT_EQ(a.state.reason[i], b.state.reason[i]) << "body " << i;
     d.x = std::max(d.x, (a.state.x[i] - b.state.x[i]).norm());
     d.v = std::max(d.v, (a.state.v[i] - b.state.v[i]).norm());
@@ -124,6 +130,9 @@ struct Both {
 inline Both scalar_and_batched(const Scene& s, const FluidField& field) {
   Both b{run(s, field, false, Precision::Double), run(s, field, true, Precision::Double), {}};
   b.d = compare(b.scalar, b.batched);
+  // the two steps stop the same bodies at the same times: a landing located inside its step
+  // within 1 us (its position agrees to round-off; dt is 1e-3 s and more)
+  EXPECT_LT(b.d.t, 1e-6);
   return b;
 }
 

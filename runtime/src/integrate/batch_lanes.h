@@ -90,6 +90,7 @@ struct FieldConsts {
   FluidSample uniform;  // art scales applied
   bool ground = false;
   double ground_z = 0, half[3] = {0, 0, 0};
+  bool round = false;  // a sphere or ellipsoid (stops.h ground_reach)
   uint64_t seed = 0;
   // contacts (integrate/contacts.h): the ground or the grid's solids collide; has_wall: the
   // samples carry the wall distance (Samples::wall); reach: the body type's bounding radius, m
@@ -141,6 +142,7 @@ void set_field_consts(const Model& model, const BodyType& type, FieldConsts* fc)
   fc->floor_clamp = fc->grid && model.field.floor_clamp();
   fc->reach = type.reach;
   for (int a = 0; a < 3; ++a) fc->half[a] = type.half_extents[a];
+  fc->round = is_round(type);
   fc->seed = model.seed;
 }
 
@@ -192,6 +194,11 @@ struct Samples {
   FluidField::FrameBlend frames;
   uint32_t body[kBatch];
   bool live[kBatch];
+  // a touchdown located inside the step (stops.h locate_touchdown): the lanes whose landing or
+  // first ground contact is still to come (track), and the start of the step of those whose
+  // step reached the ground (end_step keeps it)
+  bool track[kBatch];
+  BodyState start[kBatch];
   uint64_t newton = 0;  // steps of live lanes on which the loops ran Newton (BlockStats)
 };
 
@@ -442,11 +449,10 @@ inline int decode_outcome(int bits) {
 template <typename T>
 LRIGID_LANE int lane_landed(const FieldConsts& fc, const T* q, T z) {
   const T qw = q[0], qx = q[1], qy = q[2], qz = q[3];
-  const T r20 = T(2) * (qx * qz - qw * qy), r21 = T(2) * (qy * qz + qw * qx);
-  const T r22 = T(1) - T(2) * (qx * qx + qy * qy);
-  const T reach =
-      std::abs(r20) * T(fc.half[0]) + std::abs(r21) * T(fc.half[1]) + std::abs(r22) * T(fc.half[2]);
-  return int(fc.ground & (z - reach <= T(fc.ground_z)));
+  const T r[3] = {T(2) * (qx * qz - qw * qy), T(2) * (qy * qz + qw * qx),
+                  T(1) - T(2) * (qx * qx + qy * qy)};
+  const T h[3] = {T(fc.half[0]), T(fc.half[1]), T(fc.half[2])};
+  return int(fc.ground & (z - ground_reach(fc.round, r, h) <= T(fc.ground_z)));
 }
 
 // A step's new state per lane, filled by a batched step before end_step: position,
@@ -516,6 +522,7 @@ LRIGID_IVDEP
   T(*vel)[kBatch] = lanes->velocity();
   for (int j = 0; j < kBatch; ++j) {
     if (outcome[j] != kOk || !lanes->live[j]) continue;
+    if (landed[j] && lanes->track[j]) lanes->store(j, &lanes->start[j]);
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
       lanes->x[a][j] = next->x[a][j];
@@ -564,6 +571,7 @@ BlockStats drive_block(const Model& model, const BodyType& type, const FieldCons
     lanes->body[j] = static_cast<uint32_t>(i);
     lanes->live[j] = j < count && st.status[i] == BodyStatus::Moving;
     lanes->history[j] = st.history_of(i);
+    lanes->track[j] = fc.ground && (!fc.ground_collide || std::isnan(st.t_touch[i]));
   }
   auto resample = [&](int lo, int hi) {
     if (fc.sample) sample_lanes(fc, lanes->x, lanes, lo, hi);
@@ -620,6 +628,7 @@ BlockStats drive_block(const Model& model, const BodyType& type, const FieldCons
         lanes->store(j, &b);
         b.history = lanes->history[j];  // step_body appends to it
         ++stats.scalar_steps;
+        if (lanes->track[j]) lanes->start[j] = b;
         out = step_body(model, type, lanes->body[j], s, t, &b, &reason);
         if (out == StepOutcome::Ok) {
           // the lane's sample is at its batched position: sample it where the scalar step took it
@@ -646,7 +655,12 @@ BlockStats drive_block(const Model& model, const BodyType& type, const FieldCons
           } else {
             lanes->store(j, &b);
             b.history = lanes->history[j];
+            const BodyState end = b;
             const bool asleep = contact_after_step(model, type, i, t + model.dt, &b, &st);
+            if (lanes->track[j] && land && !std::isnan(st.t_touch[i])) {
+              record_touchdown(model, type, i, t, lanes->start[j], end, &st);
+              lanes->track[j] = false;
+            }
             lanes->load(j, b);
             resample(j, j + 1);
             if (asleep) lanes->live[j] = false;
@@ -656,9 +670,13 @@ BlockStats drive_block(const Model& model, const BodyType& type, const FieldCons
         }
         if (!land) continue;
         st.status[i] = BodyStatus::Landed;
-        st.t_stop[i] = t + model.dt;
+        lanes->store(j, &b);
+        st.t_stop[i] = t + locate_touchdown(model, type, lanes->start[j], b, &b);
+        lanes->load(j, b);
       } else {
-        stop_body(model, type, i, t, out, reason, b, &st);
+        stop_body(model, type, i, t, out, reason, &b, &st);
+        // an exited body that reached the ground moved to where it met it
+        if (st.status[i] == BodyStatus::Landed) lanes->load(j, b);
       }
       lanes->live[j] = false;
       if (st.status[i] == BodyStatus::Landed) lanes->rest(j);

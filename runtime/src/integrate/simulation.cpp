@@ -46,26 +46,36 @@ uint64_t advance_body(const Model& model, State& st, int64_t i, uint64_t first, 
   const bool contacts = model.contacts();
   const bool lands = model.has_ground && !model.ground_collides();
   WallClearance clearance;
+  // the state at the start of the step, for a touchdown located inside it (stops.h)
+  BodyState start;
   for (uint64_t k = first; k < last; ++k) {
     const double t = static_cast<double>(k) * model.dt;
     std::string reason;
+    if (lands || contacts) start = b;
     StepOutcome out = step_body(model, type, static_cast<uint32_t>(i), k, t, &b, &reason);
     if (out == StepOutcome::Exited && heads_into_ground(model, type, b) &&
         speculative_ground_contact(model, type, &b))
       out = step_body(model, type, static_cast<uint32_t>(i), k, t, &b, &reason);
     if (out != StepOutcome::Ok) {
-      if (stop_body(model, type, size_t(i), t, out, reason, b, &st) == BodyStatus::Landed) {
+      if (stop_body(model, type, size_t(i), t, out, reason, &b, &st) == BodyStatus::Landed) {
         b.v.setZero();
         b.w.setZero();
       }
       break;
     }
     ++body_steps;
-    if (contacts && contact_after_step(model, type, size_t(i), t + model.dt, &b, &st, &clearance))
-      break;
+    if (contacts) {
+      const bool first_touch = std::isnan(st.t_touch[i]);
+      const BodyState end = b;
+      const bool asleep = contact_after_step(model, type, size_t(i), t + model.dt, &b, &st,
+                                             &clearance);
+      if (first_touch && !std::isnan(st.t_touch[i]))
+        record_touchdown(model, type, size_t(i), t, start, end, &st);
+      if (asleep) break;
+    }
     if (lands && touches_ground(model, type, b)) {
       st.status[i] = BodyStatus::Landed;
-      st.t_stop[i] = t + model.dt;
+      st.t_stop[i] = t + locate_touchdown(model, type, start, b, &b);
       b.v.setZero();
       b.w.setZero();
       break;

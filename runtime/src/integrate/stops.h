@@ -1,6 +1,7 @@
 // When a body stops moving: the rules the scalar loop (simulation.cpp) and the batched steps
 // (batch_lanes.h) share.
 #pragma once
+#include <cmath>
 #include <string>
 
 #include "integrate/integrators.h"
@@ -8,8 +9,40 @@
 
 namespace lrigid {
 
-// the body's lowest point (of its bounding box) is on or below the ground
+// How far below its centre the body reaches, m, with r the third row of its rotation matrix
+// (the world z of each body axis) and h its half extents: exact for spheres and ellipsoids (round:
+// the support function sqrt(sum (r_a h_a)^2)) and boxes (sum |r_a| h_a); for a mesh, its bounding
+// box's. Written once for the scalar and the batched steps (batch_lanes.h lane_landed).
+template <typename T>
+inline T ground_reach(bool round, const T* r, const T* h) {
+  const T a = r[0] * h[0], b = r[1] * h[1], c = r[2] * h[2];
+  const T box = std::abs(a) + std::abs(b) + std::abs(c);
+  const T ell = std::sqrt(a * a + b * b + c * c);
+  return round ? ell : box;
+}
+inline bool is_round(const BodyType& type) {
+  return type.shape.type == ShapeType::Sphere || type.shape.type == ShapeType::Ellipsoid;
+}
+
+// the body's lowest point (ground_reach) is on or below the ground
 bool touches_ground(const Model& m, const BodyType& type, const BodyState& s);
+
+// Where within a step from `a` to `b` (model.dt apart, b touching the ground) the body first
+// touches it (issue 28, events located inside the step): the first root of the lowest point's
+// height above the ground along the step's motion, a cubic Hermite interpolant through both ends'
+// positions and world velocities and through both ends' orientations and their rates (q' = q w/2,
+// the quaternion normalised), third order like rk4's own dense output, so that a landing does not
+// cap a scheme's order at 1. Returns the time from the start of the step, in [0, dt] (dt when a
+// already touched: a body that starts on the ground lands at the end of its first step, as before);
+// *at is the state there (velocities interpolated linearly; the history pointer is a's).
+double locate_touchdown(const Model& m, const BodyType& type, const BodyState& a,
+                        const BodyState& b, BodyState* at);
+
+// A colliding ground's first touchdown (landings.csv: t_touch, x_touch of body i), which the
+// contact pass recorded at the end of the step that began at t, moved to where it happened inside
+// it: locate_touchdown from a (the step's start) to b (its end, before the contact).
+void record_touchdown(const Model& m, const BodyType& type, size_t i, double t, const BodyState& a,
+                      const BodyState& b, State* st);
 
 // A step from b that left the fluid would take the body onto a colliding ground (its
 // predicted position touches it): the caller tries speculative_ground_contact and the step again.
@@ -17,11 +50,12 @@ bool heads_into_ground(const Model& m, const BodyType& type, const BodyState& b)
 
 // Stops body i after its step from t did not succeed (out: Exited or Failed; `failure`: why it
 // failed), with b its state at the start of that step: a step that would take it onto the ground
-// lands it at t + dt (the caller sets it at rest), otherwise it exited or failed at t, with the
+// lands it where its predicted straight motion touches the ground (b moves there; the caller sets
+// it at rest), otherwise it exited or failed at t, with the
 // reason (for an exit: where one more step would have taken it). With "outside": "remove", a
 // body that left the grid is hidden from then on (st->hidden). Writes st's status, t_stop,
 // reason and hidden; returns the status.
 BodyStatus stop_body(const Model& m, const BodyType& type, size_t i, double t, StepOutcome out,
-                     const std::string& failure, const BodyState& b, State* st);
+                     const std::string& failure, BodyState* b, State* st);
 
 }  // namespace lrigid

@@ -235,11 +235,11 @@ TEST(Outside, AStepPastTheEdgeFromTheFluidSideIsLeavingTheGrid) {
   State st = initial_state(m, s);
   BodyState b = load_body(st, 0);
   b.x = Vec3(0.999, 0, 0.5);  // 1 mm from the edge x = 1, at rest
-  stop_body(m, m.types[0], 0, 0.1, StepOutcome::Exited, "", b, &st);
+  stop_body(m, m.types[0], 0, 0.1, StepOutcome::Exited, "", &b, &st);
   EXPECT_EQ(st.reason[0], "left the grid");
   EXPECT_EQ(st.hidden[0], 1);
   b.x = Vec3(0.5, 0, -0.95);  // below the wall z = -0.9
-  stop_body(m, m.types[0], 0, 0.1, StepOutcome::Exited, "", b, &st);
+  stop_body(m, m.types[0], 0, 0.1, StepOutcome::Exited, "", &b, &st);
   EXPECT_EQ(st.reason[0].rfind("hit a solid", 0), 0u) << st.reason[0];
 }
 

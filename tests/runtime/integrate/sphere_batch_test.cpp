@@ -257,6 +257,7 @@ TEST(SphereBatch, IdenticalForAnyThreadCount) {
   const Outcome two = run(s, field, true, Precision::Double, 2);
   const Diff d = compare(one, two);
   EXPECT_EQ(d.x, 0.0);
+  EXPECT_EQ(d.t, 0.0);
   EXPECT_EQ(d.v, 0.0);
   EXPECT_EQ(d.q, 0.0);
   EXPECT_EQ(d.u, 0.0);
