@@ -1,5 +1,5 @@
-// The batched step for plates and ellipsoids: the splitting scheme of integrate/integrators.h for
-// rigid bodies whose generalized mass M is diagonal but not isotropic (boxes, disks, ellipsoids
+// The batched step for plates and ellipsoids: the schemes of integrate/integrators.h (splitting
+// and strang here, euler and rk4 in rigid_batch_explicit.h) for rigid bodies whose generalized mass M is diagonal but not isotropic (boxes, disks, ellipsoids
 // with the centre of mass at the centroid; leaves, paper, seed pods), advanced kBatch at a time in
 // structure-of-arrays blocks like the sphere step (integrate/sphere_batch.h, docs/batched-step.md).
 //
@@ -18,8 +18,8 @@
 // What qualifies (rigid_batch_eligible): a type that is not a sphere, with M and the fluid
 // Kirchhoff tensor K diagonal and the centre of buoyancy at the centre of mass, effects among
 // gravity, buoyancy, drag, lift, added mass, mean flow and turbulence, and what every batched step
-// needs (batch_lanes.h batch_exclusion: splitting, the seen model, one noise increment per step, a
-// steady field or a series).
+// needs (batch_lanes.h batch_exclusion: the seen model, one noise increment per step, a steady
+// field or a series; any of the four schemes).
 #pragma once
 #include <cstdint>
 #include <string>
