@@ -1,9 +1,10 @@
 // The batched step for plates and ellipsoids: the schemes of integrate/integrators.h (splitting
-// and strang here, euler and rk4 in rigid_batch_explicit.h) for rigid bodies whose generalized mass M is diagonal but not isotropic (boxes, disks, ellipsoids
-// with the centre of mass at the centroid; leaves, paper, seed pods), advanced kBatch at a time in
-// structure-of-arrays blocks like the sphere step (integrate/sphere_batch.h, docs/batched-step.md).
+// and strang here, euler and rk4 in rigid_batch_explicit.h) for rigid bodies whose generalized
+// mass M is diagonal but not isotropic (boxes, disks, ellipsoids with the centre of mass at the
+// centroid; leaves, paper, seed pods), advanced kBatch at a time in structure-of-arrays blocks like
+// the sphere step (integrate/sphere_batch.h, docs/batched-step.md).
 //
-// The physics is the scalar step's, term for term, on the same random numbers: exact
+// The splitting step: the scalar step's physics, term for term, on the same random numbers: exact
 // Ornstein-Uhlenbeck half steps with Thomson's drift; the free Kirchhoff flow by the implicit
 // midpoint rule, solved by the scalar step's fixed-point iteration with a convergence mask per
 // lane, and the Cayley rotation; gravity and buoyancy; the Andersen-Pesavento-Wang plate drag and
