@@ -2,8 +2,9 @@
 // ellipsoid fluid model (fluidshape="ellipsoid"), contacts off, stepped with RK4 and with Euler.
 // Two layouts: one body per model (many mjData of a one-body model: MuJoCo's best case) and all
 // bodies in one model. Prints one JSON object of body-steps per second of CPU time (one core).
-//   mujoco_harness [--n N] [--dt DT] [--steps S] [--one-model-max M] [--body pod|bead]
-// --body: the wind scene's seed pod (default; scenes/leaves_wind.json) or the 500 um glass bead
+//   mujoco_harness [--n N] [--dt DT] [--steps S] [--one-model-max M] [--body pod|leaf|bead]
+// --body: the wind scene's seed pod (default; scenes/leaves_wind.json), its leaf (a falling plate,
+// the box 6 x 4 x 0.04 cm of 600 kg/m^3: issue 28's rk4 comparison) or the 500 um glass bead
 // of scenes/beads_wind.json (a sphere; the OpenFOAM peer's parcel, for bench/perf/batch_bench.py).
 // One model of many bodies costs MuJoCo O(bodies^2) per step (mj_applyFT builds a dense 3 x nv
 // Jacobian for each body's fluid force), so that layout is measured with min(N, M) bodies
@@ -95,11 +96,15 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--steps")) steps = std::atoi(argv[i + 1]);
     else if (!std::strcmp(argv[i], "--one-model-max")) one_model_max = std::atoi(argv[i + 1]);
     else if (!std::strcmp(argv[i], "--body") && !std::strcmp(argv[i + 1], "pod")) body = "pod";
-    else if (!std::strcmp(argv[i], "--body") && !std::strcmp(argv[i + 1], "bead")) {
+    else if (!std::strcmp(argv[i], "--body") && !std::strcmp(argv[i + 1], "leaf")) {
+      body = "leaf";
+      g_geom = "type=\"box\" size=\"0.03 0.02 0.0002\" density=\"600\"";
+    } else if (!std::strcmp(argv[i], "--body") && !std::strcmp(argv[i + 1], "bead")) {
       body = "bead";
       g_geom = "type=\"sphere\" size=\"0.00025\" density=\"2500\"";
     } else if (!std::strcmp(argv[i], "--body")) {
-      std::fprintf(stderr, "mujoco_harness: --body must be pod or bead, got %s\n", argv[i + 1]);
+      std::fprintf(stderr, "mujoco_harness: --body must be pod, leaf or bead, got %s\n",
+                   argv[i + 1]);
       return 2;
     } else {
       std::fprintf(stderr, "mujoco_harness: unknown option %s\n", argv[i]);

@@ -21,7 +21,8 @@
 # MuJoCo: bench/peers/mujoco_harness (built when libmujoco-dev is installed) steps N free
 # ellipsoids (the scene's seed pod, 400 kg/m^3) in air with fluidshape="ellipsoid", contacts off,
 # RK4 and Euler; "rk4"/"euler" are the best case (one body per model); the one-model figures
-# are kept under mujoco.one_model.
+# are kept under mujoco.one_model. mujoco_leaf: the same for the leaves scene's leaf (a box
+# 6 x 4 x 0.04 cm, 600 kg/m^3, MuJoCo's ellipsoid fluid model of it).
 #
 # Run it niced on a shared machine: nice -n 19 bench/peers/run_peers.sh OUT
 set -euo pipefail
@@ -203,6 +204,14 @@ import json, sys
 d = json.load(sys.stdin)["one_body_per_model"]
 print(d["rk4"], d["euler"])')
   MJ_NOTE="\"mujoco_detail\": $MJ,"
+  # the leaves scene's falling plate (issue 28: rk4 against MuJoCo's RK4 on the same plates)
+  MJL=$("$H" --n "$N" --dt "$DT" --steps "$STEPS" --body leaf)
+  read -r MJL_RK4 MJL_EULER < <(echo "$MJL" | /usr/bin/python3 -c '
+import json, sys
+d = json.load(sys.stdin)["one_body_per_model"]
+print(d["rk4"], d["euler"])')
+  MJ_NOTE="$MJ_NOTE \"mujoco_leaf\": {\"rk4\": $MJL_RK4, \"euler\": $MJL_EULER},"
+  MJ_NOTE="$MJ_NOTE \"mujoco_leaf_detail\": $MJL,"
 fi
 
 LOAD_END=$(cut -d' ' -f1-3 /proc/loadavg)

@@ -42,9 +42,11 @@ def read_frames(results):
 SCENES = {
     # batched steps (plates and spheres), splitting, turbulence, ground
     "uniform_box": lambda: small_box_scene(),
-    # the scalar step: rk4 takes no batched step (lrigid explain says why)
+    # rk4 on the batched step (plates), and on the scalar step (batched off)
     "uniform_box_rk4": lambda: dict(small_box_scene(),
                                     integrator={"scheme": "rk4", "dt": 0.002}),
+    "uniform_box_rk4_scalar": lambda: dict(
+        small_box_scene(), integrator={"scheme": "rk4", "dt": 0.002, "batched": False}),
 }
 
 

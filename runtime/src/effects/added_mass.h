@@ -10,30 +10,64 @@
 #pragma once
 #include "effects/context.h"
 #include "effects/wrench.h"
+#include "integrate/kirchhoff.h"
 #include "model/model.h"
 
 namespace lrigid {
+
+// The kernel, written once (the scalar step's added_mass_wrench and added_mass_term, and the
+// batched loops call it): the wrench f (body frame) for the fluid tensor K (integrate/kirchhoff.h
+// mass_times: a DiagonalMass or FullMass holding K), v_rel the velocity of the centre of mass
+// relative to the fluid, w the angular velocity, fluid_acc a~ above (body frame, m/s^2). The
+// velocity form (rk4): K (a~; 0) - (w x P_f; w x L_f + v_r x P_f), (P_f; L_f) = K (v_r; w); the
+// impulse form (euler, splitting; the rest lives in the impulse, integrate/dynamics.h):
+// (0; -v_r x P_f).
+template <bool ImpulseForm, typename T, class Tensor>
+LRIGID_LANE void added_mass_kernel(const Tensor& K, const T* v_rel, const T* w, const T* fluid_acc,
+                                   T* f) {
+  const T xi_r[6] = {v_rel[0], v_rel[1], v_rel[2], w[0], w[1], w[2]};
+  T mom[6];
+  mass_times(K, xi_r, mom);
+  if constexpr (ImpulseForm) {
+    T m[3];
+    cross3(v_rel, mom, m);
+#pragma GCC unroll 3
+    for (int a = 0; a < 3; ++a) {
+      f[a] = T(0);
+      f[3 + a] = -m[a];
+    }
+  } else {
+    const T acc[6] = {fluid_acc[0], fluid_acc[1], fluid_acc[2], T(0), T(0), T(0)};
+    T ka[6], g[6];
+    mass_times(K, acc, ka);
+    kirchhoff_gyro_kernel(v_rel, w, mom, mom + 3, g);
+#pragma GCC unroll 6
+    for (int a = 0; a < 6; ++a) f[a] = ka[a] - g[a];
+  }
+}
+
+// The body type's K for the kernel (symmetric: row or column major alike)
+inline FullMass fluid_tensor(const BodyType& type) {
+  return FullMass{type.K_fluid.data(), nullptr};
+}
 
 // v_rel: velocity of the centre of mass relative to the fluid, body frame; w: angular velocity;
 // fluid_acc: a~ above, body frame, m/s^2.
 inline Wrench added_mass_wrench(const BodyType& type, const Vec3& v_rel, const Vec3& w,
                                 const Vec3& fluid_acc) {
-  Vec6 xi_r;
-  xi_r << v_rel, w;
-  const Vec6 momentum = type.K_fluid * xi_r;
-  Vec6 a;
-  a << fluid_acc, Vec3::Zero();
-  return type.K_fluid * a - kirchhoff_gyro(v_rel, w, momentum);
+  Wrench f;
+  added_mass_kernel<false>(fluid_tensor(type), v_rel.data(), w.data(), fluid_acc.data(), f.data());
+  return f;
 }
 
 // the scalar step's term (the registry's row). In the impulse form (euler, splitting) the rest
 // of the Kirchhoff terms live in the impulse (integrate/dynamics.h): only -v_r x P_f remains.
 inline Vec6 added_mass_term(const EffectContext& c) {
   if (c.impulse_form) {
-    Vec6 xi_r;
-    xi_r << c.v_rel, c.w;
-    const Vec3 P_f = (c.type->K_fluid * xi_r).head<3>();
-    return make_wrench(Vec3::Zero(), -c.v_rel.cross(P_f));
+    Wrench f;
+    added_mass_kernel<true>(fluid_tensor(*c.type), c.v_rel.data(), c.w.data(), c.v_rel.data(),
+                            f.data());
+    return f;
   }
   return added_mass_wrench(*c.type, c.v_rel, c.w, c.fluid_acc);
 }

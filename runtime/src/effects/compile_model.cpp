@@ -236,6 +236,8 @@ BodyType make_body_type(const Scene& scene, const BodySpec& b, const Shape& shap
   // the fluid tensor is computed for every body type: "auto" needs its size
   const AddedMass am = added_mass(shape, scene.fluid_density, b.panels);
   t.K_fluid = shift_tensor(am.tensor, t.centroid - t.com);
+  // exactly symmetric, as M: the kernels read it in either order (effects/added_mass.h)
+  t.K_fluid = 0.5 * (t.K_fluid + t.K_fluid.transpose()).eval();
   t.added_mass_method = am.method;
   t.added_mass_panels = am.panels;
 

@@ -214,7 +214,8 @@ double estimated_cost_ns(EffectSet set, Integrator integrator, bool grid, bool i
   return ns;
 }
 
-double estimated_batched_cost_ns(EffectSet set, Precision precision, bool rigid) {
+double estimated_batched_cost_ns(EffectSet set, Precision precision, bool rigid,
+                                 Integrator integrator) {
   // additive fit (effects/registry.cpp says to what), each effect's part in its registry row:
   // gravity, buoyancy and added mass cost next to nothing; the baseline x86-64 loops take about
   // 4 times longer. Plates and ellipsoids (rigid): scenes/leaves_wind.json (N = 10^4, one
@@ -228,6 +229,11 @@ double estimated_batched_cost_ns(EffectSet set, Precision precision, bool rigid)
   for (const EffectInfo& info : all_effects())
     if (set.has(info.effect)) ns += info.batched_cost_ns;
   if (rigid) ns += sampled ? 19 : 6;
+  // plates and ellipsoids on euler and rk4 (rigid_batch_explicit.h), against splitting on the
+  // leaves scene (lrigid bench, N = 10^4, one thread, per CPU second, 2026-12-02,
+  // docs/physics/integrators.md): 18.0 and 5.86 against 10.9 M body-steps/s
+  if (rigid && integrator == Integrator::Euler) ns *= 0.61;
+  if (rigid && integrator == Integrator::RK4) ns *= 1.86;
   if (precision == Precision::Float) ns *= 0.78;
   return ns;
 }

@@ -81,6 +81,7 @@ double estimated_cost_ns(EffectSet set, Integrator integrator, bool grid, bool i
 // The same for a body type that takes a batched step: spheres (integrate/sphere_batch.h) or, with
 // `rigid`, plates and ellipsoids (integrate/rigid_batch.h); a fit to docs/batched-step.md's
 // measurements (AVX-512 loops, steady grid, one core).
-double estimated_batched_cost_ns(EffectSet set, Precision precision, bool rigid = false);
+double estimated_batched_cost_ns(EffectSet set, Precision precision, bool rigid = false,
+                                 Integrator integrator = Integrator::Splitting);
 
 }  // namespace lrigid

@@ -43,6 +43,14 @@ LRIGID_LANE void ou_exact_kernel(double alpha, double beta, double h, double* de
                               : std::sqrt(h));
 }
 
+// Euler-Maruyama's coefficients over h (the euler and rk4 steps): decay = 1 - alpha h,
+// noise = beta sqrt(h), m/s. Written once (integrators.cpp and the batched loops call it).
+template <typename T>
+LRIGID_LANE void ou_euler_kernel(T alpha, T beta, T h, T* decay, T* noise) {
+  *decay = T(1) - alpha * h;
+  *noise = beta * std::sqrt(h);
+}
+
 inline OUStep ou_exact(double alpha, double beta, double h) {
   OUStep s;
   ou_exact_kernel<ScalarMath>(alpha, beta, h, &s.decay, &s.noise_std);

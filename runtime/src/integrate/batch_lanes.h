@@ -146,12 +146,14 @@ void set_field_consts(const Model& model, const BodyType& type, FieldConsts* fc)
   fc->seed = model.seed;
 }
 
-// What rules out the batched steps for every body type: the integrator, the turbulence model,
-// the noise, the field. Empty when none does.
-std::string batch_exclusion(const Model& model, const BodyType& type) {
+// What rules out the batched steps for every body type: the integrator (euler and rk4 only where
+// explicit_schemes: the rigid-body step), the turbulence model, the noise, the field. Empty when
+// none does.
+std::string batch_exclusion(const Model& model, const BodyType& type, bool explicit_schemes) {
   if (!model.batched) return "the scene turns the batched step off";
-  if (model.integrator != Integrator::Splitting && model.integrator != Integrator::Strang)
-    return "the integrator is not splitting or strang";
+  const bool split =
+      model.integrator == Integrator::Splitting || model.integrator == Integrator::Strang;
+  if (!split && !explicit_schemes) return "the integrator is not splitting or strang";
   if (type.effects.has(Effect::Turbulence) && model.turbulence_model != TurbulenceModel::Seen)
     return "the body turbulence model";
   if (model.noise_substeps > 1) return "noise substeps";
@@ -372,8 +374,9 @@ LRIGID_IVDEP
 }
 
 // Normals of step `step` for every lane: the Strang half-step increments of the linear noise,
-// exactly as brownian_increments (integrators.cpp) draws them from NormalStream.
-template <typename T>
+// exactly as brownian_increments (integrators.cpp) draws them from NormalStream; Whole: the whole
+// step's increment in z1 (euler, rk4), z2 unused.
+template <typename T, bool Whole = false>
 LRIGID_MULTIVERSION void lane_normals(const FieldConsts& fc, const Samples<T>& lanes, uint64_t step,
                                       T (*z1)[kBatch], T (*z2)[kBatch]) {
   // words: block 0 (pairs 0, 1), block 1 words 2, 3 (pair 3), block 2 words 0, 1 (pair 4)
@@ -407,8 +410,8 @@ LRIGID_IVDEP
     const double b[3] = {r3 * c3, r3 * s3, r4 * c4};  // n[6..8]
 #pragma GCC unroll 3
     for (int c = 0; c < 3; ++c) {
-      z1[c][j] = T((a[c] + b[c]) * M_SQRT1_2);
-      z2[c][j] = T((a[c] - b[c]) * M_SQRT1_2);
+      z1[c][j] = Whole ? T(a[c]) : T((a[c] + b[c]) * M_SQRT1_2);
+      z2[c][j] = Whole ? T(0) : T((a[c] - b[c]) * M_SQRT1_2);
     }
   }
 }
@@ -473,9 +476,11 @@ struct NewState {
 // (normals z2) along the world velocity V at the end of the step, each lane's outcome and
 // landing, and the commit into `lanes` of the lanes whose step succeeded (the others keep the state
 // at the start of the step). sampled_inside0: the step has already sampled the field at the new
-// positions (strang), and this is each lane's inside flag at the start of the step. Inlined into each version of the step (as target_clones of its own it
-// halved the sphere step's speed: 9.5 against 14.5 M body-steps/s per core on the beads scene).
-template <typename T, bool Turb, class Lanes>
+// positions (strang), and this is each lane's inside flag at the start of the step. OUHalfStep
+// false: no OU half step here (euler and rk4 update the seen fluctuation within the step). Inlined
+// into each version of the step (as target_clones of its own it halved the sphere step's speed:
+// 9.5 against 14.5 M body-steps/s per core on the beads scene).
+template <typename T, bool Turb, bool OUHalfStep = true, class Lanes>
 LRIGID_LANE void end_step(const FieldConsts& fc, const T (*z2)[kBatch], const T (*V)[kBatch],
                           NewState<T>* next, Lanes* lanes, int* outcome, int* landed,
                           const T* sampled_inside0 = nullptr) {
@@ -487,12 +492,12 @@ LRIGID_LANE void end_step(const FieldConsts& fc, const T (*z2)[kBatch], const T 
     for (int j = 0; j < kBatch; ++j) inside0[j] = fc.sample ? lanes->inside[j] : T(1);
     if (fc.sample) sample_lanes(fc, next->x, lanes);
   }
-  if (Turb) ou_coefficients(fc, lanes);
+  if (Turb && OUHalfStep) ou_coefficients(fc, lanes);
   const bool sample = fc.sample;
 LRIGID_IVDEP
   for (int j = 0; j < kBatch; ++j) {
     T us[3] = {next->us[0][j], next->us[1][j], next->us[2][j]};
-    if constexpr (Turb) {
+    if constexpr (Turb && OUHalfStep) {
       const T Vj[3] = {V[0][j], V[1][j], V[2][j]};
       const T gs[3] = {lanes->gs[0][j], lanes->gs[1][j], lanes->gs[2][j]};
       const T z[3] = {z2[0][j], z2[1][j], z2[2][j]};

@@ -7,6 +7,8 @@
 #include "effects/turbulence.h"
 #include "integrate/dynamics.h"
 #include "integrate/kirchhoff.h"
+#include "util/fast_math.h"
+#include "util/lane.h"
 #include "util/rng.h"
 
 namespace lrigid {
@@ -24,15 +26,10 @@ void store_body(const BodyState& b, size_t i, State* st) {
 }
 
 Quat rotate_body(const Quat& q, const Vec3& theta) {
-  const double angle = theta.norm();
-  Quat dq;
-  if (angle < 1e-8) {
-    dq = Quat(1.0, 0.5 * theta.x(), 0.5 * theta.y(), 0.5 * theta.z());
-  } else {
-    const double s = std::sin(0.5 * angle) / angle;
-    dq = Quat(std::cos(0.5 * angle), s * theta.x(), s * theta.y(), s * theta.z());
-  }
-  return (q * dq).normalized();
+  const double q0[4] = {q.w(), q.x(), q.y(), q.z()};
+  double qn[4];
+  exp_rotate<ScalarMath>(q0, theta.data(), qn);
+  return Quat(qn[0], qn[1], qn[2], qn[3]);
 }
 
 namespace {
@@ -59,8 +56,7 @@ StepOutcome turbulence_update(const Model& model, const BodyType& type, double t
     decay = ou.decay;
     noise = ou.noise_std;
   } else {
-    decay = 1.0 - fs.alpha * h;
-    noise = fs.beta * std::sqrt(h);
+    ou_euler_kernel(fs.alpha, fs.beta, h, &decay, &noise);
   }
   // the turbulent velocity u' (world frame, in u_seen) follows the OU process with Thomson's
   // well-mixed drift in both models: "seen" makes it the fluid velocity around the body (acting
@@ -300,12 +296,6 @@ StepOutcome strang_deterministic_step(const Model& model, const BodyType& type, 
   return StepOutcome::Ok;
 }
 
-// dexp^-1 for the right-trivialized (body frame) chart q exp(theta), to O(|theta|^3):
-// theta' = w + 1/2 theta x w + 1/12 theta x (theta x w)
-Vec3 dexpinv(const Vec3& theta, const Vec3& w) {
-  return w + 0.5 * theta.cross(w) + theta.cross(theta.cross(w)) / 12.0;
-}
-
 StepOutcome rk4(const Model& model, const BodyType& type, double t, BodyState* s) {
   const double h = model.dt;
   const Quat q0 = s->q;
@@ -327,7 +317,7 @@ StepOutcome rk4(const Model& model, const BodyType& type, double t, BodyState* s
     if (velocity_derivative(model, type, k, t + c[i] * h, &kxi[i], &fs) == EvalResult::Outside)
       return StepOutcome::Exited;
     kx[i] = k.R * st.v;
-    kth[i] = dexpinv(theta, st.w);
+    dexpinv(theta.data(), st.w.data(), kth[i].data());  // util/lane.h
   }
   s->x += h / 6.0 * (kx[0] + 2 * kx[1] + 2 * kx[2] + kx[3]);
   s->q = rotate_body(q0, h / 6.0 * (kth[0] + 2 * kth[1] + 2 * kth[2] + kth[3]));

@@ -18,7 +18,7 @@ bool rigid_batch_eligible(const Model& model, const BodyType& type, std::string*
     if (why) *why = reason;
     return false;
   };
-  if (const std::string all = batch_exclusion(model, type); !all.empty()) return no(all);
+  if (const std::string all = batch_exclusion(model, type, true); !all.empty()) return no(all);
   if (type.M_isotropic) return no("an isotropic generalized mass (the sphere step's)");
   if (!type.M_diagonal) return no("the generalized mass is not diagonal");
   if (!type.r_cob.isZero(0.0)) return no("the centre of mass is off the centroid");
@@ -40,6 +40,11 @@ struct StepConsts : FieldConsts {
   // the drag of bodies that are not flat (effects/drag.h) and the plate model (effects/plate.h)
   DragParams law;
   PlateParams plate_model;
+  // euler and rk4 (rigid_batch_explicit.h): the scheme, M_body's and K's diagonals (in .M), the
+  // Basset history's (M + b P)^-1 diagonal on the linear block
+  Integrator scheme = Integrator::Splitting;
+  DiagonalMass body, fluid;
+  double basset_inv[3] = {0, 0, 0};
 };
 
 StepConsts make_consts(const Model& model, const BodyType& type) {
@@ -54,6 +59,12 @@ StepConsts make_consts(const Model& model, const BodyType& type) {
   // the kernels' parameters, as the scalar step's terms read them (effects/plan.h)
   tc.law = type.plan.params->drag;
   if (type.flat) tc.plate_model = type.plan.params->plate_both;
+  tc.scheme = model.integrator;
+  for (int a = 0; a < 6; ++a) {
+    tc.body.M[a] = type.M_body(a, a);
+    tc.fluid.M[a] = e.has(Effect::AddedMass) ? type.K_fluid(a, a) : 0.0;
+  }
+  for (int a = 0; a < 3; ++a) tc.basset_inv[a] = tc.basset ? type.basset.implicit_inv(a, a) : 0.0;
   return tc;
 }
 
@@ -631,15 +642,26 @@ LRIGID_IVDEP
   end_step<T, Turb>(tc, z2, Vn, &next, lanes, outcome, landed);
 }
 
+}  // namespace
+}  // namespace lrigid
+#include "integrate/rigid_batch_explicit.h"  // euler and rk4
+namespace lrigid {
+namespace {
+
 template <typename T>
 BlockStats advance(const Model& model, const BodyType& type, State* state, const uint32_t* body,
                    int count, uint64_t first, uint64_t last) {
   const StepConsts tc = make_consts(model, type);
-  auto step = [&tc](auto turb, auto plate, auto extra, Lanes<T>* lanes, uint64_t s, int* outcome,
-                    int* landed) {
+  const bool unsteady = tc.grid && model.field.frame_count() > 1;
+  auto step = [&](auto turb, auto plate, auto extra, Lanes<T>* lanes, uint64_t s, int* outcome,
+                  int* landed) {
     constexpr bool A = decltype(turb)::value, B = decltype(plate)::value,
                    C = decltype(extra)::value;
-    if (tc.strang)
+    if (tc.scheme == Integrator::Euler)
+      euler_lanes<T, A, B, C>(tc, lanes, s, outcome, landed);
+    else if (tc.scheme == Integrator::RK4)
+      rk4_lanes<T, A, B, C>(tc, stage_frames(model, unsteady, s), lanes, s, outcome, landed);
+    else if (tc.strang)
       step_lanes<T, A, B, C, true>(tc, lanes, s, outcome, landed);
     else
       step_lanes<T, A, B, C, false>(tc, lanes, s, outcome, landed);

@@ -1,9 +1,10 @@
-// The batched step for plates and ellipsoids: the splitting scheme of integrate/integrators.h for
-// rigid bodies whose generalized mass M is diagonal but not isotropic (boxes, disks, ellipsoids
-// with the centre of mass at the centroid; leaves, paper, seed pods), advanced kBatch at a time in
-// structure-of-arrays blocks like the sphere step (integrate/sphere_batch.h, docs/batched-step.md).
+// The batched step for plates and ellipsoids: the schemes of integrate/integrators.h (splitting
+// and strang here, euler and rk4 in rigid_batch_explicit.h) for rigid bodies whose generalized
+// mass M is diagonal but not isotropic (boxes, disks, ellipsoids with the centre of mass at the
+// centroid; leaves, paper, seed pods), advanced kBatch at a time in structure-of-arrays blocks like
+// the sphere step (integrate/sphere_batch.h, docs/batched-step.md).
 //
-// The physics is the scalar step's, term for term, on the same random numbers: exact
+// The splitting step: the scalar step's physics, term for term, on the same random numbers: exact
 // Ornstein-Uhlenbeck half steps with Thomson's drift; the free Kirchhoff flow by the implicit
 // midpoint rule, solved by the scalar step's fixed-point iteration with a convergence mask per
 // lane, and the Cayley rotation; gravity and buoyancy; the Andersen-Pesavento-Wang plate drag and
@@ -18,8 +19,8 @@
 // What qualifies (rigid_batch_eligible): a type that is not a sphere, with M and the fluid
 // Kirchhoff tensor K diagonal and the centre of buoyancy at the centre of mass, effects among
 // gravity, buoyancy, drag, lift, added mass, mean flow and turbulence, and what every batched step
-// needs (batch_lanes.h batch_exclusion: splitting, the seen model, one noise increment per step, a
-// steady field or a series).
+// needs (batch_lanes.h batch_exclusion: the seen model, one noise increment per step, a steady
+// field or a series; any of the four schemes).
 #pragma once
 #include <cstdint>
 #include <string>

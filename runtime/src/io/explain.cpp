@@ -71,7 +71,8 @@ nlohmann::json body_type(const Scene& scene, const Model& model, const FlowScale
                {"isa", sphere_batch_isa()},
                {"precision", model.precision == Precision::Float ? "float" : "double"},
                {"reason", sphere || rigid ? "" : why}};
-  j["cost_ns"] = sphere || rigid ? estimated_batched_cost_ns(t.effects, model.precision, rigid)
+  j["cost_ns"] = sphere || rigid ? estimated_batched_cost_ns(t.effects, model.precision, rigid,
+                                                             scene.integrator)
                                  : estimated_cost_ns(t.effects, scene.integrator,
                                                      !scene.uniform_field, t.M_isotropic);
   return j;

@@ -39,12 +39,9 @@ inline double log_fast(double x) {
   return static_cast<double>(e) * kLn2 + (2.0 * s + 2.0 * s * p);
 }
 
-// cos and sin of the angle 2 pi b / 2^32 - pi/4, uniform over the circle for uniform b:
-// the top 2 bits of b pick the quadrant, the low 30 bits an angle x in [-pi/4, pi/4) for
-// Taylor polynomials to x^15 (sin) and x^16 (cos), errors below 1e-16.
-inline void sincos_of_turn(uint32_t b, double* c, double* s) {
-  const uint32_t quadrant = b >> 30;
-  const double x = (static_cast<double>(b & 0x3fffffffu) * 0x1p-30 - 0.5) * (M_PI / 2);
+// cos and sin of x + quadrant pi/2 for x in [-pi/4, pi/4]: Taylor polynomials to x^15 (sin) and
+// x^16 (cos), errors below 1e-16, then the quarter turns
+inline void sincos_quadrant(double x, uint32_t quadrant, double* c, double* s) {
   const double x2 = x * x;
   constexpr double kSin[] = {-1.0 / 1307674368000.0, 1.0 / 6227020800.0, -1.0 / 39916800.0,
                              1.0 / 362880.0,          -1.0 / 5040.0,      1.0 / 120.0,
@@ -61,6 +58,23 @@ inline void sincos_of_turn(uint32_t b, double* c, double* s) {
   const double cc = odd ? sn : cs, ss = odd ? cs : sn;
   *c = neg_c ? -cc : cc;
   *s = neg_s ? -ss : ss;
+}
+
+// cos and sin of the angle 2 pi b / 2^32 - pi/4, uniform over the circle for uniform b:
+// the top 2 bits of b pick the quadrant, the low 30 bits an angle x in [-pi/4, pi/4)
+inline void sincos_of_turn(uint32_t b, double* c, double* s) {
+  const double x = (static_cast<double>(b & 0x3fffffffu) * 0x1p-30 - 0.5) * (M_PI / 2);
+  sincos_quadrant(x, b >> 30, c, s);
+}
+
+// cos and sin of x for |x| < 2^20 (rad): x = k pi/2 + r, |r| <= pi/4, reduced with pi/2 in two
+// parts (Cody and Waite: the first has 33 significant bits, so k times it is exact)
+inline void sincos_fast(double x, double* c, double* s) {
+  constexpr double kShift = 0x1.8p52;  // adding it rounds to an integer held in the low bits
+  const double kd = (x * 0.63661977236758134308 + kShift) - kShift;
+  const double r = (x - kd * 1.57079632673412561417) - kd * 6.07710050650619224932e-11;
+  const uint32_t quadrant = static_cast<uint32_t>(static_cast<int64_t>(kd) & 3);
+  sincos_quadrant(r, quadrant, c, s);
 }
 
 // e^x for x in [-700, 700] (clamped outside): x = k ln2 + r, |r| <= ln2/2, e^r by its Taylor
@@ -111,11 +125,16 @@ struct LaneMath {
   static double exp(double x) { return exp_fast(x); }
   static double pow(double x, double y) { return exp_fast(y * log_fast(x)); }
   static double one_minus_exp_neg(double y) { return lrigid::one_minus_exp_neg(y); }
+  static void sincos(double x, double* c, double* s) { sincos_fast(x, c, s); }
 };
 struct ScalarMath {
   static double exp(double x) { return std::exp(x); }
   static double pow(double x, double y) { return std::pow(x, y); }
   static double one_minus_exp_neg(double y) { return -std::expm1(-y); }
+  static void sincos(double x, double* c, double* s) {
+    *c = std::cos(x);
+    *s = std::sin(x);
+  }
 };
 
 }  // namespace lrigid

@@ -74,4 +74,38 @@ LRIGID_LANE void cayley_rotate(const T* q, const T* a, T* qn) {
   qn[0] = nw * inv, qn[1] = nx * inv, qn[2] = ny * inv, qn[3] = nz * inv;
 }
 
+// qn = q exp(theta): q times the rotation by the body-frame rotation vector theta (rad), the
+// quaternion (cos(|theta|/2), sin(|theta|/2) theta/|theta|), or (1, theta/2) below 1e-8 rad,
+// normalized; q and qn as (w, x, y, z). The euler and rk4 steps' orientation update
+// (integrators.cpp rotate_body and the batched loops). Math: util/fast_math.h (LaneMath in the
+// batched loops).
+template <class Math, typename T>
+LRIGID_LANE void exp_rotate(const T* q, const T* theta, T* qn) {
+  const T angle = std::sqrt(theta[0] * theta[0] + theta[1] * theta[1] + theta[2] * theta[2]);
+  const bool small = angle < T(1e-8);
+  double c, s;
+  Math::sincos(0.5 * double(small ? T(1) : angle), &c, &s);
+  const T dw = small ? T(1) : T(c);
+  const T f = small ? T(0.5) : T(s) / angle;
+  const T dx = f * theta[0], dy = f * theta[1], dz = f * theta[2];
+  const T qw = q[0], qx = q[1], qy = q[2], qz = q[3];
+  const T nw = qw * dw - (qx * dx + qy * dy + qz * dz);
+  const T nx = qw * dx + dw * qx + (qy * dz - qz * dy);
+  const T ny = qw * dy + dw * qy + (qz * dx - qx * dz);
+  const T nz = qw * dz + dw * qz + (qx * dy - qy * dx);
+  const T inv = T(1) / std::sqrt(nw * nw + nx * nx + ny * ny + nz * nz);
+  qn[0] = nw * inv, qn[1] = nx * inv, qn[2] = ny * inv, qn[3] = nz * inv;
+}
+
+// d theta/dt = dexp^-1(theta) w for the body-frame chart q exp(theta), to O(|theta|^3):
+// w + 1/2 theta x w + 1/12 theta x (theta x w) (the rk4 step on SO(3), integrators.h)
+template <typename T>
+LRIGID_LANE void dexpinv(const T* theta, const T* w, T* out) {
+  T a[3], b[3];
+  cross3(theta, w, a);
+  cross3(theta, a, b);
+#pragma GCC unroll 3
+  for (int i = 0; i < 3; ++i) out[i] = w[i] + T(0.5) * a[i] + b[i] / T(12);
+}
+
 }  // namespace lrigid

@@ -55,6 +55,11 @@ TEST(Registry, CostEstimatesAreTheRowsSums) {
   EXPECT_DOUBLE_EQ(estimated_batched_cost_ns(drag, Precision::Double) -
                        estimated_batched_cost_ns(none, Precision::Double),
                    effect_info(Effect::Drag).batched_cost_ns);
+  // plates and ellipsoids on the batched step: euler cheaper than splitting, rk4 dearer (four
+  // force evaluations and samples)
+  const double split = estimated_batched_cost_ns(drag, Precision::Double, true);
+  EXPECT_LT(estimated_batched_cost_ns(drag, Precision::Double, true, Integrator::Euler), split);
+  EXPECT_GT(estimated_batched_cost_ns(drag, Precision::Double, true, Integrator::RK4), split);
   // today every effect has a batched kernel
   EffectSet all;
   for (const EffectInfo& e : all_effects()) all.add(e.effect);

@@ -59,6 +59,28 @@ TEST(FastMath, SinCosOfTurnMatchesLibrary) {
   EXPECT_LT(worst, 1e-15);
 }
 
+TEST(FastMath, SinCosFastMatchesLibrary) {
+  // the angles of the euler and rk4 steps' rotations (util/lane.h exp_rotate): half a step's
+  // turn, small mostly, up to fast spins over coarse steps; and far out, negative, and zero
+  double worst = 0, worst_rel_small = 0;
+  for (double x = -1000.0; x <= 1000.0; x += 0.0123) {
+    double c, s;
+    sincos_fast(x, &c, &s);
+    worst = std::max({worst, std::abs(c - std::cos(x)), std::abs(s - std::sin(x))});
+  }
+  for (double x = 1e-12; x < 1.0; x *= 1.37) {
+    double c, s;
+    sincos_fast(x, &c, &s);
+    worst_rel_small = std::max(worst_rel_small, std::abs(s - std::sin(x)) / std::sin(x));
+  }
+  EXPECT_LT(worst, 1e-15);
+  EXPECT_LT(worst_rel_small, 1e-15);
+  double c, s;
+  sincos_fast(0.0, &c, &s);
+  EXPECT_EQ(c, 1.0);
+  EXPECT_EQ(s, 0.0);
+}
+
 // standard normal CDF
 double phi(double x) { return 0.5 * std::erfc(-x / std::sqrt(2.0)); }
 

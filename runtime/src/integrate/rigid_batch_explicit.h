@@ -1,0 +1,344 @@
+// The euler and rk4 schemes (integrate/integrators.h) on the batched rigid-body step: internal to
+// rigid_batch.cpp, which includes this file after its StepConsts, Lanes and body_forces (the
+// lanes, the consts and the force kernels of the splitting and strang loops are these loops' too).
+//
+// The physics is the scalar step's, term for term, on the same random numbers (integrators.cpp
+// impulse_step and rk4, the Euler-Maruyama update of the seen fluctuation from the start of the
+// step), with the same kernels: gravity and buoyancy, the plate's drag, torque and lift or the
+// ellipsoid drag (body_forces), Magnus, the Basset history, the added mass's wrench
+// (effects/added_mass.h, impulse form for euler, velocity form for rk4), the Kirchhoff gyroscopic
+// terms (effects/wrench.h), the exponential map and dexp^-1 (util/lane.h), the implicit solve
+// (integrate/kirchhoff.h), the OU update (effects/turbulence.h). Neither scheme iterates: no lane
+// is handed to the scalar step but an rk4 lane whose stage leaves the fluid (the scalar step
+// then exits it where it would have).
+#pragma once
+#include "effects/added_mass.h"
+#include "effects/turbulence.h"
+#include "fluid/field.h"
+#include "integrate/batch_lanes.h"
+#include "util/fast_math.h"
+#include "util/lane.h"
+
+namespace lrigid {
+namespace {  // NOLINT(build/namespaces): internal to rigid_batch.cpp
+
+// The effects' wrench on a lane's body (body frame), f = (force; torque), at rotation R (body ->
+// world), velocity v and spin w (body frame), the fluid velocity ufb (body frame), the weight and
+// buoyancy (plus the Basset history force) Fw (world) and the fluid's material derivative acc
+// (world, the gu factor applied). ImpulseForm: euler's (the added mass's -v_r x P_f alone), else
+// rk4's velocity form (the added mass's Kirchhoff terms and the drag-along K a~). As
+// integrate/dynamics.cpp context_from_sample and the plan's terms.
+template <typename T, bool Plate, bool Extra, bool ImpulseForm>
+LRIGID_LANE void lane_wrench(const StepConsts& tc, const T* R, const T* Fw, const T* ufb,
+                             const T* acc, const T* v, const T* w, T* f) {
+  T vr[3], Fb[3], lift[3] = {0, 0, 0}, fx[3] = {0, 0, 0}, fa[3] = {0, 0, 0}, am[6];
+#pragma GCC unroll 3
+  for (int a = 0; a < 3; ++a) vr[a] = v[a] - ufb[a];
+  mul_t(R, Fw, Fb);
+  const DragOut<T> d = body_forces<T, Plate>(tc, vr, w, lift);
+  if constexpr (Extra) magnus_kernel(T(tc.magnus), w, vr, fx);
+  if constexpr (!ImpulseForm) {
+    // a~ = R^T Du/Dt - w x u_f (effects/added_mass.h)
+    T ab[3], wu[3];
+    mul_t(R, acc, ab);
+    cross3(w, ufb, wu);
+#pragma GCC unroll 3
+    for (int a = 0; a < 3; ++a) fa[a] = ab[a] - wu[a];
+  }
+  added_mass_kernel<ImpulseForm>(tc.fluid, vr, w, fa, am);
+#pragma GCC unroll 3
+  for (int a = 0; a < 3; ++a) {
+    f[a] = Fb[a] + lift[a] + fx[a] + d.f[a] + am[a];
+    f[3 + a] = d.tq[a] + am[3 + a];
+  }
+}
+
+// A lane's fluid velocity (world): the mean flow and the seen fluctuation us; its material
+// derivative (world, 0 without gradients); the weight and buoyancy with the Basset history force
+template <typename T, bool Turb, bool Extra>
+LRIGID_LANE void lane_fluid(const StepConsts& tc, const Lanes<T>* lanes, int j, const T* us,
+                            T* u_f, T* acc, T* Fw) {
+#pragma GCC unroll 3
+  for (int a = 0; a < 3; ++a) {
+    u_f[a] = T(tc.mf) * lanes->U[a][j] + (Turb ? us[a] : T(0));
+    acc[a] = T(tc.gu) * lanes->acc[a][j];
+    Fw[a] = T(tc.F[a]) + (Extra ? lanes->fb[a][j] : T(0));
+  }
+}
+
+// The seen fluctuation after the step by Euler-Maruyama from the start of the step (integrators.cpp
+// step_body: Ito, the start's sample and path velocity V0, world), normals z (whole step)
+template <typename T>
+LRIGID_LANE void lane_ou_euler(const StepConsts& tc, const Lanes<T>* lanes, int j, const T* V0,
+                               const T (*z)[kBatch], T* us) {
+  T decay, noise;
+  ou_euler_kernel(lanes->alpha[j], lanes->beta[j], T(tc.h), &decay, &noise);
+  const T gs[3] = {lanes->gs[0][j], lanes->gs[1][j], lanes->gs[2][j]};
+  const T zj[3] = {z[0][j], z[1][j], z[2][j]};
+  ou_update(T(tc.wm), decay, noise, lanes->sigma2[j], V0, gs, zj, T(tc.h), us);
+}
+
+// euler (integrators.cpp impulse_step): one explicit step of the world-frame impulse, the forces,
+// Munk moment and rotation from the start of the step, the Basset history's current interval
+// implicit; then the seen fluctuation by Euler-Maruyama.
+template <typename T, bool Turb, bool Plate, bool Extra>
+LRIGID_MULTIVERSION void euler_lanes(const StepConsts& tc, Lanes<T>* lanes, uint64_t step,
+                                     int* outcome, int* landed) {
+  const T h = T(tc.h);
+  alignas(64) T z[3][kBatch], Vn[3][kBatch];
+  [[maybe_unused]] alignas(64) T unused[3][kBatch];
+  if constexpr (Turb) lane_normals<T, true>(tc, *lanes, step, z, unused);
+  NewState<T> next;
+LRIGID_IVDEP
+  for (int j = 0; j < kBatch; ++j) {
+    T us[3] = {lanes->us[0][j], lanes->us[1][j], lanes->us[2][j]};
+    const T q[4] = {lanes->q[0][j], lanes->q[1][j], lanes->q[2][j], lanes->q[3][j]};
+    const T v[3] = {lanes->v[0][j], lanes->v[1][j], lanes->v[2][j]};
+    const T w[3] = {lanes->w[0][j], lanes->w[1][j], lanes->w[2][j]};
+    T R[9], V0[3], u_f[3], acc[3], Fw[3], ufb[3], rate[6];
+    rotation(q, R);
+    mul(R, v, V0);
+    lane_fluid<T, Turb, Extra>(tc, lanes, j, us, u_f, acc, Fw);
+    mul_t(R, u_f, ufb);
+    lane_wrench<T, Plate, Extra, true>(tc, R, Fw, ufb, acc, v, w, rate);
+    // the impulse Pi = M xi - K (u_f; 0) and its change h rate
+    T Pi[6], dPi[6];
+#pragma GCC unroll 3
+    for (int a = 0; a < 3; ++a) {
+      Pi[a] = T(tc.mass.M[a]) * v[a] - T(tc.K[a]) * ufb[a];
+      Pi[3 + a] = T(tc.mass.M[3 + a]) * w[a];
+      dPi[a] = h * rate[a];
+      dPi[3 + a] = h * rate[3 + a];
+    }
+    if constexpr (Extra) {
+      // the Basset history's current interval, 2 C sqrt(h) (du_f - dv) / h, implicitly
+      const T b = T(tc.basset_mass);
+      T ha[3], hab[3], x[6];
+#pragma GCC unroll 3
+      for (int a = 0; a < 3; ++a) ha[a] = h * acc[a];
+      mul_t(R, ha, hab);
+#pragma GCC unroll 3
+      for (int a = 0; a < 3; ++a) dPi[a] += b * hab[a];
+      const DragOut<T> none{};
+      implicit_impulse(tc.mass, b, none, h, dPi, x);
+#pragma GCC unroll 6
+      for (int a = 0; a < 6; ++a) dPi[a] = tc.basset ? x[a] : dPi[a];
+    }
+    // the world-frame impulse is carried to the new orientation q exp(h w)
+    T P[3], L[3], Pw[3], Lw[3], ufn[3];
+#pragma GCC unroll 3
+    for (int a = 0; a < 3; ++a) {
+      P[a] = Pi[a] + dPi[a];
+      L[a] = Pi[3 + a] + dPi[3 + a];
+      ufn[a] = u_f[a] + h * acc[a];
+    }
+    mul(R, P, Pw);
+    mul(R, L, Lw);
+    const T theta[3] = {h * w[0], h * w[1], h * w[2]};
+    T q1[4], R1[9], Pb[3], Lb[3], ufb1[3], v1[3], w1[3], V1[3];
+    exp_rotate<LaneMath>(q, theta, q1);
+    rotation(q1, R1);
+    mul_t(R1, Pw, Pb);
+    mul_t(R1, Lw, Lb);
+    mul_t(R1, ufn, ufb1);
+#pragma GCC unroll 3
+    for (int a = 0; a < 3; ++a) {
+      v1[a] = T(tc.mass.Mi[a]) * (Pb[a] + T(tc.K[a]) * ufb1[a]);
+      w1[a] = T(tc.mass.Mi[3 + a]) * Lb[a];
+    }
+    mul(R1, v1, V1);
+    if constexpr (Turb) lane_ou_euler(tc, lanes, j, V0, z, us);
+#pragma GCC unroll 3
+    for (int a = 0; a < 3; ++a) {
+      next.x[a][j] = lanes->x[a][j] + h * V0[a];
+      next.vel[a][j] = v1[a];
+      next.w[a][j] = w1[a];
+      next.us[a][j] = us[a];
+      Vn[a][j] = V1[a];
+    }
+#pragma GCC unroll 4
+    for (int a = 0; a < 4; ++a) next.q[a][j] = q1[a];
+    next.scalar[j] = 0;
+  }
+  end_step<T, Turb, false>(tc, z, Vn, &next, lanes, outcome, landed);
+}
+
+// The field's frames at rk4's stage times t + h/2 and t + h of step s (a time-dependent field;
+// none: the driver's frames, FieldConsts::records)
+struct StageFrames {
+  bool unsteady = false;
+  FluidField::FrameBlend mid, end;
+};
+
+StageFrames stage_frames(const Model& model, bool unsteady, uint64_t s) {
+  StageFrames f;
+  f.unsteady = unsteady;
+  if (unsteady) {
+    const double t = static_cast<double>(s) * model.dt;
+    f.mid = model.field.frames_at(t + 0.5 * model.dt);
+    f.end = model.field.frames_at(t + model.dt);
+  }
+  return f;
+}
+
+// rk4's state within a step: each stage's state (position, rotation vector theta from the
+// start's q, v, w), and the sums k1 + 2 k2 + 2 k3 + k4 of the rates of x (world), theta and
+// xi = (v; w); ok: 0 where a stage's sample left the fluid
+template <typename T>
+struct Rk4Stages {
+  alignas(64) T xs[3][kBatch];
+  alignas(64) T th[3][kBatch];
+  alignas(64) T vs[3][kBatch];
+  alignas(64) T ws[3][kBatch];
+  alignas(64) T Sx[3][kBatch];
+  alignas(64) T Sth[3][kBatch];
+  alignas(64) T Sxi[6][kBatch];
+  alignas(64) T ok[kBatch];
+};
+
+// rk4's stage I (0 to 3) on every lane: the rates at the stage's state on the lanes' samples
+// there, added to the sums, and the next stage's state (c = 1/2, 1/2, 1); stage 0 also updates
+// the seen fluctuation (into next->us) from the start's sample
+template <typename T, bool Turb, bool Plate, bool Extra, int I>
+LRIGID_LANE void rk4_stage(const StepConsts& tc, const Lanes<T>* lanes, const T (*z)[kBatch],
+                           Rk4Stages<T>* k, NewState<T>* next) {
+  const T h = T(tc.h);
+  const T ci = I == 0 || I == 1 ? T(0.5) : T(1), wi = I == 0 || I == 3 ? T(1) : T(2);
+LRIGID_IVDEP
+  for (int j = 0; j < kBatch; ++j) {
+    const T us0[3] = {lanes->us[0][j], lanes->us[1][j], lanes->us[2][j]};
+    const T q0[4] = {lanes->q[0][j], lanes->q[1][j], lanes->q[2][j], lanes->q[3][j]};
+    T q[4], theta[3], v[3], w[3];
+    if constexpr (I == 0) {
+#pragma GCC unroll 3
+      for (int a = 0; a < 3; ++a) {
+        theta[a] = T(0);
+        v[a] = lanes->v[a][j];
+        w[a] = lanes->w[a][j];
+      }
+#pragma GCC unroll 4
+      for (int a = 0; a < 4; ++a) q[a] = q0[a];
+    } else {
+#pragma GCC unroll 3
+      for (int a = 0; a < 3; ++a) {
+        theta[a] = k->th[a][j];
+        v[a] = k->vs[a][j];
+        w[a] = k->ws[a][j];
+      }
+      exp_rotate<LaneMath>(q0, theta, q);
+    }
+    T R[9], u_f[3], acc[3], Fw[3], ufb[3], f[6];
+    rotation(q, R);
+    lane_fluid<T, Turb, Extra>(tc, lanes, j, us0, u_f, acc, Fw);
+    mul_t(R, u_f, ufb);
+    lane_wrench<T, Plate, Extra, false>(tc, R, Fw, ufb, acc, v, w, f);
+    // the rigid body's own gyroscopic terms (about the centre of mass)
+    T Pb[3], Lb[3], g[6], kx[3], kth[3], kxi[6];
+#pragma GCC unroll 3
+    for (int a = 0; a < 3; ++a) {
+      Pb[a] = T(tc.body.M[a]) * v[a];
+      Lb[a] = T(tc.body.M[3 + a]) * w[a];
+    }
+    kirchhoff_gyro_kernel(v, w, Pb, Lb, g);
+#pragma GCC unroll 6
+    for (int a = 0; a < 6; ++a) kxi[a] = T(tc.mass.Mi[a]) * (f[a] - g[a]);
+    mul(R, v, kx);
+    dexpinv(theta, w, kth);
+    const bool in = !tc.sample | (lanes->inside[j] != T(0));
+    k->ok[j] = (I == 0 || k->ok[j] != T(0)) & in ? T(1) : T(0);
+#pragma GCC unroll 3
+    for (int a = 0; a < 3; ++a) {
+      k->Sx[a][j] = I == 0 ? kx[a] : k->Sx[a][j] + wi * kx[a];
+      k->Sth[a][j] = I == 0 ? kth[a] : k->Sth[a][j] + wi * kth[a];
+      if constexpr (I < 3) {
+        k->xs[a][j] = lanes->x[a][j] + ci * h * kx[a];
+        k->th[a][j] = ci * h * kth[a];
+        k->vs[a][j] = lanes->v[a][j] + ci * h * kxi[a];
+        k->ws[a][j] = lanes->w[a][j] + ci * h * kxi[3 + a];
+      }
+    }
+#pragma GCC unroll 6
+    for (int a = 0; a < 6; ++a) k->Sxi[a][j] = I == 0 ? kxi[a] : k->Sxi[a][j] + wi * kxi[a];
+    if constexpr (I == 0) {
+      T us[3] = {us0[0], us0[1], us0[2]};
+      if constexpr (Turb) lane_ou_euler(tc, lanes, j, kx, z, us);
+#pragma GCC unroll 3
+      for (int a = 0; a < 3; ++a) next->us[a][j] = us[a];
+    }
+  }
+}
+
+// rk4 (integrators.cpp rk4): classic Runge-Kutta in the velocity form, RKMK4 on SO(3) (the
+// rotation q exp(theta), theta through dexp^-1), the field sampled at each stage (time
+// t + c h); the Basset history's current interval as an implicit correction after the step; the
+// seen fluctuation by Euler-Maruyama from the start of the step.
+template <typename T, bool Turb, bool Plate, bool Extra>
+LRIGID_MULTIVERSION void rk4_lanes(const StepConsts& tc, const StageFrames& frames,
+                                   Lanes<T>* lanes, uint64_t step, int* outcome, int* landed) {
+  const T h = T(tc.h);
+  alignas(64) T z[3][kBatch], Vn[3][kBatch];
+  [[maybe_unused]] alignas(64) T unused[3][kBatch];
+  if constexpr (Turb) lane_normals<T, true>(tc, *lanes, step, z, unused);
+  Rk4Stages<T> k;
+  NewState<T> next;
+  const FluidField::FrameBlend at_end = lanes->frames;  // the driver's: the end of the step
+  // the field at the next stage's positions, at its time
+  auto sample = [&](const FluidField::FrameBlend& at) {
+    if (!tc.sample) return;
+    if (frames.unsteady) lanes->frames = at;
+    sample_lanes(tc, k.xs, lanes);
+  };
+  rk4_stage<T, Turb, Plate, Extra, 0>(tc, lanes, z, &k, &next);
+  sample(frames.mid);
+  rk4_stage<T, Turb, Plate, Extra, 1>(tc, lanes, z, &k, &next);
+  sample(frames.mid);
+  rk4_stage<T, Turb, Plate, Extra, 2>(tc, lanes, z, &k, &next);
+  sample(frames.end);
+  rk4_stage<T, Turb, Plate, Extra, 3>(tc, lanes, z, &k, &next);
+  lanes->frames = at_end;
+  const T h6 = h / T(6);
+LRIGID_IVDEP
+  for (int j = 0; j < kBatch; ++j) {
+    const T q0[4] = {lanes->q[0][j], lanes->q[1][j], lanes->q[2][j], lanes->q[3][j]};
+    T theta[3], dxi[6], q1[4], R1[9], v1[3], w1[3], V1[3];
+#pragma GCC unroll 3
+    for (int a = 0; a < 3; ++a) theta[a] = h6 * k.Sth[a][j];
+#pragma GCC unroll 6
+    for (int a = 0; a < 6; ++a) dxi[a] = h6 * k.Sxi[a][j];
+    exp_rotate<LaneMath>(q0, theta, q1);
+    rotation(q1, R1);
+#pragma GCC unroll 3
+    for (int a = 0; a < 3; ++a) {
+      v1[a] = lanes->v[a][j] + dxi[a];
+      w1[a] = lanes->w[a][j] + dxi[3 + a];
+    }
+    if constexpr (Extra) {
+      // the Basset history's current interval, implicitly: (M + b P) xi = M xi* + b P xi_0,
+      // xi_0 the start's velocity in the new body frame
+      T R0[9], va[3], vw[3], v0[3];
+      rotation(q0, R0);
+#pragma GCC unroll 3
+      for (int a = 0; a < 3; ++a) va[a] = v1[a] - dxi[a];
+      mul(R0, va, vw);
+      mul_t(R1, vw, v0);
+#pragma GCC unroll 3
+      for (int a = 0; a < 3; ++a)
+        v1[a] += T(tc.basset_inv[a]) * (T(tc.basset_mass) * (v0[a] - v1[a]));
+    }
+    mul(R1, v1, V1);
+#pragma GCC unroll 3
+    for (int a = 0; a < 3; ++a) {
+      next.x[a][j] = lanes->x[a][j] + h6 * k.Sx[a][j];
+      next.vel[a][j] = v1[a];
+      next.w[a][j] = w1[a];
+      Vn[a][j] = V1[a];
+    }
+#pragma GCC unroll 4
+    for (int a = 0; a < 4; ++a) next.q[a][j] = q1[a];
+    next.scalar[j] = k.ok[j] != T(0) ? 0 : 1;
+  }
+  end_step<T, Turb, false>(tc, z, Vn, &next, lanes, outcome, landed);
+}
+
+}  // namespace
+}  // namespace lrigid
