@@ -382,7 +382,7 @@ def write_doc(path, m, rows, acc, peers, mujoco, quick, leaves=None):
         "one (`runtime/src/integrate/rigid_batch.h`) built the same way, with the Kirchhoff "
         "implicit midpoint iterated per lane under a convergence mask, its loops compiled once "
         "for each kind of mass matrix (`bench/perf/mesh_leaf_bench.py`: a mesh leaf costs "
-        "about what a box leaf does, docs/performance.md). Both take every effect, the Basset history (kept by the block driver, its current "
+        "1.4-1.6 times a box leaf, docs/performance.md). Both take every effect, the Basset history (kept by the block driver, its current "
         "interval a mass in the implicit solve) and the Magnus force included. The loops run "
         "the scalar step's Newton iterations themselves (stiff drag; a Kirchhoff fixed point "
         "that does not contract); a lane hands its step to the scalar step only where Newton "
