@@ -143,7 +143,7 @@ LRIGID_LANE void strang_force_lane(const StepConsts<Mass>& tc, const T* R, const
                                    const T* acc, T hs, T* v, T* w) {
   const T F[3] = {T(tc.F[0]), T(tc.F[1]), T(tc.F[2])};
   const T a_f[3] = {T(tc.gu) * acc[0], T(tc.gu) * acc[1], T(tc.gu) * acc[2]};
-  T ufb[3], ab[3], Fb[6], P[6];
+  T ufb[3], ab[3], Fb[3], P[6];
   mul_t(R, u_f, ufb);
   mul_t(R, a_f, ab);
   mul_t(R, F, Fb);
