@@ -10,6 +10,7 @@
 #include <functional>
 #include <initializer_list>
 #include <limits>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -173,6 +174,48 @@ inline FloatCost float_vs_double(const Outcome& dbl, const Outcome& flt, bool mo
   std::printf("float vs double: %zu of %zu bodies with the same status, max |dx| = %.3g m\n",
               c.same, dbl.state.size(), c.dx);
   return c;
+}
+
+// An artist's leaf as a mesh (tests/data/meshes/make_meshes.py bent_leaf, which writes the
+// 1696-triangle bent_leaf.obj): a length x width plate `thick` thick, its mid-surface curled to
+// z = sag (2x/length)^2, turned by yaw (rad) about z; nx x ny vertices on each face. Its
+// generalized mass is a full 6 x 6 (linear-angular coupling from the curl, products of inertia
+// from the turn).
+inline Shape bent_leaf(int nx, int ny, double length = 0.06, double width = 0.04,
+                       double thick = 4e-4, double sag = 0.004, double yaw = 20 * M_PI / 180) {
+  auto m = std::make_shared<TriangleMesh>();
+  const double c = std::cos(yaw), s = std::sin(yaw);
+  for (const double side : {1.0, -1.0})
+    for (int i = 0; i < nx; ++i)
+      for (int j = 0; j < ny; ++j) {
+        const double x = -length / 2 + length * i / (nx - 1), y = -width / 2 + width * j / (ny - 1);
+        const double z = sag * (2 * x / length) * (2 * x / length);
+        const double dz = 8 * sag * x / (length * length), n = std::sqrt(1 + dz * dz);
+        const double px = x - side * 0.5 * thick * dz / n, pz = z + side * 0.5 * thick / n;
+        m->vertices.emplace_back(c * px - s * y, s * px + c * y, pz);
+      }
+  auto top = [ny](int i, int j) { return i * ny + j; };
+  auto bot = [nx, ny](int i, int j) { return nx * ny + i * ny + j; };
+  for (int i = 0; i + 1 < nx; ++i)
+    for (int j = 0; j + 1 < ny; ++j) {
+      m->faces.push_back({top(i, j), top(i + 1, j), top(i + 1, j + 1)});
+      m->faces.push_back({top(i, j), top(i + 1, j + 1), top(i, j + 1)});
+      m->faces.push_back({bot(i, j), bot(i + 1, j + 1), bot(i + 1, j)});
+      m->faces.push_back({bot(i, j), bot(i, j + 1), bot(i + 1, j + 1)});
+    }
+  // the rim, counter-clockwise seen from +z, closed by side strips
+  std::vector<std::pair<int, int>> rim;
+  for (int i = 0; i < nx; ++i) rim.emplace_back(i, 0);
+  for (int j = 1; j < ny; ++j) rim.emplace_back(nx - 1, j);
+  for (int i = nx - 2; i >= 0; --i) rim.emplace_back(i, ny - 1);
+  for (int j = ny - 2; j > 0; --j) rim.emplace_back(0, j);
+  for (size_t k = 0; k < rim.size(); ++k) {
+    const auto [pi, pj] = rim[k];
+    const auto [qi, qj] = rim[(k + 1) % rim.size()];
+    m->faces.push_back({bot(pi, pj), bot(qi, qj), top(qi, qj)});
+    m->faces.push_back({bot(pi, pj), top(qi, qj), top(pi, pj)});
+  }
+  return Shape::from_mesh(std::move(m), "bent_leaf");
 }
 
 // Each change of the scene `s` excludes its first body type from a batched step (`eligible`),

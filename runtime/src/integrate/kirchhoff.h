@@ -88,6 +88,85 @@ LRIGID_LANE T energy_norm2(const FullMass& m, const T* d) {
   return s;
 }
 
+// xi^T M xi: twice the kinetic energy of a velocity xi (the force step's stiffness test)
+template <typename T>
+LRIGID_LANE T velocity_norm2(const DiagonalMass& m, const T* xi) {
+  T s = 0;
+#pragma GCC unroll 6
+  for (int a = 0; a < 6; ++a) s += xi[a] * xi[a] * T(m.M[a]);
+  return s;
+}
+template <typename T>
+LRIGID_LANE T velocity_norm2(const FullMass& m, const T* xi) {
+  T x[6];
+  mass_times(m, xi, x);
+  T s = 0;
+#pragma GCC unroll 6
+  for (int a = 0; a < 6; ++a) s += xi[a] * x[a];
+  return s;
+}
+
+// ---- the fluid's impulse ------------------------------------------------------------------------
+
+// K (u; 0): the impulse of the added mass carried along by the fluid moving with u (body frame,
+// m/s), K's first three columns (6 components: linear, angular), as the scalar step's
+// K_fluid.leftCols<3>() * u (dynamics.cpp velocity_from_impulse). With a diagonal M only K's
+// linear diagonal can be non-zero; otherwise (meshes) the 6 x 3 columns, row major. Zero without
+// the added-mass effect.
+struct DiagonalFluidImpulse {
+  double K[3] = {0, 0, 0};
+};
+struct FullFluidImpulse {
+  double K[18] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+};
+// the fluid impulse that goes with a kind of M
+template <class Mass>
+struct FluidImpulseOf {
+  using type = FullFluidImpulse;
+};
+template <>
+struct FluidImpulseOf<DiagonalMass> {
+  using type = DiagonalFluidImpulse;
+};
+
+template <typename T>
+LRIGID_LANE void fluid_impulse(const DiagonalFluidImpulse& k, const T* u, T* p) {
+#pragma GCC unroll 3
+  for (int a = 0; a < 3; ++a) {
+    p[a] = T(k.K[a]) * u[a];
+    p[3 + a] = T(0);
+  }
+}
+template <typename T>
+LRIGID_LANE void fluid_impulse(const FullFluidImpulse& k, const T* u, T* p) {
+#pragma GCC unroll 6
+  for (int r = 0; r < 6; ++r)
+    p[r] = T(k.K[r * 3]) * u[0] + T(k.K[r * 3 + 1]) * u[1] + T(k.K[r * 3 + 2]) * u[2];
+}
+
+// xi = M^-1 (Pi + K (u; 0)): the velocity (v; w) of the generalized impulse Pi relative to the
+// fluid's added-mass impulse (dynamics.h velocity_from_impulse), u the fluid velocity (body frame)
+template <typename T, class Mass, class Fluid>
+LRIGID_LANE void velocity_of_impulse(const Mass& m, const Fluid& k, const T* Pi, const T* u,
+                                     T* xi) {
+  T p[6];
+  fluid_impulse(k, u, p);
+#pragma GCC unroll 6
+  for (int a = 0; a < 6; ++a) p[a] += Pi[a];
+  mass_inv_times(m, p, xi);
+}
+
+// Pi = M xi - K (u; 0), the inverse of velocity_of_impulse (dynamics.h impulse_rates)
+template <typename T, class Mass, class Fluid>
+LRIGID_LANE void impulse_of_velocity(const Mass& m, const Fluid& k, const T* xi, const T* u,
+                                     T* Pi) {
+  T p[6];
+  fluid_impulse(k, u, p);
+  mass_times(m, xi, Pi);
+#pragma GCC unroll 6
+  for (int a = 0; a < 6; ++a) Pi[a] -= p[a];
+}
+
 // ---- the free flow --------------------------------------------------------------------------
 
 // g = G(Y) = (w x P; w x L + v x P) with (v; w) = M^-1 Y (effects/wrench.h kirchhoff_gyro)
@@ -250,13 +329,12 @@ LRIGID_LANE bool implicit_impulse(const IsotropicMass& m, T basset_mass, const D
   return true;
 }
 
-// Full M: the symmetric positive definite 6 x 6 matrix factored without pivoting. false when a
-// pivot fails (not for a positive definite matrix).
+// Full M: the symmetric positive definite 6 x 6 matrix M + h J + b_B P factored without pivoting
+// into A (lu_factor); 0 when a pivot fails (not for a positive definite matrix). Kept for several
+// right-hand sides (implicit_solve: the Strang scheme's two ROS2 stages share it).
 template <typename T>
-LRIGID_LANE bool implicit_impulse(const FullMass& m, T basset_mass, const DragOut<T>& d, T h,
-                                  const T* b, T* x) {
-  T A[36];
-#pragma GCC unroll 6
+LRIGID_LANE int implicit_factor(const FullMass& m, T basset_mass, const DragOut<T>& d, T h, T* A) {
+#pragma GCC unroll 36
   for (int e = 0; e < 36; ++e) A[e] = T(m.M[e]);
 #pragma GCC unroll 3
   for (int r = 0; r < 3; ++r) {
@@ -266,12 +344,24 @@ LRIGID_LANE bool implicit_impulse(const FullMass& m, T basset_mass, const DragOu
     A[r * 6 + r] += basset_mass;
     A[(3 + r) * 6 + 3 + r] += h * d.c_ang;
   }
-  const int ok = lu_factor<6>(A);
+  return lu_factor<6>(A);
+}
+// x = M A^-1 b for A from implicit_factor
+template <typename T>
+LRIGID_LANE void implicit_solve(const FullMass& m, const T* A, const T* b, T* x) {
   T y[6];
 #pragma GCC unroll 6
   for (int a = 0; a < 6; ++a) y[a] = b[a];
   lu_solve<6>(A, y);
   mass_times(m, y, x);
+}
+// implicit_impulse for a full M: factor and solve
+template <typename T>
+LRIGID_LANE bool implicit_impulse(const FullMass& m, T basset_mass, const DragOut<T>& d, T h,
+                                  const T* b, T* x) {
+  T A[36];
+  const int ok = implicit_factor(m, basset_mass, d, h, A);
+  implicit_solve(m, A, b, x);
   return ok != 0;
 }
 

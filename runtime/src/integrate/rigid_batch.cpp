@@ -13,6 +13,18 @@
 
 namespace lrigid {
 
+namespace {
+// M (and K's first three columns) diagonal: the diagonal kernels; otherwise the full ones
+bool diagonal_step(const BodyType& type) {
+  const bool k_diag = !type.effects.has(Effect::AddedMass) ||
+                      (type.K_fluid.leftCols<3>().bottomRows<3>().isZero(0.0) &&
+                       Mat3(type.K_fluid.topLeftCorner<3, 3>().diagonal().asDiagonal()) ==
+                           type.K_fluid.topLeftCorner<3, 3>());
+  return type.M_diagonal && k_diag;
+}
+
+}  // namespace
+
 bool rigid_batch_eligible(const Model& model, const BodyType& type, std::string* why) {
   auto no = [why](const std::string& reason) {
     if (why) *why = reason;
@@ -20,22 +32,24 @@ bool rigid_batch_eligible(const Model& model, const BodyType& type, std::string*
   };
   if (const std::string all = batch_exclusion(model, type, true); !all.empty()) return no(all);
   if (type.M_isotropic) return no("an isotropic generalized mass (the sphere step's)");
-  if (!type.M_diagonal) return no("the generalized mass is not diagonal");
   if (!type.r_cob.isZero(0.0)) return no("the centre of mass is off the centroid");
-  if (type.effects.has(Effect::AddedMass) &&
-      Mat6(type.K_fluid.diagonal().asDiagonal()) != type.K_fluid)
-    return no("the added-mass tensor is not diagonal");
+  if ((model.integrator == Integrator::Euler || model.integrator == Integrator::RK4) &&
+      !diagonal_step(type))
+    return no("euler and rk4 on a full generalized mass (a mesh body): no batched kernels yet");
   return true;
 }
 
 namespace {
 
-// What the step needs of the body type.
+// What the step needs of the body type. Mass: M as the kernels of integrate/kirchhoff.h see it,
+// DiagonalMass (boxes, disks, ellipsoids) or FullMass (meshes: the step's loops are compiled
+// once for each).
+template <class Mass>
 struct StepConsts : FieldConsts {
   bool plate = false;       // flat: plate drag and lift (with turb, the step's template switches)
   bool strang = false;      // the Strang scheme (not with the Basset history: integrators.h)
-  DiagonalMass mass;        // M (integrate/kirchhoff.h)
-  double K[3] = {0, 0, 0};  // K's linear diagonal (0 without added mass)
+  Mass mass;                // M (integrate/kirchhoff.h)
+  typename FluidImpulseOf<Mass>::type K;  // K's first three columns (0 without added mass)
   double drag = 0;          // the drag effect as a factor 1 or 0 (bodies that are not flat)
   // the drag of bodies that are not flat (effects/drag.h) and the plate model (effects/plate.h)
   DragParams law;
@@ -47,14 +61,22 @@ struct StepConsts : FieldConsts {
   double basset_inv[3] = {0, 0, 0};
 };
 
-StepConsts make_consts(const Model& model, const BodyType& type) {
-  StepConsts tc;
+template <class Mass>
+StepConsts<Mass> make_consts(const Model& model, const BodyType& type) {
+  StepConsts<Mass> tc;
   set_field_consts(model, type, &tc);
   const EffectSet& e = type.effects;
+  const bool am = e.has(Effect::AddedMass);
   tc.plate = type.flat;
   tc.strang = model.integrator == Integrator::Strang && !tc.basset;
-  tc.mass = diagonal_mass(type);
-  for (int a = 0; a < 3; ++a) tc.K[a] = e.has(Effect::AddedMass) ? type.K_fluid(a, a) : 0.0;
+  if constexpr (std::is_same_v<Mass, DiagonalMass>) {
+    tc.mass = diagonal_mass(type);
+    for (int a = 0; a < 3; ++a) tc.K.K[a] = am ? type.K_fluid(a, a) : 0.0;
+  } else {
+    tc.mass = full_mass(type);  // points into type.M and M_inv
+    for (int r = 0; r < 6; ++r)
+      for (int c = 0; c < 3; ++c) tc.K.K[r * 3 + c] = am ? type.K_fluid(r, c) : 0.0;
+  }
   tc.drag = e.has(Effect::Drag) ? 1.0 : 0.0;
   // the kernels' parameters, as the scalar step's terms read them (effects/plan.h)
   tc.law = type.plan.params->drag;
@@ -103,8 +125,8 @@ struct Lanes : Samples<T> {
 
 // The forces of a body that is not flat: the drag (effects/drag.h, the equivalent ellipsoid's
 // projected area across u) times the drag effect's factor (0 without it)
-template <typename T>
-LRIGID_LANE DragOut<T> ellipsoid_forces(const StepConsts& tc, const T* u, const T* w) {
+template <typename T, class C>
+LRIGID_LANE DragOut<T> ellipsoid_forces(const C& tc, const T* u, const T* w) {
   DragOut<T> drag = ellipsoid_drag_kernel(tc.law, u, w);
   const T dr = T(tc.drag);
 #pragma GCC unroll 3
@@ -118,8 +140,8 @@ LRIGID_LANE DragOut<T> ellipsoid_forces(const StepConsts& tc, const T* u, const 
 }
 
 // A lane's drag (and, for plates, lift: effects/plate.h) on relative velocity u and spin w
-template <typename T, bool Plate>
-LRIGID_LANE DragOut<T> body_forces(const StepConsts& tc, const T* u, const T* w, T* lift) {
+template <typename T, bool Plate, class C>
+LRIGID_LANE DragOut<T> body_forces(const C& tc, const T* u, const T* w, T* lift) {
   if constexpr (Plate) {
     DragOut<T> drag;
     plate_kernel(tc.plate_model, u, w, &drag, lift);
@@ -133,75 +155,99 @@ LRIGID_LANE DragOut<T> body_forces(const StepConsts& tc, const T* u, const T* w,
 // orientation R (body -> world) and the fluid velocity u_f (world) with its material derivative
 // acc (world, the gu factor applied here): ROS2 (integrate/kirchhoff.h ros2_impulse), as
 // integrators.cpp strang_force_step. Not with the Basset history (tc.strang).
-template <typename T, bool Plate, bool Extra>
-LRIGID_LANE void strang_force_lane(const StepConsts& tc, const T* R, const T* u_f, const T* acc,
-                                   T hs, T* v, T* w) {
+template <typename T, bool Plate, bool Extra, class Mass>
+LRIGID_LANE void strang_force_lane(const StepConsts<Mass>& tc, const T* R, const T* u_f,
+                                   const T* acc, T hs, T* v, T* w) {
   const T F[3] = {T(tc.F[0]), T(tc.F[1]), T(tc.F[2])};
   const T a_f[3] = {T(tc.gu) * acc[0], T(tc.gu) * acc[1], T(tc.gu) * acc[2]};
   T ufb[3], ab[3], Fb[3], P[6];
   mul_t(R, u_f, ufb);
   mul_t(R, a_f, ab);
   mul_t(R, F, Fb);
-#pragma GCC unroll 3
-  for (int a = 0; a < 3; ++a) {
-    Fb[a] += T(tc.K[a]) * ab[a];  // the fluid's acceleration drags the added mass along
-    P[a] = T(tc.mass.M[a]) * v[a] - T(tc.K[a]) * ufb[a];
-    P[3 + a] = T(tc.mass.M[3 + a]) * w[a];
-  }
+  // the fluid's acceleration drags the added mass along: K (R^T a; 0), a force and (meshes) a
+  // torque
+  T drag_along[6];
+  fluid_impulse(tc.K, ab, drag_along);
+  const T xi0[6] = {v[0], v[1], v[2], w[0], w[1], w[2]};
+  impulse_of_velocity(tc.mass, tc.K, xi0, ufb, P);
   DragOut<T> J{};
   auto forces = [&](const T* dPi, bool first, T* f) LRIGID_LANE_LAMBDA {
-    T vr[3], ws[3], lift[3] = {0, 0, 0}, fx[3] = {0, 0, 0};
+    T Pn[6], xi[6], vr[3], lift[3] = {0, 0, 0}, fx[3] = {0, 0, 0};
+#pragma GCC unroll 6
+    for (int a = 0; a < 6; ++a) Pn[a] = P[a] + dPi[a];
+    velocity_of_impulse(tc.mass, tc.K, Pn, ufb, xi);
 #pragma GCC unroll 3
-    for (int a = 0; a < 3; ++a) {
-      vr[a] = T(tc.mass.Mi[a]) * (P[a] + dPi[a] + T(tc.K[a]) * ufb[a]) - ufb[a];
-      ws[a] = T(tc.mass.Mi[3 + a]) * (P[3 + a] + dPi[3 + a]);
-    }
+    for (int a = 0; a < 3; ++a) vr[a] = xi[a] - ufb[a];
+    const T* ws = xi + 3;
     const DragOut<T> d = body_forces<T, Plate>(tc, vr, ws, lift);
     if constexpr (Extra) magnus_kernel(T(tc.magnus), ws, vr, fx);
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
-      f[a] = Fb[a] + lift[a] + fx[a] + d.f[a];
-      f[3 + a] = d.tq[a];
+      f[a] = Fb[a] + drag_along[a] + lift[a] + fx[a] + d.f[a];
+      f[3 + a] = drag_along[3 + a] + d.tq[a];
     }
     if (first) J = d;
   };
+  // (a full M: the matrix of ROS2's two stages factored once, at the first)
+  [[maybe_unused]] T lu[std::is_same_v<Mass, FullMass> ? 36 : 1];
+  [[maybe_unused]] bool factored = false;
   auto solve = [&](T gh, const T* b, T* x) LRIGID_LANE_LAMBDA {
-    implicit_impulse(tc.mass, T(0), J, gh, b, x);
+    if constexpr (std::is_same_v<Mass, FullMass>) {
+      if (!factored) implicit_factor(tc.mass, T(0), J, gh, lu);
+      factored = true;
+      implicit_solve(tc.mass, lu, b, x);
+    } else {
+      implicit_impulse(tc.mass, T(0), J, gh, b, x);
+    }
   };
-  T dPi[6];
+  T dPi[6], xi[6];
   ros2_impulse(hs, forces, solve, dPi);
+#pragma GCC unroll 6
+  for (int a = 0; a < 6; ++a) dPi[a] += P[a];
+  velocity_of_impulse(tc.mass, tc.K, dPi, ufb, xi);
 #pragma GCC unroll 3
   for (int a = 0; a < 3; ++a) {
-    v[a] = T(tc.mass.Mi[a]) * (P[a] + dPi[a] + T(tc.K[a]) * ufb[a]);
-    w[a] = T(tc.mass.Mi[3 + a]) * (P[3 + a] + dPi[3 + a]);
+    v[a] = xi[a];
+    w[a] = xi[3 + a];
   }
 }
 
 // The end of the free Kirchhoff flow of lane j from the converged iterate: the orientation
 // q <- q cay(h w_mid) (q: the lane's at the start), its rotation R, and the body-frame v, w
 // relative to the fluid velocity u_f (world) the flow moved in
-template <typename T>
-LRIGID_LANE void flow_end(const StepConsts& tc, const T* q0, const T* y0, const T* y,
+template <typename T, class Mass>
+LRIGID_LANE void flow_end(const StepConsts<Mass>& tc, const T* q0, const T* y0, const T* y,
                           const T* u_f, T* q, T* R, T* ufb, T* v, T* w) {
   const T hh = T(0.5 * tc.h);
-  const T a[3] = {hh * T(tc.mass.Mi[3]) * (T(0.5) * (y0[3] + y[3])),
-                  hh * T(tc.mass.Mi[4]) * (T(0.5) * (y0[4] + y[4])),
-                  hh * T(tc.mass.Mi[5]) * (T(0.5) * (y0[5] + y[5]))};
+  T ym[6], xi[6], a[3];
+#pragma GCC unroll 6
+  for (int k = 0; k < 6; ++k) ym[k] = T(0.5) * (y0[k] + y[k]);
+  if constexpr (std::is_same_v<Mass, DiagonalMass>) {
+    // (h/2 M^-1 first: the rounding of the diagonal step before full masses came)
+#pragma GCC unroll 3
+    for (int k = 0; k < 3; ++k) a[k] = hh * T(tc.mass.Mi[3 + k]) * ym[3 + k];
+  } else {
+    T xm[6];
+    mass_inv_times(tc.mass, ym, xm);  // (the linear rows unused: the compiler drops them)
+#pragma GCC unroll 3
+    for (int k = 0; k < 3; ++k) a[k] = hh * xm[3 + k];
+  }
   cayley_rotate(q0, a, q);
   rotation(q, R);
   mul_t(R, u_f, ufb);
+  mass_inv_times(tc.mass, y, xi);
 #pragma GCC unroll 3
   for (int a = 0; a < 3; ++a) {
-    v[a] = T(tc.mass.Mi[a]) * y[a] + ufb[a];
-    w[a] = T(tc.mass.Mi[3 + a]) * y[3 + a];
+    v[a] = xi[a] + ufb[a];
+    w[a] = xi[3 + a];
   }
 }
 
 // flow_end on lane j of the block's arrays: its start orientation q0 (4 x kBatch), the
 // iteration's start impulse Y0 and converged iterate Y (6 x kBatch) and the fluid velocity uf
 // (3 x kBatch) the flow moved in (the splitting and the strang steps' end of the flow)
-template <typename T>
-LRIGID_LANE void lane_flow_end(const StepConsts& tc, const T (*q0)[kBatch],
+template <typename T, class Mass>
+LRIGID_LANE void lane_flow_end(const StepConsts<Mass>& tc, const T (*q0)[kBatch],
                                const T (*Y0)[kBatch], const T (*Y)[kBatch],
                                const T (*uf)[kBatch], int j, T* q, T* R, T* ufb, T* v, T* w) {
   T y0[6], y[6];
@@ -215,6 +261,35 @@ LRIGID_LANE void lane_flow_end(const StepConsts& tc, const T (*q0)[kBatch],
   flow_end(tc, q0j, y0, y, u_f, q, R, ufb, v, w);
 }
 
+// The force step's norms, d^T M^-1 d of an impulse change d and xi^T M xi of a velocity xi
+// (integrate/kirchhoff.h energy_norm2, velocity_norm2), for a diagonal M summed in linear and
+// angular pairs as the diagonal step did before full masses came: its stiffness and convergence
+// tests keep their decisions, and its results their rounding
+template <typename T, class Mass>
+LRIGID_LANE T lane_energy_norm2(const Mass& m, const T* d) {
+  if constexpr (std::is_same_v<Mass, DiagonalMass>) {
+    T s = 0;
+#pragma GCC unroll 3
+    for (int a = 0; a < 3; ++a)
+      s += d[a] * d[a] * T(m.Mi[a]) + d[3 + a] * d[3 + a] * T(m.Mi[3 + a]);
+    return s;
+  } else {
+    return energy_norm2(m, d);
+  }
+}
+template <typename T, class Mass>
+LRIGID_LANE T lane_velocity_norm2(const Mass& m, const T* xi) {
+  if constexpr (std::is_same_v<Mass, DiagonalMass>) {
+    T s = 0;
+#pragma GCC unroll 3
+    for (int a = 0; a < 3; ++a)
+      s += T(m.M[a]) * xi[a] * xi[a] + T(m.M[3 + a]) * xi[3 + a] * xi[3 + a];
+    return s;
+  } else {
+    return velocity_norm2(m, xi);
+  }
+}
+
 // the scalar step's Kirchhoff tolerance (integrate/dynamics.h); float converges to its own
 // round-off
 template <typename T>
@@ -226,8 +301,8 @@ constexpr int kSparseNewton = 4;
 
 // Advances every lane of lanes by one step (see rigid_batch.h); lanes that are not kOk keep their
 // state at the start of the step. landed: the lane is on or below the ground after the step.
-template <typename T, bool Turb, bool Plate, bool Extra, bool Strang>
-LRIGID_MULTIVERSION void step_lanes(const StepConsts& tc, Lanes<T>* lanes, uint64_t step,
+template <typename T, bool Turb, bool Plate, bool Extra, bool Strang, class Mass>
+LRIGID_MULTIVERSION void step_lanes(const StepConsts<Mass>& tc, Lanes<T>* lanes, uint64_t step,
                                     int* outcome, int* landed) {
   const T h = T(tc.h), hh = T(0.5 * tc.h), wm = T(tc.wm);
   alignas(64) T z1[3][kBatch], z2[3][kBatch];
@@ -278,11 +353,8 @@ LRIGID_IVDEP
     // 2. the free Kirchhoff flow of the motion relative to the fluid, implicit midpoint from the
     //    explicit midpoint predictor (dynamics.cpp kirchhoff_midpoint)
     T y0[6], y[6];
-#pragma GCC unroll 3
-    for (int a = 0; a < 3; ++a) {
-      y0[a] = T(tc.mass.M[a]) * (v[a] - ufb[a]);
-      y0[3 + a] = T(tc.mass.M[3 + a]) * w[a];
-    }
+    const T xr[6] = {v[0] - ufb[0], v[1] - ufb[1], v[2] - ufb[2], w[0], w[1], w[2]};
+    mass_times(tc.mass, xr, y0);
     kirchhoff_predictor(tc.mass, h, y0, y);
     const T norm0 = energy_norm2(tc.mass, y0);
 #pragma GCC unroll 6
@@ -523,20 +595,24 @@ LRIGID_IVDEP
       rhs[3 + a] = h * drag.tq[a];
     }
     implicit_impulse(tc.mass, T(tc.basset_mass), drag, h, rhs, dPL_j);
-    T e_new = 0, e_r = 0;
+    // the impulse Pi before the forces (relative to the fluid's added-mass impulse) and the
+    // velocity after them, xi = M^-1 (Pi + dPi + K (u_f end; 0))
+    const T xi[6] = {v[0], v[1], v[2], w[0], w[1], w[2]};
+    T Pi[6], Pn[6], xin[6];
+    impulse_of_velocity(tc.mass, tc.K, xi, ufb, Pi);
+#pragma GCC unroll 6
+    for (int a = 0; a < 6; ++a) {
+      Pn[a] = Pi[a] + dPL_j[a];
+      Pl[a][j] = Pi[a];
+      dPL[a][j] = dPL_j[a];
+    }
+    velocity_of_impulse(tc.mass, tc.K, Pn, ufb_end, xin);
+    const T xr[6] = {vr[0], vr[1], vr[2], w[0], w[1], w[2]};
+    const T e_new = lane_energy_norm2(tc.mass, dPL_j), e_r = lane_velocity_norm2(tc.mass, xr);
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
-      const T dP = dPL_j[a], dL = dPL_j[3 + a];
-      const T P = T(tc.mass.M[a]) * v[a] - T(tc.K[a]) * ufb[a];
-      const T Lm = T(tc.mass.M[3 + a]) * w[a];
-      vn[a][j] = T(tc.mass.Mi[a]) * (P + dP + T(tc.K[a]) * ufb_end[a]);
-      wn[a][j] = T(tc.mass.Mi[3 + a]) * (Lm + dL);
-      e_new += dP * dP * T(tc.mass.Mi[a]) + dL * dL * T(tc.mass.Mi[3 + a]);
-      e_r += T(tc.mass.M[a]) * vr[a] * vr[a] + T(tc.mass.M[3 + a]) * w[a] * w[a];
-      Pl[a][j] = P;
-      Pl[3 + a][j] = Lm;
-      dPL[a][j] = dP;
-      dPL[3 + a][j] = dL;
+      vn[a][j] = xin[a];
+      wn[a][j] = xin[3 + a];
       G[a][j] = Gj[a];
       ufe[a][j] = ufb_end[a];
       ufs[a][j] = ufb[a];
@@ -565,26 +641,34 @@ LRIGID_IVDEP
     }
     const DragOut<T> drag = body_forces<T, Plate>(tc, vr, w, lift);
     // the Newton step -M (M + h J + b_B P)^-1 res, J the drag's stiffness here
-    T res[6], x[6];
+    // (the Basset term: b_B times the linear velocity change M^-1 dPi)
+    T res[6], x[6], dPi[6], ddv[6], Pn[6], xin[6];
+#pragma GCC unroll 6
+    for (int a = 0; a < 6; ++a) dPi[a] = dPL[a][j];
+    mass_inv_times(tc.mass, dPi, ddv);
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
-      res[a] = dPL[a][j] - G[a][j] - h * drag.f[a] +
-               T(tc.basset_mass) * T(tc.mass.Mi[a]) * dPL[a][j];
-      res[3 + a] = dPL[3 + a][j] - h * drag.tq[a];
+      T b_dv = T(tc.basset_mass) * ddv[a];
+      if constexpr (std::is_same_v<Mass, DiagonalMass>)
+        b_dv = T(tc.basset_mass) * T(tc.mass.Mi[a]) * dPi[a];  // (the diagonal step's rounding)
+      res[a] = dPi[a] - G[a][j] - h * drag.f[a] + b_dv;
+      res[3 + a] = dPi[3 + a] - h * drag.tq[a];
     }
     implicit_impulse(tc.mass, T(tc.basset_mass), drag, h, res, x);
-    T conv = 0;
+#pragma GCC unroll 6
+    for (int a = 0; a < 6; ++a) {
+      dPi[a] -= x[a];
+      Pn[a] = Pl[a][j] + dPi[a];
+    }
+    const T ufe_j[3] = {ufe[0][j], ufe[1][j], ufe[2][j]};
+    velocity_of_impulse(tc.mass, tc.K, Pn, ufe_j, xin);
+    const T conv = lane_energy_norm2(tc.mass, x);
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
-      const T ddP = -x[a], ddL = -x[3 + a];
-      const T dP = dPL[a][j] + ddP, dL = dPL[3 + a][j] + ddL;
-      const T v = T(tc.mass.Mi[a]) * (Pl[a][j] + dP + T(tc.K[a]) * ufe[a][j]);
-      const T wa = T(tc.mass.Mi[3 + a]) * (Pl[3 + a][j] + dL);
-      dPL[a][j] = act ? dP : dPL[a][j];
-      dPL[3 + a][j] = act ? dL : dPL[3 + a][j];
-      vn[a][j] = act ? v : vn[a][j];
-      wn[a][j] = act ? wa : wn[a][j];
-      conv += ddP * ddP * T(tc.mass.Mi[a]) + ddL * ddL * T(tc.mass.Mi[3 + a]);
+      dPL[a][j] = act ? dPi[a] : dPL[a][j];
+      dPL[3 + a][j] = act ? dPi[3 + a] : dPL[3 + a][j];
+      vn[a][j] = act ? xin[a] : vn[a][j];
+      wn[a][j] = act ? xin[3 + a] : wn[a][j];
     }
     const int more = act & int(conv > T(kDragTol * kDragTol) * norm_r[j]);
     stiff[j] = more;
@@ -648,20 +732,25 @@ LRIGID_IVDEP
 namespace lrigid {
 namespace {
 
-template <typename T>
+template <typename T, class Mass>
 BlockStats advance(const Model& model, const BodyType& type, State* state, const uint32_t* body,
                    int count, uint64_t first, uint64_t last) {
-  const StepConsts tc = make_consts(model, type);
+  const StepConsts<Mass> tc = make_consts<Mass>(model, type);
   const bool unsteady = tc.grid && model.field.frame_count() > 1;
   auto step = [&](auto turb, auto plate, auto extra, Lanes<T>* lanes, uint64_t s, int* outcome,
                   int* landed) {
     constexpr bool A = decltype(turb)::value, B = decltype(plate)::value,
                    C = decltype(extra)::value;
-    if (tc.scheme == Integrator::Euler)
-      euler_lanes<T, A, B, C>(tc, lanes, s, outcome, landed);
-    else if (tc.scheme == Integrator::RK4)
-      rk4_lanes<T, A, B, C>(tc, stage_frames(model, unsteady, s), lanes, s, outcome, landed);
-    else if (tc.strang)
+    // euler and rk4 have diagonal kernels only (rigid_batch_eligible sends a full M's to the
+    // scalar step)
+    if constexpr (std::is_same_v<Mass, DiagonalMass>) {
+      if (tc.scheme == Integrator::Euler)
+        return euler_lanes<T, A, B, C>(tc, lanes, s, outcome, landed);
+      if (tc.scheme == Integrator::RK4)
+        return rk4_lanes<T, A, B, C>(tc, stage_frames(model, unsteady, s), lanes, s, outcome,
+                                     landed);
+    }
+    if (tc.strang)
       step_lanes<T, A, B, C, true>(tc, lanes, s, outcome, landed);
     else
       step_lanes<T, A, B, C, false>(tc, lanes, s, outcome, landed);
@@ -674,9 +763,12 @@ BlockStats advance(const Model& model, const BodyType& type, State* state, const
 
 BlockStats advance_rigid_block(const Model& model, const BodyType& type, State* state,
                                const uint32_t* body, int count, uint64_t first, uint64_t last) {
+  const bool diag = diagonal_step(type);
   if (model.precision == Precision::Float)
-    return advance<float>(model, type, state, body, count, first, last);
-  return advance<double>(model, type, state, body, count, first, last);
+    return diag ? advance<float, DiagonalMass>(model, type, state, body, count, first, last)
+                : advance<float, FullMass>(model, type, state, body, count, first, last);
+  return diag ? advance<double, DiagonalMass>(model, type, state, body, count, first, last)
+              : advance<double, FullMass>(model, type, state, body, count, first, last);
 }
 
 }  // namespace lrigid

@@ -1,8 +1,11 @@
-// The batched step for plates and ellipsoids: the schemes of integrate/integrators.h (splitting
-// and strang here, euler and rk4 in rigid_batch_explicit.h) for rigid bodies whose generalized
-// mass M is diagonal but not isotropic (boxes, disks, ellipsoids with the centre of mass at the
-// centroid; leaves, paper, seed pods), advanced kBatch at a time in structure-of-arrays blocks like
-// the sphere step (integrate/sphere_batch.h, docs/batched-step.md).
+// The batched step for plates, ellipsoids and meshes: the schemes of integrate/integrators.h
+// (splitting and strang here, euler and rk4 in rigid_batch_explicit.h) for rigid bodies whose
+// generalized mass M is not isotropic (boxes, disks, ellipsoids: a diagonal M; leaves, paper, seed
+// pods; and meshes, an artist's curled leaf: a full symmetric 6 x 6 M with linear-angular
+// coupling), advanced kBatch at a time in structure-of-arrays blocks like the sphere step
+// (integrate/sphere_batch.h, docs/batched-step.md). The loops are compiled once for each kind of M
+// (integrate/kirchhoff.h DiagonalMass, FullMass): the kernels of a diagonal M stay element-wise, a
+// full one pays its 6 x 6 products and LU.
 //
 // The splitting step: the scalar step's physics, term for term, on the same random numbers: exact
 // Ornstein-Uhlenbeck half steps with Thomson's drift; the free Kirchhoff flow by the implicit
@@ -16,8 +19,8 @@
 // scalar step's Newton fallback) and drag stiff enough for the Newton iteration of the force step.
 // On the leaves scene these are rare (bench/perf/batch_bench.py counts them).
 //
-// What qualifies (rigid_batch_eligible): a type that is not a sphere, with M and the fluid
-// Kirchhoff tensor K diagonal and the centre of buoyancy at the centre of mass, effects among
+// What qualifies (rigid_batch_eligible): a type that is not a sphere, with the centre of buoyancy
+// at the centre of mass (the buoyancy torque has no batched kernel), effects among
 // gravity, buoyancy, drag, lift, added mass, mean flow and turbulence, and what every batched step
 // needs (batch_lanes.h batch_exclusion: the seen model, one noise increment per step, a steady
 // field or a series; any of the four schemes).

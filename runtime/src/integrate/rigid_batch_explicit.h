@@ -29,8 +29,8 @@ namespace {  // NOLINT(build/namespaces): internal to rigid_batch.cpp
 // rk4's velocity form (the added mass's Kirchhoff terms and the drag-along K a~). As
 // integrate/dynamics.cpp context_from_sample and the plan's terms.
 template <typename T, bool Plate, bool Extra, bool ImpulseForm>
-LRIGID_LANE void lane_wrench(const StepConsts& tc, const T* R, const T* Fw, const T* ufb,
-                             const T* acc, const T* v, const T* w, T* f) {
+LRIGID_LANE void lane_wrench(const StepConsts<DiagonalMass>& tc, const T* R, const T* Fw,
+                             const T* ufb, const T* acc, const T* v, const T* w, T* f) {
   T vr[3], Fb[3], lift[3] = {0, 0, 0}, fx[3] = {0, 0, 0}, fa[3] = {0, 0, 0}, am[6];
 #pragma GCC unroll 3
   for (int a = 0; a < 3; ++a) vr[a] = v[a] - ufb[a];
@@ -56,8 +56,8 @@ LRIGID_LANE void lane_wrench(const StepConsts& tc, const T* R, const T* Fw, cons
 // A lane's fluid velocity (world): the mean flow and the seen fluctuation us; its material
 // derivative (world, 0 without gradients); the weight and buoyancy with the Basset history force
 template <typename T, bool Turb, bool Extra>
-LRIGID_LANE void lane_fluid(const StepConsts& tc, const Lanes<T>* lanes, int j, const T* us,
-                            T* u_f, T* acc, T* Fw) {
+LRIGID_LANE void lane_fluid(const StepConsts<DiagonalMass>& tc, const Lanes<T>* lanes, int j,
+                            const T* us, T* u_f, T* acc, T* Fw) {
 #pragma GCC unroll 3
   for (int a = 0; a < 3; ++a) {
     u_f[a] = T(tc.mf) * lanes->U[a][j] + (Turb ? us[a] : T(0));
@@ -69,8 +69,8 @@ LRIGID_LANE void lane_fluid(const StepConsts& tc, const Lanes<T>* lanes, int j, 
 // The seen fluctuation after the step by Euler-Maruyama from the start of the step (integrators.cpp
 // step_body: Ito, the start's sample and path velocity V0, world), normals z (whole step)
 template <typename T>
-LRIGID_LANE void lane_ou_euler(const StepConsts& tc, const Lanes<T>* lanes, int j, const T* V0,
-                               const T (*z)[kBatch], T* us) {
+LRIGID_LANE void lane_ou_euler(const StepConsts<DiagonalMass>& tc, const Lanes<T>* lanes, int j,
+                               const T* V0, const T (*z)[kBatch], T* us) {
   T decay, noise;
   ou_euler_kernel(lanes->alpha[j], lanes->beta[j], T(tc.h), &decay, &noise);
   const T gs[3] = {lanes->gs[0][j], lanes->gs[1][j], lanes->gs[2][j]};
@@ -82,14 +82,14 @@ LRIGID_LANE void lane_ou_euler(const StepConsts& tc, const Lanes<T>* lanes, int 
 // Munk moment and rotation from the start of the step, the Basset history's current interval
 // implicit; then the seen fluctuation by Euler-Maruyama.
 template <typename T, bool Turb, bool Plate, bool Extra>
-LRIGID_MULTIVERSION void euler_lanes(const StepConsts& tc, Lanes<T>* lanes, uint64_t step,
-                                     int* outcome, int* landed) {
+LRIGID_MULTIVERSION void euler_lanes(const StepConsts<DiagonalMass>& tc, Lanes<T>* lanes,
+                                     uint64_t step, int* outcome, int* landed) {
   const T h = T(tc.h);
   alignas(64) T z[3][kBatch], Vn[3][kBatch];
   [[maybe_unused]] alignas(64) T unused[3][kBatch];
   if constexpr (Turb) lane_normals<T, true>(tc, *lanes, step, z, unused);
   NewState<T> next;
-LRIGID_IVDEP
+  LRIGID_IVDEP
   for (int j = 0; j < kBatch; ++j) {
     T us[3] = {lanes->us[0][j], lanes->us[1][j], lanes->us[2][j]};
     const T q[4] = {lanes->q[0][j], lanes->q[1][j], lanes->q[2][j], lanes->q[3][j]};
@@ -105,7 +105,7 @@ LRIGID_IVDEP
     T Pi[6], dPi[6];
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
-      Pi[a] = T(tc.mass.M[a]) * v[a] - T(tc.K[a]) * ufb[a];
+      Pi[a] = T(tc.mass.M[a]) * v[a] - T(tc.K.K[a]) * ufb[a];
       Pi[3 + a] = T(tc.mass.M[3 + a]) * w[a];
       dPi[a] = h * rate[a];
       dPi[3 + a] = h * rate[3 + a];
@@ -143,7 +143,7 @@ LRIGID_IVDEP
     mul_t(R1, ufn, ufb1);
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
-      v1[a] = T(tc.mass.Mi[a]) * (Pb[a] + T(tc.K[a]) * ufb1[a]);
+      v1[a] = T(tc.mass.Mi[a]) * (Pb[a] + T(tc.K.K[a]) * ufb1[a]);
       w1[a] = T(tc.mass.Mi[3 + a]) * Lb[a];
     }
     mul(R1, v1, V1);
@@ -200,11 +200,11 @@ struct Rk4Stages {
 // there, added to the sums, and the next stage's state (c = 1/2, 1/2, 1); stage 0 also updates
 // the seen fluctuation (into next->us) from the start's sample
 template <typename T, bool Turb, bool Plate, bool Extra, int I>
-LRIGID_LANE void rk4_stage(const StepConsts& tc, const Lanes<T>* lanes, const T (*z)[kBatch],
-                           Rk4Stages<T>* k, NewState<T>* next) {
+LRIGID_LANE void rk4_stage(const StepConsts<DiagonalMass>& tc, const Lanes<T>* lanes,
+                           const T (*z)[kBatch], Rk4Stages<T>* k, NewState<T>* next) {
   const T h = T(tc.h);
   const T ci = I == 0 || I == 1 ? T(0.5) : T(1), wi = I == 0 || I == 3 ? T(1) : T(2);
-LRIGID_IVDEP
+  LRIGID_IVDEP
   for (int j = 0; j < kBatch; ++j) {
     const T us0[3] = {lanes->us[0][j], lanes->us[1][j], lanes->us[2][j]};
     const T q0[4] = {lanes->q[0][j], lanes->q[1][j], lanes->q[2][j], lanes->q[3][j]};
@@ -273,7 +273,7 @@ LRIGID_IVDEP
 // t + c h); the Basset history's current interval as an implicit correction after the step; the
 // seen fluctuation by Euler-Maruyama from the start of the step.
 template <typename T, bool Turb, bool Plate, bool Extra>
-LRIGID_MULTIVERSION void rk4_lanes(const StepConsts& tc, const StageFrames& frames,
+LRIGID_MULTIVERSION void rk4_lanes(const StepConsts<DiagonalMass>& tc, const StageFrames& frames,
                                    Lanes<T>* lanes, uint64_t step, int* outcome, int* landed) {
   const T h = T(tc.h);
   alignas(64) T z[3][kBatch], Vn[3][kBatch];
@@ -297,7 +297,7 @@ LRIGID_MULTIVERSION void rk4_lanes(const StepConsts& tc, const StageFrames& fram
   rk4_stage<T, Turb, Plate, Extra, 3>(tc, lanes, z, &k, &next);
   lanes->frames = at_end;
   const T h6 = h / T(6);
-LRIGID_IVDEP
+  LRIGID_IVDEP
   for (int j = 0; j < kBatch; ++j) {
     const T q0[4] = {lanes->q[0][j], lanes->q[1][j], lanes->q[2][j], lanes->q[3][j]};
     T theta[3], dxi[6], q1[4], R1[9], v1[3], w1[3], V1[3];

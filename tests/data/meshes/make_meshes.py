@@ -2,7 +2,9 @@
 """Writes the small test meshes in this folder (run from anywhere; files land next to it).
 
 Valid: box_ascii.stl, box_binary.stl (box 0.2 x 0.1 x 0.05 m centred at (1, 2, 3)),
-cube_quads.obj (unit cube from quads, with i/t/n indices), tetra.obj.
+cube_quads.obj (unit cube from quads, with i/t/n indices), tetra.obj, bent_leaf.obj (a curled
+6 x 4 cm leaf 0.4 mm thick, 1696 triangles, turned 20 degrees about z: an artist's leaf, whose
+generalized mass is a full 6 x 6; tests/support/batch_compare.h bent_leaf builds the same).
 Invalid (each has exactly one defect): open.obj, nonmanifold_edge.obj, nonmanifold_vertex.obj,
 inverted.obj, inconsistent.obj, degenerate.obj; syntax errors: bad_number.obj,
 bad_index.obj, truncated.stl.
@@ -43,6 +45,40 @@ def normal(v, t):
     return [x / s for x in n]
 
 
+def bent_leaf(nx=25, ny=17, length=0.06, width=0.04, thick=4e-4, sag=0.004, yaw_deg=20.0):
+    """A plate bent about its width: mid-surface z = sag (2x/length)^2, thickness along the
+    normal, turned by yaw about z. Top and bottom grids of nx x ny vertices, the rim closed by
+    side strips: 4 (nx - 1)(ny - 1) + 4 (nx + ny - 2) outward triangles (1696 by default)."""
+    import math
+    c, s = math.cos(math.radians(yaw_deg)), math.sin(math.radians(yaw_deg))
+    v = []
+    for side in (1, -1):  # top, then bottom
+        for i in range(nx):
+            for j in range(ny):
+                x = -length / 2 + length * i / (nx - 1)
+                y = -width / 2 + width * j / (ny - 1)
+                z = sag * (2 * x / length) ** 2
+                dz = 8 * sag * x / length ** 2
+                n = math.sqrt(1 + dz * dz)
+                px, pz = x - side * 0.5 * thick * dz / n, z + side * 0.5 * thick / n
+                v.append((c * px - s * y, s * px + c * y, pz))
+    T = lambda i, j: i * ny + j
+    B = lambda i, j: nx * ny + i * ny + j
+    f = []
+    for i in range(nx - 1):
+        for j in range(ny - 1):
+            a, b, cc, d = (i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1)
+            f += [(T(*a), T(*b), T(*cc)), (T(*a), T(*cc), T(*d))]
+            f += [(B(*a), B(*cc), B(*b)), (B(*a), B(*d), B(*cc))]
+    # the rim, counter-clockwise seen from +z
+    rim = ([(i, 0) for i in range(nx)] + [(nx - 1, j) for j in range(1, ny)] +
+           [(i, ny - 1) for i in range(nx - 2, -1, -1)] + [(0, j) for j in range(ny - 2, 0, -1)])
+    for k in range(len(rim)):
+        p, q = rim[k], rim[(k + 1) % len(rim)]
+        f += [(B(*p), B(*q), T(*q)), (B(*p), T(*q), T(*p))]
+    return v, f
+
+
 def main():
     v, f, quads = box(0.2, 0.1, 0.05, (1.0, 2.0, 3.0))
     with open(os.path.join(HERE, "box_ascii.stl"), "w") as out:
@@ -72,6 +108,10 @@ def main():
         out.write("vt 0 0\nvn 0 0 1\ns off\n")
         for q in cq:
             out.write("f " + " ".join("%d/1/1" % (i + 1) for i in q) + "\n")
+
+    lv, lf = bent_leaf()
+    write_obj("bent_leaf.obj", lv, lf, "leaf 6 x 4 cm, 0.4 mm, curled 4 mm, turned 20 deg about z "
+              "(make_meshes.py bent_leaf), m")
 
     tv = [(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1)]
     tf = [(0, 2, 1), (0, 1, 3), (0, 3, 2), (1, 2, 3)]

@@ -1,0 +1,112 @@
+#!/usr/bin/python3
+"""What a leaf from a mesh costs against the box leaf (issue 28): the leaves scene's leaf entry
+(scenes/leaves_wind.json: 6 x 4 cm, 0.4 mm, 600 kg/m^3, the scene's "auto" effects) stepped by
+`lrigid bench` once as the box and once as tests/data/meshes/bent_leaf.obj (the same leaf curled
+4 mm and turned 20 degrees about z, 1696 triangles: its generalized mass is a full 6 x 6, which
+the batched step runs on the full-mass kernels of integrate/kirchhoff.h). Body-steps per CPU
+second, the two measured alternately --rounds times, best of each (other jobs only slow a run
+down), and their ratio.
+
+    bench/perf/mesh_leaf_bench.py [--lrigid build/bin/lrigid] [--n 10000] [--rounds 3]
+        [--integrators splitting,strang] [--threads 1] [--warmup 250] [--json OUT]
+
+Field: results/grids/windCourtyard.vti when ./Allrun made it, else a uniform wind of 3 m/s with
+seen turbulence (k = 0.1 m^2/s^2, eps = 0.05 m^2/s^3), said in the output. Warm-up steps first
+(0.5 s at the scene's 2 ms): the leaves are released at rest and start tumbling.
+"""
+import argparse
+import json
+import os
+import platform
+import subprocess
+import sys
+import tempfile
+import time
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+
+
+def leaf_scene(out_dir, mesh):
+    s = json.load(open(os.path.join(ROOT, "scenes/leaves_wind.json")))
+    grid = os.path.join(ROOT, "results/grids/windCourtyard.vti")
+    if os.path.exists(grid):
+        s["fluid"]["field"] = grid
+        field = "windCourtyard.vti (the leaves scene's grid)"
+    else:
+        s["fluid"].pop("field", None)
+        s["fluid"]["uniform"] = {"U": [3.0, 0.0, 0.0], "k": 0.1, "epsilon": 0.05}
+        field = "uniform wind 3 m/s, k 0.1 m^2/s^2, eps 0.05 m^2/s^3 (no windCourtyard.vti)"
+    leaf = [b for b in s["bodies"] if b["name"] == "leaf"][0]
+    if mesh:
+        leaf["name"] = "mesh_leaf"
+        leaf["shape"] = {"type": "mesh",
+                         "file": os.path.join(ROOT, "tests/data/meshes/bent_leaf.obj")}
+    s["bodies"] = [leaf]
+    path = os.path.join(out_dir, ("mesh" if mesh else "box") + "_leaf.json")
+    json.dump(s, open(path, "w"), indent=1)
+    return path, field
+
+
+def bench(lrigid, scene, args):
+    with tempfile.NamedTemporaryFile(suffix=".json") as out:
+        subprocess.run([lrigid, "bench", scene, "--n", str(args.n), "--integrators",
+                        args.integrators, "--threads", str(args.threads), "--warmup",
+                        str(args.warmup), "--quiet", "--json", out.name], check=True)
+        return json.load(open(out.name))
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--lrigid", default=os.path.join(ROOT, "build/bin/lrigid"))
+    ap.add_argument("--n", type=int, default=10000)
+    ap.add_argument("--rounds", type=int, default=3)
+    ap.add_argument("--integrators", default="splitting,strang")
+    ap.add_argument("--threads", type=int, default=1)
+    ap.add_argument("--warmup", type=int, default=250)
+    ap.add_argument("--json")
+    args = ap.parse_args()
+    best = {}
+    with tempfile.TemporaryDirectory() as tmp:
+        box, field = leaf_scene(tmp, False)
+        mesh, _ = leaf_scene(tmp, True)
+        print("field: " + field)
+        for r in range(args.rounds):
+            for kind, scene in (("box", box), ("mesh", mesh)):
+                res = bench(args.lrigid, scene, args)
+                for run in res["runs"]:
+                    key = (kind, run["integrator"])
+                    rate = run["body_steps_per_cpu_s"]
+                    prev = best.get(key)
+                    if prev is None or rate > prev["rate"]:
+                        best[key] = {"rate": rate, "scalar_pct":
+                                     100.0 * run["scalar_handoffs"] / max(1, run["body_steps"]),
+                                     "newton": run["newton_steps"]}
+    machine = "%s, %s, %d CPUs" % (platform.node(), platform.processor() or platform.machine(),
+                                   os.cpu_count())
+    cpu = ""
+    try:
+        for line in open("/proc/cpuinfo"):
+            if line.startswith("model name"):
+                cpu = line.split(":", 1)[1].strip()
+                break
+    except OSError:
+        pass
+    print("%s; %s; %s" % (time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()), cpu, machine))
+    print("N = %d, %d thread(s), %d warm-up steps, best of %d rounds, body-steps per CPU second"
+          % (args.n, args.threads, args.warmup, args.rounds))
+    print("%-10s %14s %14s %10s %12s" % ("scheme", "box leaf", "mesh leaf", "cost ratio",
+                                          "mesh scalar%"))
+    out = {"field": field, "n": args.n, "threads": args.threads, "cpu": cpu,
+           "date": time.strftime("%Y-%m-%d", time.gmtime()), "schemes": {}}
+    for integ in args.integrators.split(","):
+        b, m = best[("box", integ)], best[("mesh", integ)]
+        ratio = b["rate"] / m["rate"] if m["rate"] > 0 else float("inf")
+        print("%-10s %14.4g %14.4g %10.2f %12.2f" % (integ, b["rate"], m["rate"], ratio,
+                                                     m["scalar_pct"]))
+        out["schemes"][integ] = {"box": b, "mesh": m, "cost_ratio": ratio}
+    if args.json:
+        json.dump(out, open(args.json, "w"), indent=1)
+
+
+if __name__ == "__main__":
+    sys.exit(main())
