@@ -646,9 +646,12 @@ BlockStats drive_block(const Model& model, const BodyType& type, const FieldCons
           } else {
             lanes->store(j, &b);
             b.history = lanes->history[j];
+            const Vec3 x0 = b.x;
             const bool asleep = contact_after_step(model, type, i, t + model.dt, &b, &st);
             lanes->load(j, b);
-            resample(j, j + 1);
+            // the lane's sample is at x0: taken again only where the contact moved the body
+            // (no point touching: it did not)
+            if (!asleep && b.x != x0) resample(j, j + 1);
             if (asleep) lanes->live[j] = false;
           }
           // a ground with "stop" still lands the bodies (walls colliding)
