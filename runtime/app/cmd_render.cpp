@@ -169,10 +169,12 @@ class Renderer {
       context_note_ = std::string(water ? "   tank: walls, floor, water surface (grid top)"
                                         : "   grid outline") +
                       (mode == "k" ? ", slice of k near the floor" : ", streamlines of U");
-      // just above the grid's floor: a map under the bodies (obstacles show as k = 0, the value
-      // the grid keeps at invalid points)
+      // k just above the grid's floor (obstacles show as k = 0, the value the grid keeps at
+      // invalid points), drawn as a map a little below the floor: bodies lying on the ground
+      // stay on top of it (drawn at its height, the translucent slice faded them)
       if (mode == "k")
-        add_slice(ren_, img, "k", gb[4] + 0.04 * (gb[5] - gb[4]), "k (m^2/s^2)", args_.height / 2);
+        add_slice(ren_, img, "k", gb[4] + 0.04 * (gb[5] - gb[4]), "k (m^2/s^2)", args_.height / 2,
+                  gb[4] - 0.002 * (gb[5] - gb[4]));
       else
         add_streamlines(img, gb);
       return;

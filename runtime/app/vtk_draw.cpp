@@ -160,7 +160,7 @@ bool add_solids(vtkRenderer* ren, vtkImageData* img) {
 }
 
 bool add_slice(vtkRenderer* ren, vtkImageData* img, const std::string& array, double z,
-               const std::string& title, int bar_height) {
+               const std::string& title, int bar_height, double draw_z) {
   vtkDataArray* values = img->GetPointData()->GetArray(array.c_str());
   if (!values) return false;
   double gb[6];
@@ -191,6 +191,7 @@ bool add_slice(vtkRenderer* ren, vtkImageData* img, const std::string& array, do
   actor->SetMapper(m);
   actor->GetProperty()->SetOpacity(0.85);
   actor->GetProperty()->LightingOff();
+  if (draw_z == draw_z) actor->SetPosition(0, 0, draw_z - z);
   ren->AddActor(actor);
   vtkNew<vtkScalarBarActor> bar;
   bar->SetLookupTable(lut);

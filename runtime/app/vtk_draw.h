@@ -3,6 +3,7 @@
 // colours and drawing scales, the context (ground, solids, a slice of the grid), the camera and
 // screenshots. VTK/OpenGL; the runtime core stays VTK-free.
 #pragma once
+#include <limits>
 #include <vtkSmartPointer.h>
 
 #include <string>
@@ -53,10 +54,12 @@ void add_ground(vtkRenderer* ren, double z, Bounds* box);
 bool add_solids(vtkRenderer* ren, vtkImageData* img);
 
 // A horizontal slice of point array `array` ("k", "|U|", ...) at height z (m), pale to deep blue,
-// with a scalar bar titled `title` no taller than `bar_height` pixels. False when the grid has no
-// such array.
+// with a scalar bar titled `title` no taller than `bar_height` pixels. Drawn at height draw_z (m;
+// NaN: at z), e.g. under the bodies lying on the floor, which a translucent slice above them
+// would fade. False when the grid has no such array.
 bool add_slice(vtkRenderer* ren, vtkImageData* img, const std::string& array, double z,
-               const std::string& title, int bar_height);
+               const std::string& title, int bar_height,
+               double draw_z = std::numeric_limits<double>::quiet_NaN());
 
 // Looks at box from the front-left and above (Z up), the whole box in view.
 void aim_camera(vtkRenderer* ren, const Bounds& box);

@@ -10,10 +10,10 @@
 3. The same box with mu > tan theta stays: displacement below 1e-6 m over 10 s (friction holds
    it; the contact adds no creep), with and without sleeping.
 4. The wind scene (scenes/leaves_wind.json on the windCourtyard grid with its wall_distance;
-   --quick: 200 bodies, 10 s): at every output time no contact point of a body (box: its
-   corners; ellipsoid: 26 points of its surface) lies deeper than 1 cm inside a solid (the
-   grid's interpolated wall distance, read by the Python module's Grid.sample) or below the
-   ground; no body stopped against a wall (every exited body was removed at the grid's edge);
+   --quick: 200 bodies, 10 s; LRIGID_WIND_GRID=FILE: another conversion of the case): at every
+   output time no contact point of a body (box: its corners; ellipsoid: 26 points of its
+   surface) lies deeper than 1 cm inside a solid (the grid's interpolated wall distance, read by
+   the Python module's Grid.sample) or below the ground; no body stopped against a wall (every exited body was removed at the grid's edge);
    and, reported, how many end up resting or sliding on the roof and ledges (above 0.5 m), on
    the ground, flying, and how many left the grid.
 Each run is lrigid run on a scene written here, read back from trajectories.csv.
@@ -141,7 +141,9 @@ def rotate(q, p):
 
 
 def wind_scene(args, st):
-    grid = os.path.join(vc.ROOT, "results", "grids", "windCourtyard.vti")
+    # ./Allrun's grid, or another conversion of the same case (environment LRIGID_WIND_GRID)
+    grid = os.environ.get("LRIGID_WIND_GRID") or os.path.join(vc.ROOT, "results", "grids",
+                                                              "windCourtyard.vti")
     if not os.path.exists(grid):
         st.note("wind scene skipped: no %s (run ./Allrun's precompute first)" % grid)
         return

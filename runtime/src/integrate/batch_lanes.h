@@ -667,7 +667,9 @@ BlockStats drive_block(const Model& model, const BodyType& type, const FieldCons
               lanes->track[j] = false;
             }
             lanes->load(j, b);
-            resample(j, j + 1);
+            // the lane's sample is at x0: taken again only where the contact moved the body
+            // (no point touching: it did not)
+            if (!asleep && b.x != end.x) resample(j, j + 1);
             if (asleep) lanes->live[j] = false;
           }
           // a ground with "stop" still lands the bodies (walls colliding)
