@@ -122,8 +122,9 @@ Wrench drag_wrench(const BodyType& type, const Vec3& u_rel, const Vec3& w, doubl
 // Drag of flat bodies (BodyType::flat), after Andersen, Pesavento & Wang (2005), in 3D
 // (docs/physics/lift.md): F = -1/2 rho S (A - B cos 2a) |u| u with cos 2a = (|u_t|^2 - u_n^2)/|u|^2
 // (a: angle of attack, S: planform area), and the dissipative torque about the in-plane axes
-// T = -pi rho c^4 L (mu1(Re) U / c + mu2 |w_p|) w_p (c: half chord across w_p, L = S / (2 c) the
-// span, U the APW velocity scale sqrt(|rho_b/rho_f - 1| g b), b the half thickness). APW fitted
+// T = -pi rho c^4 L (mu1(Re) U / c + mu2 |w_p|) w_p per strip of half chord c and span L across
+// w_p, summed over the planform's strips (plate_strips, effects/plate.h; U the APW velocity
+// scale sqrt(|rho_b/rho_f - 1| g b), b the half thickness). APW fitted
 // these at Re ~ 10^3, where viscous stresses are negligible; the viscous part is added as the
 // exact Stokes resistance of the equivalent ellipsoid, F_i = -mu k_i u_i and T_i = -mu r_i w_i
 // (BodyType::stokes_force, stokes_torque), which dominates as Re falls (Re < ~30). Spin about the

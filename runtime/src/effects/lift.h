@@ -3,10 +3,11 @@
 // falling cards"), generalized to 3D (docs/physics/lift.md). Per unit span APW write the
 // circulation Gamma = -C_T l v_x v_y / |v| + 1/2 C_R l^2 w and the lift rho Gamma z x v. In 3D,
 // with n the plate normal, u the velocity of the centroid relative to the fluid, u_n = u . n,
-// u_t = u - u_n n, w_p the in-plane part of the angular velocity, S the planform area and l the
-// chord across w_p:
+// u_t = u - u_n n, w_p the in-plane part of the angular velocity, S the planform area and l(s)
+// the chords across w_p:
 //   translational  F = -rho C_T S (u_n / |u|) (|u_t|^2 n - u_n u_t)   (normal to u, in span(u, n))
-//   rotational     F = 1/2 rho C_R l S  w_p x u
+//   rotational     F = 1/2 rho C_R K_R  w_p x u,  K_R = int l(s)^2 ds (l S for a strip;
+//                  plate_strips, effects/plate.h)
 // Both act at the centroid and fade below Re ~ 200 (circulation_factor). The added-mass (Munk)
 // torque and the plate drag and dissipative torque (effects/drag.h) complete APW's model. Only
 // for flat bodies (BodyType::flat).

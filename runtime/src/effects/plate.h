@@ -52,6 +52,57 @@ struct PlateCoeffs {
 double plate_broadside_cd(double aspect, bool box);
 PlateCoeffs plate_coefficients(const BodyType& type);
 
+// The planform integrals of strip theory about an in-plane axis through the centroid: the plate
+// is cut into strips across the axis, each a 2D section of APW's model with its own chord
+// (rectangles; ellipses: see below).
+// d = (d1, d2): unit direction across the axis in the plate's axes e1, e2; x = d . r the
+// distance from the axis. Per unit span APW's rotational lift is 1/2 rho C_R l^2 w u and their
+// pitching torque pi rho a^4 (mu1 U / a + mu2 |w|) w (l = 2a the chord), so summed over strips
+//   K_R = int l(s)^2 ds              (s along the axis; l S for a strip of chord l)
+//   J2  = int x^2 dA,  J3 = int |x|^3 dA   (a strip: 2 a^3 / 3 and a^4 / 2 per unit span)
+// and the torque is pi rho (3/2 mu1 U J2 + 2 mu2 |w| J3). Closed forms (docs/physics/lift.md):
+// rectangle of half sides c1, c2: x = u + v with u, v uniform on [-p, p], [-q, q],
+//   p = c1 |d1|, q = c2 |d2|, P = max, Q = min: J2 = S (p^2 + q^2) / 3,
+//   J3 = S (P^3 / 4 + P Q^2 / 2 + Q^4 / (20 P)); l(s) is a trapezoid of height l0 = S / (s1 + s2)
+//   over |s| <= s1, falling to 0 at s2 (s2 = c1 |d2| + c2 |d1|, s1 = |c1 |d2| - c2 |d1||), so
+//   K_R = 2/3 l0^2 (2 s1 + s2);
+// A rectangle about an axis along a side gives l S, 2 c^3 L / 3 and c^4 L / 2 (L: span along
+// the axis): APW's strip exactly.
+// Ellipses (and a mesh's equivalent ellipse) keep the mid-chord form used before: one strip of
+// the chord through the centre l0 = 2 / |(d1 / c1, d2 / c2)| and span S / l0, i.e. K_R = l0 S,
+// J2 = l0^2 S / 12, J3 = l0^3 S / 32. Their own strip sums (half width across the axis
+// h = |(c1 d1, c2 d2)|: K_R = 8 l0 S / (3 pi), J2 = S h^2 / 4, J3 = 8 S h^3 / (15 pi); a disk:
+// 0.85, 0.75, 0.68 times the mid-chord values) were measured and not adopted: with them the
+// elliptic strips of scenes/plate_tumble.json no longer tumble (docs/physics/lift.md).
+template <typename T>
+struct PlateStrips {
+  T KR, J2, J3;  // m^3, m^4, m^5
+};
+template <typename T>
+LRIGID_LANE void plate_strips(bool box, T c1, T c2, T S, T d1, T d2, PlateStrips<T>* o) {
+  const T tiny = T(std::is_same_v<T, float> ? 1e-30 : 1e-300);
+  const T a1 = std::abs(d1), a2 = std::abs(d2);
+  // rectangle
+  const T p = c1 * a1, q = c2 * a2;
+  const T P0 = p > q ? p : q, Q = p > q ? q : p;
+  const T P = P0 > tiny ? P0 : tiny;
+  const T Q2 = Q * Q;
+  const T J3_box = S * (P * P * P * T(0.25) + T(0.5) * P * Q2 + Q2 * Q2 / (T(20) * P));
+  const T J2_box = S * (p * p + q * q) * T(1.0 / 3.0);
+  const T s2 = c1 * a2 + c2 * a1, s1 = std::abs(c1 * a2 - c2 * a1);
+  const T l0 = S / (s1 + s2 > tiny ? s1 + s2 : tiny);
+  const T KR_box = T(2.0 / 3.0) * l0 * l0 * (T(2) * s1 + s2);
+  // ellipse: the mid-chord strip
+  const T q1 = d1 / c1, q2 = d2 / c2;
+  const T l0e = T(2) / std::sqrt(q1 * q1 + q2 * q2);
+  const T l0e2S = l0e * l0e * S;
+  const T J2_ell = l0e2S * T(1.0 / 12.0), J3_ell = l0e2S * l0e * T(1.0 / 32.0);
+  const T KR_ell = l0e * S;
+  o->KR = box ? KR_box : KR_ell;
+  o->J2 = box ? J2_box : J2_ell;
+  o->J3 = box ? J3_box : J3_ell;
+}
+
 // What the plate model needs of a flat body type and the fluid, built once per body type.
 struct PlateParams {
   double rho = 0, nu = 0;  // kg/m^3, m^2/s
@@ -99,7 +150,7 @@ LRIGID_LANE void plate_kernel(const PlateParams& k, const T* u, const T* w, Drag
   const T cos2a = (s2 - T(2) * un * un) * (inv * inv);
   const T c_lin =
       moving ? T(0.5) * rho * T(k.S) * (drag_a - drag_b * cos2a) * speed : T(0);
-  // the in-plane part of the spin and the chord across it (plate_chord)
+  // the in-plane part of the spin and the unit direction d across it, in the plate's axes
   const T wn = dot3(n, w);
   T wp[3];
 #pragma GCC unroll 3
@@ -109,26 +160,20 @@ LRIGID_LANE void plate_kernel(const PlateParams& k, const T* u, const T* w, Drag
   T dir[3];
   cross3(n, wp, dir);
   const T winv = T(1) / (spinning ? wp_norm : T(1));
-  const T d1 = dot3(e1, dir) * winv, d2 = dot3(e2, dir) * winv;
-  const T tiny = T(std::is_same_v<T, float> ? 1e-30 : 1e-300);
-  const T a1 = std::abs(d1) > tiny ? std::abs(d1) : tiny,
-          a2 = std::abs(d2) > tiny ? std::abs(d2) : tiny;
-  const T r1 = T(k.c1) / a1, r2 = T(k.c2) / a2;
-  const T chord_box = T(2) * (r1 < r2 ? r1 : r2);
-  const T q1 = d1 / T(k.c1), q2 = d2 / T(k.c2);
-  const T chord_ell = T(2) / std::sqrt(q1 * q1 + q2 * q2 + (spinning ? T(0) : T(1)));
-  const T chord = k.box != 0 ? chord_box : chord_ell;
-  // APW's pitching torque pi rho c^4 L (mu1 U / c + mu2 |w_p|) w_p, its viscous coefficient mu1
-  // scaled as a laminar boundary layer
-  const T c = T(0.5) * (spinning ? chord : T(1));
-  const T span = T(k.S) / (T(2) * c);
+  // not spinning: any direction (the terms below are then multiplied by 0)
+  const T d1 = spinning ? dot3(e1, dir) * winv : T(1), d2 = spinning ? dot3(e2, dir) * winv : T(0);
+  PlateStrips<T> ps;
+  plate_strips(k.box != 0, T(k.c1), T(k.c2), T(k.S), d1, d2, &ps);
+  // APW's pitching torque per unit span pi rho a^4 (mu1 U / a + mu2 |w|) w summed over the
+  // strips across the axis: pi rho (3/2 mu1 U J2 + 2 mu2 |w_p| J3) w_p; mu1 scaled as a laminar
+  // boundary layer
   const T Uv = k.apw_speed > 0 ? T(k.apw_speed) : speed;
-  const T kk = T(M_PI) * rho * (c * c) * (c * c) * span;
   const T re_w = speed * T(k.width_over_nu);
   const T re = re_w > T(kPlateTorqueReMin) ? re_w : T(kPlateTorqueReMin);
   const T mu1 = mu1_fit * std::sqrt(T(kPlateTorqueFitRe) / re);
-  const T pitch = spinning ? kk * (mu1 * Uv / c + mu2 * wp_norm) : T(0);
-  const T c_pitch = spinning ? kk * (mu1 * Uv / c + T(2) * mu2 * wp_norm) : T(0);
+  const T lin = T(1.5 * M_PI) * rho * mu1 * Uv * ps.J2, quad = T(2 * M_PI) * rho * mu2 * ps.J3;
+  const T pitch = spinning ? lin + quad * wp_norm : T(0);
+  const T c_pitch = spinning ? lin + T(2) * quad * wp_norm : T(0);
   // spin about the normal: the Stokes torque plus the out-of-roundness drag
   const T c_n = T(k.st[0]) * T(k.n[0]) + T(k.st[1]) * T(k.n[1]) + T(k.st[2]) * T(k.n[2]) +
                 T(k.rot_n) * std::abs(wn);
@@ -149,14 +194,15 @@ LRIGID_LANE void plate_kernel(const PlateParams& k, const T* u, const T* w, Drag
   }
   if constexpr (Lift) {
     // translational -rho C_T S (u_n / |u|) (|u_t|^2 n - u_n u_t) and rotational
-    // 1/2 rho C_R l S w_p x u, both times the circulation gate
+    // 1/2 rho C_R K_R w_p x u (APW's 1/2 rho C_R l^2 per unit span, summed over the strips
+    // across the axis: K_R = l S for a strip), both times the circulation gate
     const T gate = T(k.lift) * circulation_gate(re_w);
     T ut[3];
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) ut[a] = u[a] - un * n[a];
     const T ut2 = dot3(ut, ut);
     const T lt = moving ? -rho * gate * lift_t_s * (un * inv) : T(0);
-    const T lr = spinning ? T(0.5) * rho * gate * lift_r * chord * T(k.S) : T(0);
+    const T lr = spinning ? T(0.5) * rho * gate * lift_r * ps.KR : T(0);
     T wxu[3];
     cross3(wp, u, wxu);
 #pragma GCC unroll 3

@@ -667,7 +667,7 @@ BlockStats drive_block(const Model& model, const BodyType& type, const FieldCons
               lanes->track[j] = false;
             }
             lanes->load(j, b);
-            // the lane's sample is at x0: taken again only where the contact moved the body
+            // the lane's sample is at the step's end: taken again only where the contact moved the body
             // (no point touching: it did not)
             if (!asleep && b.x != end.x) resample(j, j + 1);
             if (asleep) lanes->live[j] = false;

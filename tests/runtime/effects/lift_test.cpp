@@ -73,6 +73,8 @@ TEST(Lift, RotationalLiftIsHalfRhoCRChordAreaOmegaCrossU) {
   const Vec3 u(0.2, 0, 0), w(0, 3, 0);  // edgewise motion: no translational lift
   const Vec3 f = lift_wrench(t, u, w, rho, kNuInviscid).head<3>();
   const double C_R = plate_coefficients(t).C_R;
+  // APW's 1/2 rho C_R l^2 per unit span on the mid-chord strip of an ellipse: l the chord
+  // across the axis (the disk's diameter), span S / l
   const Vec3 expect = 0.5 * rho * C_R * (2 * 0.02) * t.plate_area * w.cross(u);
   EXPECT_TRUE(test::near(f, expect, 1e-12));
   // spin about the normal gives no lift
@@ -157,14 +159,17 @@ TEST(PlateDrag, ViscousPartDominatesAtLowReynoldsNumber) {
 TEST(PlateDrag, DissipativeTorqueOpposesPitch) {
   const Model m = disk_model(effects({Effect::Drag}));
   const BodyType& t = m.types[0];
-  const double rho = 1000, wy = 2.0, c = 0.02, span = t.plate_area / (2 * c);
+  const double rho = 1000, wy = 2.0, a = 0.02;
   const double nu = 1e-6;
   const Vec3 tq = plate_drag_wrench(t, Vec3::Zero(), Vec3(0, wy, 0), rho, nu).tail<3>();
   // at rest (Re below kPlateTorqueReMin) mu1 is scaled by (Re_fit / Re_min)^(1/2)
   const double mu1 = kPlateTorqueMu1 * std::sqrt(kPlateTorqueFitRe / kPlateTorqueReMin);
+  // APW's pi rho a^4 (mu1 U / a + mu2 |w|) w per unit span on the disk's mid-chord strip
+  // (half chord a, span S / (2 a))
+  const double span = t.plate_area / (2 * a);
   const double expect =
-      -M_PI * rho * std::pow(c, 4) * span *
-          (mu1 * t.apw_speed / c + plate_coefficients(t).mu2 * wy) * wy -
+      -M_PI * rho * std::pow(a, 4) * span *
+          (mu1 * t.apw_speed / a + plate_coefficients(t).mu2 * wy) * wy -
       rho * nu * t.stokes_torque.y() * wy;
   EXPECT_NEAR(tq.y(), expect, 1e-15);
   EXPECT_GT(t.stokes_torque.y(), 0);
