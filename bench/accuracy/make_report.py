@@ -447,7 +447,8 @@ def report(rows, slopes, kinds, sources, scenes, date, seconds, note=""):
         r = det.get((scene, "rk4"))
         if r and math.isfinite(r["slope"]) and r["slope"] < 3:
             w("* On `%s` rk4 converges with slope %.2f, not 4: the scene's events and kinks "
-              "(ground contact detected at the end of a step, the drag of flat bodies through "
+              "(the colliding ground's impulses, applied at the end of a step: only a "
+              "touchdown's time is located inside it; the drag of flat bodies through "
               "|direction cosines|) are first order and tumbling amplifies them, so rk4's "
               "extra stages buy accuracy only through a smaller error constant." %
               (scene, r["slope"]))
@@ -581,8 +582,8 @@ the bodies moved).
 **Stochastic error.** The noise is a Brownian path resolved at h: a run at dt = r·h uses
 `noise_substeps = r`, so it sums the reference's increments and every dt sees the same path. The
 reference is the splitting scheme at h, checked against the splitting at 2h. `run_study.sh`
-sweeps euler and splitting here (rk4's sweep would cost as much again;
-`ACCURACY_STOCH_INTEGRATORS=euler,rk4,splitting` adds it), and `--tolerance` offers only the
+sweeps euler, splitting and strang here (rk4's sweep would cost as much again;
+`ACCURACY_STOCH_INTEGRATORS=euler,rk4,splitting,strang` adds it), and `--tolerance` offers only the
 schemes that have a stochastic sweep. Strong error: the
 same pathwise formula. Weak errors: the mean position |⟨x⟩ − ⟨x_ref⟩| / L and the total variance
 |V − V_ref| / V_ref at the last time, and the same for the horizontal landing points of bodies that

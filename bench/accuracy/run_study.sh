@@ -79,7 +79,7 @@ list=$(IFS=,; echo "${files[*]}")
 # every scene's stochastic sweep, its other sweeps and the grid sweep side by side
 step $((nsteps - 1)) "accuracy_study: 7 processes side by side" "" \
   "$src/bench/accuracy/run_jobs.sh" "$build" "$src" "$work" \
-  "${ACCURACY_STOCH_INTEGRATORS:-euler,splitting}" "$name" "$scene" "$list"
+  "${ACCURACY_STOCH_INTEGRATORS:-euler,splitting,strang}" "$name" "$scene" "$list"
 done_lines=$(paste -sd';' "$work/jobs.txt" | sed 's/;/; /g')
 jobs_=(uniform_box.det uniform_box.stoch leaves_wind.det leaves_wind.stoch debris_tank.det \
   debris_tank.stoch grid)
