@@ -425,6 +425,20 @@ def report(rows, slopes, kinds, sources, scenes, date, seconds, note=""):
                 w("* `%s` scenes: no measured point reaches %g %% (smallest: %s at dt = %g s, "
                   "%.2g)." % (kind, tol * 100, best["integrator"] if best else "-",
                               best["dt"] if best else 0, best["error"] if best else 0))
+    for scene in scenes:
+        # what the stochastic sweep can resolve: a weak error is claimed with 2 Monte Carlo
+        # standard errors added, so no point can show less than its own 2 SE
+        floor = {m: min((2 * r["error_se"] for r in rows if r["scene"] == scene and
+                         r["sweep"] == "dt_stoch" and r["metric"] == m and r["valid"] and
+                         not r["failed"]), default=float("nan")) for m in TOL_WEAK}
+        ref = [r for r in rows if r["scene"] == scene and r["sweep"] == "reference_stoch"]
+        if ref and all(math.isfinite(v) for v in floor.values()):
+            w("* `%s`: the weak errors' Monte Carlo floor (2 standard errors of the paired "
+              "differences, the smallest over the swept points) is %.2g for the mean and %.2g for "
+              "the variance: no point can show a smaller `--tolerance` error, except the "
+              "stochastic reference's own step (%s at dt = %g s), whose weak errors are 0 by "
+              "construction." % (scene, floor["weak_mean"], floor["weak_var"],
+                                 ref[0]["integrator"], ref[0]["dt"]))
     det = {(s["scene"], s["integrator"]): s for s in slopes
            if s["sweep"] == "dt_det" and s["metric"] == "trajectory"}
     for scene in scenes:
