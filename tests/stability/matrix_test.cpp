@@ -1,4 +1,5 @@
-// Stability matrix (issue 9): the splitting scheme at every combination of
+// Stability matrix (issue 9; strang, issue 28): the splitting and strang schemes at every
+// combination of
 //   density ratio rho_b/rho_f in {0.001, 0.01, 0.1, 1, 10, 1000} (bubble to steel, in air),
 //   aspect ratio 1, 10, 100, 1000 (sphere to a sheet of paper; oblate ellipsoids, 10 cm wide),
 //   dt in {1e-4, 1e-3, 1e-2, 0.05} s and eps/k dt in {0.01, 1, 100},
@@ -52,17 +53,15 @@ Model compile_cached(const Scene& s) {
   });
 }
 
-class StabilityMatrix : public ::testing::TestWithParam<MatrixCase> {};
-
-TEST_P(StabilityMatrix, SplittingStaysFiniteAndBounded) {
-  const MatrixCase c = GetParam();
+// one matrix cell (every dt and eps/k dt) on one scheme
+void expect_stable(const MatrixCase& c, Integrator scheme) {
   for (double dt : {1e-4, 1e-3, 1e-2, 0.05}) {
     for (double ek_dt : {0.01, 1.0, 100.0}) {
       Scene s = test::sphere_scene(1, c.density_ratio * kRhoAir, kRhoAir, kNuAir);
       s.bodies[0].shape = shape_of(c);
       s.bodies[0].orientation = Quat(Eigen::AngleAxisd(0.3, Vec3(1, 2, 3).normalized()));
       s.effects = stability::all_effects();
-      s.integrator = Integrator::Splitting;
+      s.integrator = scheme;
       s.uniform_U = kU;
       s.uniform_k = kK;
       s.uniform_epsilon = ek_dt * kK / dt;
@@ -74,7 +73,7 @@ TEST_P(StabilityMatrix, SplittingStaysFiniteAndBounded) {
       const FluidSample fs = stability::sample_at(m, Vec3::Zero());
       const stability::Bound b = stability::Bound::of(m, m.types[0]);
       std::ostringstream id;
-      id << "rho_b/rho_f = " << c.density_ratio << ", aspect " << c.aspect
+      id << integrator_name(scheme) << ": rho_b/rho_f = " << c.density_ratio << ", aspect " << c.aspect
          << (c.box ? " box" : "") << ", dt = " << dt << " s, eps/k dt = " << ek_dt
          << " (alpha dt = " << fs.alpha * dt << "), v_T bound " << b.v_T << " m/s, G " << b.G
          << ": max |V-U| " << o.max_speed << " m/s, max E/bound " << o.max_energy_ratio;
@@ -92,6 +91,17 @@ TEST_P(StabilityMatrix, SplittingStaysFiniteAndBounded) {
       if (!o.failure.empty()) return;  // one report per matrix cell is enough
     }
   }
+}
+
+class StabilityMatrix : public ::testing::TestWithParam<MatrixCase> {};
+
+TEST_P(StabilityMatrix, SplittingStaysFiniteAndBounded) {
+  expect_stable(GetParam(), Integrator::Splitting);
+}
+
+// strang's force half steps are ROS2 (L-stable) around the same free flow and exact OU steps
+TEST_P(StabilityMatrix, StrangStaysFiniteAndBounded) {
+  expect_stable(GetParam(), Integrator::Strang);
 }
 
 std::vector<MatrixCase> ellipsoid_cases() {
