@@ -15,6 +15,7 @@
 
 #include "effects/compile_model.h"
 #include "integrate/simulation.h"
+#include "accuracy/cases.h"
 #include "support/fixture.h"
 
 namespace lrigid {
@@ -22,6 +23,8 @@ namespace {
 
 using test::compile;
 using test::effects;
+using accuracy::sinking_sphere;
+using accuracy::tumbling_ellipsoid;
 
 struct Run {
   std::vector<Vec3> x;       // final positions, m
@@ -74,31 +77,6 @@ double deterministic_slope(const Scene& s, Integrator integ, const std::vector<d
   const double p = log_log_slope(dts, err);
   std::printf("%s %s: slope %.2f\n", label, integrator_name(integ), p);
   return p;
-}
-
-// 1 mm glass sphere in water thrown sideways: gravity, buoyancy, added mass and nonlinear drag
-// (the relative speed never passes through zero, so the right-hand side is smooth)
-Scene sinking_sphere() {
-  Scene s = test::sphere_scene(1e-3, 2500, 998.2, 1e-6, 4);
-  s.effects = effects({Effect::Gravity, Effect::Buoyancy, Effect::AddedMass, Effect::Drag});
-  s.bodies[0].velocity = Vec3(0.1, 0.02, 0.05);
-  s.duration = 0.08;  // about four drag relaxation times
-  return s;
-}
-
-// prolate 2:1:1 ellipsoid, slightly heavier than water, tilted and spinning: added mass with
-// its Munk moment, rotation on SO(3). No drag: the drag of a non-spherical body depends on
-// |direction cosines| of the relative velocity, which is not smooth, and rk4 then measures
-// below order 4 (slope 0.7 on this case with drag; see docs/accuracy.md).
-Scene tumbling_ellipsoid() {
-  Scene s = test::sphere_scene(1e-3, 1100, 998.2, 1e-6, 1);
-  s.bodies[0].shape = Shape::ellipsoid(0.01, 0.005, 0.005);
-  s.bodies[0].orientation = Quat(Eigen::AngleAxisd(0.4, Vec3(0.3, 1, 0.2).normalized()));
-  s.bodies[0].velocity = Vec3(0.05, 0, -0.02);
-  s.bodies[0].angular_velocity = Vec3(0.5, -1.0, 2.0);
-  s.effects = effects({Effect::Gravity, Effect::Buoyancy, Effect::AddedMass});
-  s.duration = 0.5;
-  return s;
 }
 
 TEST(Convergence, DeterministicOrdersOnASinkingSphere) {

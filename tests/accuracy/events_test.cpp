@@ -14,6 +14,7 @@
 
 #include "effects/compile_model.h"
 #include "integrate/simulation.h"
+#include "accuracy/cases.h"
 #include "integrate/stops.h"
 #include "support/fixture.h"
 
@@ -83,12 +84,10 @@ Slopes landing_slopes(const Scene& s, Integrator integ, const std::vector<double
   return p;
 }
 
-// 1 mm glass spheres in water thrown sideways 4-8 mm above a ground that stops them: gravity,
-// buoyancy, added mass and nonlinear drag; they land after 0.03-0.07 s
+// 1 mm glass spheres in water thrown sideways 4-8 mm above a ground that stops them (the
+// convergence tests' sinking sphere); they land after 0.03-0.07 s
 Scene landing_spheres() {
-  Scene s = test::sphere_scene(1e-3, 2500, 998.2, 1e-6, 4);
-  s.effects = effects({Effect::Gravity, Effect::Buoyancy, Effect::AddedMass, Effect::Drag});
-  s.bodies[0].velocity = Vec3(0.1, 0.02, 0.05);
+  Scene s = accuracy::sinking_sphere(4);
   s.bodies[0].spawn_in_box = true;
   s.bodies[0].box_lo = Vec3(0, 0, 0.004);
   s.bodies[0].box_hi = Vec3(0.002, 0.002, 0.008);
@@ -99,18 +98,13 @@ Scene landing_spheres() {
   return s;
 }
 
-// prolate 2:1:1 ellipsoids slightly heavier than water, tilted and spinning, falling onto the
-// ground: where they touch depends on their orientation (added mass with its Munk moment)
+// the tumbling ellipsoids a little heavier (1300 kg/m^3), falling onto the ground: where they
+// touch depends on their orientation (added mass with its Munk moment)
 Scene landing_ellipsoids() {
-  Scene s = test::sphere_scene(1e-3, 1300, 998.2, 1e-6, 3);
-  s.bodies[0].shape = Shape::ellipsoid(0.01, 0.005, 0.005);
-  s.bodies[0].orientation = Quat(Eigen::AngleAxisd(0.4, Vec3(0.3, 1, 0.2).normalized()));
-  s.bodies[0].velocity = Vec3(0.05, 0, -0.02);
-  s.bodies[0].angular_velocity = Vec3(0.5, -1.0, 2.0);
+  Scene s = accuracy::tumbling_ellipsoid(1300, 3);
   s.bodies[0].spawn_in_box = true;
   s.bodies[0].box_lo = Vec3(0, 0, 0.012);
   s.bodies[0].box_hi = Vec3(0.01, 0.01, 0.016);
-  s.effects = effects({Effect::Gravity, Effect::Buoyancy, Effect::AddedMass});
   s.has_ground = true;
   s.ground_contact = ContactMode::Stop;
   s.duration = 0.6;

@@ -14,12 +14,15 @@
 
 #include "effects/compile_model.h"
 #include "integrate/simulation.h"
+#include "accuracy/cases.h"
 #include "support/fixture.h"
 
 namespace lrigid {
 namespace {
 
 using test::effects;
+using accuracy::sinking_sphere;
+using accuracy::tumbling_ellipsoid;
 
 struct FinalState {
   std::vector<Vec3> x;  // final positions, m
@@ -79,28 +82,6 @@ double slope(const Scene& s, const FluidField& f, Integrator integ, const std::v
   std::printf("%s %s: slope %.2f\n", label, integrator_name(integ), p);
   if (errors) *errors = err;
   return p;
-}
-
-// 1 mm glass sphere in water thrown sideways (tests/accuracy/convergence_test.cpp's case)
-Scene sinking_sphere() {
-  Scene s = test::sphere_scene(1e-3, 2500, 998.2, 1e-6, 4);
-  s.effects = effects({Effect::Gravity, Effect::Buoyancy, Effect::AddedMass, Effect::Drag});
-  s.bodies[0].velocity = Vec3(0.1, 0.02, 0.05);
-  s.duration = 0.08;
-  return s;
-}
-
-// prolate ellipsoid, tilted and spinning, added mass with its Munk moment (no drag: its
-// |direction cosines| are not smooth)
-Scene tumbling_ellipsoid() {
-  Scene s = test::sphere_scene(1e-3, 1100, 998.2, 1e-6, 1);
-  s.bodies[0].shape = Shape::ellipsoid(0.01, 0.005, 0.005);
-  s.bodies[0].orientation = Quat(Eigen::AngleAxisd(0.4, Vec3(0.3, 1, 0.2).normalized()));
-  s.bodies[0].velocity = Vec3(0.05, 0, -0.02);
-  s.bodies[0].angular_velocity = Vec3(0.5, -1.0, 2.0);
-  s.effects = effects({Effect::Gravity, Effect::Buoyancy, Effect::AddedMass});
-  s.duration = 0.5;
-  return s;
 }
 
 // a leaf (6 x 4 x 0.04 cm box, 600 kg/m^3) in a uniform 2 m/s wind, tilted, with plate drag,
