@@ -248,15 +248,24 @@ LRIGID_MULTIVERSION void rk4_lanes(const StepConsts& tc, const Rk4Frames& frames
   LRIGID_IVDEP
   for (int j = 0; j < kBatch; ++j) {
     const T q0[4] = {lanes->q[0][j], lanes->q[1][j], lanes->q[2][j], lanes->q[3][j]};
-    T theta[3], q1[4], R1[9], v1[3], V1[3];
+    T theta[3], q1[4], R0[9], R1[9], dv[3], v1[3], dR[9], a0[3], a1[3], V1[3];
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
       theta[a] = h6 * k.Sth[a][j];
-      v1[a] = k.v0[a][j] + h6 * k.Sxi[a][j];
+      dv[a] = h6 * k.Sxi[a][j];
+      v1[a] = k.v0[a][j] + dv[a];
     }
     exp_rotate<LaneMath>(q0, theta, q1);
+    rotation(q0, R0);
     rotation(q1, R1);
-    mul(R1, v1, V1);
+    // V1 = R1 v1 as V0 + R0 dv + (R1 - R0) v1 (R0 v0 = V0): the start's world velocity is not
+    // taken through R0 and back, which in single precision scaled it by |q|^4 every step
+#pragma GCC unroll 9
+    for (int e = 0; e < 9; ++e) dR[e] = R1[e] - R0[e];
+    mul(R0, dv, a0);
+    mul(dR, v1, a1);
+#pragma GCC unroll 3
+    for (int a = 0; a < 3; ++a) V1[a] = lanes->V[a][j] + a0[a] + a1[a];
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
       if constexpr (Extra)
