@@ -147,8 +147,8 @@ void set_field_consts(const Model& model, const BodyType& type, FieldConsts* fc)
 }
 
 // What rules out the batched steps for every body type: the integrator (euler and rk4 only where
-// explicit_schemes: the rigid-body step), the turbulence model, the noise, the field. Empty when
-// none does.
+// explicit_schemes; both steps now run them, sphere_batch_explicit.h and rigid_batch_explicit.h,
+// so both pass true), the turbulence model, the noise, the field. Empty when none does.
 std::string batch_exclusion(const Model& model, const BodyType& type, bool explicit_schemes) {
   if (!model.batched) return "the scene turns the batched step off";
   const bool split =

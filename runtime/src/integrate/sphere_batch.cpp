@@ -15,7 +15,7 @@ bool sphere_batch_eligible(const Model& model, const BodyType& type, std::string
     if (why) *why = reason;
     return false;
   };
-  if (const std::string all = batch_exclusion(model, type, false); !all.empty()) return no(all);
+  if (const std::string all = batch_exclusion(model, type, true); !all.empty()) return no(all);
   if (type.shape.type != ShapeType::Sphere) return no("not a sphere");
   if (!type.M_isotropic || !type.r_cob.isZero(0.0))
     return no("the centre of mass is off the centroid");
@@ -33,6 +33,11 @@ struct StepConsts : FieldConsts {
   // sphere drag (effects/drag.h drag_kernel, r_cob = 0): the law and the sphere's area
   DragParams law;
   double a_perp = 0, d_perp = 0;
+  // euler and rk4 (sphere_batch_explicit.h): the scheme, M (with M^-1), M_body's and K's
+  // diagonals, and the Basset history's (M + b P)^-1 on the linear block
+  Integrator scheme = Integrator::Splitting;
+  DiagonalMass diag, body, fluid;
+  double basset_inv = 0;
 };
 
 StepConsts make_consts(const Model& model, const BodyType& type) {
@@ -49,6 +54,13 @@ StepConsts make_consts(const Model& model, const BodyType& type) {
   const double r = type.ell.x();
   tc.a_perp = M_PI * r * r;
   tc.d_perp = 2.0 * std::sqrt(tc.a_perp / M_PI);
+  tc.scheme = model.integrator;
+  tc.diag = diagonal_mass(type);
+  for (int a = 0; a < 6; ++a) {
+    tc.body.M[a] = type.M_body(a, a);
+    tc.fluid.M[a] = e.has(Effect::AddedMass) ? type.K_fluid(a, a) : 0.0;
+  }
+  tc.basset_inv = tc.basset ? type.basset.implicit_inv(0, 0) : 0.0;
   return tc;
 }
 
@@ -371,14 +383,26 @@ LRIGID_IVDEP
   end_step<T, Turb>(tc, z2, Vn, &next, lanes, outcome, landed);
 }
 
+}  // namespace
+}  // namespace lrigid
+#include "integrate/sphere_batch_explicit.h"  // euler and rk4
+namespace lrigid {
+namespace {
+
 template <typename T>
 BlockStats advance(const Model& model, const BodyType& type, State* state, const uint32_t* body,
                    int count, uint64_t first, uint64_t last) {
   const StepConsts tc = make_consts(model, type);
-  auto step = [&tc](auto turb, auto drag, auto extra, Lanes<T>* lanes, uint64_t s, int* outcome,
-                    int* landed) {
+  const bool unsteady = tc.grid && model.field.frame_count() > 1;
+  auto step = [&](auto turb, auto drag, auto extra, Lanes<T>* lanes, uint64_t s, int* outcome,
+                  int* landed) {
     constexpr bool A = decltype(turb)::value, B = decltype(drag)::value,
                    C = decltype(extra)::value;
+    if (tc.scheme == Integrator::Euler)
+      return euler_lanes<T, A, B, C>(tc, lanes, s, outcome, landed);
+    if (tc.scheme == Integrator::RK4)
+      return rk4_lanes<T, A, B, C>(tc, rk4_frames(model, unsteady, s), lanes, s, outcome,
+                                   landed);
     if (tc.strang)
       step_lanes<T, A, B, C, true>(tc, lanes, s, outcome, landed);
     else

@@ -1,5 +1,5 @@
-// The batched step for small spheres: the splitting scheme of integrate/integrators.h for bodies
-// whose generalized mass is isotropic (uniform spheres), advanced kBatch at a time in
+// The batched step for small spheres: the schemes of integrate/integrators.h for bodies whose
+// generalized mass is isotropic (uniform spheres), advanced kBatch at a time in
 // structure-of-arrays blocks, so each stage of the step is one loop across bodies that the
 // compiler vectorizes (docs/batched-step.md).
 //
@@ -14,9 +14,10 @@
 // measured by bench/perf/batch_bench.py).
 //
 // What qualifies (sphere_batch_eligible): a uniform sphere (centre of mass at the centroid) with
-// effects among gravity, buoyancy, drag, added mass, mean flow and turbulence; the seen
-// turbulence model; the splitting integrator; one noise increment per step; a uniform field, a
-// grid or a series of grids. Other body types take the scalar step; a scene can mix both.
+// effects among gravity, buoyancy, drag, added mass, mean flow, turbulence, Basset and Magnus;
+// the seen turbulence model; any integrator (splitting, strang, and euler and rk4 in
+// sphere_batch_explicit.h); one noise increment per step; a uniform field, a grid or a series of
+// grids. Other body types take the scalar step; a scene can mix both.
 #pragma once
 #include <cstdint>
 #include <string>

@@ -1,0 +1,65 @@
+// What the euler and rk4 loops of the batched steps need beyond batch_lanes.h, written for any
+// kind of lane (Lanes derived from Samples<T>, consts derived from FieldConsts): the field's
+// frames at rk4's stage times, rk4's per-stage storage across a block, and the Euler-Maruyama
+// update of the seen fluctuation. Internal to sphere_batch.cpp (sphere_batch_explicit.h).
+// rigid_batch_explicit.h predates this header and keeps its own copies of the three (StageFrames,
+// Rk4Stages, lane_ou_euler, written for the rigid step's consts and lanes): the same code under
+// other names, which it can replace by including this header.
+#pragma once
+#include "effects/turbulence.h"
+#include "fluid/field.h"
+#include "integrate/batch_lanes.h"
+
+namespace lrigid {
+namespace {  // NOLINT(build/namespaces): internal to the batched-step files
+
+// The field's frames at rk4's stage times t + h/2 and t + h of step s (a time-dependent field;
+// none: the driver's frames, FieldConsts::records)
+struct Rk4Frames {
+  bool unsteady = false;
+  FluidField::FrameBlend mid, end;
+};
+
+Rk4Frames rk4_frames(const Model& model, bool unsteady, uint64_t s) {
+  Rk4Frames f;
+  f.unsteady = unsteady;
+  if (unsteady) {
+    const double t = static_cast<double>(s) * model.dt;
+    f.mid = model.field.frames_at(t + 0.5 * model.dt);
+    f.end = model.field.frames_at(t + model.dt);
+  }
+  return f;
+}
+
+// rk4's state within a step: each stage's state (position, rotation vector theta from the
+// start's q, body-frame v, w), and the sums k1 + 2 k2 + 2 k3 + k4 of the rates of x (world),
+// theta and xi = (v; w); ok: 0 where a stage's sample left the fluid; v0: the start's body-frame
+// velocity (for lanes that keep the world one)
+template <typename T>
+struct Rk4Block {
+  alignas(64) T v0[3][kBatch];
+  alignas(64) T xs[3][kBatch];
+  alignas(64) T th[3][kBatch];
+  alignas(64) T vs[3][kBatch];
+  alignas(64) T ws[3][kBatch];
+  alignas(64) T Sx[3][kBatch];
+  alignas(64) T Sth[3][kBatch];
+  alignas(64) T Sxi[6][kBatch];
+  alignas(64) T ok[kBatch];
+};
+
+// The seen fluctuation us of lane j after the step by Euler-Maruyama from the start of the step
+// (integrators.cpp step_body: Ito, the start's sample and path velocity V0, world), normals z
+// (the whole step's, lane_normals<T, true>)
+template <typename T, class Lanes>
+LRIGID_LANE void ou_euler_lane(const FieldConsts& fc, const Lanes* lanes, int j, const T* V0,
+                               const T (*z)[kBatch], T* us) {
+  T decay, noise;
+  ou_euler_kernel(lanes->alpha[j], lanes->beta[j], T(fc.h), &decay, &noise);
+  const T gs[3] = {lanes->gs[0][j], lanes->gs[1][j], lanes->gs[2][j]};
+  const T zj[3] = {z[0][j], z[1][j], z[2][j]};
+  ou_update(T(fc.wm), decay, noise, lanes->sigma2[j], V0, gs, zj, T(fc.h), us);
+}
+
+}  // namespace
+}  // namespace lrigid
