@@ -190,7 +190,7 @@ LRIGID_LANE void rk4_stage(const StepConsts& tc, const Lanes<T>* lanes, const T 
     mul(R, v, kx);
     dexpinv(theta, w, kth);
     const bool in = !tc.sample | (lanes->inside[j] != T(0));
-    k->ok[j] = (I == 0 || k->ok[j] != T(0)) & in ? T(1) : T(0);
+    k->ok[j] = ((I == 0 || k->ok[j] != T(0)) & in) ? T(1) : T(0);
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
       k->Sx[a][j] = I == 0 ? kx[a] : k->Sx[a][j] + wi * kx[a];
