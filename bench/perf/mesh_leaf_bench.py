@@ -5,10 +5,11 @@
 4 mm and turned 20 degrees about z, 1696 triangles: its generalized mass is a full 6 x 6, which
 the batched step runs on the full-mass kernels of integrate/kirchhoff.h). Body-steps per CPU
 second, the two measured alternately --rounds times, best of each (other jobs only slow a run
-down), and their ratio.
+down), and their ratio. --scalar also steps the mesh on the scalar step (the scene with
+"batched": false, 1e6 body-steps timed) and prints the batched step's gain over it.
 
     bench/perf/mesh_leaf_bench.py [--lrigid build/bin/lrigid] [--n 10000] [--rounds 3]
-        [--integrators splitting,strang] [--threads 1] [--warmup 250] [--json OUT]
+        [--integrators splitting,strang] [--threads 1] [--warmup 250] [--scalar] [--json OUT]
 
 Field: results/grids/windCourtyard.vti when ./Allrun made it, else a uniform wind of 3 m/s with
 seen turbulence (k = 0.1 m^2/s^2, eps = 0.05 m^2/s^3), said in the output. Warm-up steps first
@@ -26,7 +27,7 @@ import time
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
 
-def leaf_scene(out_dir, mesh):
+def leaf_scene(out_dir, mesh, batched=True):
     s = json.load(open(os.path.join(ROOT, "scenes/leaves_wind.json")))
     grid = os.path.join(ROOT, "results/grids/windCourtyard.vti")
     if os.path.exists(grid):
@@ -42,16 +43,20 @@ def leaf_scene(out_dir, mesh):
         leaf["shape"] = {"type": "mesh",
                          "file": os.path.join(ROOT, "tests/data/meshes/bent_leaf.obj")}
     s["bodies"] = [leaf]
-    path = os.path.join(out_dir, ("mesh" if mesh else "box") + "_leaf.json")
+    if not batched:
+        s.setdefault("integrator", {})["batched"] = False
+    path = os.path.join(out_dir, ("mesh" if mesh else "box") + "_leaf" +
+                        ("" if batched else "_scalar") + ".json")
     json.dump(s, open(path, "w"), indent=1)
     return path, field
 
 
-def bench(lrigid, scene, args):
+def bench(lrigid, scene, args, extra=()):
     with tempfile.NamedTemporaryFile(suffix=".json") as out:
         subprocess.run([lrigid, "bench", scene, "--n", str(args.n), "--integrators",
                         args.integrators, "--threads", str(args.threads), "--warmup",
-                        str(args.warmup), "--quiet", "--json", out.name], check=True)
+                        str(args.warmup), "--quiet", "--json", out.name] + list(extra),
+                       check=True)
         return json.load(open(out.name))
 
 
@@ -63,16 +68,22 @@ def main():
     ap.add_argument("--integrators", default="splitting,strang")
     ap.add_argument("--threads", type=int, default=1)
     ap.add_argument("--warmup", type=int, default=250)
+    ap.add_argument("--scalar", action="store_true",
+                    help="also the mesh on the scalar step (\"batched\": false)")
     ap.add_argument("--json")
     args = ap.parse_args()
     best = {}
     with tempfile.TemporaryDirectory() as tmp:
         box, field = leaf_scene(tmp, False)
         mesh, _ = leaf_scene(tmp, True)
+        kinds = [("box", box, ()), ("mesh", mesh, ())]
+        if args.scalar:
+            kinds.append(("scalar", leaf_scene(tmp, True, False)[0],
+                          ("--body-steps", "1000000")))
         print("field: " + field)
         for r in range(args.rounds):
-            for kind, scene in (("box", box), ("mesh", mesh)):
-                res = bench(args.lrigid, scene, args)
+            for kind, scene, extra in kinds:
+                res = bench(args.lrigid, scene, args, extra)
                 for run in res["runs"]:
                     key = (kind, run["integrator"])
                     rate = run["body_steps_per_cpu_s"]
@@ -95,15 +106,22 @@ def main():
     print("N = %d, %d thread(s), %d warm-up steps, best of %d rounds, body-steps per CPU second"
           % (args.n, args.threads, args.warmup, args.rounds))
     print("%-10s %14s %14s %10s %12s" % ("scheme", "box leaf", "mesh leaf", "cost ratio",
-                                          "mesh scalar%"))
+                                          "mesh scalar%") +
+          (" %14s %10s" % ("mesh, scalar", "gain") if args.scalar else ""))
     out = {"field": field, "n": args.n, "threads": args.threads, "cpu": cpu,
            "date": time.strftime("%Y-%m-%d", time.gmtime()), "schemes": {}}
     for integ in args.integrators.split(","):
         b, m = best[("box", integ)], best[("mesh", integ)]
         ratio = b["rate"] / m["rate"] if m["rate"] > 0 else float("inf")
-        print("%-10s %14.4g %14.4g %10.2f %12.2f" % (integ, b["rate"], m["rate"], ratio,
-                                                     m["scalar_pct"]))
+        line = "%-10s %14.4g %14.4g %10.2f %12.2f" % (integ, b["rate"], m["rate"], ratio,
+                                                      m["scalar_pct"])
         out["schemes"][integ] = {"box": b, "mesh": m, "cost_ratio": ratio}
+        if args.scalar:
+            sc = best[("scalar", integ)]
+            gain = m["rate"] / sc["rate"] if sc["rate"] > 0 else float("inf")
+            line += " %14.4g %10.2f" % (sc["rate"], gain)
+            out["schemes"][integ].update({"mesh_scalar": sc, "batched_over_scalar": gain})
+        print(line)
     if args.json:
         json.dump(out, open(args.json, "w"), indent=1)
 

@@ -33,9 +33,6 @@ bool rigid_batch_eligible(const Model& model, const BodyType& type, std::string*
   if (const std::string all = batch_exclusion(model, type, true); !all.empty()) return no(all);
   if (type.M_isotropic) return no("an isotropic generalized mass (the sphere step's)");
   if (!type.r_cob.isZero(0.0)) return no("the centre of mass is off the centroid");
-  if ((model.integrator == Integrator::Euler || model.integrator == Integrator::RK4) &&
-      !diagonal_step(type))
-    return no("euler and rk4 on a full generalized mass (a mesh body): no batched kernels yet");
   return true;
 }
 
@@ -54,12 +51,16 @@ struct StepConsts : FieldConsts {
   // the drag of bodies that are not flat (effects/drag.h) and the plate model (effects/plate.h)
   DragParams law;
   PlateParams plate_model;
-  // euler and rk4 (rigid_batch_explicit.h): the scheme, M_body's and K's diagonals (in .M), the
-  // Basset history's (M + b P)^-1 diagonal on the linear block
+  // euler and rk4 (rigid_batch_explicit.h): the scheme; M_body and K as the gyroscopic and
+  // added-mass kernels take them (mass_times reads .M; K zero without added mass); the Basset
+  // history's (M + b P)^-1, its first three columns in K's layout (fluid_impulse applies them)
   Integrator scheme = Integrator::Splitting;
-  DiagonalMass body, fluid;
-  double basset_inv[3] = {0, 0, 0};
+  Mass body, fluid;
+  typename FluidImpulseOf<Mass>::type basset_inv;
 };
+
+// a full K without the added-mass effect
+constexpr double kNoTensor[36] = {};
 
 template <class Mass>
 StepConsts<Mass> make_consts(const Model& model, const BodyType& type) {
@@ -82,11 +83,19 @@ StepConsts<Mass> make_consts(const Model& model, const BodyType& type) {
   tc.law = type.plan.params->drag;
   if (type.flat) tc.plate_model = type.plan.params->plate_both;
   tc.scheme = model.integrator;
-  for (int a = 0; a < 6; ++a) {
-    tc.body.M[a] = type.M_body(a, a);
-    tc.fluid.M[a] = e.has(Effect::AddedMass) ? type.K_fluid(a, a) : 0.0;
+  const Mat6& inv = type.basset.implicit_inv;
+  if constexpr (std::is_same_v<Mass, DiagonalMass>) {
+    for (int a = 0; a < 6; ++a) {
+      tc.body.M[a] = type.M_body(a, a);
+      tc.fluid.M[a] = am ? type.K_fluid(a, a) : 0.0;
+    }
+    for (int a = 0; a < 3; ++a) tc.basset_inv.K[a] = tc.basset ? inv(a, a) : 0.0;
+  } else {
+    tc.body.M = type.M_body.data();  // symmetric: row or column major alike
+    tc.fluid.M = am ? type.K_fluid.data() : kNoTensor;
+    for (int r = 0; r < 6; ++r)
+      for (int c = 0; c < 3; ++c) tc.basset_inv.K[r * 3 + c] = tc.basset ? inv(r, c) : 0.0;
   }
-  for (int a = 0; a < 3; ++a) tc.basset_inv[a] = tc.basset ? type.basset.implicit_inv(a, a) : 0.0;
   return tc;
 }
 
@@ -741,15 +750,11 @@ BlockStats advance(const Model& model, const BodyType& type, State* state, const
                   int* landed) {
     constexpr bool A = decltype(turb)::value, B = decltype(plate)::value,
                    C = decltype(extra)::value;
-    // euler and rk4 have diagonal kernels only (rigid_batch_eligible sends a full M's to the
-    // scalar step)
-    if constexpr (std::is_same_v<Mass, DiagonalMass>) {
-      if (tc.scheme == Integrator::Euler)
-        return euler_lanes<T, A, B, C>(tc, lanes, s, outcome, landed);
-      if (tc.scheme == Integrator::RK4)
-        return rk4_lanes<T, A, B, C>(tc, stage_frames(model, unsteady, s), lanes, s, outcome,
-                                     landed);
-    }
+    if (tc.scheme == Integrator::Euler)
+      return euler_lanes<T, A, B, C>(tc, lanes, s, outcome, landed);
+    if (tc.scheme == Integrator::RK4)
+      return rk4_lanes<T, A, B, C>(tc, stage_frames(model, unsteady, s), lanes, s, outcome,
+                                   landed);
     if (tc.strang)
       step_lanes<T, A, B, C, true>(tc, lanes, s, outcome, landed);
     else

@@ -8,9 +8,12 @@
 // ellipsoid drag (body_forces), Magnus, the Basset history, the added mass's wrench
 // (effects/added_mass.h, impulse form for euler, velocity form for rk4), the Kirchhoff gyroscopic
 // terms (effects/wrench.h), the exponential map and dexp^-1 (util/lane.h), the implicit solve
-// (integrate/kirchhoff.h), the OU update (effects/turbulence.h). Neither scheme iterates: no lane
-// is handed to the scalar step but an rk4 lane whose stage leaves the fluid (the scalar step
-// then exits it where it would have).
+// (integrate/kirchhoff.h), the OU update (effects/turbulence.h). Like the splitting loops, they
+// are compiled for each kind of M (integrate/kirchhoff.h DiagonalMass, FullMass: meshes): the
+// impulse and velocity conversions (impulse_of_velocity, velocity_of_impulse), M^-1
+// (mass_inv_times) and the products with M_body and K (mass_times) are the kernels' for either.
+// Neither scheme iterates: no lane is handed to the scalar step but an rk4 lane whose stage leaves
+// the fluid (the scalar step then exits it where it would have).
 #pragma once
 #include "effects/added_mass.h"
 #include "effects/turbulence.h"
@@ -28,9 +31,9 @@ namespace {  // NOLINT(build/namespaces): internal to rigid_batch.cpp
 // (world, the gu factor applied). ImpulseForm: euler's (the added mass's -v_r x P_f alone), else
 // rk4's velocity form (the added mass's Kirchhoff terms and the drag-along K a~). As
 // integrate/dynamics.cpp context_from_sample and the plan's terms.
-template <typename T, bool Plate, bool Extra, bool ImpulseForm>
-LRIGID_LANE void lane_wrench(const StepConsts<DiagonalMass>& tc, const T* R, const T* Fw,
-                             const T* ufb, const T* acc, const T* v, const T* w, T* f) {
+template <typename T, bool Plate, bool Extra, bool ImpulseForm, class Mass>
+LRIGID_LANE void lane_wrench(const StepConsts<Mass>& tc, const T* R, const T* Fw, const T* ufb,
+                             const T* acc, const T* v, const T* w, T* f) {
   T vr[3], Fb[3], lift[3] = {0, 0, 0}, fx[3] = {0, 0, 0}, fa[3] = {0, 0, 0}, am[6];
 #pragma GCC unroll 3
   for (int a = 0; a < 3; ++a) vr[a] = v[a] - ufb[a];
@@ -55,9 +58,9 @@ LRIGID_LANE void lane_wrench(const StepConsts<DiagonalMass>& tc, const T* R, con
 
 // A lane's fluid velocity (world): the mean flow and the seen fluctuation us; its material
 // derivative (world, 0 without gradients); the weight and buoyancy with the Basset history force
-template <typename T, bool Turb, bool Extra>
-LRIGID_LANE void lane_fluid(const StepConsts<DiagonalMass>& tc, const Lanes<T>* lanes, int j,
-                            const T* us, T* u_f, T* acc, T* Fw) {
+template <typename T, bool Turb, bool Extra, class C>
+LRIGID_LANE void lane_fluid(const C& tc, const Lanes<T>* lanes, int j, const T* us, T* u_f, T* acc,
+                            T* Fw) {
 #pragma GCC unroll 3
   for (int a = 0; a < 3; ++a) {
     u_f[a] = T(tc.mf) * lanes->U[a][j] + (Turb ? us[a] : T(0));
@@ -68,9 +71,9 @@ LRIGID_LANE void lane_fluid(const StepConsts<DiagonalMass>& tc, const Lanes<T>* 
 
 // The seen fluctuation after the step by Euler-Maruyama from the start of the step (integrators.cpp
 // step_body: Ito, the start's sample and path velocity V0, world), normals z (whole step)
-template <typename T>
-LRIGID_LANE void lane_ou_euler(const StepConsts<DiagonalMass>& tc, const Lanes<T>* lanes, int j,
-                               const T* V0, const T (*z)[kBatch], T* us) {
+template <typename T, class C>
+LRIGID_LANE void lane_ou_euler(const C& tc, const Lanes<T>* lanes, int j, const T* V0,
+                               const T (*z)[kBatch], T* us) {
   T decay, noise;
   ou_euler_kernel(lanes->alpha[j], lanes->beta[j], T(tc.h), &decay, &noise);
   const T gs[3] = {lanes->gs[0][j], lanes->gs[1][j], lanes->gs[2][j]};
@@ -81,9 +84,9 @@ LRIGID_LANE void lane_ou_euler(const StepConsts<DiagonalMass>& tc, const Lanes<T
 // euler (integrators.cpp impulse_step): one explicit step of the world-frame impulse, the forces,
 // Munk moment and rotation from the start of the step, the Basset history's current interval
 // implicit; then the seen fluctuation by Euler-Maruyama.
-template <typename T, bool Turb, bool Plate, bool Extra>
-LRIGID_MULTIVERSION void euler_lanes(const StepConsts<DiagonalMass>& tc, Lanes<T>* lanes,
-                                     uint64_t step, int* outcome, int* landed) {
+template <typename T, bool Turb, bool Plate, bool Extra, class Mass>
+LRIGID_MULTIVERSION void euler_lanes(const StepConsts<Mass>& tc, Lanes<T>* lanes, uint64_t step,
+                                     int* outcome, int* landed) {
   const T h = T(tc.h);
   alignas(64) T z[3][kBatch], Vn[3][kBatch];
   [[maybe_unused]] alignas(64) T unused[3][kBatch];
@@ -102,14 +105,11 @@ LRIGID_MULTIVERSION void euler_lanes(const StepConsts<DiagonalMass>& tc, Lanes<T
     mul_t(R, u_f, ufb);
     lane_wrench<T, Plate, Extra, true>(tc, R, Fw, ufb, acc, v, w, rate);
     // the impulse Pi = M xi - K (u_f; 0) and its change h rate
+    const T xi[6] = {v[0], v[1], v[2], w[0], w[1], w[2]};
     T Pi[6], dPi[6];
-#pragma GCC unroll 3
-    for (int a = 0; a < 3; ++a) {
-      Pi[a] = T(tc.mass.M[a]) * v[a] - T(tc.K.K[a]) * ufb[a];
-      Pi[3 + a] = T(tc.mass.M[3 + a]) * w[a];
-      dPi[a] = h * rate[a];
-      dPi[3 + a] = h * rate[3 + a];
-    }
+    impulse_of_velocity(tc.mass, tc.K, xi, ufb, Pi);
+#pragma GCC unroll 6
+    for (int a = 0; a < 6; ++a) dPi[a] = h * rate[a];
     if constexpr (Extra) {
       // the Basset history's current interval, 2 C sqrt(h) (du_f - dv) / h, implicitly
       const T b = T(tc.basset_mass);
@@ -135,17 +135,16 @@ LRIGID_MULTIVERSION void euler_lanes(const StepConsts<DiagonalMass>& tc, Lanes<T
     mul(R, P, Pw);
     mul(R, L, Lw);
     const T theta[3] = {h * w[0], h * w[1], h * w[2]};
-    T q1[4], R1[9], Pb[3], Lb[3], ufb1[3], v1[3], w1[3], V1[3];
+    // and the velocity there, xi = M^-1 (Pi + K (u_f; 0))
+    T q1[4], R1[9], Pn[6], ufb1[3], xi1[6], V1[3];
     exp_rotate<LaneMath>(q, theta, q1);
     rotation(q1, R1);
-    mul_t(R1, Pw, Pb);
-    mul_t(R1, Lw, Lb);
+    mul_t(R1, Pw, Pn);
+    mul_t(R1, Lw, Pn + 3);
     mul_t(R1, ufn, ufb1);
-#pragma GCC unroll 3
-    for (int a = 0; a < 3; ++a) {
-      v1[a] = T(tc.mass.Mi[a]) * (Pb[a] + T(tc.K.K[a]) * ufb1[a]);
-      w1[a] = T(tc.mass.Mi[3 + a]) * Lb[a];
-    }
+    velocity_of_impulse(tc.mass, tc.K, Pn, ufb1, xi1);
+    const T* v1 = xi1;
+    const T* w1 = xi1 + 3;
     mul(R1, v1, V1);
     if constexpr (Turb) lane_ou_euler(tc, lanes, j, V0, z, us);
 #pragma GCC unroll 3
@@ -199,9 +198,9 @@ struct Rk4Stages {
 // rk4's stage I (0 to 3) on every lane: the rates at the stage's state on the lanes' samples
 // there, added to the sums, and the next stage's state (c = 1/2, 1/2, 1); stage 0 also updates
 // the seen fluctuation (into next->us) from the start's sample
-template <typename T, bool Turb, bool Plate, bool Extra, int I>
-LRIGID_LANE void rk4_stage(const StepConsts<DiagonalMass>& tc, const Lanes<T>* lanes,
-                           const T (*z)[kBatch], Rk4Stages<T>* k, NewState<T>* next) {
+template <typename T, bool Turb, bool Plate, bool Extra, int I, class Mass>
+LRIGID_LANE void rk4_stage(const StepConsts<Mass>& tc, const Lanes<T>* lanes, const T (*z)[kBatch],
+                           Rk4Stages<T>* k, NewState<T>* next) {
   const T h = T(tc.h);
   const T ci = I == 0 || I == 1 ? T(0.5) : T(1), wi = I == 0 || I == 3 ? T(1) : T(2);
   LRIGID_IVDEP
@@ -232,16 +231,14 @@ LRIGID_LANE void rk4_stage(const StepConsts<DiagonalMass>& tc, const Lanes<T>* l
     lane_fluid<T, Turb, Extra>(tc, lanes, j, us0, u_f, acc, Fw);
     mul_t(R, u_f, ufb);
     lane_wrench<T, Plate, Extra, false>(tc, R, Fw, ufb, acc, v, w, f);
-    // the rigid body's own gyroscopic terms (about the centre of mass)
-    T Pb[3], Lb[3], g[6], kx[3], kth[3], kxi[6];
-#pragma GCC unroll 3
-    for (int a = 0; a < 3; ++a) {
-      Pb[a] = T(tc.body.M[a]) * v[a];
-      Lb[a] = T(tc.body.M[3 + a]) * w[a];
-    }
-    kirchhoff_gyro_kernel(v, w, Pb, Lb, g);
+    // the rigid body's own gyroscopic terms (about the centre of mass), xi' = M^-1 (f - g)
+    const T xi[6] = {v[0], v[1], v[2], w[0], w[1], w[2]};
+    T PL[6], g[6], kx[3], kth[3], kxi[6];
+    mass_times(tc.body, xi, PL);
+    kirchhoff_gyro_kernel(v, w, PL, PL + 3, g);
 #pragma GCC unroll 6
-    for (int a = 0; a < 6; ++a) kxi[a] = T(tc.mass.Mi[a]) * (f[a] - g[a]);
+    for (int a = 0; a < 6; ++a) f[a] -= g[a];
+    mass_inv_times(tc.mass, f, kxi);
     mul(R, v, kx);
     dexpinv(theta, w, kth);
     const bool in = !tc.sample | (lanes->inside[j] != T(0));
@@ -272,8 +269,8 @@ LRIGID_LANE void rk4_stage(const StepConsts<DiagonalMass>& tc, const Lanes<T>* l
 // rotation q exp(theta), theta through dexp^-1), the field sampled at each stage (time
 // t + c h); the Basset history's current interval as an implicit correction after the step; the
 // seen fluctuation by Euler-Maruyama from the start of the step.
-template <typename T, bool Turb, bool Plate, bool Extra>
-LRIGID_MULTIVERSION void rk4_lanes(const StepConsts<DiagonalMass>& tc, const StageFrames& frames,
+template <typename T, bool Turb, bool Plate, bool Extra, class Mass>
+LRIGID_MULTIVERSION void rk4_lanes(const StepConsts<Mass>& tc, const StageFrames& frames,
                                    Lanes<T>* lanes, uint64_t step, int* outcome, int* landed) {
   const T h = T(tc.h);
   alignas(64) T z[3][kBatch], Vn[3][kBatch];
@@ -314,16 +311,22 @@ LRIGID_MULTIVERSION void rk4_lanes(const StepConsts<DiagonalMass>& tc, const Sta
     }
     if constexpr (Extra) {
       // the Basset history's current interval, implicitly: (M + b P) xi = M xi* + b P xi_0,
-      // xi_0 the start's velocity in the new body frame
-      T R0[9], va[3], vw[3], v0[3];
+      // xi_0 the start's velocity in the new body frame; the correction (M + b P)^-1 (b (v0 - v);
+      // 0) (a full M: the spin too)
+      T R0[9], va[3], vw[3], v0[3], d[3], corr[6];
       rotation(q0, R0);
 #pragma GCC unroll 3
       for (int a = 0; a < 3; ++a) va[a] = v1[a] - dxi[a];
       mul(R0, va, vw);
       mul_t(R1, vw, v0);
 #pragma GCC unroll 3
-      for (int a = 0; a < 3; ++a)
-        v1[a] += T(tc.basset_inv[a]) * (T(tc.basset_mass) * (v0[a] - v1[a]));
+      for (int a = 0; a < 3; ++a) d[a] = T(tc.basset_mass) * (v0[a] - v1[a]);
+      fluid_impulse(tc.basset_inv, d, corr);
+#pragma GCC unroll 3
+      for (int a = 0; a < 3; ++a) {
+        v1[a] += corr[a];
+        if constexpr (!std::is_same_v<Mass, DiagonalMass>) w1[a] += corr[3 + a];
+      }
     }
     mul(R1, v1, V1);
 #pragma GCC unroll 3
