@@ -579,7 +579,8 @@ TEST_P(RollingResistance, SeedPodComesToRestAndSleeps) {
   EXPECT_EQ(r.end.status[0], BodyStatus::Sleeping);
   EXPECT_LT(r.end.t_stop[0], v0 / a + 0.5 + 0.05);  // stopped, then sleep_time of rest
   // dropped tilted about a horizontal axis, moving sideways: it lands, rocks and rolls, and
-  // comes to rest (a spin about the vertical, twisting, is not resisted: docs/contacts.md)
+  // comes to rest (without resisting the twisting, the spin about the vertical, it ended lying
+  // on its side spinning at 6 rad/s: docs/contacts.md)
   Scene drop = rolling_scene(pod, 400, 0.05, Vec3(0.3, 0.1, 0), Vec3::Zero(), mu_r, GetParam());
   drop.bodies[0].orientation = Quat(Eigen::AngleAxisd(0.7, Vec3(1, 2, 0).normalized()));
   const Rolled d = roll(drop);
