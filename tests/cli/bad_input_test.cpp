@@ -255,6 +255,23 @@ TEST_F(Cli, NumberTooLargeForADouble) {
                {"scene.json", "1e999"});
 }
 
+// contact materials (docs/scene-format.md "Contacts"): a negative friction or rolling
+// resistance, or one that is not a number, is named with its key and value by the binary too
+TEST_F(Cli, BadContactMaterials) {
+  const struct {
+    const char* key;
+    const char* value;
+  } cases[] = {{"friction", "-1"}, {"rolling_resistance", "-0.01"},
+               {"rolling_resistance", "\"low\""}};
+  for (const auto& c : cases) {
+    const std::string material = std::string("\"") + c.key + "\": " + c.value;
+    SCOPED_TRACE(material);
+    expect_error(run_scene(replace(base_scene(), "\"density\": 30",
+                                   "\"density\": 30, \"contact\": {" + material + "}")),
+                 3, {"scene.json", std::string("bodies[0].contact.") + c.key, c.value});
+  }
+}
+
 struct BadValue {
   const char* from;
   const char* to;

@@ -338,7 +338,8 @@ Model compile_model(const Scene& scene, FluidField field, const AddedMassProvide
   for (BodyType& t : m.types) {
     const BodySpec& b = scene.bodies[t.spec];
     auto k = std::make_shared<ContactParams>(
-        contact_params(t, b.contact.restitution, b.contact.friction, gap));
+        contact_params(t, b.contact.restitution, b.contact.friction, gap,
+                       b.contact.rolling_resistance));
     k->rest_speed = m.rest_speed;
     t.contact = std::move(k);
     t.reach = t.half_extents.norm() + t.com.norm();

@@ -53,7 +53,7 @@ void add_point(ContactParams* k, const Vec3& p) {
 }  // namespace
 
 ContactParams contact_params(const Shape& shape, const Vec3& com, double restitution,
-                             double friction, double max_gap) {
+                             double friction, double max_gap, double rolling_resistance) {
   if (!(restitution >= 0 && restitution <= 1)) {
     std::ostringstream m;
     m << "contact restitution must lie in [0, 1], got " << restitution;
@@ -64,9 +64,15 @@ ContactParams contact_params(const Shape& shape, const Vec3& com, double restitu
     m << "contact friction must be >= 0, got " << friction;
     throw Error(ExitCode::BadInput, m.str());
   }
+  if (!(rolling_resistance >= 0) || !std::isfinite(rolling_resistance)) {
+    std::ostringstream m;
+    m << "contact rolling_resistance must be >= 0, got " << rolling_resistance;
+    throw Error(ExitCode::BadInput, m.str());
+  }
   ContactParams k;
   k.restitution = restitution;
   k.friction = friction;
+  k.rolling_resistance = rolling_resistance;
   const Vec3 h = shape.half_extents;
   switch (shape.type) {
     case ShapeType::Sphere:
@@ -112,8 +118,9 @@ ContactParams contact_params(const Shape& shape, const Vec3& com, double restitu
 }
 
 ContactParams contact_params(const BodyType& type, double restitution, double friction,
-                             double max_gap) {
-  return contact_params(type.shape, type.com, restitution, friction, max_gap);
+                             double max_gap, double rolling_resistance) {
+  return contact_params(type.shape, type.com, restitution, friction, max_gap,
+                        rolling_resistance);
 }
 
 }  // namespace lrigid

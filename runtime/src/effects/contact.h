@@ -28,6 +28,10 @@ struct BodyType;
 struct ContactParams {
   double restitution = 0;  // e in [0, 1]: normal velocity after / before (Newton), -
   double friction = 0;     // mu >= 0: Coulomb friction coefficient, -
+  // mu_r >= 0: rolling resistance coefficient: at a touching point r, the angular impulse
+  // against the body's rotation (rolling and twisting) is at most mu_r |r| J_n
+  // (contact_resolve, rolling_resistance_impulse), -
+  double rolling_resistance = 0;
   // contact_resolve: a point approaching slower than this does not bounce (its target normal
   // velocity is 0, not -e v_n): no jitter of resting bodies under gravity, m/s
   double rest_speed = 0;
@@ -48,11 +52,12 @@ struct ContactParams {
 // kContactEdgePoints per edge, so that a solid's corner narrower than max_gap cannot pass
 // between two points of a thin plate's edge; max_gap <= 0: corners only. Mesh: the vertices of
 // its convex hull (Qhull); all vertices if Qhull finds no 3D hull (a flat mesh).
-// Throws lrigid::Error (BadInput) on restitution outside [0, 1] or negative friction.
+// Throws lrigid::Error (BadInput) on restitution outside [0, 1], negative friction or negative
+// rolling resistance.
 ContactParams contact_params(const Shape& shape, const Vec3& com, double restitution,
-                             double friction, double max_gap);
+                             double friction, double max_gap, double rolling_resistance = 0);
 ContactParams contact_params(const BodyType& type, double restitution, double friction,
-                             double max_gap);
+                             double max_gap, double rolling_resistance = 0);
 constexpr int kContactEdgePoints = 16;  // interior points per box edge at most
 
 // ---- the kernels ---------------------------------------------------------------------------
@@ -114,6 +119,62 @@ LRIGID_LANE void contact_response(const T* Minv, const T* r, const T* J, T* dvc,
   cross3(dw, r, wxr);
 #pragma GCC unroll 3
   for (int a = 0; a < 3; ++a) dvc[a] = dv[a] + wxr[a];
+}
+
+// The velocity change of the body (dv, dw; body frame) when the angular impulse L (N m s, body
+// frame) acts on it: [dv; dw] = M^-1 [0; L] (dv is 0 unless M couples the directions).
+template <typename T>
+LRIGID_LANE void torque_response(const T* Minv, const T* L, T* dv, T* dw, bool diagonal = false) {
+#pragma GCC unroll 3
+  for (int i = 0; i < 3; ++i) {
+    T sv = T(0), sw = T(0);
+#pragma GCC unroll 3
+    for (int j = 0; j < 3; ++j) {
+      sv += diagonal ? T(0) : Minv[6 * i + 3 + j] * L[j];
+      sw += (diagonal && i != j) ? T(0) : Minv[6 * (3 + i) + 3 + j] * L[j];
+    }
+    dv[i] = sv, dw[i] = sw;
+  }
+}
+
+// Rolling resistance at one touching point (docs/contacts.md "Rolling resistance"): the
+// surface resists the body's rotation relative to it -- its rolling (the spin perpendicular to
+// the normal) and its twisting (the spin about the normal), as LIGGGHTS' constant directional
+// torque model with torsionTorque on -- with a torque of at most mu_r |r| N (N the normal
+// force, r the point's offset from the centre of mass): over a step, an angular impulse of at
+// most cap = mu_r |r| J_n. L is the point's accumulated angular impulse so far (body frame); it
+// becomes L - lambda a, a = w / |w|, with lambda = |w| / (a.W a) the impulse that stops the
+// rotation along a (W the angular block of M^-1), scaled back onto |L| <= cap (Coulomb-like: it
+// stops the rotation, or slows it by what the cap allows, and never reverses it). dL receives
+// the change of L, for the caller to apply (torque_response).
+template <typename T>
+LRIGID_LANE void rolling_resistance_impulse(const T* Minv, const T* w, T cap, T* L, T* dL) {
+  const T* wt = w;
+  const T spin = std::sqrt(dot3(wt, wt));
+  const T inv = T(1) / (spin > T(0) ? spin : T(1));
+  T axis[3], Wa[3];
+#pragma GCC unroll 3
+  for (int a = 0; a < 3; ++a) axis[a] = wt[a] * inv;
+#pragma GCC unroll 3
+  for (int i = 0; i < 3; ++i) {
+    T s = T(0);
+#pragma GCC unroll 3
+    for (int j = 0; j < 3; ++j) s += Minv[6 * (3 + i) + 3 + j] * axis[j];
+    Wa[i] = s;
+  }
+  const T waa = dot3(axis, Wa);
+  const T lambda = spin > T(0) ? spin / waa : T(0);
+  T Ln[3];
+#pragma GCC unroll 3
+  for (int a = 0; a < 3; ++a) Ln[a] = L[a] - lambda * axis[a];
+  const T norm = std::sqrt(dot3(Ln, Ln));
+  const T clip = norm > cap ? cap / norm : T(1);
+#pragma GCC unroll 3
+  for (int a = 0; a < 3; ++a) {
+    Ln[a] *= clip;
+    dL[a] = Ln[a] - L[a];
+    L[a] = Ln[a];
+  }
 }
 
 // x = K^-1 b for a 3x3 K (row-major) by its adjugate.
@@ -262,7 +323,10 @@ LRIGID_LANE ContactOut<T> contact_kernel(const ContactParams& k, const T* Minv, 
 // with depth < 0 (not touching) take none. v and w (body frame) are updated in place; dx
 // receives the deepest point's position correction (body frame). Returns the number of points
 // that carry a normal impulse. At most kContactMaxPoints points. It loops and branches per
-// point: one body at a time (a batched loop calls it per lane).
+// point: one body at a time (a batched loop calls it per lane). With k.rolling_resistance > 0
+// each sweep gives each point, between its normal and its friction impulse, the rolling
+// resistance's angular impulse (rolling_resistance_impulse, accumulated per point, capped by
+// mu_r |r_i| J_n,i).
 constexpr int kContactMaxPoints = 64;
 // contact_resolve stops sweeping when a sweep changes no impulse by more than this fraction of
 // the largest accumulated normal impulse. For a body lying on a surface that impulse is about
@@ -276,10 +340,12 @@ template <typename T>
 int contact_resolve(const ContactParams& k, const T* Minv, T* v, T* w, int count, const T* r,
                     const T* n, const T* depth, int passes, T* dx) {
   const int m = count < kContactMaxPoints ? count : kContactMaxPoints;
-  const T mu = T(k.friction);
+  const T mu = T(k.friction), mur = T(k.rolling_resistance);
+  const bool rolls = mur > T(0);
   const bool diagonal = inverse_mass_is_diagonal(Minv);
   T target[kContactMaxPoints], K[kContactMaxPoints][9], Jn[kContactMaxPoints],
-      Jt[kContactMaxPoints][3], inv_knn[kContactMaxPoints];
+      Jt[kContactMaxPoints][3], inv_knn[kContactMaxPoints], Lr[kContactMaxPoints][3],
+      rlen[kContactMaxPoints];
   T best = T(0);
   dx[0] = dx[1] = dx[2] = T(0);
   for (int i = 0; i < m; ++i) {
@@ -301,6 +367,8 @@ int contact_resolve(const ContactParams& k, const T* Minv, T* v, T* w, int count
     inv_knn[i] = T(1) / dot3(n + 3 * i, Kn);
     Jn[i] = T(0);
     Jt[i][0] = Jt[i][1] = Jt[i][2] = T(0);
+    Lr[i][0] = Lr[i][1] = Lr[i][2] = T(0);
+    rlen[i] = std::sqrt(dot3(ri, ri));
     if (depth[i] > best) {
       best = depth[i];
       for (int a = 0; a < 3; ++a) dx[a] = depth[i] * n[3 * i + a];
@@ -316,6 +384,15 @@ int contact_resolve(const ContactParams& k, const T* Minv, T* v, T* w, int count
     cross3(w, ri, wxr);
     for (int a = 0; a < 3; ++a) vc[a] = v[a] + wxr[a];
   };
+  // the rolling resistance's angular impulse at point i (its accumulated impulse Lr[i] kept
+  // within mu_r |r_i| Jn); returns its change as an impulse at the point's distance, N s
+  auto roll = [&](int i, T jn) {
+    T dL[3], dv[3], dw[3];
+    rolling_resistance_impulse(Minv, w, mur * rlen[i] * jn, Lr[i], dL);
+    torque_response(Minv, dL, dv, dw, diagonal);
+    for (int a = 0; a < 3; ++a) v[a] += dv[a], w[a] += dw[a];
+    return rlen[i] > T(0) ? std::sqrt(dot3(dL, dL)) / rlen[i] : T(0);
+  };
   if (m == 1 && depth[0] >= T(0)) {
     // one point (a sphere or an ellipsoid, a box on a corner): the impulse that stops it
     // (normal velocity to its target, no slip), K J = target n - v_c, is where the sweeps below
@@ -329,8 +406,30 @@ int contact_resolve(const ContactParams& k, const T* Minv, T* v, T* w, int count
     T jt[3];
     for (int a = 0; a < 3; ++a) jt[a] = J[a] - jn * n[a];
     if (jn >= T(0) && std::sqrt(dot3(jt, jt)) <= mu * jn) {
+      if (!rolls) {
+        apply(r, J);
+        return jn > T(0) ? 1 : 0;
+      }
+      // with rolling resistance: that impulse, the rolling resistance's angular impulse (capped
+      // by mu_r |r| jn), then the impulse that stops the point again; the sweeps below when
+      // the sum leaves the friction cone
+      const T v0[3] = {v[0], v[1], v[2]}, w0[3] = {w[0], w[1], w[2]};
       apply(r, J);
-      return jn > T(0) ? 1 : 0;
+      roll(0, jn);
+      T J2[3];
+      point_velocity(r, vc);
+      for (int a = 0; a < 3; ++a) want[a] = target[0] * n[a] - vc[a];
+      solve3(K[0], want, J2);
+      for (int a = 0; a < 3; ++a) J2[a] += J[a];
+      const T jn2 = dot3(J2, n);
+      for (int a = 0; a < 3; ++a) jt[a] = J2[a] - jn2 * n[a];
+      if (jn2 >= T(0) && std::sqrt(dot3(jt, jt)) <= mu * jn2) {
+        for (int a = 0; a < 3; ++a) J2[a] -= J[a];
+        apply(r, J2);
+        return jn2 > T(0) ? 1 : 0;
+      }
+      for (int a = 0; a < 3; ++a) v[a] = v0[a], w[a] = w0[a];
+      Lr[0][0] = Lr[0][1] = Lr[0][2] = T(0);
     }
   }
   for (int p = 0; p < passes; ++p) {
@@ -350,6 +449,8 @@ int contact_resolve(const ContactParams& k, const T* Minv, T* v, T* w, int count
       scale = std::max(scale, jn_new);
       Jn[i] = jn_new;
       apply(ri, J);
+      // rolling resistance: the angular impulse against the rolling, within mu_r |r_i| Jn
+      if (rolls) change = std::max(change, roll(i, Jn[i]));
       // friction: along the slip, the impulse that stops it (effective mass t.K t), the
       // accumulated tangential impulse kept within the cone |J_t| <= mu J_n
       point_velocity(ri, vc);

@@ -137,7 +137,19 @@ bool flow_can_move(const Model& model, const BodyType& type, const BodyState& b,
   const Vec3 F = k.R * f.head<3>();
   const double press = -F.dot(n);  // what holds the body on the surface, N
   const double slide = (F + press * n).norm();
-  return !(press > 0) || slide > type.contact->friction * press;
+  const ContactParams& c = *type.contact;
+  if (!(press > 0) || slide > c.friction * press) return true;
+  // a sphere or an ellipsoid with rolling resistance rolls (or twists) when the wrench's torque
+  // about its touching point exceeds what the resistance holds,
+  // mu_r |r| press: a sphere under a tangential force F_t at its centre when F_t > mu_r press
+  if (c.support && c.rolling_resistance > 0) {
+    const Vec3 nb = k.R.transpose() * n;
+    Vec3 rb;
+    ellipsoid_support_point(c, nb.data(), rb.data());
+    const Vec3 tau = f.tail<3>() - rb.cross(Vec3(f.head<3>()));
+    if (tau.norm() > c.rolling_resistance * rb.norm() * press) return true;
+  }
+  return false;
 }
 
 bool contact_after_step(const Model& model, const BodyType& type, size_t i, double t_end,

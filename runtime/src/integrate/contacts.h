@@ -55,9 +55,11 @@ bool speculative_ground_contact(const Model& model, const BodyType& type, BodySt
 // lift, the fluid's acceleration: effect_wrench) with a gust of kGustSigmas standard deviations
 // of the turbulence along the mean flow: true when it would lift the body off (no force
 // pressing it onto the surface) or its tangential part exceeds the friction mu times the
-// pressing force. A body whose flow can move it does not sleep (docs/contacts.md); in a steady
-// field its flow never changes, so one that sleeps could not have been moved. Tipping over
-// (the torque about an edge) is not tested.
+// pressing force, or (a sphere or an ellipsoid with rolling resistance) when its torque about
+// the touching point exceeds mu_r |r| times the pressing force, so that it would roll. A body
+// whose flow can move it does not sleep (docs/contacts.md); in a steady field its flow never
+// changes, so one that sleeps could not have been moved. Tipping over (the torque about an
+// edge) is not tested, nor rolling without rolling resistance.
 constexpr double kGustSigmas = 3.0;
 bool flow_can_move(const Model& model, const BodyType& type, const BodyState& b, const Vec3& n,
                    double t);

@@ -167,9 +167,10 @@ constexpr Keys kBodyKeys = {"name",     "shape",    "density",     "mass_offset"
                             "count",    "position", "spawn_box",   "orientation",
                             "velocity", "angular_velocity", "variation", "contact"};
 
-// A "contact" object (a body type's, or the scene's defaults): restitution in [0, 1] and
-// friction >= 0, each optional; *given says which were.
-void read_contact(Obj o, ContactSpec* c, bool* restitution_given, bool* friction_given) {
+// A "contact" object (a body type's, or the scene's defaults): restitution in [0, 1],
+// friction >= 0 and rolling_resistance >= 0, each optional; *given says which were.
+void read_contact(Obj o, ContactSpec* c, bool* restitution_given, bool* friction_given,
+                  bool* rolling_given) {
   if (o.has("restitution")) {
     const double e = o.number("restitution");
     if (!(e >= 0 && e <= 1))
@@ -186,10 +187,19 @@ void read_contact(Obj o, ContactSpec* c, bool* restitution_given, bool* friction
     c->friction = mu;
     *friction_given = true;
   }
+  if (o.has("rolling_resistance")) {
+    const double mur = o.number("rolling_resistance");
+    if (!(mur >= 0))
+      o.fail("rolling_resistance",
+             "must be >= 0 (rolling resistance coefficient), got " +
+                 Obj::dump(o.get("rolling_resistance")));
+    c->rolling_resistance = mur;
+    *rolling_given = true;
+  }
   o.finish();
 }
 
-constexpr Keys kContactKeys = {"restitution", "friction"};
+constexpr Keys kContactKeys = {"restitution", "friction", "rolling_resistance"};
 
 // "contact": "collide" | "stop" of the object o (ground, walls)
 ContactMode read_contact_mode(Obj& o) {
@@ -203,12 +213,14 @@ ContactMode read_contact_mode(Obj& o) {
 // for the keys it does not give), "walls" and "outside" (ground.contact is read with the ground)
 void read_scene_contacts(Obj& top, Scene* s) {
   if (top.has("contact")) {
-    bool e_given = false, mu_given = false;
-    read_contact(top.object("contact", kContactKeys), &s->contact, &e_given, &mu_given);
+    bool e_given = false, mu_given = false, mur_given = false;
+    read_contact(top.object("contact", kContactKeys), &s->contact, &e_given, &mu_given,
+                 &mur_given);
   }
   for (BodySpec& b : s->bodies) {
     if (!b.restitution_given) b.contact.restitution = s->contact.restitution;
     if (!b.friction_given) b.contact.friction = s->contact.friction;
+    if (!b.rolling_given) b.contact.rolling_resistance = s->contact.rolling_resistance;
   }
   if (top.has("walls")) {
     Obj w = top.object("walls", {"contact"});
@@ -294,7 +306,7 @@ BodySpec read_body(Obj o) {
   }
   if (o.has("contact"))
     read_contact(o.object("contact", kContactKeys), &b.contact, &b.restitution_given,
-                 &b.friction_given);
+                 &b.friction_given, &b.rolling_given);
   o.finish();
   return b;
 }

@@ -28,6 +28,9 @@ const char* outside_mode_name(OutsideMode m);
 struct ContactSpec {
   double restitution = 0.3;  // e in [0, 1]: normal speed after / before an impact, -
   double friction = 0.5;     // mu >= 0: Coulomb friction coefficient, -
+  // mu_r >= 0: rolling resistance coefficient: the torque against rolling is at most
+  // mu_r r N (r the contact point's distance to the centre of mass, N the normal force), -
+  double rolling_resistance = 0;
 };
 
 const char* integrator_name(Integrator i);
@@ -62,7 +65,7 @@ struct BodySpec {
   int variants = 1;
   // contact material; a key the body does not give comes from the scene's "contact"
   ContactSpec contact;
-  bool restitution_given = false, friction_given = false;
+  bool restitution_given = false, friction_given = false, rolling_given = false;
 };
 
 struct OutputSpec {

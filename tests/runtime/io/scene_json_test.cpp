@@ -227,6 +227,7 @@ TEST(SceneJson, ContactDefaultsAndKeys) {
   EXPECT_EQ(d.outside, OutsideMode::Remove);
   EXPECT_EQ(d.bodies[0].contact.restitution, ContactSpec{}.restitution);
   EXPECT_EQ(d.bodies[0].contact.friction, ContactSpec{}.friction);
+  EXPECT_EQ(d.bodies[0].contact.rolling_resistance, 0.0);  // none: no body stops rolling
 
   json j = valid_scene();
   j["contact"] = {{"restitution", 0.1}, {"friction", 0.8}};
@@ -235,7 +236,7 @@ TEST(SceneJson, ContactDefaultsAndKeys) {
   j["outside"] = "stop";
   json second = j["bodies"][0];
   second["name"] = "other";
-  j["bodies"][0]["contact"] = {{"restitution", 0.6}};
+  j["bodies"][0]["contact"] = {{"restitution", 0.6}, {"rolling_resistance", 0.02}};
   j["bodies"].push_back(second);
   const Scene s = parse_scene(j.dump(), "/tmp/scene.json");
   EXPECT_EQ(s.ground_contact, ContactMode::Stop);
@@ -246,8 +247,10 @@ TEST(SceneJson, ContactDefaultsAndKeys) {
   EXPECT_EQ(s.bodies[0].contact.friction, 0.8);
   EXPECT_EQ(s.bodies[1].contact.restitution, 0.1);
   EXPECT_EQ(s.bodies[1].contact.friction, 0.8);
+  EXPECT_EQ(s.bodies[0].contact.rolling_resistance, 0.02);
+  EXPECT_EQ(s.bodies[1].contact.rolling_resistance, 0.0);
   // the limits are allowed
-  j["contact"] = {{"restitution", 1}, {"friction", 0}};
+  j["contact"] = {{"restitution", 1}, {"friction", 0}, {"rolling_resistance", 0}};
   EXPECT_EQ(error_of(j), "");
   expect_every_typo_named(j);
   EXPECT_STREQ(contact_mode_name(ContactMode::Collide), "collide");
@@ -269,6 +272,13 @@ INSTANTIATE_TEST_SUITE_P(
                 "bodies[0].contact.friction: must be >= 0 (Coulomb coefficient), got -1"},
         BadCase{"friction not a number", [](json& j) { j["contact"] = {{"friction", "high"}}; },
                 "contact.friction: must be a number, got \"high\""},
+        BadCase{"negative rolling resistance",
+                [](json& j) { j["bodies"][0]["contact"] = {{"rolling_resistance", -0.01}}; },
+                "bodies[0].contact.rolling_resistance: must be >= 0 (rolling resistance "
+                "coefficient), got -0.01"},
+        BadCase{"rolling resistance not a number",
+                [](json& j) { j["contact"] = {{"rolling_resistance", true}}; },
+                "contact.rolling_resistance: must be a number, got true"},
         BadCase{"unknown ground contact mode", [](json& j) { j["ground"]["contact"] = "bounce"; },
                 "ground.contact: must be \"collide\" or \"stop\", got \"bounce\""},
         BadCase{"unknown walls contact mode", [](json& j) { j["walls"] = {{"contact", "slide"}}; },
