@@ -1,10 +1,8 @@
 // What the euler and rk4 loops of the batched steps need beyond batch_lanes.h, written for any
 // kind of lane (Lanes derived from Samples<T>, consts derived from FieldConsts): the field's
 // frames at rk4's stage times, rk4's per-stage storage across a block, and the Euler-Maruyama
-// update of the seen fluctuation. Internal to sphere_batch.cpp (sphere_batch_explicit.h).
-// rigid_batch_explicit.h predates this header and keeps its own copies of the three (StageFrames,
-// Rk4Stages, lane_ou_euler, written for the rigid step's consts and lanes): the same code under
-// other names, which it can replace by including this header.
+// update of the seen fluctuation. Internal to the batched steps' explicit schemes
+// (sphere_batch_explicit.h, rigid_batch_explicit.h).
 #pragma once
 #include "effects/turbulence.h"
 #include "fluid/field.h"

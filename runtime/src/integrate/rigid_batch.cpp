@@ -753,7 +753,7 @@ BlockStats advance(const Model& model, const BodyType& type, State* state, const
     if (tc.scheme == Integrator::Euler)
       return euler_lanes<T, A, B, C>(tc, lanes, s, outcome, landed);
     if (tc.scheme == Integrator::RK4)
-      return rk4_lanes<T, A, B, C>(tc, stage_frames(model, unsteady, s), lanes, s, outcome,
+      return rk4_lanes<T, A, B, C>(tc, rk4_frames(model, unsteady, s), lanes, s, outcome,
                                    landed);
     if (tc.strang)
       step_lanes<T, A, B, C, true>(tc, lanes, s, outcome, landed);

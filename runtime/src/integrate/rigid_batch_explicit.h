@@ -18,6 +18,7 @@
 #include "effects/added_mass.h"
 #include "effects/turbulence.h"
 #include "fluid/field.h"
+#include "integrate/batch_explicit.h"
 #include "integrate/batch_lanes.h"
 #include "util/fast_math.h"
 #include "util/lane.h"
@@ -67,18 +68,6 @@ LRIGID_LANE void lane_fluid(const C& tc, const Lanes<T>* lanes, int j, const T* 
     acc[a] = T(tc.gu) * lanes->acc[a][j];
     Fw[a] = T(tc.F[a]) + (Extra ? lanes->fb[a][j] : T(0));
   }
-}
-
-// The seen fluctuation after the step by Euler-Maruyama from the start of the step (integrators.cpp
-// step_body: Ito, the start's sample and path velocity V0, world), normals z (whole step)
-template <typename T, class C>
-LRIGID_LANE void lane_ou_euler(const C& tc, const Lanes<T>* lanes, int j, const T* V0,
-                               const T (*z)[kBatch], T* us) {
-  T decay, noise;
-  ou_euler_kernel(lanes->alpha[j], lanes->beta[j], T(tc.h), &decay, &noise);
-  const T gs[3] = {lanes->gs[0][j], lanes->gs[1][j], lanes->gs[2][j]};
-  const T zj[3] = {z[0][j], z[1][j], z[2][j]};
-  ou_update(T(tc.wm), decay, noise, lanes->sigma2[j], V0, gs, zj, T(tc.h), us);
 }
 
 // euler (integrators.cpp impulse_step): one explicit step of the world-frame impulse, the forces,
@@ -146,7 +135,7 @@ LRIGID_MULTIVERSION void euler_lanes(const StepConsts<Mass>& tc, Lanes<T>* lanes
     const T* v1 = xi1;
     const T* w1 = xi1 + 3;
     mul(R1, v1, V1);
-    if constexpr (Turb) lane_ou_euler(tc, lanes, j, V0, z, us);
+    if constexpr (Turb) ou_euler_lane(tc, lanes, j, V0, z, us);
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
       next.x[a][j] = lanes->x[a][j] + h * V0[a];
@@ -162,45 +151,12 @@ LRIGID_MULTIVERSION void euler_lanes(const StepConsts<Mass>& tc, Lanes<T>* lanes
   end_step<T, Turb, false>(tc, z, Vn, &next, lanes, outcome, landed);
 }
 
-// The field's frames at rk4's stage times t + h/2 and t + h of step s (a time-dependent field;
-// none: the driver's frames, FieldConsts::records)
-struct StageFrames {
-  bool unsteady = false;
-  FluidField::FrameBlend mid, end;
-};
-
-StageFrames stage_frames(const Model& model, bool unsteady, uint64_t s) {
-  StageFrames f;
-  f.unsteady = unsteady;
-  if (unsteady) {
-    const double t = static_cast<double>(s) * model.dt;
-    f.mid = model.field.frames_at(t + 0.5 * model.dt);
-    f.end = model.field.frames_at(t + model.dt);
-  }
-  return f;
-}
-
-// rk4's state within a step: each stage's state (position, rotation vector theta from the
-// start's q, v, w), and the sums k1 + 2 k2 + 2 k3 + k4 of the rates of x (world), theta and
-// xi = (v; w); ok: 0 where a stage's sample left the fluid
-template <typename T>
-struct Rk4Stages {
-  alignas(64) T xs[3][kBatch];
-  alignas(64) T th[3][kBatch];
-  alignas(64) T vs[3][kBatch];
-  alignas(64) T ws[3][kBatch];
-  alignas(64) T Sx[3][kBatch];
-  alignas(64) T Sth[3][kBatch];
-  alignas(64) T Sxi[6][kBatch];
-  alignas(64) T ok[kBatch];
-};
-
 // rk4's stage I (0 to 3) on every lane: the rates at the stage's state on the lanes' samples
 // there, added to the sums, and the next stage's state (c = 1/2, 1/2, 1); stage 0 also updates
 // the seen fluctuation (into next->us) from the start's sample
 template <typename T, bool Turb, bool Plate, bool Extra, int I, class Mass>
 LRIGID_LANE void rk4_stage(const StepConsts<Mass>& tc, const Lanes<T>* lanes, const T (*z)[kBatch],
-                           Rk4Stages<T>* k, NewState<T>* next) {
+                           Rk4Block<T>* k, NewState<T>* next) {
   const T h = T(tc.h);
   const T ci = I == 0 || I == 1 ? T(0.5) : T(1), wi = I == 0 || I == 3 ? T(1) : T(2);
   LRIGID_IVDEP
@@ -258,7 +214,7 @@ LRIGID_LANE void rk4_stage(const StepConsts<Mass>& tc, const Lanes<T>* lanes, co
     for (int a = 0; a < 6; ++a) k->Sxi[a][j] = I == 0 ? kxi[a] : k->Sxi[a][j] + wi * kxi[a];
     if constexpr (I == 0) {
       T us[3] = {us0[0], us0[1], us0[2]};
-      if constexpr (Turb) lane_ou_euler(tc, lanes, j, kx, z, us);
+      if constexpr (Turb) ou_euler_lane(tc, lanes, j, kx, z, us);
 #pragma GCC unroll 3
       for (int a = 0; a < 3; ++a) next->us[a][j] = us[a];
     }
@@ -270,13 +226,13 @@ LRIGID_LANE void rk4_stage(const StepConsts<Mass>& tc, const Lanes<T>* lanes, co
 // t + c h); the Basset history's current interval as an implicit correction after the step; the
 // seen fluctuation by Euler-Maruyama from the start of the step.
 template <typename T, bool Turb, bool Plate, bool Extra, class Mass>
-LRIGID_MULTIVERSION void rk4_lanes(const StepConsts<Mass>& tc, const StageFrames& frames,
+LRIGID_MULTIVERSION void rk4_lanes(const StepConsts<Mass>& tc, const Rk4Frames& frames,
                                    Lanes<T>* lanes, uint64_t step, int* outcome, int* landed) {
   const T h = T(tc.h);
   alignas(64) T z[3][kBatch], Vn[3][kBatch];
   [[maybe_unused]] alignas(64) T unused[3][kBatch];
   if constexpr (Turb) lane_normals<T, true>(tc, *lanes, step, z, unused);
-  Rk4Stages<T> k;
+  Rk4Block<T> k;
   NewState<T> next;
   const FluidField::FrameBlend at_end = lanes->frames;  // the driver's: the end of the step
   // the field at the next stage's positions, at its time
