@@ -31,7 +31,7 @@ struct DragStiffness {
 };
 
 // ---- the kernel, written once: the scalar step (drag_wrench) and the batched steps' loops
-// (integrate/sphere_batch.cpp, rigid_batch.cpp) call it -----------------------------------------
+// (integrate/sphere_batch.cpp, rigid_batch_step.h) call it ---------------------------------------
 
 // What the drag law needs of a body type and the fluid, built once per body type.
 struct DragParams {

@@ -2,7 +2,7 @@
 // (2005) drag, dissipative pitching torque and circulation lift in 3D (docs/physics/lift.md;
 // the equations and constants are stated in effects/drag.h and effects/lift.h). The scalar
 // step's wrappers plate_drag_wrench (effects/drag.cpp) and lift_wrench (effects/lift.cpp) and
-// the batched loops of integrate/rigid_batch.cpp all call plate_kernel.
+// the batched loops of integrate/rigid_batch_step.h all call plate_kernel.
 #pragma once
 #include <cmath>
 #include <type_traits>

@@ -18,7 +18,7 @@ struct Rk4Frames {
   FluidField::FrameBlend mid, end;
 };
 
-Rk4Frames rk4_frames(const Model& model, bool unsteady, uint64_t s) {
+inline Rk4Frames rk4_frames(const Model& model, bool unsteady, uint64_t s) {
   Rk4Frames f;
   f.unsteady = unsteady;
   if (unsteady) {

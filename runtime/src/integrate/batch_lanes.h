@@ -1,4 +1,4 @@
-// What the batched steps share (integrate/sphere_batch.cpp for spheres, rigid_batch.cpp for
+// What the batched steps share (integrate/sphere_batch.cpp for spheres, rigid_batch_step.h for
 // plates and ellipsoids): the compile switches of their loops across bodies, the field sample and
 // the Ornstein-Uhlenbeck half step in structure-of-arrays form, the per-lane normals, and the
 // driver that runs a block of bodies through a stretch of steps and stops them as the scalar loop
@@ -100,7 +100,7 @@ struct FieldConsts {
   double reach = 0;
 };
 
-void set_field_consts(const Model& model, const BodyType& type, FieldConsts* fc) {
+inline void set_field_consts(const Model& model, const BodyType& type, FieldConsts* fc) {
   const EffectSet& e = type.effects;
   fc->h = model.dt;
   fc->turb = e.has(Effect::Turbulence);
@@ -149,7 +149,8 @@ void set_field_consts(const Model& model, const BodyType& type, FieldConsts* fc)
 // What rules out the batched steps for every body type: the integrator (euler and rk4 only where
 // explicit_schemes; both steps now run them, sphere_batch_explicit.h and rigid_batch_explicit.h,
 // so both pass true), the turbulence model, the noise, the field. Empty when none does.
-std::string batch_exclusion(const Model& model, const BodyType& type, bool explicit_schemes) {
+inline std::string batch_exclusion(const Model& model, const BodyType& type,
+                                   bool explicit_schemes) {
   if (!model.batched) return "the scene turns the batched step off";
   const bool split =
       model.integrator == Integrator::Splitting || model.integrator == Integrator::Strang;

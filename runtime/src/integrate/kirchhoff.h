@@ -1,5 +1,5 @@
 // The free Kirchhoff flow's kernels, written once for the scalar step (integrate/dynamics.cpp,
-// T = double) and the batched steps' loops across bodies (integrate/rigid_batch.cpp, double or
+// T = double) and the batched steps' loops across bodies (integrate/rigid_batch_step.h, double or
 // float): the generalized mass M as the kernels see it, the flow's right-hand side, the Newton
 // matrix of its implicit midpoint step, and the implicit force step's solve. The drivers (the
 // scalar step's early-exit iterations, the lanes' masked ones) stay with their steps.
@@ -367,7 +367,7 @@ LRIGID_LANE bool implicit_impulse(const FullMass& m, T basset_mass, const DragOu
 
 // ---- the force step of the Strang scheme --------------------------------------------------------
 
-// The Strang scheme's force step (integrators.cpp strang_force_step, rigid_batch.cpp): Verwer,
+// The Strang scheme's force step (integrators.cpp strang_force_step, rigid_batch_step.h): Verwer,
 // Spee, Blom and Hundsdorfer's (1999) two-stage Rosenbrock-W method ROS2 on the impulse change
 // of the forces over h, position and orientation held:
 //   (I + g h J M^-1) k1 = F(0),   (I + g h J M^-1) k2 = F(h k1) - 2 k1,

@@ -41,4 +41,17 @@ bool rigid_batch_eligible(const Model& model, const BodyType& type, std::string*
 BlockStats advance_rigid_block(const Model& model, const BodyType& type, State* state,
                                const uint32_t* body, int count, uint64_t first, uint64_t last);
 
+// advance_rigid_block for each precision and kind of M (integrate/kirchhoff.h DiagonalMass,
+// FullMass), in the files rigid_batch_{diag,full}_{double,float}.cpp
+namespace rigid_batch_detail {
+BlockStats advance_diag_double(const Model& model, const BodyType& type, State* state,
+                              const uint32_t* body, int count, uint64_t first, uint64_t last);
+BlockStats advance_diag_float(const Model& model, const BodyType& type, State* state,
+                             const uint32_t* body, int count, uint64_t first, uint64_t last);
+BlockStats advance_full_double(const Model& model, const BodyType& type, State* state,
+                              const uint32_t* body, int count, uint64_t first, uint64_t last);
+BlockStats advance_full_float(const Model& model, const BodyType& type, State* state,
+                             const uint32_t* body, int count, uint64_t first, uint64_t last);
+}  // namespace rigid_batch_detail
+
 }  // namespace lrigid

@@ -1,5 +1,5 @@
 // The euler and rk4 schemes (integrate/integrators.h) on the batched rigid-body step: internal to
-// rigid_batch.cpp, which includes this file after its StepConsts, Lanes and body_forces (the
+// rigid_batch_step.h, which includes this file after its StepConsts, Lanes and body_forces (the
 // lanes, the consts and the force kernels of the splitting and strang loops are these loops' too).
 //
 // The physics is the scalar step's, term for term, on the same random numbers (integrators.cpp
@@ -24,7 +24,7 @@
 #include "util/lane.h"
 
 namespace lrigid {
-namespace {  // NOLINT(build/namespaces): internal to rigid_batch.cpp
+namespace {  // NOLINT(build/namespaces): internal to rigid_batch_step.h
 
 // The effects' wrench on a lane's body (body frame), f = (force; torque), at rotation R (body ->
 // world), velocity v and spin w (body frame), the fluid velocity ufb (body frame), the weight and

@@ -1,0 +1,752 @@
+// The batched rigid-body step's loops (integrate/rigid_batch.h): the constants of a body type,
+// the lanes, the force kernels, the splitting and strang loops (step_lanes), the euler and rk4
+// loops (rigid_batch_explicit.h) and advance<T, Mass>, which drives a block through them.
+// Internal to the four files that instantiate it, one for each precision and kind of M
+// (rigid_batch_{diag,full}_{double,float}.cpp). Each holds 2 x 8 copies of the loops (the scheme
+// families times the three template switches), each compiled three times (LRIGID_MULTIVERSION):
+// in one file they took 5.4 min of GCC -O3 on one core (README.md, Tests: build time); the
+// four compile side by side.
+#pragma once
+#include <algorithm>
+#include <cmath>
+#include <type_traits>
+
+#include "effects/drag.h"
+#include "effects/lift.h"
+#include "effects/plate.h"
+#include "integrate/batch_lanes.h"
+#include "integrate/dynamics.h"
+#include "integrate/kirchhoff.h"
+#include "integrate/rigid_batch.h"
+
+namespace lrigid {
+namespace {  // NOLINT(build/namespaces): internal to rigid_batch_*.cpp
+
+// What the step needs of the body type. Mass: M as the kernels of integrate/kirchhoff.h see it,
+// DiagonalMass (boxes, disks, ellipsoids) or FullMass (meshes: the step's loops are compiled
+// once for each).
+template <class Mass>
+struct StepConsts : FieldConsts {
+  bool plate = false;       // flat: plate drag and lift (with turb, the step's template switches)
+  bool strang = false;      // the Strang scheme (not with the Basset history: integrators.h)
+  Mass mass;                // M (integrate/kirchhoff.h)
+  typename FluidImpulseOf<Mass>::type K;  // K's first three columns (0 without added mass)
+  double drag = 0;          // the drag effect as a factor 1 or 0 (bodies that are not flat)
+  // the drag of bodies that are not flat (effects/drag.h) and the plate model (effects/plate.h)
+  DragParams law;
+  PlateParams plate_model;
+  // euler and rk4 (rigid_batch_explicit.h): the scheme; M_body and K as the gyroscopic and
+  // added-mass kernels take them (mass_times reads .M; K zero without added mass); the Basset
+  // history's (M + b P)^-1, its first three columns in K's layout (fluid_impulse applies them)
+  Integrator scheme = Integrator::Splitting;
+  Mass body, fluid;
+  typename FluidImpulseOf<Mass>::type basset_inv;
+};
+
+// a full K without the added-mass effect
+constexpr double kNoTensor[36] = {};
+
+template <class Mass>
+StepConsts<Mass> make_consts(const Model& model, const BodyType& type) {
+  StepConsts<Mass> tc;
+  set_field_consts(model, type, &tc);
+  const EffectSet& e = type.effects;
+  const bool am = e.has(Effect::AddedMass);
+  tc.plate = type.flat;
+  tc.strang = model.integrator == Integrator::Strang && !tc.basset;
+  if constexpr (std::is_same_v<Mass, DiagonalMass>) {
+    tc.mass = diagonal_mass(type);
+    for (int a = 0; a < 3; ++a) tc.K.K[a] = am ? type.K_fluid(a, a) : 0.0;
+  } else {
+    tc.mass = full_mass(type);  // points into type.M and M_inv
+    for (int r = 0; r < 6; ++r)
+      for (int c = 0; c < 3; ++c) tc.K.K[r * 3 + c] = am ? type.K_fluid(r, c) : 0.0;
+  }
+  tc.drag = e.has(Effect::Drag) ? 1.0 : 0.0;
+  // the kernels' parameters, as the scalar step's terms read them (effects/plan.h)
+  tc.law = type.plan.params->drag;
+  if (type.flat) tc.plate_model = type.plan.params->plate_both;
+  tc.scheme = model.integrator;
+  const Mat6& inv = type.basset.implicit_inv;
+  if constexpr (std::is_same_v<Mass, DiagonalMass>) {
+    for (int a = 0; a < 6; ++a) {
+      tc.body.M[a] = type.M_body(a, a);
+      tc.fluid.M[a] = am ? type.K_fluid(a, a) : 0.0;
+    }
+    for (int a = 0; a < 3; ++a) tc.basset_inv.K[a] = tc.basset ? inv(a, a) : 0.0;
+  } else {
+    tc.body.M = type.M_body.data();  // symmetric: row or column major alike
+    tc.fluid.M = am ? type.K_fluid.data() : kNoTensor;
+    for (int r = 0; r < 6; ++r)
+      for (int c = 0; c < 3; ++c) tc.basset_inv.K[r * 3 + c] = tc.basset ? inv(r, c) : 0.0;
+  }
+  return tc;
+}
+
+// The state of a block of bodies, structure of arrays, in the scalar step's frames: v and w in
+// the body frame.
+template <typename T>
+struct Lanes : Samples<T> {
+  alignas(64) T v[3][kBatch];
+  alignas(64) T w[3][kBatch];
+  alignas(64) T q[4][kBatch];  // (w, x, y, z)
+  alignas(64) T us[3][kBatch];
+
+  void load(int j, const BodyState& b) {
+#pragma GCC unroll 3
+    for (int a = 0; a < 3; ++a) {
+      this->x[a][j] = T(b.x[a]);
+      v[a][j] = T(b.v[a]);
+      w[a][j] = T(b.w[a]);
+      us[a][j] = T(b.u_seen[a]);
+    }
+    q[0][j] = T(b.q.w()), q[1][j] = T(b.q.x()), q[2][j] = T(b.q.y()), q[3][j] = T(b.q.z());
+  }
+  void store(int j, BodyState* b) const {
+    b->x = Vec3(double(this->x[0][j]), double(this->x[1][j]), double(this->x[2][j]));
+    b->q = Quat(double(q[0][j]), double(q[1][j]), double(q[2][j]), double(q[3][j]));
+    b->v = Vec3(double(v[0][j]), double(v[1][j]), double(v[2][j]));
+    b->w = Vec3(double(w[0][j]), double(w[1][j]), double(w[2][j]));
+    b->u_seen = Vec3(double(us[0][j]), double(us[1][j]), double(us[2][j]));
+  }
+  void rest(int j) {
+#pragma GCC unroll 3
+    for (int a = 0; a < 3; ++a) v[a][j] = w[a][j] = T(0);
+  }
+  T (*velocity())[kBatch] { return v; }  // the velocity a lane keeps (end_step)
+};
+
+// The forces of a body that is not flat: the drag (effects/drag.h, the equivalent ellipsoid's
+// projected area across u) times the drag effect's factor (0 without it)
+template <typename T, class C>
+LRIGID_LANE DragOut<T> ellipsoid_forces(const C& tc, const T* u, const T* w) {
+  DragOut<T> drag = ellipsoid_drag_kernel(tc.law, u, w);
+  const T dr = T(tc.drag);
+#pragma GCC unroll 3
+  for (int a = 0; a < 3; ++a) {
+    drag.f[a] *= dr;
+    drag.tq[a] *= dr;
+  }
+  drag.c_lin *= dr;
+  drag.c_ang *= dr;
+  return drag;
+}
+
+// A lane's drag (and, for plates, lift: effects/plate.h) on relative velocity u and spin w
+template <typename T, bool Plate, class C>
+LRIGID_LANE DragOut<T> body_forces(const C& tc, const T* u, const T* w, T* lift) {
+  if constexpr (Plate) {
+    DragOut<T> drag;
+    plate_kernel(tc.plate_model, u, w, &drag, lift);
+    return drag;
+  } else {
+    return ellipsoid_forces(tc, u, w);
+  }
+}
+
+// The Strang scheme's force step over hs on a lane's body-frame velocities v, w (in place), at
+// orientation R (body -> world) and the fluid velocity u_f (world) with its material derivative
+// acc (world, the gu factor applied here): ROS2 (integrate/kirchhoff.h ros2_impulse), as
+// integrators.cpp strang_force_step. Not with the Basset history (tc.strang).
+template <typename T, bool Plate, bool Extra, class Mass>
+LRIGID_LANE void strang_force_lane(const StepConsts<Mass>& tc, const T* R, const T* u_f,
+                                   const T* acc, T hs, T* v, T* w) {
+  const T F[3] = {T(tc.F[0]), T(tc.F[1]), T(tc.F[2])};
+  const T a_f[3] = {T(tc.gu) * acc[0], T(tc.gu) * acc[1], T(tc.gu) * acc[2]};
+  T ufb[3], ab[3], Fb[3], P[6];
+  mul_t(R, u_f, ufb);
+  mul_t(R, a_f, ab);
+  mul_t(R, F, Fb);
+  // the fluid's acceleration drags the added mass along: K (R^T a; 0), a force and (meshes) a
+  // torque
+  T drag_along[6];
+  fluid_impulse(tc.K, ab, drag_along);
+  const T xi0[6] = {v[0], v[1], v[2], w[0], w[1], w[2]};
+  impulse_of_velocity(tc.mass, tc.K, xi0, ufb, P);
+  DragOut<T> J{};
+  auto forces = [&](const T* dPi, bool first, T* f) LRIGID_LANE_LAMBDA {
+    T Pn[6], xi[6], vr[3], lift[3] = {0, 0, 0}, fx[3] = {0, 0, 0};
+#pragma GCC unroll 6
+    for (int a = 0; a < 6; ++a) Pn[a] = P[a] + dPi[a];
+    velocity_of_impulse(tc.mass, tc.K, Pn, ufb, xi);
+#pragma GCC unroll 3
+    for (int a = 0; a < 3; ++a) vr[a] = xi[a] - ufb[a];
+    const T* ws = xi + 3;
+    const DragOut<T> d = body_forces<T, Plate>(tc, vr, ws, lift);
+    if constexpr (Extra) magnus_kernel(T(tc.magnus), ws, vr, fx);
+#pragma GCC unroll 3
+    for (int a = 0; a < 3; ++a) {
+      f[a] = Fb[a] + drag_along[a] + lift[a] + fx[a] + d.f[a];
+      f[3 + a] = drag_along[3 + a] + d.tq[a];
+    }
+    if (first) J = d;
+  };
+  // (a full M: the matrix of ROS2's two stages factored once, at the first)
+  [[maybe_unused]] T lu[std::is_same_v<Mass, FullMass> ? 36 : 1];
+  [[maybe_unused]] bool factored = false;
+  auto solve = [&](T gh, const T* b, T* x) LRIGID_LANE_LAMBDA {
+    if constexpr (std::is_same_v<Mass, FullMass>) {
+      if (!factored) implicit_factor(tc.mass, T(0), J, gh, lu);
+      factored = true;
+      implicit_solve(tc.mass, lu, b, x);
+    } else {
+      implicit_impulse(tc.mass, T(0), J, gh, b, x);
+    }
+  };
+  T dPi[6], xi[6];
+  ros2_impulse(hs, forces, solve, dPi);
+#pragma GCC unroll 6
+  for (int a = 0; a < 6; ++a) dPi[a] += P[a];
+  velocity_of_impulse(tc.mass, tc.K, dPi, ufb, xi);
+#pragma GCC unroll 3
+  for (int a = 0; a < 3; ++a) {
+    v[a] = xi[a];
+    w[a] = xi[3 + a];
+  }
+}
+
+// The end of the free Kirchhoff flow of lane j from the converged iterate: the orientation
+// q <- q cay(h w_mid) (q: the lane's at the start), its rotation R, and the body-frame v, w
+// relative to the fluid velocity u_f (world) the flow moved in
+template <typename T, class Mass>
+LRIGID_LANE void flow_end(const StepConsts<Mass>& tc, const T* q0, const T* y0, const T* y,
+                          const T* u_f, T* q, T* R, T* ufb, T* v, T* w) {
+  const T hh = T(0.5 * tc.h);
+  T ym[6], xi[6], a[3];
+#pragma GCC unroll 6
+  for (int k = 0; k < 6; ++k) ym[k] = T(0.5) * (y0[k] + y[k]);
+  if constexpr (std::is_same_v<Mass, DiagonalMass>) {
+    // (h/2 M^-1 first: the rounding of the diagonal step before full masses came)
+#pragma GCC unroll 3
+    for (int k = 0; k < 3; ++k) a[k] = hh * T(tc.mass.Mi[3 + k]) * ym[3 + k];
+  } else {
+    T xm[6];
+    mass_inv_times(tc.mass, ym, xm);  // (the linear rows unused: the compiler drops them)
+#pragma GCC unroll 3
+    for (int k = 0; k < 3; ++k) a[k] = hh * xm[3 + k];
+  }
+  cayley_rotate(q0, a, q);
+  rotation(q, R);
+  mul_t(R, u_f, ufb);
+  mass_inv_times(tc.mass, y, xi);
+#pragma GCC unroll 3
+  for (int a = 0; a < 3; ++a) {
+    v[a] = xi[a] + ufb[a];
+    w[a] = xi[3 + a];
+  }
+}
+
+// flow_end on lane j of the block's arrays: its start orientation q0 (4 x kBatch), the
+// iteration's start impulse Y0 and converged iterate Y (6 x kBatch) and the fluid velocity uf
+// (3 x kBatch) the flow moved in (the splitting and the strang steps' end of the flow)
+template <typename T, class Mass>
+LRIGID_LANE void lane_flow_end(const StepConsts<Mass>& tc, const T (*q0)[kBatch],
+                               const T (*Y0)[kBatch], const T (*Y)[kBatch],
+                               const T (*uf)[kBatch], int j, T* q, T* R, T* ufb, T* v, T* w) {
+  T y0[6], y[6];
+#pragma GCC unroll 6
+  for (int a = 0; a < 6; ++a) {
+    y0[a] = Y0[a][j];
+    y[a] = Y[a][j];
+  }
+  const T q0j[4] = {q0[0][j], q0[1][j], q0[2][j], q0[3][j]};
+  const T u_f[3] = {uf[0][j], uf[1][j], uf[2][j]};
+  flow_end(tc, q0j, y0, y, u_f, q, R, ufb, v, w);
+}
+
+// The force step's norms, d^T M^-1 d of an impulse change d and xi^T M xi of a velocity xi
+// (integrate/kirchhoff.h energy_norm2, velocity_norm2), for a diagonal M summed in linear and
+// angular pairs as the diagonal step did before full masses came: its stiffness and convergence
+// tests keep their decisions, and its results their rounding
+template <typename T, class Mass>
+LRIGID_LANE T lane_energy_norm2(const Mass& m, const T* d) {
+  if constexpr (std::is_same_v<Mass, DiagonalMass>) {
+    T s = 0;
+#pragma GCC unroll 3
+    for (int a = 0; a < 3; ++a)
+      s += d[a] * d[a] * T(m.Mi[a]) + d[3 + a] * d[3 + a] * T(m.Mi[3 + a]);
+    return s;
+  } else {
+    return energy_norm2(m, d);
+  }
+}
+template <typename T, class Mass>
+LRIGID_LANE T lane_velocity_norm2(const Mass& m, const T* xi) {
+  if constexpr (std::is_same_v<Mass, DiagonalMass>) {
+    T s = 0;
+#pragma GCC unroll 3
+    for (int a = 0; a < 3; ++a)
+      s += T(m.M[a]) * xi[a] * xi[a] + T(m.M[3 + a]) * xi[3 + a] * xi[3 + a];
+    return s;
+  } else {
+    return velocity_norm2(m, xi);
+  }
+}
+
+// the scalar step's Kirchhoff tolerance (integrate/dynamics.h); float converges to its own
+// round-off
+template <typename T>
+constexpr double kLaneKirchhoffTol = std::is_same_v<T, float> ? 1e-5 : kKirchhoffTol;
+constexpr int kLaneKirchhoffNewton = kKirchhoffMaxNewton / 2;
+// the stiff-drag Newton runs over only its lanes when at most kBatch / kSparseNewton of a block's
+// lanes need it, and vectorised over the whole block (masked) when more do
+constexpr int kSparseNewton = 4;
+
+// Advances every lane of lanes by one step (see rigid_batch.h); lanes that are not kOk keep their
+// state at the start of the step. landed: the lane is on or below the ground after the step.
+template <typename T, bool Turb, bool Plate, bool Extra, bool Strang, class Mass>
+LRIGID_MULTIVERSION void step_lanes(const StepConsts<Mass>& tc, Lanes<T>* lanes, uint64_t step,
+                                    int* outcome, int* landed) {
+  const T h = T(tc.h), hh = T(0.5 * tc.h), wm = T(tc.wm);
+  alignas(64) T z1[3][kBatch], z2[3][kBatch];
+  if constexpr (Turb) lane_normals(tc, *lanes, step, z1, z2);
+  // the Kirchhoff iteration: start impulse Y0 and iterate Y (relative to the fluid), the fluid
+  // velocity uf (world), the world velocity V0 at the start, the seen fluctuation after the
+  // first half step
+  alignas(64) T Y0[6][kBatch], Y[6][kBatch], tol2[kBatch], last[kBatch];
+  alignas(64) T uf[3][kBatch], V0[3][kBatch];
+  int active[kBatch];
+  // new state, committed at the end for the lanes whose step succeeded
+  NewState<T> next;
+  T(&usn)[3][kBatch] = next.us;
+  int(&scalar)[kBatch] = next.scalar;
+LRIGID_IVDEP
+  for (int j = 0; j < kBatch; ++j) {
+    T us[3] = {lanes->us[0][j], lanes->us[1][j], lanes->us[2][j]};
+    const T q[4] = {lanes->q[0][j], lanes->q[1][j], lanes->q[2][j], lanes->q[3][j]};
+    T v[3] = {lanes->v[0][j], lanes->v[1][j], lanes->v[2][j]};
+    T w[3] = {lanes->w[0][j], lanes->w[1][j], lanes->w[2][j]};
+    T R[9], V[3];
+    rotation(q, R);
+    mul(R, v, V);
+    // 1. first OU half step
+    if constexpr (Turb) {
+      const T gs[3] = {lanes->gs[0][j], lanes->gs[1][j], lanes->gs[2][j]};
+      const T z[3] = {z1[0][j], z1[1][j], z1[2][j]};
+      ou_update(wm, lanes->decay[j], lanes->noise[j], lanes->sigma2[j], V, gs, z, hh, us);
+    }
+    T u_f[3], ufb[3];
+#pragma GCC unroll 3
+    for (int a = 0; a < 3; ++a) u_f[a] = T(tc.mf) * lanes->U[a][j] + (Turb ? us[a] : T(0));
+    mul_t(R, u_f, ufb);
+    if constexpr (Strang) {
+      // strang: the first force half step at the start's position and orientation
+      const T acc[3] = {lanes->acc[0][j], lanes->acc[1][j], lanes->acc[2][j]};
+      strang_force_lane<T, Plate, Extra>(tc, R, u_f, acc, hh, v, w);
+      mul(R, v, V);
+      // the flow moves relative to the fluid velocity at the midpoint (integrators.cpp
+      // strang_deterministic_step): U + grad U (h/2 V)
+#pragma GCC unroll 3
+      for (int p = 0; p < 3; ++p)
+        u_f[p] += T(tc.gu) * hh *
+                  (lanes->gU[p * 3][j] * V[0] + lanes->gU[p * 3 + 1][j] * V[1] +
+                   lanes->gU[p * 3 + 2][j] * V[2]);
+      mul_t(R, u_f, ufb);
+    }
+    // 2. the free Kirchhoff flow of the motion relative to the fluid, implicit midpoint from the
+    //    explicit midpoint predictor (dynamics.cpp kirchhoff_midpoint)
+    T y0[6], y[6];
+    const T xr[6] = {v[0] - ufb[0], v[1] - ufb[1], v[2] - ufb[2], w[0], w[1], w[2]};
+    mass_times(tc.mass, xr, y0);
+    kirchhoff_predictor(tc.mass, h, y0, y);
+    const T norm0 = energy_norm2(tc.mass, y0);
+#pragma GCC unroll 6
+    for (int a = 0; a < 6; ++a) {
+      Y0[a][j] = y0[a];
+      Y[a][j] = y[a];
+    }
+    tol2[j] = T(kLaneKirchhoffTol<T> * kLaneKirchhoffTol<T>) * norm0;
+    last[j] = T(0);
+    active[j] = 1;
+    scalar[j] = 0;
+#pragma GCC unroll 3
+    for (int a = 0; a < 3; ++a) {
+      uf[a][j] = u_f[a];
+      V0[a][j] = V[a];
+      usn[a][j] = us[a];
+    }
+  }
+  // the fixed-point iteration Y <- Y0 - h gyro((Y0 + Y)/2); lanes drop out as they converge;
+  // a lane that contracts slowly or diverges goes to the scalar step (its Newton iteration)
+  for (int it = 0; it < kKirchhoffMaxFixedPoint; ++it) {
+    int any = 0;
+LRIGID_IVDEP
+    for (int j = 0; j < kBatch; ++j) {
+      T y0[6], y[6], y_next[6];
+#pragma GCC unroll 6
+      for (int a = 0; a < 6; ++a) {
+        y0[a] = Y0[a][j];
+        y[a] = Y[a][j];
+      }
+      const T step2 = kirchhoff_fixed_point(tc.mass, h, y0, y, y_next);
+      int fin = 1;
+#pragma GCC unroll 6
+      for (int a = 0; a < 6; ++a) fin &= int(std::isfinite(y_next[a]));
+      const int act = active[j];
+      const int keep = act & fin;
+#pragma GCC unroll 6
+      for (int a = 0; a < 6; ++a) Y[a][j] = keep ? y_next[a] : Y[a][j];
+      const int conv = int(step2 <= tol2[j]);
+      const int slow = int(it > 0) & int(step2 > T(kKirchhoffSlowContraction) * last[j]);
+      scalar[j] |= act & ((1 - fin) | ((1 - conv) & slow));
+      const int more = keep & (1 - conv) & (1 - slow);
+      last[j] = act ? step2 : last[j];
+      active[j] = more;
+      any |= more;
+    }
+    if (!any) break;
+  }
+  // lanes whose fixed point stopped (slow contraction, divergence, or no convergence): Newton
+  // from where it stopped, as kirchhoff_midpoint does (simplified: the Jacobian kept while each
+  // step contracts by kKirchhoffRefactor). A lane that has not converged within half the scalar
+  // step's iterations goes to the scalar step: where Newton struggles, rounding alone (these
+  // loops factor without pivoting) could decide between converging and the scalar step's
+  // substeps, and the results must be the scalar step's.
+  {
+    alignas(64) T lu[36][kBatch], last_step[kBatch];
+    int newton[kBatch], refactor[kBatch];
+    int any_newton = 0;
+    for (int j = 0; j < kBatch; ++j) {
+      newton[j] = scalar[j] | active[j];
+      any_newton |= newton[j];
+    }
+    // most blocks have no lane here: they skip the start and the counting (one pass over the
+    // flags above)
+    if (any_newton) {
+LRIGID_IVDEP
+      for (int j = 0; j < kBatch; ++j) {
+        const int nt = newton[j];
+        refactor[j] = 1;
+        last_step[j] = T(0);
+        // the start: where the fixed point stopped, or Y0 if that is not finite or far off
+        T y0[6], dy[6];
+        int fin = 1;
+#pragma GCC unroll 6
+        for (int a = 0; a < 6; ++a) {
+          y0[a] = Y0[a][j];
+          dy[a] = Y[a][j] - y0[a];
+          fin &= int(std::isfinite(Y[a][j]));
+        }
+        const T dist = energy_norm2(tc.mass, dy), norm0 = energy_norm2(tc.mass, y0);
+        const int reset = nt & ((1 - fin) | int(dist > T(4) * norm0));
+#pragma GCC unroll 6
+        for (int a = 0; a < 6; ++a) Y[a][j] = reset ? Y0[a][j] : Y[a][j];
+      }
+      for (int j = 0; j < kBatch; ++j)
+        lanes->newton += uint64_t(newton[j] != 0) & uint64_t(lanes->live[j]);
+      for (int e = 0; e < 36; ++e)
+        for (int j = 0; j < kBatch; ++j) lu[e][j] = T(0);
+    }
+    for (int it = 0; any_newton && it < kLaneKirchhoffNewton; ++it) {
+      // a new factorization at the current iterate for the lanes that need one (all of them in
+      // the first iteration), the kept one for the others
+      int any_ref = 0;
+      for (int j = 0; j < kBatch; ++j) any_ref |= newton[j] & refactor[j];
+      if (any_ref) {
+LRIGID_IVDEP
+        for (int j = 0; j < kBatch; ++j) {
+          T ym[6], A[36];
+#pragma GCC unroll 6
+          for (int a = 0; a < 6; ++a) ym[a] = T(0.5) * (Y0[a][j] + Y[a][j]);
+          kirchhoff_newton_matrix(tc.mass, ym, hh, A);
+          const int ok = lu_factor<6>(A);
+          const int ref = newton[j] & refactor[j];
+#pragma GCC unroll 36
+          for (int e = 0; e < 36; ++e) lu[e][j] = ref ? A[e] : lu[e][j];
+          // a singular matrix: the lane goes to the scalar step
+          newton[j] = ref & (1 - ok) ? 0 : newton[j];
+        }
+      }
+      int any = 0;
+LRIGID_IVDEP
+      for (int j = 0; j < kBatch; ++j) {
+        const int act = newton[j];
+        T y0[6], y[6], r[6], A[36];
+#pragma GCC unroll 6
+        for (int a = 0; a < 6; ++a) {
+          y0[a] = Y0[a][j];
+          y[a] = Y[a][j];
+        }
+        kirchhoff_residual(tc.mass, h, y0, y, r);
+#pragma GCC unroll 36
+        for (int e = 0; e < 36; ++e) A[e] = lu[e][j];
+        lu_solve<6>(A, r);
+        const T step2 = energy_norm2(tc.mass, r);
+        int fin = 1;
+#pragma GCC unroll 6
+        for (int a = 0; a < 6; ++a) {
+          y[a] += r[a];
+          fin &= int(std::isfinite(y[a]));
+        }
+        const int good = act & fin;
+#pragma GCC unroll 6
+        for (int a = 0; a < 6; ++a) Y[a][j] = good ? y[a] : Y[a][j];
+        const int conv = good & int(step2 <= tol2[j]);
+        // converged: the loops take the lane again; failed: it stays with the scalar step
+        scalar[j] = conv ? 0 : scalar[j];
+        active[j] = conv ? 0 : active[j];
+        const int more = good & (1 - conv);
+        refactor[j] =
+            int(it > 0) & int(step2 > T(kKirchhoffRefactor * kKirchhoffRefactor) * last_step[j]);
+        last_step[j] = step2;
+        newton[j] = more;
+        any |= more;
+      }
+      if (!any) break;
+    }
+    // lanes still in Newton after kLaneKirchhoffNewton iterations go to the scalar step
+  }
+  // 3. the forces at the new orientation, drag implicit: (M + h J + b_B P) M^-1 dPi = h G +
+  //    b_B h a_fluid, from one linearly implicit step, or Newton (below) for stiff drag
+  T(&xn)[3][kBatch] = next.x;
+  T(&qn)[4][kBatch] = next.q;
+  T(&vn)[3][kBatch] = next.vel;
+  T(&wn)[3][kBatch] = next.w;
+  if constexpr (Strang) {
+    // strang: x by the trapezoidal rule over the flow, the field at the new positions, the
+    // second force half step there, and the second OU half step (end_step, on that sample)
+    alignas(64) T Vn[3][kBatch], inside0[kBatch];
+LRIGID_IVDEP
+    for (int j = 0; j < kBatch; ++j) {
+      T q[4], R[9], ufb[3], v[3], w[3], Vend[3];
+      lane_flow_end(tc, lanes->q, Y0, Y, uf, j, q, R, ufb, v, w);
+      mul(R, v, Vend);
+      scalar[j] |= active[j];
+#pragma GCC unroll 3
+      for (int a = 0; a < 3; ++a) {
+        xn[a][j] = lanes->x[a][j] + hh * (V0[a][j] + Vend[a]);
+        vn[a][j] = v[a];
+        wn[a][j] = w[a];
+      }
+#pragma GCC unroll 4
+      for (int a = 0; a < 4; ++a) qn[a][j] = q[a];
+    }
+    for (int j = 0; j < kBatch; ++j) inside0[j] = tc.sample ? lanes->inside[j] : T(1);
+    if (tc.sample) sample_lanes(tc, next.x, lanes);
+LRIGID_IVDEP
+    for (int j = 0; j < kBatch; ++j) {
+      const T q[4] = {qn[0][j], qn[1][j], qn[2][j], qn[3][j]};
+      const T acc[3] = {lanes->acc[0][j], lanes->acc[1][j], lanes->acc[2][j]};
+      T R[9], u_f[3], v[3] = {vn[0][j], vn[1][j], vn[2][j]}, w[3] = {wn[0][j], wn[1][j], wn[2][j]};
+      rotation(q, R);
+#pragma GCC unroll 3
+      for (int a = 0; a < 3; ++a) u_f[a] = T(tc.mf) * lanes->U[a][j] + (Turb ? usn[a][j] : T(0));
+      strang_force_lane<T, Plate, Extra>(tc, R, u_f, acc, hh, v, w);
+      T Vend[3];
+      mul(R, v, Vend);
+#pragma GCC unroll 3
+      for (int a = 0; a < 3; ++a) {
+        vn[a][j] = v[a];
+        wn[a][j] = w[a];
+        Vn[a][j] = Vend[a];
+      }
+    }
+    end_step<T, Turb>(tc, z2, Vn, &next, lanes, outcome, landed, inside0);
+    return;
+  }
+  // what Newton needs: the impulse P (linear, relative to the fluid's added-mass impulse) and lanes
+  // before the forces, their changes dP and dL, h times the forces other than drag G (linear;
+  // none of them has a torque), the fluid velocity (body frame) at the end, and the norm of the
+  // relative velocity
+  alignas(64) T Pl[6][kBatch], dPL[6][kBatch], G[3][kBatch], ufe[3][kBatch], ufs[3][kBatch];
+  alignas(64) T norm_r[kBatch];
+  int stiff[kBatch];
+  int any_stiff = 0;
+LRIGID_IVDEP
+  for (int j = 0; j < kBatch; ++j) {
+    // q <- q cay(h w_mid)
+    T q[4], R[9], ufb[3], v[3], w[3], vr[3];
+    lane_flow_end(tc, lanes->q, Y0, Y, uf, j, q, R, ufb, v, w);
+#pragma GCC unroll 3
+    for (int a = 0; a < 3; ++a) vr[a] = v[a] - ufb[a];
+    T lift[3] = {0, 0, 0};
+    const DragOut<T> drag = body_forces<T, Plate>(tc, vr, w, lift);
+    T F[3] = {T(tc.F[0]), T(tc.F[1]), T(tc.F[2])};
+    T Fb[3], u_end[3], ufb_end[3], fx[3] = {0, 0, 0}, ab[3] = {0, 0, 0};
+    if constexpr (Extra) {
+      // the Basset history force (world) joins the weight; Magnus (body frame) and the
+      // current interval's b_B h a_fluid (body frame, below) join the rest
+      T acc[3];
+#pragma GCC unroll 3
+      for (int a = 0; a < 3; ++a) {
+        F[a] += lanes->fb[a][j];
+        acc[a] = T(tc.gu) * lanes->acc[a][j];
+      }
+      magnus_kernel(T(tc.magnus), w, vr, fx);
+      mul_t(R, acc, ab);
+    }
+    mul_t(R, F, Fb);
+#pragma GCC unroll 3
+    for (int a = 0; a < 3; ++a) u_end[a] = uf[a][j] + h * T(tc.gu) * lanes->acc[a][j];
+    mul_t(R, u_end, ufb_end);
+    T Gj[3], rhs[6], dPL_j[6];
+#pragma GCC unroll 3
+    for (int a = 0; a < 3; ++a) {
+      Gj[a] = Extra ? h * (Fb[a] + lift[a] + fx[a]) + T(tc.basset_mass) * h * ab[a]
+                    : h * (Fb[a] + lift[a]);
+      rhs[a] = Gj[a] + h * drag.f[a];
+      rhs[3 + a] = h * drag.tq[a];
+    }
+    implicit_impulse(tc.mass, T(tc.basset_mass), drag, h, rhs, dPL_j);
+    // the impulse Pi before the forces (relative to the fluid's added-mass impulse) and the
+    // velocity after them, xi = M^-1 (Pi + dPi + K (u_f end; 0))
+    const T xi[6] = {v[0], v[1], v[2], w[0], w[1], w[2]};
+    T Pi[6], Pn[6], xin[6];
+    impulse_of_velocity(tc.mass, tc.K, xi, ufb, Pi);
+#pragma GCC unroll 6
+    for (int a = 0; a < 6; ++a) {
+      Pn[a] = Pi[a] + dPL_j[a];
+      Pl[a][j] = Pi[a];
+      dPL[a][j] = dPL_j[a];
+    }
+    velocity_of_impulse(tc.mass, tc.K, Pn, ufb_end, xin);
+    const T xr[6] = {vr[0], vr[1], vr[2], w[0], w[1], w[2]};
+    const T e_new = lane_energy_norm2(tc.mass, dPL_j), e_r = lane_velocity_norm2(tc.mass, xr);
+#pragma GCC unroll 3
+    for (int a = 0; a < 3; ++a) {
+      vn[a][j] = xin[a];
+      wn[a][j] = xin[3 + a];
+      G[a][j] = Gj[a];
+      ufe[a][j] = ufb_end[a];
+      ufs[a][j] = ufb[a];
+    }
+    // drag that changes the relative velocity by more than kStiffChange: Newton, as the scalar
+    // step (lanes the scalar step takes anyway need none)
+    const int st = int(tc.drag != 0) & int(e_new > T(kStiffChange * kStiffChange) * e_r) &
+                   (1 - (scalar[j] | active[j]));
+    stiff[j] = st;
+    any_stiff |= st;
+    norm_r[j] = e_r;
+    scalar[j] |= active[j];
+#pragma GCC unroll 4
+    for (int a = 0; a < 4; ++a) qn[a][j] = q[a];
+  }
+  // stiff drag: Newton on R(dPi) = dPi - h (G_other + F_drag(xi(dPi))) - b_B (h a - dv), lanes
+  // drop out as they converge (integrators.cpp split_deterministic_step). One Newton update of
+  // lane j, written once for both loops below; returns whether j goes on.
+  auto newton_lane = [&](int j) LRIGID_LANE_LAMBDA {
+    const int act = stiff[j];
+    T vr[3], w[3], lift[3];
+#pragma GCC unroll 3
+    for (int a = 0; a < 3; ++a) {
+      vr[a] = vn[a][j] - ufs[a][j];
+      w[a] = wn[a][j];
+    }
+    const DragOut<T> drag = body_forces<T, Plate>(tc, vr, w, lift);
+    // the Newton step -M (M + h J + b_B P)^-1 res, J the drag's stiffness here
+    // (the Basset term: b_B times the linear velocity change M^-1 dPi)
+    T res[6], x[6], dPi[6], ddv[6], Pn[6], xin[6];
+#pragma GCC unroll 6
+    for (int a = 0; a < 6; ++a) dPi[a] = dPL[a][j];
+    mass_inv_times(tc.mass, dPi, ddv);
+#pragma GCC unroll 3
+    for (int a = 0; a < 3; ++a) {
+      T b_dv = T(tc.basset_mass) * ddv[a];
+      if constexpr (std::is_same_v<Mass, DiagonalMass>)
+        b_dv = T(tc.basset_mass) * T(tc.mass.Mi[a]) * dPi[a];  // (the diagonal step's rounding)
+      res[a] = dPi[a] - G[a][j] - h * drag.f[a] + b_dv;
+      res[3 + a] = dPi[3 + a] - h * drag.tq[a];
+    }
+    implicit_impulse(tc.mass, T(tc.basset_mass), drag, h, res, x);
+#pragma GCC unroll 6
+    for (int a = 0; a < 6; ++a) {
+      dPi[a] -= x[a];
+      Pn[a] = Pl[a][j] + dPi[a];
+    }
+    const T ufe_j[3] = {ufe[0][j], ufe[1][j], ufe[2][j]};
+    velocity_of_impulse(tc.mass, tc.K, Pn, ufe_j, xin);
+    const T conv = lane_energy_norm2(tc.mass, x);
+#pragma GCC unroll 3
+    for (int a = 0; a < 3; ++a) {
+      dPL[a][j] = act ? dPi[a] : dPL[a][j];
+      dPL[3 + a][j] = act ? dPi[3 + a] : dPL[3 + a][j];
+      vn[a][j] = act ? xin[a] : vn[a][j];
+      wn[a][j] = act ? xin[3 + a] : wn[a][j];
+    }
+    const int more = act & int(conv > T(kDragTol * kDragTol) * norm_r[j]);
+    stiff[j] = more;
+    return more;
+  };
+  if (tc.drag != 0 && any_stiff) {
+    int idx[kBatch], m = 0;
+    for (int j = 0; j < kBatch; ++j) {
+      lanes->newton += uint64_t(stiff[j] != 0) & uint64_t(lanes->live[j]);
+      idx[m] = j;
+      m += stiff[j];
+    }
+    for (int it = 0; it < kDragMaxNewton && m > 0; ++it) {
+      if (m * kSparseNewton > kBatch) {
+        // many stiff lanes: every lane, vectorised, the others masked
+        int any = 0;
+LRIGID_IVDEP
+        for (int j = 0; j < kBatch; ++j) any |= newton_lane(j);
+        if (!any) break;
+        m = 0;
+        for (int j = 0; j < kBatch; ++j) {
+          idx[m] = j;
+          m += stiff[j];
+        }
+      } else {
+        // a few: only those (a lane that needs Newton is rare and usually alone in its block;
+        // the masked loop cost all kBatch lanes per iteration, 93 % of them idle on
+        // scenes/art_flow_scales.json)
+        int k = 0;
+        for (int i = 0; i < m; ++i) {
+          const int j = idx[i];
+          idx[k] = j;
+          k += newton_lane(j);
+        }
+        m = k;
+      }
+    }
+  }
+  // 4. x by the trapezoidal rule on the world velocity
+  alignas(64) T Vn[3][kBatch];  // the world velocity at the end
+LRIGID_IVDEP
+  for (int j = 0; j < kBatch; ++j) {
+    const T q[4] = {qn[0][j], qn[1][j], qn[2][j], qn[3][j]};
+    const T v[3] = {vn[0][j], vn[1][j], vn[2][j]};
+    T R[9], Vend[3];
+    rotation(q, R);
+    mul(R, v, Vend);
+#pragma GCC unroll 3
+    for (int a = 0; a < 3; ++a) {
+      xn[a][j] = lanes->x[a][j] + hh * (V0[a][j] + Vend[a]);
+      Vn[a][j] = Vend[a];
+    }
+  }
+  // 5. the second OU half step at the new position
+  end_step<T, Turb>(tc, z2, Vn, &next, lanes, outcome, landed);
+}
+
+}  // namespace
+}  // namespace lrigid
+#include "integrate/rigid_batch_explicit.h"  // euler and rk4
+namespace lrigid {
+namespace {  // NOLINT(build/namespaces)
+
+template <typename T, class Mass>
+BlockStats advance(const Model& model, const BodyType& type, State* state, const uint32_t* body,
+                   int count, uint64_t first, uint64_t last) {
+  const StepConsts<Mass> tc = make_consts<Mass>(model, type);
+  const bool unsteady = tc.grid && model.field.frame_count() > 1;
+  auto step = [&](auto turb, auto plate, auto extra, Lanes<T>* lanes, uint64_t s, int* outcome,
+                  int* landed) {
+    constexpr bool A = decltype(turb)::value, B = decltype(plate)::value,
+                   C = decltype(extra)::value;
+    if (tc.scheme == Integrator::Euler)
+      return euler_lanes<T, A, B, C>(tc, lanes, s, outcome, landed);
+    if (tc.scheme == Integrator::RK4)
+      return rk4_lanes<T, A, B, C>(tc, rk4_frames(model, unsteady, s), lanes, s, outcome,
+                                   landed);
+    if (tc.strang)
+      step_lanes<T, A, B, C, true>(tc, lanes, s, outcome, landed);
+    else
+      step_lanes<T, A, B, C, false>(tc, lanes, s, outcome, landed);
+  };
+  return drive_block<T, Lanes<T>>(model, type, tc, tc.turb, tc.plate, state, body, count, first,
+                                  last, step);
+}
+
+}  // namespace
+}  // namespace lrigid
