@@ -4,6 +4,8 @@
 // update of the seen fluctuation. Internal to the batched steps' explicit schemes
 // (sphere_batch_explicit.h, rigid_batch_explicit.h).
 #pragma once
+#include <type_traits>
+
 #include "effects/turbulence.h"
 #include "fluid/field.h"
 #include "integrate/batch_lanes.h"
@@ -45,6 +47,30 @@ struct Rk4Block {
   alignas(64) T Sxi[6][kBatch];
   alignas(64) T ok[kBatch];
 };
+
+// rk4's four stages on a block: stage(std::integral_constant<int, I>) evaluates stage I at k's
+// stage state and adds its rates to k's sums; between stages the field is sampled at the next
+// stage's positions (k->xs) and, in a time-dependent field, at its time (t + h/2, t + h/2,
+// t + h). The driver's frames (the end of the step) are restored after the last stage. Inlined,
+// with the stages, into each multiversioned rk4 loop that calls it.
+template <typename T, class Lanes, class Stage>
+LRIGID_LANE void rk4_stages(const FieldConsts& fc, const Rk4Frames& frames, Lanes* lanes,
+                            Rk4Block<T>* k, Stage stage) {
+  const FluidField::FrameBlend at_end = lanes->frames;
+  auto sample = [&](const FluidField::FrameBlend& at) LRIGID_LANE_LAMBDA {
+    if (!fc.sample) return;
+    if (frames.unsteady) lanes->frames = at;
+    sample_lanes(fc, k->xs, lanes);
+  };
+  stage(std::integral_constant<int, 0>{});
+  sample(frames.mid);
+  stage(std::integral_constant<int, 1>{});
+  sample(frames.mid);
+  stage(std::integral_constant<int, 2>{});
+  sample(frames.end);
+  stage(std::integral_constant<int, 3>{});
+  lanes->frames = at_end;
+}
 
 // The seen fluctuation us of lane j after the step by Euler-Maruyama from the start of the step
 // (integrators.cpp step_body: Ito, the start's sample and path velocity V0, world), normals z

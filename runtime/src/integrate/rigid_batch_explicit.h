@@ -234,21 +234,9 @@ LRIGID_MULTIVERSION void rk4_lanes(const StepConsts<Mass>& tc, const Rk4Frames& 
   if constexpr (Turb) lane_normals<T, true>(tc, *lanes, step, z, unused);
   Rk4Block<T> k;
   NewState<T> next;
-  const FluidField::FrameBlend at_end = lanes->frames;  // the driver's: the end of the step
-  // the field at the next stage's positions, at its time
-  auto sample = [&](const FluidField::FrameBlend& at) {
-    if (!tc.sample) return;
-    if (frames.unsteady) lanes->frames = at;
-    sample_lanes(tc, k.xs, lanes);
-  };
-  rk4_stage<T, Turb, Plate, Extra, 0>(tc, lanes, z, &k, &next);
-  sample(frames.mid);
-  rk4_stage<T, Turb, Plate, Extra, 1>(tc, lanes, z, &k, &next);
-  sample(frames.mid);
-  rk4_stage<T, Turb, Plate, Extra, 2>(tc, lanes, z, &k, &next);
-  sample(frames.end);
-  rk4_stage<T, Turb, Plate, Extra, 3>(tc, lanes, z, &k, &next);
-  lanes->frames = at_end;
+  rk4_stages(tc, frames, lanes, &k, [&](auto stage) LRIGID_LANE_LAMBDA {
+    rk4_stage<T, Turb, Plate, Extra, decltype(stage)::value>(tc, lanes, z, &k, &next);
+  });
   const T h6 = h / T(6);
   LRIGID_IVDEP
   for (int j = 0; j < kBatch; ++j) {
