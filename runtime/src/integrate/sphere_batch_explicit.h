@@ -129,7 +129,6 @@ template <typename T, bool Turb, bool WithDrag, bool Extra, int I>
 LRIGID_LANE void rk4_stage(const StepConsts& tc, const Lanes<T>* lanes, const T (*z)[kBatch],
                            Rk4Block<T>* k, NewState<T>* next) {
   const T h = T(tc.h);
-  const T ci = I == 0 || I == 1 ? T(0.5) : T(1), wi = I == 0 || I == 3 ? T(1) : T(2);
   LRIGID_IVDEP
   for (int j = 0; j < kBatch; ++j) {
     const T us0[3] = {lanes->us[0][j], lanes->us[1][j], lanes->us[2][j]};
@@ -190,20 +189,10 @@ LRIGID_LANE void rk4_stage(const StepConsts& tc, const Lanes<T>* lanes, const T 
     mul(R, v, kx);
     dexpinv(theta, w, kth);
     const bool in = !tc.sample | (lanes->inside[j] != T(0));
-    k->ok[j] = ((I == 0 || k->ok[j] != T(0)) & in) ? T(1) : T(0);
-#pragma GCC unroll 3
-    for (int a = 0; a < 3; ++a) {
-      k->Sx[a][j] = I == 0 ? kx[a] : k->Sx[a][j] + wi * kx[a];
-      k->Sth[a][j] = I == 0 ? kth[a] : k->Sth[a][j] + wi * kth[a];
-      if constexpr (I < 3) {
-        k->xs[a][j] = lanes->x[a][j] + ci * h * kx[a];
-        k->th[a][j] = ci * h * kth[a];
-        k->vs[a][j] = k->v0[a][j] + ci * h * kxi[a];
-        k->ws[a][j] = lanes->w[a][j] + ci * h * kxi[3 + a];
-      }
-    }
-#pragma GCC unroll 6
-    for (int a = 0; a < 6; ++a) k->Sxi[a][j] = I == 0 ? kxi[a] : k->Sxi[a][j] + wi * kxi[a];
+    const T x0[3] = {lanes->x[0][j], lanes->x[1][j], lanes->x[2][j]};
+    const T v0[3] = {k->v0[0][j], k->v0[1][j], k->v0[2][j]};
+    const T w0[3] = {lanes->w[0][j], lanes->w[1][j], lanes->w[2][j]};
+    rk4_sum_lane<I>(k, j, in, h, x0, v0, w0, kx, kth, kxi);
     if constexpr (I == 0) {
       // the path velocity of the seen fluctuation's drift: the start's world velocity
       const T V0[3] = {lanes->V[0][j], lanes->V[1][j], lanes->V[2][j]};
