@@ -207,6 +207,20 @@ void FluidField::set_floor_clamp(bool on) {
   id_ = next_field_id++;
 }
 
+const std::vector<GridRecord>* FluidField::wall_frame(double t) const {
+  // the solids do not move: any resident frame holds the same distances. A streamed series keeps
+  // only the frames about to be sampled (prepare), so t's own frame may be gone: a caller that
+  // asked at another time (exit_reason asks at t = 0) read a released frame (SIGSEGV in
+  // bench/perf/stream_bench.sh, the tank series with colliding walls)
+  size_t i, j;
+  double lam;
+  bracket(t, &i, &j, &lam);
+  if (!frames_[i].empty()) return &frames_[i];
+  for (const std::vector<GridRecord>& f : frames_)
+    if (!f.empty()) return &f;
+  return nullptr;
+}
+
 bool FluidField::wall_distance(const Vec3& x, double t, double* d, Vec3* gradient) const {
   *d = HUGE_VAL;
   gradient->setZero();
@@ -222,11 +236,9 @@ bool FluidField::wall_distance(const Vec3& x, double t, double* d, Vec3* gradien
     i0[a] = i;
     f[a] = s - i;
   }
-  // the solids do not move: any resident frame holds the same distances
-  size_t i, j;
-  double lam;
-  bracket(t, &i, &j, &lam);
-  const std::vector<GridRecord>& frame = frames_[i];
+  const std::vector<GridRecord>* walls = wall_frame(t);
+  if (!walls) return false;
+  const std::vector<GridRecord>& frame = *walls;
   const int sy = g.n[0], sz = g.n[0] * g.n[1];
   const size_t base = size_t(i0[0]) + size_t(i0[1]) * sy + size_t(i0[2]) * sz;
   const size_t off[8] = {0, 1, size_t(sy), size_t(1 + sy), size_t(sz), size_t(1 + sz),
@@ -263,11 +275,9 @@ bool FluidField::only_floor_near(const Vec3& x, double reach, double floor_z, do
     lo[a] = static_cast<int>(s0);
     hi[a] = std::min(static_cast<int>(std::ceil(s1)), g.n[a] - 1);
   }
-  // the solids do not move: any resident frame holds the same distances
-  size_t f0, f1;
-  double lam;
-  bracket(t, &f0, &f1, &lam);
-  const std::vector<GridRecord>& frame = frames_[f0];
+  const std::vector<GridRecord>* walls = wall_frame(t);
+  if (!walls) return false;
+  const std::vector<GridRecord>& frame = *walls;
   const size_t sy = size_t(g.n[0]), sz = size_t(g.n[0]) * size_t(g.n[1]);
   for (int k = lo[2]; k <= hi[2]; ++k) {
     const double above = g.origin[2] + k * g.spacing[2] - floor_z;

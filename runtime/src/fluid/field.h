@@ -169,6 +169,9 @@ class FluidField {
   struct Stream;
   // the frames sample() blends at time t: i and j (equal when one frame serves), lam in [0, 1]
   void bracket(double t, size_t* i, size_t* j, double* lam) const;
+  // the frame the wall-distance queries read at time t: t's own when resident, else any resident
+  // one (the solids do not move); null when none is
+  const std::vector<GridRecord>* wall_frame(double t) const;
   static std::vector<GridRecord> records(const GridGeometry& geometry, const RawGridFrame& raw,
                                          double nu, Drift drift, const TurbulenceLimits& limits);
 

@@ -231,5 +231,26 @@ TEST(FluidField, WithoutAWallDistanceEverySampleIsFarFromWalls) {
   EXPECT_NEAR(s.wall_distance, 0.5, 1e-6);
 }
 
+// The solids do not move, so a wall query may ask at any time: on a streamed series whose first
+// frame has been released it reads a resident frame. Before, it read frame 0's records wherever
+// the caller asked at t = 0 (the exit reason of a body that left the grid does), a released
+// (empty) frame: lrigid run --stream-field on crashed on the tank series with colliding walls.
+TEST(FluidField, WallQueriesOnAStreamedSeriesReadAResidentFrame) {
+  const GridGeometry g = geometry();
+  const FluidField st = FluidField::streamed(
+      g, {0.0, 1.0, 2.0, 3.0}, [&g](size_t i) { return walled_frame(g, double(i)); }, 1e-5,
+      Drift::Stationary, TimeMode::Clamp);
+  st.prepare(2.5, 2.5);  // frames 2 and 3 only
+  ASSERT_EQ(st.resident_frames(), 2u);
+  for (const double t : {0.0, 0.5, 1.5, 2.5}) {
+    double d;
+    Vec3 grad;
+    ASSERT_TRUE(st.wall_distance(Vec3(0.1, 0.2, 3.2), t, &d, &grad)) << t;
+    EXPECT_NEAR(d, 0.5, 1e-6) << t;
+    EXPECT_NEAR(grad.z(), 1.0, 1e-6) << t;
+    EXPECT_TRUE(st.only_floor_near(Vec3(-0.3, 0.37, 3.0), 0.05, 2.7, t)) << t;
+  }
+}
+
 }  // namespace
 }  // namespace lrigid
