@@ -365,6 +365,7 @@ State initial_state(const Model& model, const Scene& scene) {
   s.t_touch.assign(n, std::nan(""));
   s.x_touch.assign(n, Vec3::Zero());
   s.hidden.assign(n, 0);
+  s.watch.assign(n, GustWatch{});
   s.history_offset.assign(n, State::kNoHistory);
   size_t hist = 0;
   for (const BodyType& type : model.types)

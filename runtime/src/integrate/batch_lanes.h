@@ -570,12 +570,15 @@ BlockStats drive_block(const Model& model, const BodyType& type, const FieldCons
   State& st = *state;
   Lanes block{};  // zeroed: without a field to sample, the sample arrays stay the fluid at rest
   Lanes* lanes = &block;
+  uint64_t dormant[kBatch];  // the step a sleeping lane wakes at (GustWatch::kNever: none)
   for (int j = 0; j < kBatch; ++j) {
     // lanes past count repeat the first body and stay idle
     const size_t i = body[j < count ? j : 0];
     lanes->load(j, load_body(st, i));
     lanes->body[j] = static_cast<uint32_t>(i);
     lanes->live[j] = j < count && st.status[i] == BodyStatus::Moving;
+    // a sleeping body its gust watch wakes in this stretch: a dormant lane until then
+    dormant[j] = j < count && wakes_before(st, i, last) ? st.watch[i].wake : GustWatch::kNever;
     lanes->history[j] = st.history_of(i);
     lanes->track[j] = fc.ground && (!fc.ground_collide || std::isnan(st.t_touch[i]));
   }
@@ -591,12 +594,26 @@ BlockStats drive_block(const Model& model, const BodyType& type, const FieldCons
   alignas(64) int outcome[kBatch];
   alignas(64) int landed[kBatch];
   for (uint64_t s = first; s < last; ++s) {
-    bool any = false;
-    for (int j = 0; j < count; ++j) any = any || lanes->live[j];
-    if (!any) break;
+    bool any = false, sleepers = false;
+    for (int j = 0; j < count; ++j) {
+      if (dormant[j] == s) {
+        // its watch wakes it: it takes this step with the u' the watch followed
+        BodyState b;
+        lanes->store(j, &b);
+        b.u_seen = wake_sleeper(&st, lanes->body[j]);
+        lanes->load(j, b);
+        resample(j, j + 1);
+        lanes->live[j] = true;
+        dormant[j] = GustWatch::kNever;
+      }
+      any = any || lanes->live[j];
+      sleepers = sleepers || dormant[j] != GustWatch::kNever;
+    }
+    if (!any && !sleepers) break;
     const double t = static_cast<double>(s) * model.dt;
     // (the end time as the next stretch's start, first * dt: bitwise the same blend)
     if (unsteady) lanes->frames = model.field.frames_at(static_cast<double>(s + 1) * model.dt);
+    if (!any) continue;  // only sleepers, waking later
     if (fc.basset) {
       for (int j = 0; j < kBatch; ++j) {
         const Vec3 f =
@@ -671,7 +688,12 @@ BlockStats drive_block(const Model& model, const BodyType& type, const FieldCons
             // the lane's sample is at the step's end: taken again only where the contact moved the body
             // (no point touching: it did not)
             if (!asleep && b.x != end.x) resample(j, j + 1);
-            if (asleep) lanes->live[j] = false;
+            if (asleep) {
+              lanes->live[j] = false;
+              // asleep until its watch wakes it, in this stretch or a later one
+              const uint64_t wake = watch_sleeper(model, &st, i, t + model.dt, last);
+              if (wake < last) dormant[j] = wake;
+            }
           }
           // a ground with "stop" still lands the bodies (walls colliding)
           if (!lanes->live[j] || fc.ground_collide) continue;

@@ -4,7 +4,9 @@
 #include <cmath>
 
 #include "effects/contact.h"
+#include "effects/turbulence.h"
 #include "integrate/dynamics.h"
+#include "util/rng.h"
 
 namespace lrigid {
 
@@ -117,7 +119,7 @@ double end_velocity_weight(const Model& m) {
 }  // namespace
 
 bool flow_can_move(const Model& model, const BodyType& type, const BodyState& b, const Vec3& n,
-                   double t) {
+                   double t, double gust) {
   Kinematics k;
   k.x = b.x;
   k.R = b.q.toRotationMatrix();
@@ -125,12 +127,12 @@ bool flow_can_move(const Model& model, const BodyType& type, const BodyState& b,
   k.w.setZero();
   k.u_seen.setZero();
   k.history = b.history;  // the Basset history's force as it stands (none without the effect)
-  // the mean flow and its variance at the body (the sample effect_wrench takes is the same)
+  // the mean flow at the body (the sample effect_wrench takes is the same)
   FluidSample s;
   if (type.plan.sample_field && !sample_fluid(model, b.x, t, false, &s)) return false;
   const double un = s.U.norm();
   const Vec3 along = un > 0 ? Vec3(s.U / un) : Vec3::UnitX();
-  k.u_seen = kGustSigmas * std::sqrt(std::max(0.0, s.sigma2)) * along;
+  k.u_seen = gust * along;
   Vec6 f;
   FluidSample used;
   if (effect_wrench(model, type, k, t, &f, &used) != EvalResult::Ok) return false;
@@ -150,6 +152,102 @@ bool flow_can_move(const Model& model, const BodyType& type, const BodyState& b,
     if (tau.norm() > c.rolling_resistance * rb.norm() * press) return true;
   }
   return false;
+}
+
+double wake_gust(const Model& model, const BodyType& type, const BodyState& b, const Vec3& n,
+                 double t, double sigma) {
+  if (flow_can_move(model, type, b, n, t, 0.0)) return 0.0;
+  const double top = kMaxGustSigmas * sigma;
+  if (!(top > 0) || !flow_can_move(model, type, b, n, t, top)) return HUGE_VAL;
+  double lo = 0, hi = top;
+  while (hi - lo > 1e-4 * top) {
+    const double mid = 0.5 * (lo + hi);
+    (flow_can_move(model, type, b, n, t, mid) ? hi : lo) = mid;
+  }
+  return hi;
+}
+
+bool keeps_gust_watch(const Model& model, const BodyType& type) {
+  return type.effects.has(Effect::Turbulence) && model.turbulence_model == TurbulenceModel::Seen &&
+         type.plan.sample_field;
+}
+
+namespace {
+
+// The standard deviation of one component of the turbulence at x (m/s); 0 outside the grid
+double turbulence_sigma(const Model& model, const Vec3& x, double t) {
+  FluidSample s;
+  if (!sample_fluid(model, x, t, false, &s)) return 0;
+  return std::sqrt(std::max(0.0, s.sigma2));
+}
+
+// Body i, resting in b on a surface of world normal n after the step that ends at t_end, falls
+// asleep unless the flow moves it as it is (returns false: it stays awake). Where the type keeps
+// a gust watch, the watch starts from the u' the body sees now.
+bool fall_asleep(const Model& model, const BodyType& type, size_t i, double t_end,
+                 const Vec3& n, BodyState* b, State* st) {
+  const bool watch = keeps_gust_watch(model, type);
+  double gust;
+  if (watch) {
+    gust = wake_gust(model, type, *b, n, t_end, turbulence_sigma(model, b->x, t_end));
+    if (!(gust > 0)) return false;
+  } else {
+    const double sigma =
+        type.effects.has(Effect::Turbulence) ? turbulence_sigma(model, b->x, t_end) : 0.0;
+    if (flow_can_move(model, type, *b, n, t_end, kGustSigmas * sigma)) return false;
+    gust = HUGE_VAL;
+  }
+  st->status[i] = BodyStatus::Sleeping;
+  st->t_stop[i] = t_end;
+  b->v.setZero();
+  b->w.setZero();
+  if (i < st->watch.size()) {
+    GustWatch& w = st->watch[i];
+    w = GustWatch{};
+    w.u = b->u_seen;
+    w.gust = gust;
+    w.step = static_cast<uint64_t>(std::llround(t_end / model.dt));
+    w.valid = 1;
+  }
+  return true;
+}
+
+constexpr uint64_t kWatchSalt = 0x9e3779b97f4a7c15ull;  // the watches' stream: another key
+
+}  // namespace
+
+uint64_t watch_sleeper(const Model& model, State* st, size_t i, double t, uint64_t upto) {
+  if (i >= st->watch.size() || !st->watch[i].valid) return GustWatch::kNever;
+  GustWatch& w = st->watch[i];
+  if (w.wake != GustWatch::kNever || !(w.gust < HUGE_VAL) || w.step >= upto) return w.wake;
+  FluidSample s;
+  if (!sample_fluid(model, st->x[i], t, !model.field.is_uniform(), &s)) return w.wake;
+  const double un = s.U.norm();
+  const Vec3 along = un > 0 ? Vec3(s.U / un) : Vec3::UnitX();
+  const OUStep ou = ou_exact(s.alpha, s.beta, model.dt);
+  // the seen model's update (turbulence_update) for a body at rest: its path velocity is 0
+  const double wm = model.well_mixed_correction ? 1.0 : 0.0;
+  const double rest[3] = {0, 0, 0};
+  for (; w.step < upto; ++w.step) {
+    double z[3];
+    NormalStream(model.seed ^ kWatchSalt, static_cast<uint32_t>(i), w.step).normals(z);
+    ou_update(wm, ou.decay, ou.noise_std, s.sigma2, rest, s.grad_sigma2.data(), z, model.dt,
+              w.u.data());
+    if (w.u.dot(along) >= w.gust) {
+      w.wake = ++w.step;
+      break;
+    }
+  }
+  return w.wake;
+}
+
+Vec3 wake_sleeper(State* st, size_t i) {
+  st->status[i] = BodyStatus::Moving;
+  st->rest_steps[i] = 0;
+  st->t_stop[i] = 0;
+  GustWatch& w = st->watch[i];
+  w.valid = 0;
+  return w.u;
 }
 
 bool contact_after_step(const Model& model, const BodyType& type, size_t i, double t_end,
@@ -210,16 +308,12 @@ bool contact_after_step(const Model& model, const BodyType& type, size_t i, doub
   st->contact[i] = rests ? ContactState::Resting : ContactState::Sliding;
   st->rest_steps[i] = rests ? st->rest_steps[i] + 1 : 0;
   if (rests && double(st->rest_steps[i]) * h >= model.sleep_time) {
-    // it sleeps only where the flow cannot move it, gusts included: otherwise it stays awake
-    // (and is asked again after another sleep_time of rest)
-    if (flow_can_move(model, type, *b, R * base_n, t_end)) {
+    // it sleeps only where the flow as it is cannot move it: otherwise it stays awake (and is
+    // asked again after another sleep_time of rest); a gust watch wakes it when a gust could
+    if (!fall_asleep(model, type, i, t_end, R * base_n, b, st)) {
       st->rest_steps[i] = 0;
       return false;
     }
-    st->status[i] = BodyStatus::Sleeping;
-    st->t_stop[i] = t_end;
-    b->v.setZero();
-    b->w.setZero();
     return true;
   }
   return false;
@@ -236,14 +330,20 @@ bool speculative_ground_contact(const Model& model, const BodyType& type, BodySt
                          c.r, c.n, c.depth, kContactPasses, dx) > 0;
 }
 
-void wake_bodies(const Model& model, State* st, size_t n0, size_t n) {
-  if (model.field.frame_count() < 2 && !model.field.is_streamed()) return;
+void wake_bodies(const Model& model, State* st, size_t n0, size_t n, uint64_t first,
+                 uint64_t last) {
+  const bool changes = model.field.frame_count() >= 2 || model.field.is_streamed();
+  const double t = static_cast<double>(first) * model.dt;
   for (size_t i = n0; i < n; ++i) {
     if (st->status[i] != BodyStatus::Sleeping) continue;
-    if (model.field.next_frame_time(st->t_stop[i]) > st->t) continue;
-    st->status[i] = BodyStatus::Moving;
-    st->rest_steps[i] = 0;
-    st->t_stop[i] = 0;
+    if (changes && model.field.next_frame_time(st->t_stop[i]) <= st->t) {
+      st->status[i] = BodyStatus::Moving;
+      st->rest_steps[i] = 0;
+      st->t_stop[i] = 0;
+      if (i < st->watch.size()) st->watch[i].valid = 0;
+      continue;
+    }
+    if (watch_sleeper(model, st, i, t, last) <= first) st->u_seen[i] = wake_sleeper(st, i);
   }
 }
 

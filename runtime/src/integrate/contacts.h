@@ -51,23 +51,56 @@ bool contact_after_step(const Model& model, const BodyType& type, size_t i, doub
 bool speculative_ground_contact(const Model& model, const BodyType& type, BodyState* b);
 
 // Could the flow move body b, lying at rest on a surface of world normal n (from the surface
-// into the fluid), at time t? The effects' wrench on it held still (gravity, buoyancy, drag,
-// lift, the fluid's acceleration: effect_wrench) with a gust of kGustSigmas standard deviations
-// of the turbulence along the mean flow: true when it would lift the body off (no force
-// pressing it onto the surface) or its tangential part exceeds the friction mu times the
-// pressing force, or (a sphere or an ellipsoid with rolling resistance) when its torque about
-// the touching point exceeds mu_r |r| times the pressing force, so that it would roll. A body
-// whose flow can move it does not sleep (docs/contacts.md); in a steady field its flow never
-// changes, so one that sleeps could not have been moved. Tipping over (the torque about an
-// edge) is not tested, nor rolling without rolling resistance.
-constexpr double kGustSigmas = 3.0;
+// into the fluid), at time t, with a gust of `gust` m/s added to the turbulence it sees along the
+// mean flow? The effects' wrench on it held still (gravity, buoyancy, drag, lift, the fluid's
+// acceleration: effect_wrench): true when it would lift the body off (no force pressing it onto
+// the surface) or its tangential part exceeds the friction mu times the pressing force, or (a
+// sphere or an ellipsoid with rolling resistance) when its torque about the touching point
+// exceeds mu_r |r| times the pressing force, so that it would roll. Tipping over (the torque
+// about an edge) is not tested, nor rolling without rolling resistance.
 bool flow_can_move(const Model& model, const BodyType& type, const BodyState& b, const Vec3& n,
-                   double t);
+                   double t, double gust);
 
-// Sleeping bodies whose flow has changed since they fell asleep (a time-dependent field has
-// passed a frame time since st.t_stop) wake up: status Moving again, resting count reset.
-// Bodies [n0, n).
-void wake_bodies(const Model& model, State* st, size_t n0, size_t n);
+// The smallest gust (m/s, along the mean flow) that moves body b at rest (flow_can_move): 0 when
+// the flow moves it without one; +infinity when none up to kMaxGustSigmas standard deviations
+// of the turbulence at b (sigma, m/s) does. Found by bisection to 1e-4 of that range.
+constexpr double kMaxGustSigmas = 6.0;
+double wake_gust(const Model& model, const BodyType& type, const BodyState& b, const Vec3& n,
+                 double t, double sigma);
+
+// Does a sleeping body of this type keep a gust watch? Those that see the turbulence through
+// the "seen" model: their u' is an OU process of the fluid alone, which the watch can follow
+// without stepping the body. Others sleep only where a gust of kGustSigmas standard deviations
+// could not move them (and then until their flow changes).
+constexpr double kGustSigmas = 3.0;
+bool keeps_gust_watch(const Model& model, const BodyType& type);
+
+// Sleeping body i's gust watch advanced to step `upto` at the latest (t: a time whose field frame
+// is resident, for the OU coefficients at the body: the field is steady between the wakes of
+// wake_bodies). Returns the step the body wakes at: the first step whose u' along the mean flow
+// reaches the watch's gust (the step after the update that reached it), or GustWatch::kNever
+// when not before `upto`. u' follows the seen model's exact OU update with Thomson's drift for a
+// body at rest, drawn from its own counter-based stream (seed, body, step), so the wake step does
+// not depend on threads, stretches or a resumed run.
+uint64_t watch_sleeper(const Model& model, State* st, size_t i, double t, uint64_t upto);
+
+// Wakes sleeping body i for step `step` (its watch's wake): status Moving, at rest, resting count
+// reset; returns the u' it sees (its watch's), which the caller puts into the body's state.
+Vec3 wake_sleeper(State* st, size_t i);
+
+// At the start of a stretch of steps [first, last): sleeping bodies whose flow has changed since
+// they fell asleep (a time-dependent field has passed a frame time since st.t_stop) wake up, and
+// so do those whose gust watch reaches its gust by step `first`; the watches of the others are
+// advanced to `last`. Bodies [n0, n).
+void wake_bodies(const Model& model, State* st, size_t n0, size_t n, uint64_t first,
+                 uint64_t last);
+
+// A sleeping body that its watch wakes inside the stretch ending at `last`: the steps take it
+// (as a dormant lane or from its wake step) and wake it then.
+inline bool wakes_before(const State& st, size_t i, uint64_t last) {
+  return st.status[i] == BodyStatus::Sleeping && i < st.watch.size() && st.watch[i].valid &&
+         st.watch[i].wake < last;
+}
 
 // Marks body i as flying (no surface near it after its step): one comparison when it already is.
 inline void mark_flying(State* st, size_t i) {

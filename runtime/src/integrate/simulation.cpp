@@ -48,7 +48,12 @@ uint64_t advance_body(const Model& model, State& st, int64_t i, uint64_t first, 
   WallClearance clearance;
   // the state at the start of the step, for a touchdown located inside it (stops.h)
   BodyState start;
+  // a sleeping body that its gust watch wakes in this stretch is stepped from its wake on
+  uint64_t wake = st.status[i] == BodyStatus::Sleeping ? st.watch[i].wake : first;
   for (uint64_t k = first; k < last; ++k) {
+    if (k < wake) k = wake;
+    if (k >= last) break;
+    if (k == wake && st.status[i] == BodyStatus::Sleeping) b.u_seen = wake_sleeper(&st, size_t(i));
     const double t = static_cast<double>(k) * model.dt;
     std::string reason;
     if (lands || contacts) start = b;
@@ -71,7 +76,12 @@ uint64_t advance_body(const Model& model, State& st, int64_t i, uint64_t first, 
                                              &clearance);
       if (first_touch && !std::isnan(st.t_touch[i]))
         record_touchdown(model, type, size_t(i), t, start, end, &st);
-      if (asleep) break;
+      if (asleep) {
+        // asleep until its watch wakes it, in this stretch or a later one
+        wake = watch_sleeper(model, &st, size_t(i), t + model.dt, last);
+        if (wake >= last) break;
+        continue;
+      }
     }
     if (lands && touches_ground(model, type, b)) {
       st.status[i] = BodyStatus::Landed;
@@ -85,7 +95,8 @@ uint64_t advance_body(const Model& model, State& st, int64_t i, uint64_t first, 
   return body_steps;
 }
 
-// The bodies a stretch advances: those still moving in [n0, n), the batched step's types in
+// The bodies a stretch advances: those still moving in [n0, n) and those a gust watch wakes
+// before its end (integrate/contacts.h), the batched step's types in
 // blocks of kBatch bodies of one type, the others one by one. Rebuilt for every stretch, so
 // bodies that stopped leave the blocks.
 struct WorkList {
@@ -94,11 +105,11 @@ struct WorkList {
 };
 
 WorkList work_list(const Model& model, const State& st, const std::vector<StepKind>& kinds,
-                   int64_t n0, int64_t n) {
+                   int64_t n0, int64_t n, uint64_t last) {
   WorkList w;
   std::vector<std::vector<uint32_t>> open(model.types.size());
   for (int64_t i = n0; i < n; ++i) {
-    if (st.status[i] != BodyStatus::Moving) continue;
+    if (st.status[i] != BodyStatus::Moving && !wakes_before(st, size_t(i), last)) continue;
     const uint16_t t = st.type[i];
     if (kinds[t] == StepKind::Scalar) {
       w.scalar.push_back(i);
@@ -148,6 +159,7 @@ RunStats simulate(const Model& model, State* state, const RunOptions& options) {
   if (st.t_touch.size() != nb) st.t_touch.assign(nb, std::nan(""));
   if (st.x_touch.size() != nb) st.x_touch.assign(nb, Vec3::Zero());
   if (st.hidden.size() != nb) st.hidden.assign(nb, 0);
+  if (st.watch.size() != nb) st.watch.assign(nb, GustWatch{});
   const uint64_t total_steps =
       static_cast<uint64_t>(std::llround(model.duration / model.dt));
   const uint64_t stride = output_stride(model, options.every);
@@ -169,8 +181,8 @@ RunStats simulate(const Model& model, State* state, const RunOptions& options) {
     model.field.prepare(static_cast<double>(first) * model.dt, stream_window_end(model, last));
     uint64_t body_steps = 0, handoffs = 0, newton = 0;
     const auto t0 = std::chrono::steady_clock::now();
-    wake_bodies(model, &st, size_t(n0), size_t(n));
-    const WorkList work = work_list(model, st, kinds, n0, n);
+    wake_bodies(model, &st, size_t(n0), size_t(n), first, last);
+    const WorkList work = work_list(model, st, kinds, n0, n, last);
     const auto nblocks = static_cast<int64_t>(work.blocks.size());
     const auto nscalar = static_cast<int64_t>(work.scalar.size());
 #pragma omp parallel num_threads(threads) reduction(+ : body_steps, handoffs, newton)

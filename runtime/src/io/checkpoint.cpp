@@ -95,6 +95,7 @@ void write_checkpoint(const std::string& path, const CheckpointId& id, int rank,
     b.vec(st.t_touch);
     b.vec(st.x_touch);
     b.vec(st.hidden);
+    b.vec(st.watch);
     b.pod(stats);
     extra(b);
     o.flush();
@@ -153,11 +154,12 @@ void read_checkpoint(const std::string& path, const CheckpointId& id, int rank, 
   b.vec(&st->t_touch);
   b.vec(&st->x_touch);
   b.vec(&st->hidden);
+  b.vec(&st->watch);
   for (size_t k : {st->x.size(), st->q.size(), st->v.size(), st->w.size(), st->u_seen.size(),
                    st->type.size(), st->status.size(), st->t_stop.size(),
                    st->history_offset.size(), st->contact.size(), st->rest_steps.size(),
                    st->impacts.size(), st->t_touch.size(), st->x_touch.size(),
-                   st->hidden.size()})
+                   st->hidden.size(), st->watch.size()})
     if (k != n) fail_input(path, "", "holds another number of bodies");
   b.pod(stats);
   extra(b);

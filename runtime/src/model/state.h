@@ -18,6 +18,19 @@ const char* body_status_name(BodyStatus s);
 // How a moving body meets the surfaces after its last step (integrate/contacts.h).
 enum class ContactState : uint8_t { Flying = 0, Sliding = 1, Resting = 2 };
 
+// A sleeping body's gust watch (integrate/contacts.h, docs/contacts.md "Resting, sleeping,
+// waking"): the turbulent velocity u' it would see, kept evolving by its Ornstein-Uhlenbeck
+// process while the body sleeps, and the gust along the mean flow that would move it. The body
+// wakes at the first step where u' reaches the gust.
+struct GustWatch {
+  static constexpr uint64_t kNever = ~uint64_t(0);
+  Vec3 u = Vec3::Zero();  // u' at t = step dt, world frame, m/s
+  double gust = 0;        // m/s along the mean flow; +infinity: no gust the watch follows can
+  uint64_t step = 0;      // the step the watch has reached
+  uint64_t wake = kNever; // the step the body wakes at, once the watch has found it
+  uint8_t valid = 0;      // 1: set when the body fell asleep
+};
+
 struct State {
   double t = 0;                 // simulated time, s
   uint64_t step = 0;            // steps taken
@@ -38,6 +51,7 @@ struct State {
   std::vector<double> t_touch;        // (nbody) first touchdown on the ground, s (NaN: none)
   std::vector<Vec3> x_touch;          // (nbody) where (centre of mass), world, m
   std::vector<uint8_t> hidden;        // (nbody) 1: left the grid, "outside" is "remove"
+  std::vector<GustWatch> watch;       // (nbody) sleeping bodies' gust watches
   // Basset history (effects/basset.h), only for body types with the effect:
   // body i owns history[history_offset[i], + model.types[type[i]].basset.stride())
   std::vector<double> history;        // (sum of strides)

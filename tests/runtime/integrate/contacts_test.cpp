@@ -417,7 +417,8 @@ bool wind_moves_plate(double U, double k, bool turbulent = false) {
   Model& model = turbulent ? mt : m;
   model.field = FluidField::uniform(Vec3(U, 0, 0), k, k > 0 ? 0.1 : 0, 1.5e-5, Drift::Stationary);
   State st = initial_state(model, plate_in_wind_scene(U, k, false, turbulent));
-  return flow_can_move(model, model.types[0], load_body(st, 0), Vec3::UnitZ(), 0);
+  const double gust = turbulent ? kGustSigmas * std::sqrt(2.0 * k / 3.0) : 0.0;
+  return flow_can_move(model, model.types[0], load_body(st, 0), Vec3::UnitZ(), 0, gust);
 }
 
 double threshold_speed() {
@@ -457,22 +458,152 @@ TEST_P(PlateInWind, StaysBelowTheFrictionSpeedSlidesAbove) {
 INSTANTIATE_TEST_SUITE_P(ScalarAndBatched, PlateInWind, ::testing::Values(false, true),
                          [](const auto& info) { return info.param ? "batched" : "scalar"; });
 
-// A sheet held by friction in a mean wind of 0.9 U* does not sleep when a gust of
-// kGustSigmas standard deviations of the turbulence it feels could move it; the same sheet
-// without turbulence sleeps (PlateInWind).
-TEST(Sleeping, NotWhereAGustCouldMoveTheBody) {
+// The gust at which the flow moves the sheet at rest (wake_gust) is where flow_can_move turns:
+// the force on the sheet follows the wind it sees, mean and gust, so a mean wind of 0.9 U*
+// needs a gust of 0.1 U*.
+TEST(Sleeping, TheWakeGustIsWhereTheFlowStartsToMoveTheBody) {
   const double Us = threshold_speed();
-  // 3 sigma = 0.3 U*: sigma^2 = 2k/3
   const double sigma = 0.1 * Us, k = 1.5 * sigma * sigma;
-  EXPECT_TRUE(wind_moves_plate(0.9 * Us, k, true));
-  EXPECT_FALSE(wind_moves_plate(0.9 * Us, 0, true));
-  // a turbulence far too weak to move it: it sleeps
-  EXPECT_FALSE(wind_moves_plate(0.9 * Us, 1e-3 * k, true));
   Scene s = plate_in_wind_scene(0.9 * Us, k, false, true);
   const Model m = test::compile(s);
+  const State st = initial_state(m, s);
+  State copy = st;
+  const BodyState b = load_body(copy, 0);
+  const double g = wake_gust(m, m.types[0], b, Vec3::UnitZ(), 0, sigma);
+  EXPECT_NEAR(g, 0.1 * Us, 1e-3 * Us);
+  EXPECT_FALSE(flow_can_move(m, m.types[0], b, Vec3::UnitZ(), 0, 0.999 * g));
+  EXPECT_TRUE(flow_can_move(m, m.types[0], b, Vec3::UnitZ(), 0, 1.001 * g));
+  // none within kMaxGustSigmas standard deviations of a weak turbulence
+  EXPECT_EQ(wake_gust(m, m.types[0], b, Vec3::UnitZ(), 0, 1e-3 * sigma), HUGE_VAL);
+}
+
+// A sleeping body's gust watch wakes it when the seen turbulence reaches its gust: for the OU
+// process of a body at rest (stationary, per component variance sigma^2, rate alpha) started
+// at u' = 0, the mean first-passage time to a level a sigma is, in units of 1/alpha,
+//   T(a) = integral_0^a sqrt(2 pi) Phi(x) exp(x^2/2) dx
+// (the backward equation -x T' + T'' = -1 with T(a) = 0). Checked over 4000 watches with
+// a = 1.5; the watch looks at whole steps, which delays the passage as a barrier raised by
+// 0.5826 sigma sqrt(2 alpha dt) would (Broadie, Glasserman & Kou 1997's correction).
+TEST(Sleeping, AGustWatchWakesAtTheOuProcesssFirstPassage) {
+  const int n = 4000;
+  Scene s = test::sphere_scene(0.01, 1000, 1.2, 1.5e-5, n);
+  s.effects = test::effects({Effect::Gravity, Effect::Drag, Effect::Turbulence});
+  s.uniform_U = Vec3(1, 0, 0);
+  s.uniform_k = 0.01;
+  s.uniform_epsilon = 0.1;
+  s.has_ground = true;
+  s.dt = 1e-4;
+  s.duration = 10;
+  const Model m = test::compile(s);
+  ASSERT_TRUE(keeps_gust_watch(m, m.types[0]));
+  FluidSample fs;
+  ASSERT_TRUE(m.field.sample(Vec3::Zero(), 0, false, &fs));
+  const double sigma = std::sqrt(fs.sigma2), alpha = fs.alpha, a = 1.5;
+  ASSERT_GT(alpha * s.dt, 1e-4);
+  ASSERT_LT(alpha * s.dt, 1e-2);
   State st = initial_state(m, s);
-  simulate(m, &st, RunOptions{});
-  EXPECT_EQ(st.status[0], BodyStatus::Moving) << "it fell asleep where a gust could move it";
+  double sum = 0, sum2 = 0;
+  for (int i = 0; i < n; ++i) {
+    st.status[i] = BodyStatus::Sleeping;
+    GustWatch& w = st.watch[i];
+    w = GustWatch{};
+    w.gust = a * sigma;
+    w.valid = 1;
+    const uint64_t wake = watch_sleeper(m, &st, size_t(i), 0, 100000000);
+    ASSERT_NE(wake, GustWatch::kNever);
+    EXPECT_GE(w.u.x(), a * sigma);
+    const double T = double(wake) * s.dt * alpha;
+    sum += T;
+    sum2 += T * T;
+  }
+  const double mean = sum / n, se = std::sqrt((sum2 / n - mean * mean) / n);
+  auto mfpt = [](double level) {  // Simpson's rule on 2000 intervals
+    auto f = [](double x) {
+      return std::sqrt(2 * M_PI) * 0.5 * std::erfc(-x / std::sqrt(2.0)) * std::exp(0.5 * x * x);
+    };
+    const int k = 2000;
+    double r = f(0) + f(level);
+    for (int j = 1; j < k; ++j) r += (j % 2 ? 4 : 2) * f(level * j / k);
+    return r * level / (3 * k);
+  };
+  const double expected = mfpt(a + 0.5826 * std::sqrt(2 * alpha * s.dt));
+  EXPECT_NEAR(mean, expected, 4 * se) << "mean first passage, 1/alpha; without the step's "
+                                      << "correction " << mfpt(a);
+  // the watch follows the process it sees: twice the rate would halve the time
+  EXPECT_GT(mean, 0.75 * expected);
+}
+
+// A sheet held by friction in a mean wind of 0.9 U* with a turbulence whose gusts can move it
+// falls asleep and its watch wakes it when a gust comes: it slides downwind and rests again. The
+// batched step wakes it at the same step as the scalar one. Without the gusts (a turbulence far
+// too weak) it sleeps and never wakes.
+class GustWatchOnSteps : public ::testing::TestWithParam<bool> {};
+
+TEST_P(GustWatchOnSteps, ASheetInGustsSleepsAndWakesWhenAGustComes) {
+  const double Us = threshold_speed();
+  const double sigma = 0.07 * Us, k = 1.5 * sigma * sigma;
+  EXPECT_TRUE(wind_moves_plate(0.9 * Us, k, true));  // a 3 sigma gust moves it
+  for (const double scale : {1.0, 1e-6}) {
+    Scene s = plate_in_wind_scene(0.9 * Us, scale * k, GetParam(), true);
+    s.duration = 10;
+    const Model m = test::compile(s);
+    State st = initial_state(m, s);
+    int slept = 0, woke = 0;
+    BodyStatus before = BodyStatus::Moving;
+    double x_asleep = 0, moved = 0;
+    RunOptions o;
+    o.every = s.dt;
+    o.on_output = [&](const State& now) {
+      if (now.status[0] == BodyStatus::Sleeping && before != BodyStatus::Sleeping) {
+        ++slept;
+        x_asleep = now.x[0].x();
+      }
+      if (now.status[0] == BodyStatus::Moving && before == BodyStatus::Sleeping) ++woke;
+      if (before == BodyStatus::Moving && slept > 0)
+        moved = std::max(moved, now.x[0].x() - x_asleep);
+      before = now.status[0];
+    };
+    simulate(m, &st, o);
+    if (scale == 1.0) {
+      EXPECT_GE(slept, 2) << "it should fall asleep again after a gust moved it";
+      EXPECT_GE(woke, 1);
+      EXPECT_GT(moved, 1e-4) << "woken by a gust, it should slide downwind";
+    } else {
+      EXPECT_EQ(slept, 1);
+      EXPECT_EQ(woke, 0);
+      EXPECT_EQ(st.status[0], BodyStatus::Sleeping);
+      EXPECT_EQ(st.watch[0].wake, GustWatch::kNever);
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(ScalarAndBatched, GustWatchOnSteps, ::testing::Values(false, true),
+                         [](const auto& info) { return info.param ? "batched" : "scalar"; });
+
+// Scalar and batched steps wake the sheet at the same step and leave it at the same place.
+TEST(Sleeping, GustWatchesWakeTheSameOnBothSteps) {
+  const double Us = threshold_speed();
+  const double sigma = 0.1 * Us, k = 1.5 * sigma * sigma;
+  std::vector<double> x[2];
+  std::vector<int> status[2];
+  for (const bool batched : {false, true}) {
+    Scene s = plate_in_wind_scene(0.9 * Us, k, batched, true);
+    s.duration = 4;
+    const Model m = test::compile(s);
+    State st = initial_state(m, s);
+    RunOptions o;
+    o.every = 0.05;
+    o.on_output = [&](const State& now) {
+      x[batched].push_back(now.x[0].x());
+      status[batched].push_back(int(now.status[0]));
+    };
+    simulate(m, &st, o);
+  }
+  ASSERT_EQ(x[0].size(), x[1].size());
+  for (size_t j = 0; j < x[0].size(); ++j) {
+    EXPECT_EQ(status[0][j], status[1][j]) << "output " << j;
+    EXPECT_NEAR(x[0][j], x[1][j], 1e-6) << "output " << j;
+  }
 }
 
 }  // namespace
