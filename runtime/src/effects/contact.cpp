@@ -46,8 +46,11 @@ std::vector<int> hull_vertices(const std::vector<Vec3>& pts) {
   return ids;
 }
 
-void add_point(ContactParams* k, const Vec3& p) {
+void add_point(ContactParams* k, const Vec3& p, int end0 = ContactParams::kNotOnEdge,
+               int end1 = ContactParams::kNotOnEdge) {
   for (int a = 0; a < 3; ++a) k->points.push_back(p[a]);
+  k->edge_ends.push_back(uint8_t(end0));
+  k->edge_ends.push_back(uint8_t(end1));
 }
 
 }  // namespace
@@ -94,14 +97,17 @@ ContactParams contact_params(const Shape& shape, const Vec3& com, double restitu
         int inner = max_gap > 0 ? int(std::ceil(len / max_gap - 1e-9)) - 1 : 0;
         inner = std::clamp(inner, 0, kContactEdgePoints);
         const int b1 = (axis + 1) % 3, b2 = (axis + 2) % 3;
-        for (int e = 0; e < 4; ++e)
+        for (int e = 0; e < 4; ++e) {
+          // the edge's two corners: bit `axis` of the corner index clear and set
+          const int c0 = ((e & 1) << b1) | ((e & 2) >> 1 << b2);
           for (int i = 1; i <= inner; ++i) {
             Vec3 p;
             p[axis] = -h[axis] + len * i / (inner + 1);
             p[b1] = e & 1 ? h[b1] : -h[b1];
             p[b2] = e & 2 ? h[b2] : -h[b2];
-            add_point(&k, p - com);
+            add_point(&k, p - com, c0, c0 | (1 << axis));
           }
+        }
       }
       break;
     }

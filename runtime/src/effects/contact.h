@@ -44,6 +44,12 @@ struct ContactParams {
   // box and mesh: fixed contact points relative to the centre of mass, body frame, 3 per
   // point, m (box: corners and edge points; mesh: its convex hull's vertices)
   std::vector<double> points;
+  // box: for each point, the two corners (indices into points) of the edge it lies inside,
+  // kNotOnEdge for the corners and for meshes' points. A point between two corners that touch
+  // the same plane adds nothing to them: its normal velocity and depth are their average
+  // (integrate/contacts.cpp gather leaves it out)
+  static constexpr uint8_t kNotOnEdge = 255;
+  std::vector<uint8_t> edge_ends;  // 2 per point
   size_t count() const { return support ? 1 : points.size() / 3; }
 };
 

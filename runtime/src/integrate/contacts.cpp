@@ -52,6 +52,14 @@ void gather(const Model& m, const BodyType& type, const BodyState& b, const Mat3
     } else {
       const Vec3 nb = Rt * ez;
       for (size_t p = 0; p < k.count(); ++p) {
+        // a box edge's point between two corners on the ground: on it too, and implied by them
+        // (the depth and the normal velocity are linear along the edge)
+        const bool edge = 2 * p + 1 < k.edge_ends.size() &&
+                          k.edge_ends[2 * p] != ContactParams::kNotOnEdge;
+        if (edge && on_ground[k.edge_ends[2 * p]] && on_ground[k.edge_ends[2 * p + 1]]) {
+          if (p < sizeof on_ground) on_ground[p] = 1;
+          continue;
+        }
         const Vec3 rb(k.points[3 * p], k.points[3 * p + 1], k.points[3 * p + 2]);
         const double d = ground_depth(rb);
         if (d >= 0) {

@@ -364,6 +364,40 @@ TEST(Contact, BoxEdgesGetPointsAtMostMaxGapApart) {
             8u + 12 * kContactEdgePoints);
 }
 
+// Each inner edge point names the two corners of its edge (ContactParams::edge_ends): it lies on
+// the segment between them, strictly inside, and the corners are corners (one coordinate apart).
+TEST(Contact, BoxEdgePointsNameTheirEdgesCorners) {
+  const ContactParams k =
+      contact_params(Shape::box(0.3, 0.2, 0.05), Vec3(0.01, -0.02, 0), 0.3, 0.5, 0.04);
+  ASSERT_EQ(k.edge_ends.size(), 2 * k.count());
+  auto point = [&](size_t i) {
+    return Vec3(k.points[3 * i], k.points[3 * i + 1], k.points[3 * i + 2]);
+  };
+  size_t inner = 0;
+  for (size_t i = 0; i < k.count(); ++i) {
+    const uint8_t a = k.edge_ends[2 * i], b = k.edge_ends[2 * i + 1];
+    if (i < 8) {
+      EXPECT_EQ(a, ContactParams::kNotOnEdge) << i;
+      continue;
+    }
+    ++inner;
+    ASSERT_LT(a, 8) << i;
+    ASSERT_LT(b, 8) << i;
+    const Vec3 ca = point(a), cb = point(b), p = point(i);
+    int differ = 0;
+    for (int c = 0; c < 3; ++c) differ += std::abs(ca[c] - cb[c]) > 1e-12;
+    EXPECT_EQ(differ, 1) << "corners " << int(a) << ", " << int(b) << " share an edge";
+    const Vec3 e = cb - ca;
+    const double t = (p - ca).dot(e) / e.squaredNorm();
+    EXPECT_GT(t, 0) << i;
+    EXPECT_LT(t, 1) << i;
+    EXPECT_LT((ca + t * e - p).norm(), 1e-14) << i;
+  }
+  EXPECT_EQ(inner, 4u * (7 + 4 + 1));  // 0.3 m: 8 gaps; 0.2 m: 5; 0.05 m: 2
+  for (const uint8_t e : contact_params(Shape::sphere(0.1), Vec3::Zero(), 0, 0, 0.01).edge_ends)
+    EXPECT_EQ(e, ContactParams::kNotOnEdge);
+}
+
 TEST(Contact, MeshPointsAreItsConvexHullVertices) {
   // a unit cube's 8 corners, the centres of two faces pushed in (a dent) and one pulled out
   auto mesh = std::make_shared<TriangleMesh>();
