@@ -38,6 +38,14 @@ uint64_t stream_stretch_end(const Model& m, uint64_t first, uint64_t last) {
   return end;
 }
 
+// The longest stretch of steps between two rebuilds of the work list: bodies that stopped or
+// fell asleep leave their blocks at the next stretch (a block steps all its lanes), so without a
+// bound a body asleep right after an output would cost its lane until the next output, or to
+// the end of a run that writes only there. Measured (bench/contacts/run.py, 200 bodies, 20 s,
+// outputs every 5 s): see docs/contacts.md; a stretch's own cost is loading and sampling its
+// blocks once, under 1 % of 256 steps.
+constexpr uint64_t kStretchSteps = 256;
+
 // Advances body i (scalar step) from step `first` to `last`; returns the steps it took.
 uint64_t advance_body(const Model& model, State& st, int64_t i, uint64_t first, uint64_t last) {
   uint64_t body_steps = 0;
@@ -177,7 +185,8 @@ RunStats simulate(const Model& model, State* state, const RunOptions& options) {
   while (st.step < total_steps) {
     const uint64_t first = st.step;
     const uint64_t next_output = (first / stride + 1) * stride;
-    const uint64_t last = stream_stretch_end(model, first, std::min(total_steps, next_output));
+    const uint64_t last = stream_stretch_end(
+        model, first, std::min({total_steps, next_output, first + kStretchSteps}));
     model.field.prepare(static_cast<double>(first) * model.dt, stream_window_end(model, last));
     uint64_t body_steps = 0, handoffs = 0, newton = 0;
     const auto t0 = std::chrono::steady_clock::now();
