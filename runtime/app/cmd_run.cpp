@@ -66,7 +66,7 @@ void apply_tolerance(const RunArgs& a, Scene* scene) {
   const ToleranceChoice c =
       choose_for_tolerance(read_tolerance_table(path), scene_kind(*scene), a.tolerance);
   if (!integrator_from_name(c.entry.integrator, &scene->integrator))
-    scene->integrator = Integrator::Splitting;  // read_tolerance_table checked the names
+    scene->integrator = kDefaultIntegrator;  // read_tolerance_table checked the names
   scene->dt = c.entry.dt;
   if (!a.quiet) std::fprintf(stderr, "lrigid: %s; from %s\n", c.explanation.c_str(), path.c_str());
 }

@@ -44,7 +44,7 @@ struct SanityCli : ::testing::Test {
     const fs::path p = dir / "scene.json";
     std::ofstream(p) << R"({"version": 1, "fluid": )" << fluid
                      << R"(, "gravity": [0, 0, -9.81], "effects": "auto",
-      "integrator": {"scheme": "splitting", "dt": 0.01}, "duration": 0.1, "seed": 1,
+      "integrator": {"scheme": "strang", "dt": 0.01}, "duration": 0.1, "seed": 1,
       "bodies": [{"name": "ball", "shape": {"type": "sphere", "radius": )"
                      << body << R"(}], "output": {"every": 0.05, "formats": ["csv"]}})";
     return p.string();

@@ -26,7 +26,7 @@ cat > scene.json <<'JSON'
   "fluid": { "density": 1.2, "kinematic_viscosity": 1.5e-5, "field": "tiny.vti" },
   "gravity": [0, 0, -9.81],
   "effects": ["gravity", "buoyancy", "added_mass", "drag", "mean_flow", "turbulence"],
-  "integrator": { "scheme": "splitting", "dt": 0.001 },
+  "integrator": { "scheme": "strang", "dt": 0.001 },
   "duration": 1.5,
   "seed": 3,
   "turbulence": { "model": "seen", "drift": "stationary" },

@@ -36,7 +36,7 @@ COULOMB = "Coulomb friction on an incline: a = g (sin th - mu cos th)"
 def scene(body, gravity, duration, dt, every):
     return {"version": 1, "fluid": vc.uniform_fluid(1.204, 1.5e-5),
             "gravity": list(gravity), "effects": ["gravity"],
-            "integrator": {"scheme": "splitting", "dt": dt}, "duration": duration, "seed": 1,
+            "integrator": {"scheme": vc.SCHEME, "dt": dt}, "duration": duration, "seed": 1,
             "ground": {"z": 0.0, "contact": "collide"},
             "bodies": [body], "output": {"every": every, "formats": ["csv"]}}
 

@@ -71,7 +71,7 @@ def scene(istar, nu, dur):
     th = math.radians(10.0)
     return {"version": 1, "fluid": vc.uniform_fluid(RHO_F, nu),
             "gravity": [0, 0, -9.81], "effects": EFFECTS,
-            "integrator": {"scheme": "splitting", "dt": 2e-4}, "duration": dur, "seed": 1,
+            "integrator": {"scheme": vc.SCHEME, "dt": 2e-4}, "duration": dur, "seed": 1,
             "bodies": [{"name": "plate", "shape": {"type": "box", "size": [W, SPAN, H]},
                         "density": rho_s, "count": 1, "position": [0, 0, 0],
                         "orientation": [math.cos(th / 2), 0, math.sin(th / 2), 0]}],
@@ -118,7 +118,7 @@ def disk_scene(istar, nu, dur):
     R = DISK_D / 2
     return {"version": 1, "fluid": vc.uniform_fluid(RHO_F, nu),
             "gravity": [0, 0, -9.81], "effects": EFFECTS,
-            "integrator": {"scheme": "splitting", "dt": 2e-4}, "duration": dur, "seed": 1,
+            "integrator": {"scheme": vc.SCHEME, "dt": 2e-4}, "duration": dur, "seed": 1,
             "bodies": [{"name": "disk", "shape": {"type": "ellipsoid",
                                                   "semi_axes": [R, R, DISK_C]},
                         "density": disk_density(istar), "count": 1, "position": [0, 0, 0],
@@ -186,7 +186,7 @@ def limit_strip_scene(mass_ratio, re_apw=LIMIT_RE):
     nu = U * 2 * a / re_apw
     th = math.radians(10.0)
     return {"version": 1, "fluid": vc.uniform_fluid(RHO_F, nu), "gravity": [0, 0, -9.81],
-            "effects": EFFECTS, "integrator": {"scheme": "splitting", "dt": 2e-4},
+            "effects": EFFECTS, "integrator": {"scheme": vc.SCHEME, "dt": 2e-4},
             "duration": 400 * a / U, "seed": 1,
             "bodies": [{"name": "strip", "shape": {"type": "ellipsoid",
                                                    "semi_axes": [a, 1000 * a, b]},

@@ -46,7 +46,7 @@ def scene(model, drift, nu, n, tl, dur, seed, drag=None):
             "gravity": [0, 0, -9.81],
             "effects": ["gravity", "buoyancy", "added_mass", "turbulence"] + (
                 ["drag"] if drag else []),
-            "integrator": {"scheme": "splitting", "dt": tl / 40}, "duration": dur, "seed": seed,
+            "integrator": {"scheme": vc.SCHEME, "dt": tl / 40}, "duration": dur, "seed": seed,
             "turbulence": {"model": model, "drift": drift},
             "bodies": [{"name": "tracer", "shape": {"type": "sphere", "radius": 5e-6},
                         "density": rho, "count": n, "spawn_box": [[0, 0, 0], [1, 1, 1]]}],

@@ -254,7 +254,7 @@ def study_case(st, args, name, cfg):
                "density": RHO_P, "count": 1, "position": list(p)} for i, p in enumerate(pts)]
     scene = {"version": 1, "fluid": {"density": RHO_F, "kinematic_viscosity": NU, "field": grid},
              "gravity": [0, 0, -9.81], "effects": ["gravity", "buoyancy", "drag", "mean_flow"],
-             "integrator": {"scheme": "splitting", "dt": cfg["dt"]}, "duration": end, "seed": 1,
+             "integrator": {"scheme": vc.SCHEME, "dt": cfg["dt"]}, "duration": end, "seed": 1,
              "ground": {"z": 0.0, "contact": "stop"}, "walls": {"contact": "stop"},
              "outside": "stop",  # OpenFOAM's parcels stick where they land or hit the cube
              "bodies": bodies,

@@ -10,8 +10,8 @@ area is the paper's; its moment of inertia about a diameter is 4/5 of the flat d
 2.5–3.5, 3.5–4.5 and 4.5–5 cm. Air 1.2 kg/m³, ν = 1.5e-5 m²/s (20 °C). Released from rest with
 the centre 1 m above the floor, half of them horizontal and half vertical (as in the experiments,
 which used both), each tilted by a random 0–5° about a random axis (the release is never exactly
-symmetric); effects "auto" (gravity, buoyancy, added mass, plate drag and lift), splitting,
-dt = 5e-4 s, states every 0.01 s.
+symmetric); effects "auto" (gravity, buoyancy, added mass, plate drag and lift), strang (the
+shipped scheme, vcommon.SCHEME), dt = 5e-4 s, states every 0.01 s.
 
 Each simulated trajectory is cut into segments the way the experiments' were
 (Classification/classifyBehaviour.m of github.com/th533/Falling-Paper): samples below 5 cm are
@@ -98,7 +98,7 @@ def drop_scene(kind, n_per_release, seed):
                                "orientation": tilt_quat(rng, vertical)})
                 meta.append((R, vertical))
     sc = {"version": 1, "fluid": vc.uniform_fluid(RHO_F, NU), "gravity": [0, 0, -G],
-          "effects": "auto", "integrator": {"scheme": "splitting", "dt": 5e-4},
+          "effects": "auto", "integrator": {"scheme": vc.SCHEME, "dt": 5e-4},
           "duration": 6.0, "seed": seed, "ground": {"z": 0.0}, "bodies": bodies,
           "output": {"every": DT_OUT, "formats": ["csv"]}}
     return sc, meta
@@ -194,7 +194,7 @@ def terminal_checks(args, st):
                        "position": [0, 0, 0]})
     sc = {"version": 1, "fluid": vc.uniform_fluid(RHO_F, NU), "gravity": [0, 0, -G],
           "effects": ["gravity", "buoyancy", "drag"],
-          "integrator": {"scheme": "splitting", "dt": 5e-4}, "duration": 3.0, "seed": 1,
+          "integrator": {"scheme": vc.SCHEME, "dt": 5e-4}, "duration": 3.0, "seed": 1,
           "bodies": bodies, "output": {"every": 0.01, "formats": ["csv"]}}
     tr, _, _ = vc.run_scene(args, sc, st.path("terminal"))
     t = tr["t"][:, 0]

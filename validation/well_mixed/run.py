@@ -61,7 +61,7 @@ def main():
         sc = {"version": 1, "fluid": {"density": 1.204, "kinematic_viscosity": 1.5e-5,
                                       "field": grid},
               "gravity": [0, 0, -9.81], "effects": effects,
-              "integrator": {"scheme": "splitting", "dt": tl_high / 10}, "duration": dur,
+              "integrator": {"scheme": vc.SCHEME, "dt": tl_high / 10}, "duration": dur,
               "seed": 4, "turbulence": {"model": model, "drift": "stationary"},
               "bodies": [{"name": "tracer", "shape": {"type": "sphere", "radius": 5e-6},
                           "density": 1.204, "count": n,

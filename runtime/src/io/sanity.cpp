@@ -164,7 +164,9 @@ std::vector<SanityFinding> check_scene(const Scene& scene, const Model& model) {
                            : "the measured stability limit of " + name) +
                 " for " + who + " (response time tau_p = " + g3(a.tau_p) + " s: dt <= " +
                 g3(limit) + " s, docs/stability.md section 2); " +
-                (splitting ? "use a smaller dt" : "use \"scheme\": \"splitting\" or dt <= " + g3(limit) + " s"));
+                (splitting ? "use a smaller dt"
+                           : "use \"scheme\": \"" + std::string(integrator_name(kDefaultIntegrator)) +
+                                 "\" or dt <= " + g3(limit) + " s"));
     }
   }
   if (grid && all_bodies > 0 && outside_bodies == all_bodies)

@@ -116,7 +116,7 @@ struct Model {
   double nu = 1e-6;              // kinematic viscosity, m^2/s
   Vec3 gravity = Vec3(0, 0, -9.81);
   FluidField field;
-  Integrator integrator = Integrator::Splitting;
+  Integrator integrator = kDefaultIntegrator;
   // spheres, plates and ellipsoids take the batched steps (integrate/sphere_batch.h,
   // rigid_batch.h) unless the scene says otherwise, in double or single precision
   bool batched = true;

@@ -4,8 +4,11 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "model/model.h"
 #include "util/error.h"
 
 namespace lrigid {
@@ -349,6 +352,30 @@ TEST(SceneJson, MissingFileSaysSo) {
               std::string::npos)
         << e.what();
   }
+}
+
+// issue 28: strang is the default scheme. The scene file requires "scheme", so the default is
+// what a Scene or Model built in code starts with and what every shipped scene (scenes/*.json,
+// which Allrun, the tests, benches and validation studies copy) names.
+TEST(SceneJson, ShippedScenesAndDefaultsRunStrang) {
+  EXPECT_EQ(kDefaultIntegrator, Integrator::Strang);
+  EXPECT_EQ(Scene().integrator, Integrator::Strang);
+  EXPECT_EQ(Model().integrator, Integrator::Strang);
+  int scenes = 0;
+  for (const auto& e :
+       std::filesystem::directory_iterator(std::string(LRIGID_SOURCE_DIR) + "/scenes")) {
+    if (e.path().extension() != ".json") continue;
+    ++scenes;
+    // the scheme as the parser reads it (read_scene would also want the scene's grid, which
+    // ./Allrun makes)
+    std::ifstream in(e.path());
+    const json j = json::parse(in);
+    Integrator scheme = Integrator::Euler;
+    ASSERT_TRUE(integrator_from_name(j.at("integrator").at("scheme").get<std::string>(), &scheme))
+        << e.path();
+    EXPECT_EQ(scheme, Integrator::Strang) << e.path();
+  }
+  EXPECT_GE(scenes, 9) << "the shipped scenes: leaves_wind, debris_tank, uniform_box, ...";
 }
 
 
