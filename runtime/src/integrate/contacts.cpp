@@ -118,8 +118,8 @@ void gather(const Model& m, const BodyType& type, const BodyState& b, const Mat3
 }
 
 // The weight of the step's end velocity in its position update: x += h/2 (V0 + V1) for the
-// splitting step (and the batched steps, which are splitting), about that for rk4; explicit
-// Euler moves x by h V0 only.
+// splitting and strang steps (scalar and batched: strang's last force half step changes V by the
+// same h/2 weight in x), about that for rk4; explicit Euler moves x by h V0 only.
 double end_velocity_weight(const Model& m) {
   return m.integrator == Integrator::Euler ? 0.0 : 0.5;
 }
