@@ -118,8 +118,9 @@ void gather(const Model& m, const BodyType& type, const BodyState& b, const Mat3
 }
 
 // The weight of the step's end velocity in its position update: x += h/2 (V0 + V1) for the
-// splitting and strang steps (scalar and batched: strang's last force half step changes V by the
-// same h/2 weight in x), about that for rk4; explicit Euler moves x by h V0 only.
+// splitting step; the strang step moves x by h/2 times the velocities after its first force half
+// step and before its second, the same for forces constant over the step (a body lying on a
+// surface); about that for rk4; explicit Euler moves x by h V0 only.
 double end_velocity_weight(const Model& m) {
   return m.integrator == Integrator::Euler ? 0.0 : 0.5;
 }
