@@ -37,7 +37,10 @@ def atomic_write(path, write):
 
 
 def read_rows(paths):
-    rows = []
+    """the rows of the CSVs; a point measured in several (scene, sweep, scheme, dt, substeps,
+    effects, grid, metric) is kept from the run with the most bodies, the finer Monte Carlo
+    estimate (bench/accuracy/run_fine_mc.sh reruns a stochastic sweep with more bodies)"""
+    rows, where = [], {}
     for p in paths:
         if not os.path.exists(p):
             continue
@@ -48,6 +51,13 @@ def read_rows(paths):
                     r[k] = float(r.get(k) or 0)
                 for k in ("substeps", "bodies", "valid", "body_steps", "failed"):
                     r[k] = int(r[k])
+                key = tuple(r[k] for k in ("scene", "sweep", "integrator", "dt", "substeps",
+                                           "effects", "grid", "metric"))
+                if key in where:
+                    if r["bodies"] > rows[where[key]]["bodies"]:
+                        rows[where[key]] = r
+                    continue
+                where[key] = len(rows)
                 rows.append(r)
     if not rows:
         sys.exit("make_report.py: no rows in " + ", ".join(paths))
