@@ -86,9 +86,8 @@ jobs_=(uniform_box.det uniform_box.stoch leaves_wind.det leaves_wind.stoch debri
 
 csvs=()
 for j in "${jobs_[@]}"; do csvs+=("$work/$j/accuracy.csv"); done
-# uniform_box's stochastic sweep with 16000 bodies (bench/accuracy/run_fine_mc.sh), when kept
-fine=$src/docs/accuracy/uniform_box_stoch_16000.csv
-[ -f "$fine" ] && csvs+=("$fine")
+# stochastic sweeps rerun with 16000 bodies (bench/accuracy/run_fine_mc.sh), where kept
+for fine in "$src"/docs/accuracy/*_stoch_16000.csv; do [ -f "$fine" ] && csvs+=("$fine"); done
 step $nsteps "report" "" /usr/bin/python3 "$src/bench/accuracy/make_report.py" \
   --csv "${csvs[@]}" --out "$out" \
   --doc "$src/docs/accuracy.md" --study-seconds $((SECONDS - t0)) \
