@@ -365,7 +365,8 @@ State initial_state(const Model& model, const Scene& scene) {
   s.t_touch.assign(n, std::nan(""));
   s.x_touch.assign(n, Vec3::Zero());
   s.hidden.assign(n, 0);
-  s.watch.assign(n, GustWatch{});
+  // the sleeping bodies' gust watches: only where bodies can come to rest on a surface
+  s.watch.assign(model.contacts() ? n : 0, GustWatch{});
   s.history_offset.assign(n, State::kNoHistory);
   size_t hist = 0;
   for (const BodyType& type : model.types)

@@ -167,7 +167,7 @@ RunStats simulate(const Model& model, State* state, const RunOptions& options) {
   if (st.t_touch.size() != nb) st.t_touch.assign(nb, std::nan(""));
   if (st.x_touch.size() != nb) st.x_touch.assign(nb, Vec3::Zero());
   if (st.hidden.size() != nb) st.hidden.assign(nb, 0);
-  if (st.watch.size() != nb) st.watch.assign(nb, GustWatch{});
+  if (model.contacts() && st.watch.size() != nb) st.watch.assign(nb, GustWatch{});
   const uint64_t total_steps =
       static_cast<uint64_t>(std::llround(model.duration / model.dt));
   const uint64_t stride = output_stride(model, options.every);

@@ -159,8 +159,11 @@ void read_checkpoint(const std::string& path, const CheckpointId& id, int rank, 
                    st->type.size(), st->status.size(), st->t_stop.size(),
                    st->history_offset.size(), st->contact.size(), st->rest_steps.size(),
                    st->impacts.size(), st->t_touch.size(), st->x_touch.size(),
-                   st->hidden.size(), st->watch.size()})
+                   st->hidden.size()})
     if (k != n) fail_input(path, "", "holds another number of bodies");
+  // the gust watches: one per body where contacts are on, none otherwise
+  if (!st->watch.empty() && st->watch.size() != n)
+    fail_input(path, "", "holds another number of bodies");
   b.pod(stats);
   extra(b);
 }

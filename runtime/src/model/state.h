@@ -51,7 +51,8 @@ struct State {
   std::vector<double> t_touch;        // (nbody) first touchdown on the ground, s (NaN: none)
   std::vector<Vec3> x_touch;          // (nbody) where (centre of mass), world, m
   std::vector<uint8_t> hidden;        // (nbody) 1: left the grid, "outside" is "remove"
-  std::vector<GustWatch> watch;       // (nbody) sleeping bodies' gust watches
+  std::vector<GustWatch> watch;       // (nbody, or 0 without contacts) sleeping bodies' gust
+                                      // watches
   // Basset history (effects/basset.h), only for body types with the effect:
   // body i owns history[history_offset[i], + model.types[type[i]].basset.stride())
   std::vector<double> history;        // (sum of strides)
