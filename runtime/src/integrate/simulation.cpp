@@ -190,7 +190,12 @@ RunStats simulate(const Model& model, State* state, const RunOptions& options) {
     model.field.prepare(static_cast<double>(first) * model.dt, stream_window_end(model, last));
     uint64_t body_steps = 0, handoffs = 0, newton = 0;
     const auto t0 = std::chrono::steady_clock::now();
-    wake_bodies(model, &st, size_t(n0), size_t(n), first, last);
+    // sleeping bodies: woken by a changed flow or their gust watch, the watches advanced (each
+    // body's own, so chunks of bodies go to the threads)
+    constexpr int64_t kWakeChunk = 256;
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 1)
+    for (int64_t c = n0; c < n; c += kWakeChunk)
+      wake_bodies(model, &st, size_t(c), size_t(std::min(n, c + kWakeChunk)), first, last);
     const WorkList work = work_list(model, st, kinds, n0, n, last);
     const auto nblocks = static_cast<int64_t>(work.blocks.size());
     const auto nscalar = static_cast<int64_t>(work.scalar.size());
