@@ -1,0 +1,72 @@
+// Checkpoints (io/checkpoint.h) keep what a resumed run needs to go on bitwise: here the
+// sleeping bodies' gust watches (integrate/contacts.h), which decide the step a sleeper wakes at.
+#include "io/checkpoint.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <string>
+
+namespace lrigid {
+namespace {
+
+State bodies(size_t n, bool watches) {
+  State st;
+  st.x.assign(n, Vec3::Zero());
+  st.q.assign(n, Quat::Identity());
+  st.v.assign(n, Vec3::Zero());
+  st.w.assign(n, Vec3::Zero());
+  st.u_seen.assign(n, Vec3::Zero());
+  st.type.assign(n, 0);
+  st.status.assign(n, BodyStatus::Moving);
+  st.t_stop.assign(n, 0);
+  st.reason.assign(n, "");
+  st.history_offset.assign(n, State::kNoHistory);
+  st.contact.assign(n, ContactState::Flying);
+  st.rest_steps.assign(n, 0);
+  st.impacts.assign(n, 0);
+  st.t_touch.assign(n, 0);
+  st.x_touch.assign(n, Vec3::Zero());
+  st.hidden.assign(n, 0);
+  if (watches) st.watch.assign(n, GustWatch{});
+  return st;
+}
+
+TEST(Checkpoint, KeepsTheSleepersGustWatches) {
+  const std::string path = ::testing::TempDir() + "/watch.ckpt";
+  const CheckpointId id{"build", "scene", 1, "scene.json"};
+  const auto none_out = [](BinaryOut&) {};
+  const auto none_in = [](BinaryIn&) {};
+  State st = bodies(3, true);
+  st.status[1] = BodyStatus::Sleeping;
+  st.t_stop[1] = 2.468;
+  GustWatch& w = st.watch[1];
+  w.u = Vec3(0.1, -0.2, 0.3);
+  w.gust = 0.7;
+  w.step = 1234;
+  w.wake = 5678;
+  w.valid = 1;
+  write_checkpoint(path, id, 0, st, RunStats{}, none_out);
+  State back = bodies(3, true);
+  RunStats stats;
+  read_checkpoint(path, id, 0, &back, &stats, none_in);
+  ASSERT_EQ(back.watch.size(), 3u);
+  EXPECT_EQ(back.status[1], BodyStatus::Sleeping);
+  EXPECT_EQ(back.watch[1].u, w.u);
+  EXPECT_EQ(back.watch[1].gust, 0.7);
+  EXPECT_EQ(back.watch[1].step, 1234u);
+  EXPECT_EQ(back.watch[1].wake, 5678u);
+  EXPECT_EQ(back.watch[1].valid, 1);
+  EXPECT_EQ(back.watch[0].valid, 0);
+  EXPECT_EQ(back.watch[0].wake, GustWatch::kNever);
+
+  // a run without contacts keeps no watches, and its checkpoint reads back without any
+  write_checkpoint(path, id, 0, bodies(3, false), RunStats{}, none_out);
+  State plain = bodies(3, true);
+  read_checkpoint(path, id, 0, &plain, &stats, none_in);
+  EXPECT_TRUE(plain.watch.empty());
+  std::remove(path.c_str());
+}
+
+}  // namespace
+}  // namespace lrigid
