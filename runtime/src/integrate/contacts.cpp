@@ -195,16 +195,14 @@ double turbulence_sigma(const Model& model, const Vec3& x, double t) {
 // a gust watch, the watch starts from the u' the body sees now.
 bool fall_asleep(const Model& model, const BodyType& type, size_t i, double t_end,
                  const Vec3& n, BodyState* b, State* st) {
-  const bool watch = keeps_gust_watch(model, type);
-  double gust;
-  if (watch) {
-    gust = wake_gust(model, type, *b, n, t_end, turbulence_sigma(model, b->x, t_end));
+  const double sigma =
+      type.effects.has(Effect::Turbulence) ? turbulence_sigma(model, b->x, t_end) : 0.0;
+  double gust = HUGE_VAL;
+  if (keeps_gust_watch(model, type)) {
+    gust = wake_gust(model, type, *b, n, t_end, sigma);
     if (!(gust > 0)) return false;
-  } else {
-    const double sigma =
-        type.effects.has(Effect::Turbulence) ? turbulence_sigma(model, b->x, t_end) : 0.0;
-    if (flow_can_move(model, type, *b, n, t_end, kGustSigmas * sigma)) return false;
-    gust = HUGE_VAL;
+  } else if (flow_can_move(model, type, *b, n, t_end, kGustSigmas * sigma)) {
+    return false;
   }
   st->status[i] = BodyStatus::Sleeping;
   st->t_stop[i] = t_end;
@@ -254,6 +252,7 @@ Vec3 wake_sleeper(State* st, size_t i) {
   st->status[i] = BodyStatus::Moving;
   st->rest_steps[i] = 0;
   st->t_stop[i] = 0;
+  if (i >= st->watch.size()) return st->u_seen[i];
   GustWatch& w = st->watch[i];
   w.valid = 0;
   return w.u;
@@ -346,10 +345,7 @@ void wake_bodies(const Model& model, State* st, size_t n0, size_t n, uint64_t fi
   for (size_t i = n0; i < n; ++i) {
     if (st->status[i] != BodyStatus::Sleeping) continue;
     if (changes && model.field.next_frame_time(st->t_stop[i]) <= st->t) {
-      st->status[i] = BodyStatus::Moving;
-      st->rest_steps[i] = 0;
-      st->t_stop[i] = 0;
-      if (i < st->watch.size()) st->watch[i].valid = 0;
+      wake_sleeper(st, i);  // its flow changed: it keeps the u' it fell asleep with
       continue;
     }
     if (watch_sleeper(model, st, i, t, last) <= first) st->u_seen[i] = wake_sleeper(st, i);

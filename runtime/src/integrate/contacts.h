@@ -84,8 +84,9 @@ bool keeps_gust_watch(const Model& model, const BodyType& type);
 // not depend on threads, stretches or a resumed run.
 uint64_t watch_sleeper(const Model& model, State* st, size_t i, double t, uint64_t upto);
 
-// Wakes sleeping body i for step `step` (its watch's wake): status Moving, at rest, resting count
-// reset; returns the u' it sees (its watch's), which the caller puts into the body's state.
+// Wakes sleeping body i: status Moving, at rest, resting count reset, its watch closed; returns
+// the u' its watch followed (the state's u_seen without a watch), which the caller puts into the
+// body's state when the watch woke it.
 Vec3 wake_sleeper(State* st, size_t i);
 
 // At the start of a stretch of steps [first, last): sleeping bodies whose flow has changed since
