@@ -316,6 +316,97 @@ LRIGID_LANE ContactOut<T> contact_kernel(const ContactParams& k, const T* Minv, 
   return contact_impulse_kernel(k, Minv, v, w, r, n, depth, -T(k.restitution) * vn);
 }
 
+// A body lying on one plane: its touching points r_i (body frame, m of them) share the unit
+// normal n (body frame, from the surface into the fluid) and each approaches slower than
+// k.rest_speed, so contact_resolve's target normal velocity of each is 0. The impulse that stops
+// the body, [P; L] = -M [v; w] (M the 6x6 generalized mass, row-major, symmetric), is one the
+// points can give -- normal impulses >= 0, each point's impulse inside its friction cone -- when
+//  1. it presses: P_n = P.n > 0;
+//  2. its centre of pressure lies in a triangle of three touching points: the point c of the
+//     contact plane with L = c x P + tau n (tau: the moment about the normal),
+//     c = h n + n x (L - h n x P) / P_n, h the points' mean offset along n;
+//  3. each of those three points, carrying lambda_i P (lambda_i: c's barycentric weight) plus its
+//     share lambda_i kappa n x d_i of the couple tau (d_i: from c to the point in the plane;
+//     kappa = tau / sum_j lambda_j |d_j|^2; the couple adds no force), stays in its cone:
+//     |P_t| + |kappa| |d_i| <= mu P_n.
+// Then v = w = 0 is a solution of the contact problem (every point sticks, no point moves along
+// the normal, no normal impulse pulls): where contact_resolve's sweeps converge for a body at
+// rest, taken at once (a resting box: 1/30 of the sweeps' instructions, docs/contacts.md). The
+// points' offsets along n differ by the body's tilt on the plane (the depths, below a
+// millimetre): the certificate neglects that difference's moment, it decides only whether the
+// exact solution v = w = 0 is taken. Returns the points that carry (3), or 0 when the
+// certificate fails (v, w untouched: the sweeps decide).
+constexpr int kContactRestPoints = 8;  // more touching points: the sweeps
+template <typename T>
+int contact_rest(const ContactParams& k, const T* M, T* v, T* w, int m, const T* r, const T* n) {
+  if (m < 3 || m > kContactRestPoints) return 0;
+  T P[3], L[3];
+  for (int i = 0; i < 3; ++i) {
+    T sp = T(0), sl = T(0);
+    for (int j = 0; j < 3; ++j) {
+      sp += M[6 * i + j] * v[j] + M[6 * i + 3 + j] * w[j];
+      sl += M[6 * (3 + i) + j] * v[j] + M[6 * (3 + i) + 3 + j] * w[j];
+    }
+    P[i] = -sp, L[i] = -sl;
+  }
+  const T pn = dot3(P, n);
+  if (!(pn > T(0))) return 0;
+  T Pt[3];
+  for (int a = 0; a < 3; ++a) Pt[a] = P[a] - pn * n[a];
+  const T mu = T(k.friction), pt = std::sqrt(dot3(Pt, Pt));
+  if (!(pt <= mu * pn)) return 0;
+  // the points in the plane, and their mean offset along n
+  T p[kContactRestPoints][3], h = T(0);
+  for (int i = 0; i < m; ++i) {
+    const T o = dot3(r + 3 * i, n);
+    h += o;
+    for (int a = 0; a < 3; ++a) p[i][a] = r[3 * i + a] - o * n[a];
+  }
+  h /= T(m);
+  // the centre of pressure in the plane and the moment about the normal
+  T nxP[3], Q[3], c[3], cxP[3];
+  cross3(n, P, nxP);
+  for (int a = 0; a < 3; ++a) Q[a] = L[a] - h * nxP[a];
+  cross3(n, Q, c);
+  for (int a = 0; a < 3; ++a) c[a] /= pn;
+  T cf[3];
+  for (int a = 0; a < 3; ++a) cf[a] = c[a] + h * n[a];
+  cross3(cf, P, cxP);
+  const T tau = dot3(L, n) - dot3(cxP, n);
+  // n . ((b - a) x (d - a)) for points in the plane: twice the signed area
+  auto area = [&](const T* a, const T* b, const T* d) {
+    T ab[3], ad[3], x[3];
+    for (int e = 0; e < 3; ++e) ab[e] = b[e] - a[e], ad[e] = d[e] - a[e];
+    cross3(ab, ad, x);
+    return dot3(x, n);
+  };
+  for (int i = 0; i < m; ++i)
+    for (int j = i + 1; j < m; ++j)
+      for (int l = j + 1; l < m; ++l) {
+        const T A = area(p[i], p[j], p[l]);
+        if (!(std::abs(A) > T(0))) continue;  // three points on a line
+        const T lam[3] = {area(c, p[j], p[l]) / A, area(p[i], c, p[l]) / A,
+                          area(p[i], p[j], c) / A};
+        if (!(lam[0] >= T(0) && lam[1] >= T(0) && lam[2] >= T(0))) continue;
+        const int idx[3] = {i, j, l};
+        T d2[3], S = T(0);
+        for (int q = 0; q < 3; ++q) {
+          T d[3];
+          for (int a = 0; a < 3; ++a) d[a] = p[idx[q]][a] - c[a];
+          d2[q] = dot3(d, d);
+          S += lam[q] * d2[q];
+        }
+        const T kappa = S > T(0) ? std::abs(tau) / S : (tau == T(0) ? T(0) : T(HUGE_VAL));
+        bool holds = true;
+        for (int q = 0; q < 3 && holds; ++q)
+          holds = lam[q] == T(0) || pt + kappa * std::sqrt(d2[q]) <= mu * pn;
+        if (!holds) continue;
+        for (int a = 0; a < 3; ++a) v[a] = T(0), w[a] = T(0);
+        return 3;
+      }
+  return 0;
+}
+
 // Several contact points touching at once (a box flat on the ground, a plate across a roof
 // edge): projected Gauss-Seidel on the accumulated impulses (Catto's sequential impulses),
 // at most `passes` sweeps over the points (fewer once converged, kContactTolerance). Each sweep gives point i first the normal impulse change
@@ -332,7 +423,9 @@ LRIGID_LANE ContactOut<T> contact_kernel(const ContactParams& k, const T* Minv, 
 // point: one body at a time (a batched loop calls it per lane). With k.rolling_resistance > 0
 // each sweep gives each point, between its normal and its friction impulse, the rolling
 // resistance's angular impulse (rolling_resistance_impulse, accumulated per point, capped by
-// mu_r |r_i| J_n,i).
+// mu_r |r_i| J_n,i). With M (the 6x6 generalized mass, row-major; the inverse of Minv), a body
+// lying on one plane is first offered contact_rest's certificate: when it holds, v = w = 0 at
+// once and no sweep runs.
 constexpr int kContactMaxPoints = 64;
 // contact_resolve stops sweeping when a sweep changes no impulse by more than this fraction of
 // the largest accumulated normal impulse. For a body lying on a surface that impulse is about
@@ -342,10 +435,37 @@ constexpr int kContactMaxPoints = 64;
 // same results to the validation's precision, 1.5 % more instructions per body-step on the
 // wind scene, docs/contacts.md.)
 constexpr double kContactTolerance = 1e-6;
+// contact_resolve's points lie on one plane (contact_rest) when their normals differ from the
+// first's by less than this in 1 - cos (an angle below 1.4 mrad: the ground exactly, a flat roof
+// or wall whose normals come from the wall distance's gradient)
+constexpr double kContactPlaneCos = 1e-6;
 template <typename T>
 int contact_resolve(const ContactParams& k, const T* Minv, T* v, T* w, int count, const T* r,
-                    const T* n, const T* depth, int passes, T* dx) {
+                    const T* n, const T* depth, int passes, T* dx, const T* M = nullptr) {
   const int m = count < kContactMaxPoints ? count : kContactMaxPoints;
+  if (M && m >= 3 && m <= kContactRestPoints && !(k.rolling_resistance > T(0))) {
+    // a body lying on one plane, every point touching and approaching slower than rest_speed:
+    // contact_rest's certificate, before the sweeps' set-up
+    bool plane = true;
+    for (int i = 0; i < m && plane; ++i) {
+      const T* ri = r + 3 * i;
+      T wxr[3], vc[3];
+      cross3(w, ri, wxr);
+      for (int a = 0; a < 3; ++a) vc[a] = v[a] + wxr[a];
+      plane = depth[i] >= T(0) && dot3(n + 3 * i, n) >= T(1) - T(kContactPlaneCos) &&
+              dot3(vc, n + 3 * i) >= -T(k.rest_speed);
+    }
+    if (plane) {
+      const int carrying = contact_rest(k, M, v, w, m, r, n);
+      if (carrying > 0) {
+        int deepest = 0;
+        for (int i = 1; i < m; ++i)
+          if (depth[i] > depth[deepest]) deepest = i;
+        for (int a = 0; a < 3; ++a) dx[a] = depth[deepest] * n[3 * deepest + a];
+        return carrying;
+      }
+    }
+  }
   const T mu = T(k.friction), mur = T(k.rolling_resistance);
   const bool rolls = mur > T(0);
   const bool diagonal = inverse_mass_is_diagonal(Minv);

@@ -279,7 +279,7 @@ bool contact_after_step(const Model& model, const BodyType& type, size_t i, doub
   double dx[3];
   // M^-1 is symmetric: its column-major data is its row-major data
   contact_resolve(*type.contact, type.M_inv.data(), b->v.data(), b->w.data(), c.count, c.r, c.n,
-                  c.depth, kContactPasses, dx);
+                  c.depth, kContactPasses, dx, type.M.data());
   const double h = model.dt, cw = end_velocity_weight(model) * h;
   const Vec3 dv = b->v - v0, dw = b->w - w0;
   // the position update with the velocity after the impulse, then what remains of the deepest
@@ -335,7 +335,7 @@ bool speculative_ground_contact(const Model& model, const BodyType& type, BodySt
   if (c.count == 0 || !c.ground) return false;
   double dx[3];
   return contact_resolve(*type.contact, type.M_inv.data(), b->v.data(), b->w.data(), c.count,
-                         c.r, c.n, c.depth, kContactPasses, dx) > 0;
+                         c.r, c.n, c.depth, kContactPasses, dx, type.M.data()) > 0;
 }
 
 void wake_bodies(const Model& model, State* st, size_t n0, size_t n, uint64_t first,
