@@ -471,10 +471,10 @@ def report(rows, slopes, kinds, sources, scenes, date, seconds, note=""):
         r = det.get((scene, "rk4"))
         if r and math.isfinite(r["slope"]) and r["slope"] < 3:
             w("* On `%s` rk4 converges with slope %.2f, not 4: the scene's events and kinks "
-              "(the colliding ground's impulses, applied at the end of a step: only a "
-              "touchdown's time is located inside it; the drag of flat bodies through "
-              "|direction cosines|) are first order and tumbling amplifies them, so rk4's "
-              "extra stages buy accuracy only through a smaller error constant." %
+              "(resting and sliding contact, resolved at the step's end; the drag of flat "
+              "bodies through |direction cosines|) are first order and tumbling "
+              "amplifies them, so rk4's extra stages buy accuracy only through a smaller error "
+              "constant." %
               (scene, r["slope"]))
     eff = [r for r in rows if r["sweep"] in ("effects_det", "effects") and
            r["effects"] != "full" and r["valid"]]

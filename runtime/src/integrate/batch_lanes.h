@@ -202,6 +202,11 @@ struct Samples {
   // step reached the ground (end_step keeps it)
   bool track[kBatch];
   BodyState start[kBatch];
+  // contacts: the lanes whose body was flying at the start of the step (an impact on a surface
+  // is located inside the step: contact_after_step's start), and those whose start[] holds the
+  // start of the step just taken
+  bool flying[kBatch];
+  bool started[kBatch];
   uint64_t newton = 0;  // steps of live lanes on which the loops ran Newton (BlockStats)
 };
 
@@ -527,8 +532,16 @@ LRIGID_IVDEP
   }
   T(*vel)[kBatch] = lanes->velocity();
   for (int j = 0; j < kBatch; ++j) {
+    lanes->started[j] = false;
     if (outcome[j] != kOk || !lanes->live[j]) continue;
-    if (landed[j] && lanes->track[j]) lanes->store(j, &lanes->start[j]);
+    // the start of the step of a lane that may have met a surface in it: a landing or first
+    // touchdown to locate, or a flying body near a colliding surface (an impact to locate)
+    const bool near = (landed[j] && fc.ground_collide) ||
+                      (fc.walls_collide && double(lanes->wall[j]) <= fc.reach);
+    if ((landed[j] && lanes->track[j]) || (lanes->flying[j] && near)) {
+      lanes->store(j, &lanes->start[j]);
+      lanes->started[j] = true;
+    }
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
       lanes->x[a][j] = next->x[a][j];
@@ -581,6 +594,8 @@ BlockStats drive_block(const Model& model, const BodyType& type, const FieldCons
     dormant[j] = j < count && wakes_before(st, i, last) ? st.watch[i].wake : GustWatch::kNever;
     lanes->history[j] = st.history_of(i);
     lanes->track[j] = fc.ground && (!fc.ground_collide || std::isnan(st.t_touch[i]));
+    lanes->flying[j] = fc.contacts && st.contact[i] == ContactState::Flying;
+    lanes->started[j] = false;
   }
   auto resample = [&](int lo, int hi) {
     if (fc.sample) sample_lanes(fc, lanes->x, lanes, lo, hi);
@@ -642,16 +657,31 @@ BlockStats drive_block(const Model& model, const BodyType& type, const FieldCons
       // the lane kept its state at the start of the step: a lane heading into a colliding
       // ground below the grid's bottom takes the speculative contact and the scalar step
       bool redo = outcome[j] == kScalar;
+      // (or, heading through the grid's floor into the ground, takes the impact located inside
+      // the step, integrate/contacts.h impact_through_floor)
+      bool floor_impact = false;
       if (outcome[j] == kOutside && fc.contacts) {
         lanes->store(j, &b);
-        redo = heads_into_ground(model, type, b) && speculative_ground_contact(model, type, &b);
+        if (heads_into_ground(model, type, b)) {
+          b.history = lanes->history[j];
+          floor_impact = impact_through_floor(model, type, i, t, &b, &st);
+          if (!floor_impact) redo = speculative_ground_contact(model, type, &b);
+        }
         if (redo) lanes->load(j, b);
       }
-      if (redo) {
+      if (floor_impact) {
+        ++stats.scalar_steps;
+        lanes->load(j, b);
+        resample(j, j + 1);
+        land = model.has_ground && touches_ground(model, type, b);
+        lanes->started[j] = false;  // the impact is taken: the contact pass gets no start
+        if (!std::isnan(st.t_touch[i])) lanes->track[j] = false;  // recorded where located
+      } else if (redo) {
         lanes->store(j, &b);
         b.history = lanes->history[j];  // step_body appends to it
         ++stats.scalar_steps;
-        if (lanes->track[j]) lanes->start[j] = b;
+        lanes->start[j] = b;
+        lanes->started[j] = true;
         out = step_body(model, type, lanes->body[j], s, t, &b, &reason);
         if (out == StepOutcome::Ok) {
           // the lane's sample is at its batched position: sample it where the scalar step took it
@@ -679,7 +709,8 @@ BlockStats drive_block(const Model& model, const BodyType& type, const FieldCons
             lanes->store(j, &b);
             b.history = lanes->history[j];
             const BodyState end = b;
-            const bool asleep = contact_after_step(model, type, i, t + model.dt, &b, &st);
+            const bool asleep = contact_after_step(model, type, i, t + model.dt, &b, &st, nullptr,
+                                                   lanes->started[j] ? &lanes->start[j] : nullptr);
             if (lanes->track[j] && land && !std::isnan(st.t_touch[i])) {
               record_touchdown(model, type, i, t, lanes->start[j], end, &st);
               lanes->track[j] = false;
@@ -695,6 +726,7 @@ BlockStats drive_block(const Model& model, const BodyType& type, const FieldCons
               if (wake < last) dormant[j] = wake;
             }
           }
+          lanes->flying[j] = st.contact[i] == ContactState::Flying;
           // a ground with "stop" still lands the bodies (walls colliding)
           if (!lanes->live[j] || fc.ground_collide) continue;
         }

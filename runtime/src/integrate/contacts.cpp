@@ -6,6 +6,7 @@
 #include "effects/contact.h"
 #include "effects/turbulence.h"
 #include "integrate/dynamics.h"
+#include "integrate/stops.h"
 #include "util/rng.h"
 
 namespace lrigid {
@@ -28,16 +29,17 @@ struct Touching {
 };
 
 // The shape's points that reach a surface, with the positions `ahead` seconds ahead at the
-// points' current velocities (0: where they are).
+// points' current velocities (0: where they are). slack >= 0: points up to slack (m) off the
+// surface count too, with depth 0 (an impact located inside a step: the points that touch there).
 void gather(const Model& m, const BodyType& type, const BodyState& b, const Mat3& R, double t,
-            double ahead, Touching* out, WallClearance* clearance = nullptr) {
+            double ahead, Touching* out, WallClearance* clearance = nullptr, double slack = 0) {
   const ContactParams& k = *type.contact;
   const Mat3 Rt = R.transpose();
   // points on the ground need no wall check: the grid's floor is the ground, twice the same
   // constraint would only cost
   uint8_t on_ground[kContactMaxPoints * 4] = {};
   auto point_velocity = [&](const Vec3& rb) { return R * (b.v + b.w.cross(rb)); };
-  if (m.ground_collides() && b.x.z() - type.reach <= m.ground_z) {
+  if (m.ground_collides() && b.x.z() - type.reach <= m.ground_z + slack) {
     const Vec3 ez(0, 0, 1);
     auto ground_depth = [&](const Vec3& rb) {
       const Vec3 p = b.x + R * rb + ahead * point_velocity(rb);
@@ -48,7 +50,7 @@ void gather(const Model& m, const BodyType& type, const BodyState& b, const Mat3
       Vec3 rb;
       ellipsoid_support_point(k, nb.data(), rb.data());
       const double d = ground_depth(rb);
-      if (d >= 0) out->add(rb, nb, d), out->ground = true;
+      if (d >= -slack) out->add(rb, nb, std::max(d, 0.0)), out->ground = true;
     } else {
       const Vec3 nb = Rt * ez;
       for (size_t p = 0; p < k.count(); ++p) {
@@ -62,8 +64,8 @@ void gather(const Model& m, const BodyType& type, const BodyState& b, const Mat3
         }
         const Vec3 rb(k.points[3 * p], k.points[3 * p + 1], k.points[3 * p + 2]);
         const double d = ground_depth(rb);
-        if (d >= 0) {
-          out->add(rb, nb, d);
+        if (d >= -slack) {
+          out->add(rb, nb, std::max(d, 0.0));
           out->ground = true;
           if (p < sizeof on_ground) on_ground[p] = 1;
         }
@@ -73,7 +75,8 @@ void gather(const Model& m, const BodyType& type, const BodyState& b, const Mat3
   if (!m.walls_collide()) return;
   // a body near a colliding ground that is the grid's floor, away from every other wall: the
   // ground above was the only surface it could touch (touching or not)
-  if (m.ground_collides() && m.field.only_floor_near(b.x, type.reach, m.ground_z, t)) return;
+  if (m.ground_collides() && m.field.only_floor_near(b.x, type.reach + slack, m.ground_z, t))
+    return;
   if (clearance && clearance->radius >= 0 && (b.x - clearance->x).norm() < clearance->radius)
     return;
   double dc;
@@ -83,15 +86,15 @@ void gather(const Model& m, const BodyType& type, const BodyState& b, const Mat3
     clearance->x = b.x;
     clearance->radius = inside ? (dc - type.reach) / std::sqrt(3.0) : -1;
   }
-  if (!inside || dc > type.reach) return;
+  if (!inside || dc > type.reach + slack) return;
   // a point touches where the wall distance is <= 0; its normal is the distance's gradient
   auto wall = [&](const Vec3& rb, Vec3* nw) {
     const Vec3 p = b.x + R * rb + ahead * point_velocity(rb);
     double d;
     Vec3 g;
-    if (!m.field.wall_distance(p, t, &d, &g) || d > 0) return -1.0;
+    if (!m.field.wall_distance(p, t, &d, &g) || d > slack) return -HUGE_VAL;
     const double gn = g.norm();
-    if (!(gn > 0)) return -1.0;
+    if (!(gn > 0)) return -HUGE_VAL;
     *nw = g / gn;
     return -d;
   };
@@ -106,15 +109,59 @@ void gather(const Model& m, const BodyType& type, const BodyState& b, const Mat3
     Vec3 rb;
     ellipsoid_support_point(k, nb.data(), rb.data());
     const double d = wall(rb, &nw);
-    if (d >= 0) out->add(rb, Rt * nw, d);
+    if (d >= -slack) out->add(rb, Rt * nw, std::max(d, 0.0));
   } else {
     for (size_t p = 0; p < k.count(); ++p) {
       if (p < sizeof on_ground && on_ground[p]) continue;
       const Vec3 rb(k.points[3 * p], k.points[3 * p + 1], k.points[3 * p + 2]);
       const double d = wall(rb, &nw);
-      if (d >= 0) out->add(rb, Rt * nw, d);
+      if (d >= -slack) out->add(rb, Rt * nw, std::max(d, 0.0));
     }
   }
+}
+
+// The smallest signed distance (m; > 0: apart) of the shape's contact points, the body at x with
+// rotation R at time t, to the colliding surfaces: the ground plane's height and the wall
+// distance. Far from the walls (the centre's wall distance beyond the body's reach) the walls
+// count with that distance less the reach, a bound that keeps the function continuous enough for
+// a root finder.
+double surface_gap(const Model& m, const BodyType& type, const Vec3& x, const Mat3& R, double t) {
+  const ContactParams& k = *type.contact;
+  const Mat3 Rt = R.transpose();
+  double gap = HUGE_VAL;
+  auto point = [&](size_t p) {
+    return Vec3(k.points[3 * p], k.points[3 * p + 1], k.points[3 * p + 2]);
+  };
+  if (m.ground_collides()) {
+    if (k.support) {
+      const Vec3 nb = Rt * Vec3::UnitZ();
+      Vec3 rb;
+      ellipsoid_support_point(k, nb.data(), rb.data());
+      gap = (x + R * rb).z() - m.ground_z;
+    } else {
+      for (size_t p = 0; p < k.count(); ++p) gap = std::min(gap, (x + R * point(p)).z() - m.ground_z);
+    }
+  }
+  if (!m.walls_collide()) return gap;
+  double dc;
+  Vec3 gc;
+  if (!m.field.wall_distance(x, t, &dc, &gc)) return gap;
+  if (dc > type.reach) return std::min(gap, dc - type.reach);
+  auto wall_at = [&](const Vec3& rb) {
+    double d;
+    Vec3 g;
+    return m.field.wall_distance(x + R * rb, t, &d, &g) ? d : HUGE_VAL;
+  };
+  if (k.support) {
+    const double gn = gc.norm();
+    if (!(gn > 0)) return gap;
+    const Vec3 nb = Rt * (gc / gn);
+    Vec3 rb;
+    ellipsoid_support_point(k, nb.data(), rb.data());
+    return std::min(gap, wall_at(rb));
+  }
+  for (size_t p = 0; p < k.count(); ++p) gap = std::min(gap, wall_at(point(p)));
+  return gap;
 }
 
 // The weight of the step's end velocity in its position update: x += h/2 (V0 + V1) for the
@@ -258,24 +305,151 @@ Vec3 wake_sleeper(State* st, size_t i) {
   return w.u;
 }
 
+namespace {
+
+// the fastest approach (m/s) of c's touching points, the body moving with (v, w)
+double fastest_approach(const Touching& c, const Vec3& v, const Vec3& w) {
+  double approach = 0;
+  for (int p = 0; p < c.count; ++p) {
+    const Vec3 rb(c.r[3 * p], c.r[3 * p + 1], c.r[3 * p + 2]);
+    const Vec3 nb(c.n[3 * p], c.n[3 * p + 1], c.n[3 * p + 2]);
+    approach = std::max(approach, -(v + w.cross(rb)).dot(nb));
+  }
+  return approach;
+}
+
+}  // namespace
+
+bool can_split_at_impact(const Model& model, const BodyType& type) {
+  return !type.plan.basset &&
+         !(type.effects.has(Effect::Turbulence) &&
+           model.turbulence_model == TurbulenceModel::Body);
+}
+
+namespace {
+
+// The step from a (at time t) taken again with the impact's impulses at t + tau: the points
+// within a nanometre of a surface there (what touched first) get contact_resolve's impulses.
+// Counts the impact and a first ground touchdown. False (a and st untouched) when the step
+// fails or nothing touches at t + tau.
+bool split_at_impact(const Model& model, const BodyType& type, size_t i, double t, double tau,
+                     BodyState* a, State* st) {
+  bool hit = false, ground = false;
+  Vec3 x_hit = a->x;
+  const SplitAt impulse = [&](double t_hit, BodyState* s) {
+    const Mat3 R = s->q.toRotationMatrix();
+    Touching c;
+    const double slack = std::max(0.0, surface_gap(model, type, s->x, R, t_hit)) + 1e-9;
+    gather(model, type, *s, R, t_hit, 0.0, &c, nullptr, slack);
+    if (c.count == 0) return;
+    double dx[3];
+    contact_resolve(*type.contact, type.M_inv.data(), s->v.data(), s->w.data(), c.count, c.r,
+                    c.n, c.depth, kContactPasses, dx, type.M.data());
+    hit = true;
+    ground = c.ground;
+    x_hit = s->x;
+  };
+  BodyState s = *a;
+  std::string reason;
+  const uint64_t step = static_cast<uint64_t>(std::llround(t / model.dt));
+  if (step_body_split(model, type, static_cast<uint32_t>(i), step, t, tau, impulse, &s,
+                      &reason) != StepOutcome::Ok ||
+      !hit)
+    return false;
+  ++st->impacts[i];
+  if (ground && std::isnan(st->t_touch[i])) {
+    st->t_touch[i] = t + tau;
+    st->x_touch[i] = x_hit;
+  }
+  *a = s;
+  return true;
+}
+
+}  // namespace
+
+bool impact_inside_step(const Model& model, const BodyType& type, size_t i, double t,
+                        const BodyState& a, BodyState* b, State* st) {
+  if (!can_split_at_impact(model, type)) return false;
+  const double h = model.dt, t_end = t + h;
+  auto gap = [&](const Vec3& x, const Quat& q) {
+    return surface_gap(model, type, x, q.toRotationMatrix(), t_end);
+  };
+  if (!(gap(a.x, a.q) > 0)) return false;  // it touched at the start: no event inside
+  BodyState at;
+  const double tau = locate_event(model, type, a, *b, h, gap, &at);
+  if (!(tau > 0) || !(tau < h * (1 - 1e-9))) return false;
+  BodyState s = a;
+  s.history = b->history;
+  if (!split_at_impact(model, type, i, t, tau, &s, st)) return false;
+  *b = s;
+  return true;
+}
+
+bool impact_through_floor(const Model& model, const BodyType& type, size_t i, double t,
+                          BodyState* a, State* st) {
+  if (!model.ground_collides() || !can_split_at_impact(model, type)) return false;
+  const double h = model.dt, t_end = t + h;
+  // the gap after the deterministic part to t + u h; a part that leaves the fluid went through
+  // the floor: below (-1)
+  // (NaN: the part left the fluid, through the floor)
+  auto gap = [&](double u) {
+    BodyState s = *a;
+    if (deterministic_substep(model, type, t, u * h, &s) != StepOutcome::Ok) return double(NAN);
+    return surface_gap(model, type, s.x, s.q.toRotationMatrix(), t_end);
+  };
+  double lo = 0, glo = surface_gap(model, type, a->x, a->q.toRotationMatrix(), t_end);
+  if (!(glo > 0)) return false;
+  double hi = 1, ghi = gap(1.0);
+  if (ghi > 0) return false;  // the deterministic part alone does not reach a surface
+  // Illinois regula falsi where both ends have a gap, bisection while the upper end left
+  int side = 0;
+  for (int it = 0; it < 80 && hi - lo > 1e-12; ++it) {
+    const bool falsi = !std::isnan(ghi);
+    const double u = falsi ? lo + (hi - lo) * glo / (glo - ghi) : 0.5 * (lo + hi);
+    const double g = gap(u);
+    if (g > 0) {
+      lo = u, glo = g;
+      if (side == -1 && falsi) ghi *= 0.5;
+      side = -1;
+    } else {
+      hi = u, ghi = g;  // g <= 0 or NaN
+      if (side == 1) glo *= 0.5;
+      side = 1;
+      if (g == 0) break;
+    }
+  }
+  if (!(hi < 1 - 1e-9)) return false;
+  return split_at_impact(model, type, i, t, hi * h, a, st);
+}
+
 bool contact_after_step(const Model& model, const BodyType& type, size_t i, double t_end,
-                        BodyState* b, State* st, WallClearance* clearance) {
-  const Mat3 R = b->q.toRotationMatrix();
+                        BodyState* b, State* st, WallClearance* clearance,
+                        const BodyState* start) {
+  Mat3 R = b->q.toRotationMatrix();
   Touching c;
   gather(model, type, *b, R, t_end, 0.0, &c, clearance);
   if (c.count == 0) {
     mark_flying(st, i);
     return false;
   }
-  const Vec3 v0 = b->v, w0 = b->w;
   // the fastest approach of a touching point: an impact (a contact event) when it is above the
   // resting threshold, or when the body was flying
-  double approach = 0;
-  for (int p = 0; p < c.count; ++p) {
-    const Vec3 rb(c.r[3 * p], c.r[3 * p + 1], c.r[3 * p + 2]);
-    const Vec3 nb(c.n[3 * p], c.n[3 * p + 1], c.n[3 * p + 2]);
-    approach = std::max(approach, -(v0 + w0.cross(rb)).dot(nb));
+  double approach = fastest_approach(c, b->v, b->w);
+  if (start && st->contact[i] == ContactState::Flying && approach > model.rest_speed &&
+      impact_inside_step(model, type, i, t_end - model.dt, *start, b, st)) {
+    // the impact was taken where it happened, inside the step; what the step's end touches now
+    // (a body that did not bounce clear) is resolved as any contact
+    st->contact[i] = ContactState::Sliding;
+    R = b->q.toRotationMatrix();
+    c = Touching{};
+    gather(model, type, *b, R, t_end, 0.0, &c, nullptr);
+    if (c.count == 0) {
+      mark_flying(st, i);
+      return false;
+    }
+    approach = fastest_approach(c, b->v, b->w);
   }
+  const Vec3 v0 = b->v, w0 = b->w;
   double dx[3];
   // M^-1 is symmetric: its column-major data is its row-major data
   contact_resolve(*type.contact, type.M_inv.data(), b->v.data(), b->w.data(), c.count, c.r, c.n,

@@ -103,8 +103,8 @@ Vec6 implicit_impulse_change(const BodyType& type, double b, const DragStiffness
 // One explicit Euler step in world-frame impulse form (see dynamics.h): forces, Munk moment
 // and rotation from the start of the step (euler). The Basset history's current interval is
 // implicit (a mass on the left-hand side).
-StepOutcome impulse_step(const Model& model, const BodyType& type, double t, BodyState* s) {
-  const double h = model.dt;
+StepOutcome impulse_step(const Model& model, const BodyType& type, double t, double h,
+                         BodyState* s) {
   const Kinematics k = kinematics(*s);
   ImpulseRates r;
   if (impulse_rates(model, type, k, t, &r, nullptr) == EvalResult::Outside)
@@ -138,9 +138,8 @@ StepOutcome impulse_step(const Model& model, const BodyType& type, double t, Bod
 //   3. x by the trapezoidal rule on the world velocity.
 // The field is sampled once, at the start of the step.
 
-StepOutcome split_deterministic_step(const Model& model, const BodyType& type, double t,
+StepOutcome split_deterministic_step(const Model& model, const BodyType& type, double t, double h,
                                      BodyState* s) {
-  const double h = model.dt;
   const EffectPlan& plan = type.plan;
   FluidSample fluid;
   if (plan.sample_field && !sample_fluid(model, s->x, t, plan.gradients, &fluid))
@@ -273,8 +272,8 @@ void strang_force_step(const Model& model, const BodyType& type, const FluidSamp
 // next step's start); the flow moves relative to the fluid velocity at the midpoint,
 // U + grad U (h/2 V) from the start's sample.
 StepOutcome strang_deterministic_step(const Model& model, const BodyType& type, double t,
-                                      double t_end, BodyState* s) {
-  const double h = model.dt, hh = 0.5 * h;
+                                      double t_end, double h, BodyState* s) {
+  const double hh = 0.5 * h;
   const EffectPlan& plan = type.plan;
   FluidSample fluid;
   if (plan.sample_field && !sample_fluid(model, s->x, t, plan.gradients, &fluid))
@@ -296,8 +295,7 @@ StepOutcome strang_deterministic_step(const Model& model, const BodyType& type, 
   return StepOutcome::Ok;
 }
 
-StepOutcome rk4(const Model& model, const BodyType& type, double t, BodyState* s) {
-  const double h = model.dt;
+StepOutcome rk4(const Model& model, const BodyType& type, double t, double h, BodyState* s) {
   const Quat q0 = s->q;
   Vec3 kx[4], kth[4];
   Vec6 kxi[4];
@@ -386,10 +384,37 @@ const char* first_nonfinite(const BodyState& s) {
   return nullptr;
 }
 
-}  // namespace
+// The scheme's deterministic part over [t, t_end] (h = t_end - t up to rounding).
+StepOutcome deterministic_part(const Model& model, const BodyType& type, double t, double t_end,
+                               double h, BodyState* s) {
+  switch (model.integrator) {
+    case Integrator::Euler: return impulse_step(model, type, t, h, s);
+    case Integrator::RK4: return rk4(model, type, t, h, s);
+    case Integrator::Strang:
+      // strang with the Basset history: the splitting step (its current interval is a
+      // first-order implicit term, see the header)
+      if (!type.plan.basset) return strang_deterministic_step(model, type, t, t_end, h, s);
+      return split_deterministic_step(model, type, t, h, s);
+    case Integrator::Splitting: break;
+  }
+  return split_deterministic_step(model, type, t, h, s);
+}
 
-StepOutcome step_body(const Model& model, const BodyType& type, uint32_t body, uint64_t step,
-                      double t, BodyState* s, std::string* reason) {
+// The deterministic part over the step [t, t_end], whole, or (at_split) in two parts with
+// at_split called on the state at t + tau between them.
+StepOutcome deterministic_pieces(const Model& model, const BodyType& type, double t,
+                                 double t_end, double h, double tau, const SplitAt* at_split,
+                                 BodyState* s) {
+  if (!at_split) return deterministic_part(model, type, t, t_end, h, s);
+  const StepOutcome out = deterministic_part(model, type, t, t + tau, tau, s);
+  if (out != StepOutcome::Ok) return out;
+  (*at_split)(t + tau, s);
+  return deterministic_part(model, type, t + tau, t_end, h - tau, s);
+}
+
+StepOutcome step_impl(const Model& model, const BodyType& type, uint32_t body, uint64_t step,
+                      double t, BodyState* s, std::string* reason, double tau,
+                      const SplitAt* at_split) {
   const BodyState before = *s;
   const double h = model.dt;
   // the end of the step as the next step's start time (step + 1) dt, not t + h (which may
@@ -405,8 +430,7 @@ StepOutcome step_body(const Model& model, const BodyType& type, uint32_t body, u
     case Integrator::RK4: {
       // the noise uses the state at the start of the step (Ito), one draw per step
       BodyState start = *s;
-      out = model.integrator == Integrator::Euler ? impulse_step(model, type, t, s)
-                                                  : rk4(model, type, t, s);
+      out = deterministic_pieces(model, type, t, t_end, h, tau, at_split, s);
       if (out == StepOutcome::Ok && turb) {
         BodyState inc = start;
         out = turbulence_update(model, type, t, h, false, z, &inc);
@@ -422,13 +446,8 @@ StepOutcome step_body(const Model& model, const BodyType& type, uint32_t body, u
     case Integrator::Splitting:
     case Integrator::Strang:
       if (turb) out = turbulence_update(model, type, t, 0.5 * h, true, z1, s);
-      // strang with the Basset history: the splitting step (its current interval is a
-      // first-order implicit term, see the header)
-      if (out == StepOutcome::Ok) {
-        out = model.integrator == Integrator::Strang && !type.plan.basset
-                  ? strang_deterministic_step(model, type, t, t_end, s)
-                  : split_deterministic_step(model, type, t, s);
-      }
+      if (out == StepOutcome::Ok)
+        out = deterministic_pieces(model, type, t, t_end, h, tau, at_split, s);
       // body model: the turbulent velocity at mid-step carries the body directly
       if (out == StepOutcome::Ok && turb && model.turbulence_model == TurbulenceModel::Body)
         s->x += h * s->u_seen;
@@ -468,6 +487,32 @@ StepOutcome step_body(const Model& model, const BodyType& type, uint32_t body, u
     basset_push(type.basset, uf - s->q.toRotationMatrix() * s->v, h, s->history);
   }
   return StepOutcome::Ok;
+}
+
+}  // namespace
+
+StepOutcome step_body(const Model& model, const BodyType& type, uint32_t body, uint64_t step,
+                      double t, BodyState* s, std::string* reason) {
+  return step_impl(model, type, body, step, t, s, reason, -1, nullptr);
+}
+
+StepOutcome step_body_split(const Model& model, const BodyType& type, uint32_t body,
+                            uint64_t step, double t, double tau, const SplitAt& at_split,
+                            BodyState* s, std::string* reason) {
+  return step_impl(model, type, body, step, t, s, reason, tau, &at_split);
+}
+
+StepOutcome deterministic_substep(const Model& model, const BodyType& type, double t, double h,
+                                  BodyState* s) {
+  const BodyState before = *s;
+  StepOutcome out = deterministic_part(model, type, t, t + h, h, s);
+  FluidSample end;
+  if (out == StepOutcome::Ok && type.plan.sample_field && !model.field.is_uniform() &&
+      !sample_fluid(model, s->x, t + h, false, &end))
+    out = StepOutcome::Exited;
+  if (out == StepOutcome::Ok && first_nonfinite(*s)) out = StepOutcome::Failed;
+  if (out != StepOutcome::Ok) *s = before;
+  return out;
 }
 
 }  // namespace lrigid

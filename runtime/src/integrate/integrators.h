@@ -29,6 +29,7 @@
 // |q| - 1 stays at round-off.
 #pragma once
 #include <cstdint>
+#include <functional>
 #include <string>
 
 #include "model/model.h"
@@ -63,6 +64,22 @@ constexpr double kDragTol = 1e-10;
 // On Exited/Failed `s` is left at its value before the step and `reason` says why.
 StepOutcome step_body(const Model& model, const BodyType& type, uint32_t body, uint64_t step,
                       double t, BodyState* s, std::string* reason);
+
+// step_body with its deterministic part split at t + tau (0 < tau < model.dt): the part from t
+// to t + tau, at_split(t + tau, s) (an impact's impulses: integrate/contacts.h), the part from
+// there to the step's end. The turbulence update is step_body's (the same normals, at the same
+// ends of the step).
+using SplitAt = std::function<void(double t, BodyState* s)>;
+StepOutcome step_body_split(const Model& model, const BodyType& type, uint32_t body,
+                            uint64_t step, double t, double tau, const SplitAt& at_split,
+                            BodyState* s, std::string* reason);
+
+// The deterministic part of the model's scheme over h (any h > 0, not only model.dt) from time
+// t: the step without its turbulence update (u_seen held) and without appending to the Basset
+// history. What a step split at an event inside it takes on each side (integrate/contacts.h).
+// On Exited/Failed `s` is left as it was.
+StepOutcome deterministic_substep(const Model& model, const BodyType& type, double t, double h,
+                                  BodyState* s);
 
 // q exp(theta): rotation by the body-frame rotation vector theta (rad)
 Quat rotate_body(const Quat& q, const Vec3& theta);

@@ -66,9 +66,16 @@ uint64_t advance_body(const Model& model, State& st, int64_t i, uint64_t first, 
     std::string reason;
     if (lands || contacts) start = b;
     StepOutcome out = step_body(model, type, static_cast<uint32_t>(i), k, t, &b, &reason);
-    if (out == StepOutcome::Exited && heads_into_ground(model, type, b) &&
-        speculative_ground_contact(model, type, &b))
-      out = step_body(model, type, static_cast<uint32_t>(i), k, t, &b, &reason);
+    // a step through the grid's floor into a colliding ground: the impact located inside it, or
+    // (a body that does not bounce clear) the speculative contact and the step again
+    bool floor_impact = false;
+    if (out == StepOutcome::Exited && heads_into_ground(model, type, b)) {
+      floor_impact = impact_through_floor(model, type, size_t(i), t, &b, &st);
+      if (floor_impact)
+        out = StepOutcome::Ok;
+      else if (speculative_ground_contact(model, type, &b))
+        out = step_body(model, type, static_cast<uint32_t>(i), k, t, &b, &reason);
+    }
     if (out != StepOutcome::Ok) {
       if (stop_body(model, type, size_t(i), t, out, reason, &b, &st) == BodyStatus::Landed) {
         b.v.setZero();
@@ -81,8 +88,9 @@ uint64_t advance_body(const Model& model, State& st, int64_t i, uint64_t first, 
       const bool first_touch = std::isnan(st.t_touch[i]);
       const BodyState end = b;
       const bool asleep = contact_after_step(model, type, size_t(i), t + model.dt, &b, &st,
-                                             &clearance);
-      if (first_touch && !std::isnan(st.t_touch[i]))
+                                             &clearance, floor_impact ? nullptr : &start);
+      // (an impact through the floor recorded its touchdown where it located it)
+      if (first_touch && !floor_impact && !std::isnan(st.t_touch[i]))
         record_touchdown(model, type, size_t(i), t, start, end, &st);
       if (asleep) {
         // asleep until its watch wakes it, in this stretch or a later one

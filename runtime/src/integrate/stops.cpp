@@ -60,9 +60,17 @@ bool touches_ground(const Model& m, const BodyType& type, const BodyState& s) {
 
 double locate_touchdown(const Model& m, const BodyType& type, const BodyState& a,
                         const BodyState& b, BodyState* at) {
-  const double h = m.dt;
   *at = b;
-  if (ground_clearance(m, type, a.x, a.q) <= 0) return h;
+  if (ground_clearance(m, type, a.x, a.q) <= 0) return m.dt;
+  return locate_event(
+      m, type, a, b, m.dt,
+      [&](const Vec3& x, const Quat& q) { return ground_clearance(m, type, x, q); }, at);
+}
+
+double locate_event(const Model& m, const BodyType& type, const BodyState& a, const BodyState& b,
+                    double h, const std::function<double(const Vec3&, const Quat&)>& gap,
+                    BodyState* at) {
+  *at = b;
   const Vec3 va = h * world_velocity(m, type, a), vb = h * world_velocity(m, type, b);
   // quaternions as 4-vectors on the same hemisphere, with their rates times h
   const Eigen::Vector4d qa = a.q.coeffs();
@@ -86,7 +94,7 @@ double locate_touchdown(const Model& m, const BodyType& type, const BodyState& a
     Vec3 x;
     Quat q;
     state(u, &x, &q);
-    return ground_clearance(m, type, x, q);
+    return gap(x, q);
   };
   // the first sign change on a few sub-intervals (the interpolant may dip below and come back),
   // then regula falsi (Illinois) inside it

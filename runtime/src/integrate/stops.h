@@ -2,6 +2,7 @@
 // (batch_lanes.h) share.
 #pragma once
 #include <cmath>
+#include <functional>
 #include <string>
 
 #include "integrate/integrators.h"
@@ -37,6 +38,15 @@ bool touches_ground(const Model& m, const BodyType& type, const BodyState& s);
 // *at is the state there (velocities interpolated linearly; the history pointer is a's).
 double locate_touchdown(const Model& m, const BodyType& type, const BodyState& a,
                         const BodyState& b, BodyState* at);
+
+// The same root for any clearance: the first time within a step of duration h from a to b where
+// gap(x, q) (m; > 0 apart, <= 0 touching; gap at a > 0) reaches 0 along that interpolant.
+// Returns it from the start of the step, in (0, h]; *at as above. Used by locate_touchdown (the
+// ground) and by the contact pass for an impact on the ground or a wall inside a step
+// (integrate/contacts.h).
+double locate_event(const Model& m, const BodyType& type, const BodyState& a, const BodyState& b,
+                    double h, const std::function<double(const Vec3&, const Quat&)>& gap,
+                    BodyState* at);
 
 // A colliding ground's first touchdown (landings.csv: t_touch, x_touch of body i), which the
 // contact pass recorded at the end of the step that began at t, moved to where it happened inside
