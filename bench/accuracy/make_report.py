@@ -470,11 +470,11 @@ def report(rows, slopes, kinds, sources, scenes, date, seconds, note=""):
     for scene in scenes:
         r = det.get((scene, "rk4"))
         if r and math.isfinite(r["slope"]) and r["slope"] < 3:
-            w("* On `%s` rk4 converges with slope %.2f, not 4: the scene's events and kinks "
-              "(resting and sliding contact, resolved at the step's end; the drag of flat "
-              "bodies through |direction cosines|) are first order and tumbling "
-              "amplifies them, so rk4's extra stages buy accuracy only through a smaller error "
-              "constant." %
+            w("* On `%s` rk4 converges with slope %.2f, not 4: the drag of flat bodies has "
+              "kinks (through |direction cosines|), first order, and tumbling amplifies them, "
+              "so rk4's extra stages buy accuracy only through a smaller error constant. (The "
+              "study's bodies stop where they first touch the ground, ground.contact \"stop\", "
+              "a touchdown located inside the step: not the cause.)" %
               (scene, r["slope"]))
     eff = [r for r in rows if r["sweep"] in ("effects_det", "effects") and
            r["effects"] != "full" and r["valid"]]

@@ -203,8 +203,8 @@ struct Samples {
   bool track[kBatch];
   BodyState start[kBatch];
   // contacts: the lanes whose body was flying at the start of the step (an impact on a surface
-  // is located inside the step: contact_after_step's start), and those whose start[] holds the
-  // start of the step just taken
+  // is located inside the step: contact_after_step's start), and, for the lanes whose step
+  // succeeded, whether start[] holds the start of the step just taken
   bool flying[kBatch];
   bool started[kBatch];
   uint64_t newton = 0;  // steps of live lanes on which the loops ran Newton (BlockStats)
@@ -531,17 +531,17 @@ LRIGID_IVDEP
         lanes->gb[a][j] = mf * lanes->U[a][j] + (Turb ? next->us[a][j] : T(0)) - V[a][j];
   }
   T(*vel)[kBatch] = lanes->velocity();
+  const bool contacts = fc.contacts;
   for (int j = 0; j < kBatch; ++j) {
-    lanes->started[j] = false;
     if (outcome[j] != kOk || !lanes->live[j]) continue;
     // the start of the step of a lane that may have met a surface in it: a landing or first
     // touchdown to locate, or a flying body near a colliding surface (an impact to locate)
-    const bool near = (landed[j] && fc.ground_collide) ||
-                      (fc.walls_collide && double(lanes->wall[j]) <= fc.reach);
-    if ((landed[j] && lanes->track[j]) || (lanes->flying[j] && near)) {
-      lanes->store(j, &lanes->start[j]);
-      lanes->started[j] = true;
-    }
+    bool keep = landed[j] && lanes->track[j];
+    if (contacts && lanes->flying[j])
+      keep = keep || (landed[j] && fc.ground_collide) ||
+             (fc.walls_collide && double(lanes->wall[j]) <= fc.reach);
+    if (keep) lanes->store(j, &lanes->start[j]);
+    lanes->started[j] = keep;
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
       lanes->x[a][j] = next->x[a][j];

@@ -91,6 +91,15 @@ std::pair<double, double> bounce_exact(double z0, double r, double e, double T) 
   return {z + v * s - 0.5 * kG * s * s, v - kG * s};
 }
 
+// s (in a uniform field) run to its end, its body still moving there
+State run_to_end(const Scene& s) {
+  const Model m = test::compile(s);
+  State st = initial_state(m, s);
+  simulate(m, &st, RunOptions{});
+  EXPECT_EQ(st.status[0], BodyStatus::Moving);
+  return st;
+}
+
 TEST_P(SphereBounce, TheImpactIsTakenWhereItHappensInsideTheStep) {
   // (contacts.h impact_inside_step) with gravity alone the step (strang) and the touchdown's
   // Hermite root are exact for a parabola, so a bounce taken where it happens leaves the
@@ -101,10 +110,7 @@ TEST_P(SphereBounce, TheImpactIsTakenWhereItHappensInsideTheStep) {
     Scene s = bounce_scene(e, GetParam());
     s.dt = dt;
     s.duration = T;
-    const Model m = test::compile(s);
-    State st = initial_state(m, s);
-    simulate(m, &st, RunOptions{});
-    ASSERT_EQ(st.status[0], BodyStatus::Moving);
+    const State st = run_to_end(s);
     const auto [z, vz] = bounce_exact(1.0, r, e, st.t);
     EXPECT_EQ(st.impacts[0], 2u) << dt;  // at 0.44 s and 1.14 s
     EXPECT_NEAR(st.x[0].z(), z, 1e-9) << dt;
@@ -124,10 +130,7 @@ TEST_P(SphereBounce, WithDragTheBouncesKeepTheSchemesSecondOrder) {
     s.bodies[0].density = 50;  // light: the drag matters (terminal speed about 5 m/s)
     s.dt = dt;
     s.duration = T;
-    const Model m = test::compile(s);
-    State st = initial_state(m, s);
-    simulate(m, &st, RunOptions{});
-    EXPECT_EQ(st.status[0], BodyStatus::Moving);
+    const State st = run_to_end(s);
     EXPECT_GE(st.impacts[0], 2u);
     return Vec3(st.x[0].z(), (st.q[0] * st.v[0]).z(), 0);
   };
@@ -233,21 +236,28 @@ FluidField inclined_wall_grid(const Vec3& n, const Vec3& p0) {
   return FluidField::grid(g, {f}, 1.5e-5, Drift::Stationary, TimeMode::Clamp);
 }
 
+// A 5 cm sphere thrown at 2 m/s straight down from 0.3 m onto the inclined wall of
+// inclined_wall_grid (normal n), gravity off, friction 0, restitution e, for 0.3 s at step dt.
+Scene wall_throw_scene(double e, double dt, bool batched) {
+  Scene s = test::sphere_scene(0.05, 1000, 1.2, 1.5e-5);
+  s.uniform_field = false;
+  s.effects = test::effects({Effect::Gravity});
+  s.gravity = Vec3::Zero();
+  s.bodies[0].position = Vec3(0, 0, 0.3);
+  s.bodies[0].velocity = Vec3(0, 0, -2);
+  s.bodies[0].contact.restitution = e;
+  s.bodies[0].contact.friction = 0;
+  s.dt = dt;
+  s.duration = 0.3;
+  s.batched = batched;
+  return s;
+}
+
 TEST(Walls, SphereReflectsAboutTheInclinedWallsNormal) {
   const double th = 30 * M_PI / 180, e = 0.6, r = 0.05;
   const Vec3 n(-std::sin(th), 0, std::cos(th));  // the wall rises along +x
   for (const bool batched : {false, true}) {
-    Scene s = test::sphere_scene(r, 1000, 1.2, 1.5e-5);
-    s.uniform_field = false;
-    s.effects = test::effects({Effect::Gravity});
-    s.gravity = Vec3::Zero();
-    s.bodies[0].position = Vec3(0, 0, 0.3);
-    s.bodies[0].velocity = Vec3(0, 0, -2);
-    s.bodies[0].contact.restitution = e;
-    s.bodies[0].contact.friction = 0;
-    s.dt = 1e-4;
-    s.duration = 0.3;
-    s.batched = batched;
+    const Scene s = wall_throw_scene(e, 1e-4, batched);
     const Model m = test::compile(s, inclined_wall_grid(n, Vec3::Zero()));
     ASSERT_TRUE(m.walls_collide());
     State st = initial_state(m, s);
@@ -270,17 +280,7 @@ TEST(Walls, AnImpactOnAWallIsTakenWhereItHappensInsideTheStep) {
   const double th = 30 * M_PI / 180, e = 0.6, r = 0.05;
   const Vec3 n(-std::sin(th), 0, std::cos(th));
   for (const bool batched : {false, true}) {
-    Scene s = test::sphere_scene(r, 1000, 1.2, 1.5e-5);
-    s.uniform_field = false;
-    s.effects = test::effects({Effect::Gravity});
-    s.gravity = Vec3::Zero();
-    s.bodies[0].position = Vec3(0, 0, 0.3);
-    s.bodies[0].velocity = Vec3(0, 0, -2);
-    s.bodies[0].contact.restitution = e;
-    s.bodies[0].contact.friction = 0;
-    s.dt = 1e-2;
-    s.duration = 0.3;
-    s.batched = batched;
+    const Scene s = wall_throw_scene(e, 1e-2, batched);
     const Model m = test::compile(s, inclined_wall_grid(n, Vec3::Zero()));
     State st = initial_state(m, s);
     simulate(m, &st, RunOptions{});
