@@ -519,6 +519,35 @@ int contact_resolve(const ContactParams& k, const T* Minv, T* v, T* w, int count
     for (int a = 0; a < 3; ++a) v[a] += dv[a], w[a] += dw[a];
     return rlen[i] > T(0) ? std::sqrt(dot3(dL, dL)) / rlen[i] : T(0);
   };
+  if (M && m == 1 && rolls && depth[0] >= T(0)) {
+    // one point with rolling resistance, approaching slower than rest_speed: the impulse that
+    // stops the body, [P; L] = -M [v; w], is one the point and the resistance can give when P
+    // presses, lies in the friction cone, and leaves to the resistance a moment L - r x P of at
+    // most mu_r |r| P_n (contact_rest's certificate for one point): then v = w = 0 at once
+    T vc[3];
+    point_velocity(r, vc);
+    if (dot3(vc, n) >= -T(k.rest_speed)) {
+      T P[3], L[3];
+      for (int i = 0; i < 3; ++i) {
+        T sp = T(0), sl = T(0);
+        for (int j = 0; j < 3; ++j) {
+          sp += M[6 * i + j] * v[j] + M[6 * i + 3 + j] * w[j];
+          sl += M[6 * (3 + i) + j] * v[j] + M[6 * (3 + i) + 3 + j] * w[j];
+        }
+        P[i] = -sp, L[i] = -sl;
+      }
+      const T pn = dot3(P, n);
+      T Pt[3], rxP[3], Lroll[3];
+      for (int a = 0; a < 3; ++a) Pt[a] = P[a] - pn * n[a];
+      cross3(r, P, rxP);
+      for (int a = 0; a < 3; ++a) Lroll[a] = L[a] - rxP[a];
+      if (pn > T(0) && std::sqrt(dot3(Pt, Pt)) <= mu * pn &&
+          std::sqrt(dot3(Lroll, Lroll)) <= mur * rlen[0] * pn) {
+        for (int a = 0; a < 3; ++a) v[a] = T(0), w[a] = T(0);
+        return 1;
+      }
+    }
+  }
   if (m == 1 && depth[0] >= T(0)) {
     // one point (a sphere or an ellipsoid, a box on a corner): the impulse that stops it
     // (normal velocity to its target, no slip), K J = target n - v_c, is where the sweeps below

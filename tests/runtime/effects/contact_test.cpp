@@ -435,6 +435,42 @@ TEST(Contact, TheRestCertificateHoldsOnlyWhereTheSweepsStopTheBody) {
   EXPECT_GT(double(held), 0.6 * swept_still) << held << " certified of " << swept_still;
 }
 
+TEST(Contact, APebbleRestingOnOnePointWithRollingResistanceStopsAtOnce) {
+  // a 5 cm pebble (mu_r = 0.05) after a 2 ms step of gravity and a light push on the ground: the
+  // impulse that stops it, P = -m v, L = -I w, presses, lies in the cone and leaves the
+  // resistance a moment L - r x P within mu_r |r| P_n (checked here), so v = w = 0 at once
+  // (contact_resolve with M). The single point's closed form without M (stop the point, the
+  // resistance's impulse, stop the point again: one pass) leaves it rolling at 7e-5 m/s, below
+  // the resting speed. Spinning at 2 rad/s it needs more than the resistance gives: it rolls on.
+  const Sphere sp;
+  const ContactParams k0 = contact_params(Shape::sphere(kR), Vec3::Zero(), 0.5, 0.5, 0, 0.05);
+  ContactParams k = k0;
+  k.rest_speed = 0.08;
+  std::array<double, 36> M{};
+  for (int a = 0; a < 6; ++a) M[7 * a] = 1 / sp.Minv[7 * a];
+  const double r[3] = {0, 0, -kR}, n[3] = {0, 0, 1}, depth[1] = {1e-5};
+  double v[3] = {1e-4, 0, -9.81 * 0.002}, w[3] = {0, 0.002, 0}, dx[3];
+  double vs[3] = {v[0], v[1], v[2]}, ws[3] = {w[0], w[1], w[2]};
+  EXPECT_EQ(contact_resolve(k, sp.Minv.data(), v, w, 1, r, n, depth, kContactPasses, dx,
+                            M.data()),
+            1);
+  for (int a = 0; a < 3; ++a) {
+    EXPECT_EQ(v[a], 0.0);
+    EXPECT_EQ(w[a], 0.0);
+  }
+  EXPECT_DOUBLE_EQ(dx[2], 1e-5);
+  const Vec3 P = -sp.m * Vec3(vs[0], vs[1], vs[2]), L = -sp.I * Vec3(ws[0], ws[1], ws[2]);
+  EXPECT_GT(P.z(), 0.0);
+  EXPECT_LE(std::hypot(P.x(), P.y()), k.friction * P.z());
+  EXPECT_LE((L - Vec3(r[0], r[1], r[2]).cross(P)).norm(), 0.05 * kR * P.z());
+  contact_resolve(k, sp.Minv.data(), vs, ws, 1, r, n, depth, kContactPasses, dx);
+  EXPECT_LT(std::abs(vs[0]), kRestFraction * k.rest_speed);
+  EXPECT_NEAR(vs[0], kR * ws[1], 1e-12);  // rolling, the point at rest
+  double vr[3] = {2 * kR, 0, -9.81 * 0.002}, wr[3] = {0, 2, 0};
+  contact_resolve(k, sp.Minv.data(), vr, wr, 1, r, n, depth, kContactPasses, dx, M.data());
+  EXPECT_GT(wr[1], 1.0);  // the resistance slowed the rolling, it did not stop it
+}
+
 TEST(Contact, EllipsoidSupportPointLiesOnTheSurfaceWithNormalAgainstTheWall) {
   const Vec3 com(0.01, -0.02, 0.005);
   const ContactParams k = contact_params(Shape::ellipsoid(0.3, 0.1, 0.05), com, 0.5, 0.5, 0);
