@@ -316,6 +316,20 @@ LRIGID_LANE ContactOut<T> contact_kernel(const ContactParams& k, const T* Minv, 
   return contact_impulse_kernel(k, Minv, v, w, r, n, depth, -T(k.restitution) * vn);
 }
 
+// The impulse (P, N s) and angular impulse (L, N m s; body frame, about the centre of mass)
+// that stop a body moving with (v, w): [P; L] = -M [v; w], M the 6x6 generalized mass, row-major.
+template <typename T>
+void stopping_impulse(const T* M, const T* v, const T* w, T* P, T* L) {
+  for (int i = 0; i < 3; ++i) {
+    T sp = T(0), sl = T(0);
+    for (int j = 0; j < 3; ++j) {
+      sp += M[6 * i + j] * v[j] + M[6 * i + 3 + j] * w[j];
+      sl += M[6 * (3 + i) + j] * v[j] + M[6 * (3 + i) + 3 + j] * w[j];
+    }
+    P[i] = -sp, L[i] = -sl;
+  }
+}
+
 // A body lying on one plane: its touching points r_i (body frame, m of them) share the unit
 // normal n (body frame, from the surface into the fluid) and each approaches slower than
 // k.rest_speed, so contact_resolve's target normal velocity of each is 0. The impulse that stops
@@ -341,14 +355,7 @@ template <typename T>
 int contact_rest(const ContactParams& k, const T* M, T* v, T* w, int m, const T* r, const T* n) {
   if (m < 3 || m > kContactRestPoints) return 0;
   T P[3], L[3];
-  for (int i = 0; i < 3; ++i) {
-    T sp = T(0), sl = T(0);
-    for (int j = 0; j < 3; ++j) {
-      sp += M[6 * i + j] * v[j] + M[6 * i + 3 + j] * w[j];
-      sl += M[6 * (3 + i) + j] * v[j] + M[6 * (3 + i) + 3 + j] * w[j];
-    }
-    P[i] = -sp, L[i] = -sl;
-  }
+  stopping_impulse(M, v, w, P, L);
   const T pn = dot3(P, n);
   if (!(pn > T(0))) return 0;
   T Pt[3];
@@ -528,14 +535,7 @@ int contact_resolve(const ContactParams& k, const T* Minv, T* v, T* w, int count
     point_velocity(r, vc);
     if (dot3(vc, n) >= -T(k.rest_speed)) {
       T P[3], L[3];
-      for (int i = 0; i < 3; ++i) {
-        T sp = T(0), sl = T(0);
-        for (int j = 0; j < 3; ++j) {
-          sp += M[6 * i + j] * v[j] + M[6 * i + 3 + j] * w[j];
-          sl += M[6 * (3 + i) + j] * v[j] + M[6 * (3 + i) + 3 + j] * w[j];
-        }
-        P[i] = -sp, L[i] = -sl;
-      }
+      stopping_impulse(M, v, w, P, L);
       const T pn = dot3(P, n);
       T Pt[3], rxP[3], Lroll[3];
       for (int a = 0; a < 3; ++a) Pt[a] = P[a] - pn * n[a];
