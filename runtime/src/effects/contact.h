@@ -50,6 +50,10 @@ struct ContactParams {
   // (integrate/contacts.cpp gather leaves it out)
   static constexpr uint8_t kNotOnEdge = 255;
   std::vector<uint8_t> edge_ends;  // 2 per point
+  // point p lies inside a box edge (between two corners)
+  bool on_edge(size_t p) const {
+    return 2 * p + 1 < edge_ends.size() && edge_ends[2 * p] != kNotOnEdge;
+  }
   size_t count() const { return support ? 1 : points.size() / 3; }
 };
 

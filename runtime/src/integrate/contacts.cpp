@@ -56,9 +56,7 @@ void gather(const Model& m, const BodyType& type, const BodyState& b, const Mat3
       for (size_t p = 0; p < k.count(); ++p) {
         // a box edge's point between two corners on the ground: on it too, and implied by them
         // (the depth and the normal velocity are linear along the edge)
-        const bool edge = 2 * p + 1 < k.edge_ends.size() &&
-                          k.edge_ends[2 * p] != ContactParams::kNotOnEdge;
-        if (edge && on_ground[k.edge_ends[2 * p]] && on_ground[k.edge_ends[2 * p + 1]]) {
+        if (k.on_edge(p) && on_ground[k.edge_ends[2 * p]] && on_ground[k.edge_ends[2 * p + 1]]) {
           if (p < sizeof on_ground) on_ground[p] = 1;
           continue;
         }
@@ -136,9 +134,6 @@ double surface_gap(const Model& m, const BodyType& type, const Vec3& x, const Ma
   // a wall they matter only where a solid's corner pokes between two of them, which the
   // contact at the located time still finds (it is deeper there): corners only, a fifth of the
   // wall queries of a leaf
-  auto corner = [&](size_t p) {
-    return 2 * p + 1 >= k.edge_ends.size() || k.edge_ends[2 * p] == ContactParams::kNotOnEdge;
-  };
   if (m.ground_collides()) {
     if (k.support) {
       const Vec3 nb = Rt * Vec3::UnitZ();
@@ -147,7 +142,7 @@ double surface_gap(const Model& m, const BodyType& type, const Vec3& x, const Ma
       gap = (x + R * rb).z() - m.ground_z;
     } else {
       for (size_t p = 0; p < k.count(); ++p)
-        if (corner(p)) gap = std::min(gap, (x + R * point(p)).z() - m.ground_z);
+        if (!k.on_edge(p)) gap = std::min(gap, (x + R * point(p)).z() - m.ground_z);
     }
   }
   if (!m.walls_collide()) return gap;
@@ -172,7 +167,7 @@ double surface_gap(const Model& m, const BodyType& type, const Vec3& x, const Ma
     return std::min(gap, wall_at(rb));
   }
   for (size_t p = 0; p < k.count(); ++p)
-    if (corner(p)) gap = std::min(gap, wall_at(point(p)));
+    if (!k.on_edge(p)) gap = std::min(gap, wall_at(point(p)));
   return gap;
 }
 
@@ -401,9 +396,8 @@ bool impact_through_floor(const Model& model, const BodyType& type, size_t i, do
                           BodyState* a, State* st) {
   if (!model.ground_collides() || !can_split_at_impact(model, type)) return false;
   const double h = model.dt, t_end = t + h;
-  // the gap after the deterministic part to t + u h; a part that leaves the fluid went through
-  // the floor: below (-1)
-  // (NaN: the part left the fluid, through the floor)
+  // the gap after the deterministic part to t + u h; NaN where that part left the fluid
+  // (through the floor: below, the search bisects)
   auto gap = [&](double u) {
     BodyState s = *a;
     if (deterministic_substep(model, type, t, u * h, &s) != StepOutcome::Ok) return double(NAN);
@@ -446,11 +440,11 @@ bool contact_after_step(const Model& model, const BodyType& type, size_t i, doub
   }
   // the fastest approach of a touching point: an impact (a contact event) when it is above the
   // resting threshold, or when the body was flying
-  double approach = fastest_approach(c, b->v, b->w);
+  const double approach = fastest_approach(c, b->v, b->w);
   if (start && st->contact[i] == ContactState::Flying && approach > model.rest_speed &&
       impact_inside_step(model, type, i, t_end - model.dt, *start, b, st)) {
-    // the impact was taken where it happened, inside the step; what the step's end touches now
-    // (a body that did not bounce clear) is resolved as any contact
+    // the impact was taken where it happened, inside the step (and counted); what the step's
+    // end touches now (a body that did not bounce clear) is resolved as any contact
     st->contact[i] = ContactState::Sliding;
     R = b->q.toRotationMatrix();
     c = Touching{};
@@ -459,7 +453,6 @@ bool contact_after_step(const Model& model, const BodyType& type, size_t i, doub
       mark_flying(st, i);
       return false;
     }
-    approach = fastest_approach(c, b->v, b->w);
   }
   const Vec3 v0 = b->v, w0 = b->w;
   double dx[3];

@@ -327,7 +327,7 @@ TEST(Contact, BoxLandingFlatStopsWithoutSpinningWithZeroRestitution) {
 std::vector<double> lower_corners(const ContactParams& k) {
   std::vector<double> r;
   for (size_t c = 0; c < k.count(); ++c)
-    if (k.points[3 * c + 2] < 0 && k.edge_ends[2 * c] == ContactParams::kNotOnEdge)
+    if (k.points[3 * c + 2] < 0 && !k.on_edge(c))
       for (int a = 0; a < 3; ++a) r.push_back(k.points[3 * c + a]);
   return r;
 }
