@@ -165,6 +165,27 @@ TEST(Touchdown, ASpinningSphereTouchesAtItsRadius) {
   EXPECT_TRUE(touches_ground(m, m.types[0], b));
 }
 
+TEST(Touchdown, ABodyWithAKeelTouchesWhereItsShapeDoes) {
+  // a 2 cm cube whose centre of mass is 5 mm below its centroid (mass_offset, a keel): upright its
+  // lowest point is 5 mm below the centre of mass, upside down 15 mm (the shape's half extents are
+  // about the centroid; it landed at 10 mm both ways before)
+  Scene s = test::sphere_scene(0.01, 1000, 1.2, 1.5e-5);
+  s.bodies[0].shape = Shape::box(0.02, 0.02, 0.02);
+  s.bodies[0].mass_offset = Vec3(0, 0, -0.005);
+  s.has_ground = true;
+  const Model m = test::compile(s);
+  BodyState b;
+  b.v.setZero(), b.w.setZero(), b.u_seen.setZero();
+  for (const double turn : {0.0, M_PI}) {
+    b.q = Quat(Eigen::AngleAxisd(turn, Vec3::UnitX()));
+    const double reach = turn == 0.0 ? 0.005 : 0.015;
+    b.x = Vec3(0, 0, reach + 1e-4);
+    EXPECT_FALSE(touches_ground(m, m.types[0], b)) << turn;
+    b.x.z() = reach - 1e-4;
+    EXPECT_TRUE(touches_ground(m, m.types[0], b)) << turn;
+  }
+}
+
 TEST(Touchdown, LandingsKeepEachSchemesOrderOnSinkingSpheres) {
   const Scene s = landing_spheres();
   const std::vector<double> dts = {2e-3, 1e-3, 5e-4, 2.5e-4};

@@ -82,6 +82,9 @@ struct FieldConsts {
   // 0 without) and its history force Samples::fb; the Magnus factor C_M rho V (0 without), kg
   bool basset = false;
   double basset_mass = 0, magnus = 0;
+  // a centre of mass off the volume centroid (also `Extra`): r_cob, the centroid from the centre
+  // of mass (body frame, m), where the fluid's forces and the buoyancy F_buoy (world, N) act
+  double r_cob[3] = {0, 0, 0}, F_buoy[3] = {0, 0, 0};
   // grid
   double origin[3] = {0, 0, 0}, spacing[3] = {1, 1, 1}, upper_index[3] = {0, 0, 0};
   int points[3] = {0, 0, 0};  // grid points per axis
@@ -118,6 +121,13 @@ inline void set_field_consts(const Model& model, const BodyType& type, FieldCons
   fc->basset = type.plan.basset;
   fc->basset_mass = fc->basset ? type.basset.implicit_mass : 0.0;
   fc->magnus = e.has(Effect::Magnus) ? type.plan.params->magnus : 0.0;
+  const Vec3 F_buoy = e.has(Effect::Buoyancy)
+                          ? Vec3(-model.fluid_density * type.volume * model.gravity)
+                          : Vec3::Zero();
+  for (int a = 0; a < 3; ++a) {
+    fc->r_cob[a] = type.r_cob[a];
+    fc->F_buoy[a] = F_buoy[a];
+  }
   if (fc->grid) {
     const GridGeometry& g = model.field.geometry();
     for (int a = 0; a < 3; ++a) {
@@ -210,8 +220,11 @@ struct Samples {
   uint64_t newton = 0;  // steps of live lanes on which the loops ran Newton (BlockStats)
 };
 
-// Whether the step needs its third switch (`Extra`): the Basset history or the Magnus force.
-inline bool extra_effects(const FieldConsts& fc) { return fc.basset || fc.magnus != 0; }
+// Whether the step needs its third switch (`Extra`): the Basset history, the Magnus force or a
+// centre of mass off the centroid.
+inline bool extra_effects(const FieldConsts& fc) {
+  return fc.basset || fc.magnus != 0 || fc.r_cob[0] != 0 || fc.r_cob[1] != 0 || fc.r_cob[2] != 0;
+}
 
 // Fills the sample arrays of lanes at positions x (may be lanes.x itself), lanes [lo, hi).
 template <typename T>
@@ -461,7 +474,8 @@ LRIGID_LANE int lane_landed(const FieldConsts& fc, const T* q, T z) {
   const T r[3] = {T(2) * (qx * qz - qw * qy), T(2) * (qy * qz + qw * qx),
                   T(1) - T(2) * (qx * qx + qy * qy)};
   const T h[3] = {T(fc.half[0]), T(fc.half[1]), T(fc.half[2])};
-  return int(fc.ground & (z - ground_reach(fc.round, r, h) <= T(fc.ground_z)));
+  const T c[3] = {T(fc.r_cob[0]), T(fc.r_cob[1]), T(fc.r_cob[2])};
+  return int(fc.ground & (z - ground_reach(fc.round, r, h, c) <= T(fc.ground_z)));
 }
 
 // A step's new state per lane, filled by a batched step before end_step: position,

@@ -19,11 +19,12 @@
 // scalar step's Newton fallback) and drag stiff enough for the Newton iteration of the force step.
 // On the leaves scene these are rare (bench/perf/batch_bench.py counts them).
 //
-// What qualifies (rigid_batch_eligible): a type that is not a sphere, with the centre of buoyancy
-// at the centre of mass (the buoyancy torque has no batched kernel), effects among
-// gravity, buoyancy, drag, lift, added mass, mean flow and turbulence, and what every batched step
-// needs (batch_lanes.h batch_exclusion: the seen model, one noise increment per step, a steady
-// field or a series; any of the four schemes).
+// What qualifies (rigid_batch_eligible): a type that is not a uniform sphere (a sphere whose
+// centre of mass is off its centroid is this step's; with such an offset the fluid's forces and the
+// buoyancy act at the centroid and turn the body about its centre of mass, the step's `Extra`
+// switch), with any of the nine effects, and what every batched step needs (batch_lanes.h
+// batch_exclusion: the seen model, one noise increment per step, a steady field or a series; any
+// of the four schemes).
 #pragma once
 #include <cstdint>
 #include <string>

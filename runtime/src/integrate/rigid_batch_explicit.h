@@ -39,8 +39,12 @@ LRIGID_LANE void lane_wrench(const StepConsts<Mass>& tc, const T* R, const T* Fw
 #pragma GCC unroll 3
   for (int a = 0; a < 3; ++a) vr[a] = v[a] - ufb[a];
   mul_t(R, Fw, Fb);
-  const DragOut<T> d = body_forces<T, Plate>(tc, vr, w, lift);
-  if constexpr (Extra) magnus_kernel(T(tc.magnus), w, vr, fx);
+  const DragOut<T> d = body_forces<T, Plate, Extra>(tc, vr, w, lift);
+  T tx[3] = {0, 0, 0};  // (Extra) the torque of the forces at the centroid about the centre of mass
+  if constexpr (Extra) {
+    lane_magnus(tc, vr, w, fx);
+    explicit_torque(tc, R, lift, fx, tx);
+  }
   if constexpr (!ImpulseForm) {
     // a~ = R^T Du/Dt - w x u_f (effects/added_mass.h)
     T ab[3], wu[3];
@@ -53,7 +57,7 @@ LRIGID_LANE void lane_wrench(const StepConsts<Mass>& tc, const T* R, const T* Fw
 #pragma GCC unroll 3
   for (int a = 0; a < 3; ++a) {
     f[a] = Fb[a] + lift[a] + fx[a] + d.f[a] + am[a];
-    f[3 + a] = d.tq[a] + am[3 + a];
+    f[3 + a] = d.tq[a] + am[3 + a] + tx[a];
   }
 }
 

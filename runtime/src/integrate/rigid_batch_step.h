@@ -132,16 +132,70 @@ LRIGID_LANE DragOut<T> ellipsoid_forces(const C& tc, const T* u, const T* w) {
   return drag;
 }
 
-// A lane's drag (and, for plates, lift: effects/plate.h) on relative velocity u and spin w
-template <typename T, bool Plate, class C>
+// With `Extra` the centre of mass may be off the volume centroid (BodyType::r_cob, the centroid
+// from the centre of mass, body frame). The fluid's forces act at the centroid, which moves at
+// u + w x r_cob relative to the fluid (effects/drag.cpp, lift.cpp, magnus.h): centroid_velocity.
+template <typename T, class C>
+LRIGID_LANE void centroid_velocity(const C& tc, const T* u, const T* w, T* uc) {
+  const T r[3] = {T(tc.r_cob[0]), T(tc.r_cob[1]), T(tc.r_cob[2])};
+  T wr[3];
+  cross3(w, r, wr);
+#pragma GCC unroll 3
+  for (int a = 0; a < 3; ++a) uc[a] = u[a] + wr[a];
+}
+
+// r_cob x f added to the torque tq: a force f at the centroid, about the centre of mass
+template <typename T, class C>
+LRIGID_LANE void add_offset_torque(const C& tc, const T* f, T* tq) {
+  const T r[3] = {T(tc.r_cob[0]), T(tc.r_cob[1]), T(tc.r_cob[2])};
+  T rf[3];
+  cross3(r, f, rf);
+#pragma GCC unroll 3
+  for (int a = 0; a < 3; ++a) tq[a] += rf[a];
+}
+
+// A lane's drag (and, for plates, lift: effects/plate.h) on relative velocity u and spin w; with
+// Extra at the centroid, the drag's torque about the centre of mass (the lift's, explicit:
+// explicit_torque)
+template <typename T, bool Plate, bool Extra, class C>
 LRIGID_LANE DragOut<T> body_forces(const C& tc, const T* u, const T* w, T* lift) {
-  if constexpr (Plate) {
+  if constexpr (Extra) {
+    T uc[3];
+    centroid_velocity(tc, u, w, uc);
+    DragOut<T> drag = body_forces<T, Plate, false>(tc, uc, w, lift);
+    add_offset_torque(tc, drag.f, drag.tq);
+    return drag;
+  } else if constexpr (Plate) {
     DragOut<T> drag;
     plate_kernel(tc.plate_model, u, w, &drag, lift);
     return drag;
   } else {
     return ellipsoid_forces(tc, u, w);
   }
+}
+
+// The Magnus force (body frame) on a lane with relative velocity u and spin w, at the centroid
+template <typename T, class C>
+LRIGID_LANE void lane_magnus(const C& tc, const T* u, const T* w, T* f) {
+  T uc[3];
+  centroid_velocity(tc, u, w, uc);
+  magnus_kernel(T(tc.magnus), w, uc, f);
+}
+
+// With Extra, the torque about the centre of mass of the explicit forces that act at the centroid
+// (effects/buoyancy.h, lift.cpp, magnus.h): r_cob x (buoyancy + lift + Magnus), the buoyancy
+// rotated to the body by R (body -> world); zero for a uniform body
+template <typename T, class C>
+LRIGID_LANE void explicit_torque(const C& tc, const T* R, const T* lift, const T* fx, T* tq) {
+  const T Fw[3] = {T(tc.F_buoy[0]), T(tc.F_buoy[1]), T(tc.F_buoy[2])};
+  T f[3];
+  mul_t(R, Fw, f);
+#pragma GCC unroll 3
+  for (int a = 0; a < 3; ++a) {
+    f[a] += lift[a] + fx[a];
+    tq[a] = T(0);
+  }
+  add_offset_torque(tc, f, tq);
 }
 
 // The Strang scheme's force step over hs on a lane's body-frame velocities v, w (in place), at
@@ -172,12 +226,16 @@ LRIGID_LANE void strang_force_lane(const StepConsts<Mass>& tc, const T* R, const
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) vr[a] = xi[a] - ufb[a];
     const T* ws = xi + 3;
-    const DragOut<T> d = body_forces<T, Plate>(tc, vr, ws, lift);
-    if constexpr (Extra) magnus_kernel(T(tc.magnus), ws, vr, fx);
+    const DragOut<T> d = body_forces<T, Plate, Extra>(tc, vr, ws, lift);
+    T tx[3] = {0, 0, 0};
+    if constexpr (Extra) {
+      lane_magnus(tc, vr, ws, fx);
+      explicit_torque(tc, R, lift, fx, tx);
+    }
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
       f[a] = Fb[a] + drag_along[a] + lift[a] + fx[a] + d.f[a];
-      f[3 + a] = drag_along[3 + a] + d.tq[a];
+      f[3 + a] = drag_along[3 + a] + d.tq[a] + tx[a];
     }
     if (first) J = d;
   };
@@ -546,9 +604,11 @@ LRIGID_IVDEP
   }
   // what Newton needs: the impulse P (linear, relative to the fluid's added-mass impulse) and lanes
   // before the forces, their changes dP and dL, h times the forces other than drag G (linear;
-  // none of them has a torque), the fluid velocity (body frame) at the end, and the norm of the
-  // relative velocity
-  alignas(64) T Pl[6][kBatch], dPL[6][kBatch], G[3][kBatch], ufe[3][kBatch], ufs[3][kBatch];
+  // none of them has a torque about the centroid: with Extra also their torque about an offset
+  // centre of mass), the fluid velocity (body frame) at the end, and the norm of the relative
+  // velocity
+  alignas(64) T Pl[6][kBatch], dPL[6][kBatch], G[Extra ? 6 : 3][kBatch], ufe[3][kBatch],
+      ufs[3][kBatch];
   alignas(64) T norm_r[kBatch];
   int stiff[kBatch];
   int any_stiff = 0;
@@ -560,32 +620,35 @@ LRIGID_IVDEP
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) vr[a] = v[a] - ufb[a];
     T lift[3] = {0, 0, 0};
-    const DragOut<T> drag = body_forces<T, Plate>(tc, vr, w, lift);
+    const DragOut<T> drag = body_forces<T, Plate, Extra>(tc, vr, w, lift);
     T F[3] = {T(tc.F[0]), T(tc.F[1]), T(tc.F[2])};
-    T Fb[3], u_end[3], ufb_end[3], fx[3] = {0, 0, 0}, ab[3] = {0, 0, 0};
+    T Fb[3], u_end[3], ufb_end[3], fx[3] = {0, 0, 0}, ab[3] = {0, 0, 0}, tx[3] = {0, 0, 0};
     if constexpr (Extra) {
       // the Basset history force (world) joins the weight; Magnus (body frame) and the
-      // current interval's b_B h a_fluid (body frame, below) join the rest
+      // current interval's b_B h a_fluid (body frame, below) join the rest; the torque of the
+      // forces at the centroid about an offset centre of mass
       T acc[3];
 #pragma GCC unroll 3
       for (int a = 0; a < 3; ++a) {
         F[a] += lanes->fb[a][j];
         acc[a] = T(tc.gu) * lanes->acc[a][j];
       }
-      magnus_kernel(T(tc.magnus), w, vr, fx);
+      lane_magnus(tc, vr, w, fx);
       mul_t(R, acc, ab);
+      explicit_torque(tc, R, lift, fx, tx);
     }
     mul_t(R, F, Fb);
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) u_end[a] = uf[a][j] + h * T(tc.gu) * lanes->acc[a][j];
     mul_t(R, u_end, ufb_end);
-    T Gj[3], rhs[6], dPL_j[6];
+    T Gj[6], rhs[6], dPL_j[6];
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
       Gj[a] = Extra ? h * (Fb[a] + lift[a] + fx[a]) + T(tc.basset_mass) * h * ab[a]
                     : h * (Fb[a] + lift[a]);
+      Gj[3 + a] = h * tx[a];
       rhs[a] = Gj[a] + h * drag.f[a];
-      rhs[3 + a] = h * drag.tq[a];
+      rhs[3 + a] = Extra ? Gj[3 + a] + h * drag.tq[a] : h * drag.tq[a];
     }
     implicit_impulse(tc.mass, T(tc.basset_mass), drag, h, rhs, dPL_j);
     // the impulse Pi before the forces (relative to the fluid's added-mass impulse) and the
@@ -607,6 +670,7 @@ LRIGID_IVDEP
       vn[a][j] = xin[a];
       wn[a][j] = xin[3 + a];
       G[a][j] = Gj[a];
+      if constexpr (Extra) G[3 + a][j] = Gj[3 + a];
       ufe[a][j] = ufb_end[a];
       ufs[a][j] = ufb[a];
     }
@@ -632,7 +696,7 @@ LRIGID_IVDEP
       vr[a] = vn[a][j] - ufs[a][j];
       w[a] = wn[a][j];
     }
-    const DragOut<T> drag = body_forces<T, Plate>(tc, vr, w, lift);
+    const DragOut<T> drag = body_forces<T, Plate, Extra>(tc, vr, w, lift);
     // the Newton step -M (M + h J + b_B P)^-1 res, J the drag's stiffness here
     // (the Basset term: b_B times the linear velocity change M^-1 dPi)
     T res[6], x[6], dPi[6], ddv[6], Pn[6], xin[6];
@@ -646,6 +710,7 @@ LRIGID_IVDEP
         b_dv = T(tc.basset_mass) * T(tc.mass.Mi[a]) * dPi[a];  // (the diagonal step's rounding)
       res[a] = dPi[a] - G[a][j] - h * drag.f[a] + b_dv;
       res[3 + a] = dPi[3 + a] - h * drag.tq[a];
+      if constexpr (Extra) res[3 + a] -= G[3 + a][j];
     }
     implicit_impulse(tc.mass, T(tc.basset_mass), drag, h, res, x);
 #pragma GCC unroll 6

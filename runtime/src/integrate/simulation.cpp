@@ -145,11 +145,12 @@ WorkList work_list(const Model& model, const State& st, const std::vector<StepKi
 }  // namespace
 
 StepKind step_kind(const Model& model, const BodyType& type, std::string* why_not_batched) {
-  // a sphere takes the sphere step or none; anything else the plates-and-ellipsoids step
+  // a uniform sphere takes the sphere step or none; anything else (a sphere with its centre of
+  // mass off the centroid too) the plates-and-ellipsoids step
   std::string why;
-  if (type.M_isotropic ? sphere_batch_eligible(model, type, &why)
-                       : rigid_batch_eligible(model, type, &why))
-    return type.M_isotropic ? StepKind::SphereBlock : StepKind::RigidBlock;
+  const bool sphere = type.M_isotropic && type.r_cob.isZero(0.0);
+  if (sphere ? sphere_batch_eligible(model, type, &why) : rigid_batch_eligible(model, type, &why))
+    return sphere ? StepKind::SphereBlock : StepKind::RigidBlock;
   if (why_not_batched) *why_not_batched = why;
   return StepKind::Scalar;
 }

@@ -11,7 +11,7 @@ namespace {
 double reach_down(const BodyType& type, const Quat& q) {
   const Mat3 R = q.toRotationMatrix();
   const double r[3] = {R(2, 0), R(2, 1), R(2, 2)};
-  return ground_reach(is_round(type), r, type.half_extents.data());
+  return ground_reach(is_round(type), r, type.half_extents.data(), type.r_cob.data());
 }
 
 // the height of the body's lowest point above the ground, m

@@ -10,16 +10,18 @@
 
 namespace lrigid {
 
-// How far below its centre the body reaches, m, with r the third row of its rotation matrix
-// (the world z of each body axis) and h its half extents: exact for spheres and ellipsoids (round:
-// the support function sqrt(sum (r_a h_a)^2)) and boxes (sum |r_a| h_a); for a mesh, its bounding
-// box's. Written once for the scalar and the batched steps (batch_lanes.h lane_landed).
+// How far below its centre of mass the body reaches, m, with r the third row of its rotation
+// matrix (the world z of each body axis), h its half extents about the volume centroid and c the
+// centroid from the centre of mass (BodyType::r_cob, body frame; zero for a uniform body): exact
+// for spheres and ellipsoids (round: the support function sqrt(sum (r_a h_a)^2)) and boxes
+// (sum |r_a| h_a), less the centroid's height r . c; for a mesh, its bounding box's. Written once
+// for the scalar and the batched steps (batch_lanes.h lane_landed).
 template <typename T>
-inline T ground_reach(bool round, const T* r, const T* h) {
-  const T a = r[0] * h[0], b = r[1] * h[1], c = r[2] * h[2];
-  const T box = std::abs(a) + std::abs(b) + std::abs(c);
-  const T ell = std::sqrt(a * a + b * b + c * c);
-  return round ? ell : box;
+inline T ground_reach(bool round, const T* r, const T* h, const T* c) {
+  const T a = r[0] * h[0], b = r[1] * h[1], d = r[2] * h[2];
+  const T box = std::abs(a) + std::abs(b) + std::abs(d);
+  const T ell = std::sqrt(a * a + b * b + d * d);
+  return (round ? ell : box) - (r[0] * c[0] + r[1] * c[1] + r[2] * c[2]);
 }
 inline bool is_round(const BodyType& type) {
   return type.shape.type == ShapeType::Sphere || type.shape.type == ShapeType::Ellipsoid;
