@@ -17,7 +17,9 @@
 namespace lrigid {
 
 // The LU factors of the N x N row-major A, in place (unit lower triangle below the diagonal,
-// U on and above it). 0 when a pivot is zero or not finite (the factors are then meaningless).
+// U above it, and on the diagonal U's reciprocal pivots: the solves multiply, so a factorization
+// kept for several right-hand sides pays its N divisions once). 0 when a pivot is zero or not
+// finite (the factors are then meaningless).
 template <int N, typename T>
 LRIGID_LANE int lu_factor(T* A) {
   int ok = 1;
@@ -26,6 +28,7 @@ LRIGID_LANE int lu_factor(T* A) {
     const T piv = A[p * N + p];
     ok &= int(piv != T(0)) & int(std::isfinite(piv));
     const T inv = T(1) / (piv != T(0) ? piv : T(1));
+    A[p * N + p] = inv;
 #pragma GCC unroll 6
     for (int i = p + 1; i < N; ++i) {
       const T l = A[i * N + p] * inv;
@@ -49,7 +52,7 @@ LRIGID_LANE void lu_solve(const T* A, T* b) {
     T s = b[i];
 #pragma GCC unroll 6
     for (int j = i + 1; j < N; ++j) s -= A[i * N + j] * b[j];
-    b[i] = s / A[i * N + i];
+    b[i] = s * A[i * N + i];
   }
 }
 
