@@ -7,7 +7,7 @@ distance (m) to rk4 at dt = 2.5e-5 s, for each scheme and dt, with lift and with
 wind grid (./Allrun: results/grids/windCourtyard.vti).
 
     bench/accuracy/lift_leaves.py [--lrigid build/bin/lrigid] [--grid results/grids/windCourtyard.vti]
-        [--write docs/physics/integrators.md]
+        [--write docs/physics/integrators.md] [--uniform U] [--schemes strang,rk4]
 
 --write puts the table between the lift-leaves markers of that file, with the machine and date.
 Issue 28's target: strang at dt = 1e-3 s within 10x of rk4's error at the same step (splitting
@@ -17,6 +17,7 @@ import argparse
 import csv
 import datetime
 import json
+import math
 import os
 import platform
 import statistics
@@ -31,10 +32,16 @@ DT_REF = 2.5e-5
 
 
 def scene(grid, scheme, dt, lift):
+    """grid: the .vti path, or a list [Ux, Uy, Uz] for a uniform wind (m/s)"""
     effects = ["gravity", "buoyancy", "added_mass", "drag", "mean_flow"] + (["lift"] if lift else [])
+    fluid = {"density": 1.204, "kinematic_viscosity": 1.5e-5}
+    if isinstance(grid, list):
+        fluid["uniform"] = {"U": grid, "k": 0.0, "epsilon": 0.0}
+    else:
+        fluid["field"] = grid
     return {
         "version": 1,
-        "fluid": {"density": 1.204, "kinematic_viscosity": 1.5e-5, "field": grid},
+        "fluid": fluid,
         "gravity": [0, 0, -9.81],
         "effects": effects,
         "integrator": {"scheme": scheme, "dt": dt},
@@ -80,26 +87,47 @@ def main():
     ap.add_argument("--lrigid", default=os.path.join(SRC, "build/bin/lrigid"))
     ap.add_argument("--grid", default=os.path.join(SRC, "results/grids/windCourtyard.vti"))
     ap.add_argument("--write", help="a markdown file with lift-leaves markers")
+    ap.add_argument("--uniform", type=float, metavar="U",
+                    help="a uniform wind of U m/s along x instead of the grid (a smooth field: no "
+                         "trilinear kinks between grid cells); prints, does not --write")
+    ap.add_argument("--schemes", default=",".join(SCHEMES), help="comma-separated, rk4 included")
     a = ap.parse_args()
-    grid = os.path.abspath(a.grid)
-    if not os.path.isfile(grid):
-        sys.exit(f"lift_leaves: the wind grid {grid} does not exist: run ./Allrun first")
+    schemes = a.schemes.split(",")
+    if "rk4" not in schemes:
+        sys.exit("lift_leaves: --schemes must include rk4 (the ratios are to rk4's error)")
+    if a.uniform is not None:
+        if a.write:
+            sys.exit("lift_leaves: --write takes the grid case only (issue 28's)")
+        grid = [a.uniform, 0.0, 0.0]
+    else:
+        grid = os.path.abspath(a.grid)
+        if not os.path.isfile(grid):
+            sys.exit(f"lift_leaves: the wind grid {grid} does not exist: run ./Allrun first")
     lines = ["| effects | scheme | " + " | ".join(f"dt = {dt:g} s" for dt in DTS) + " |",
              "|---|---|" + "---|" * len(DTS)]
-    ratio = {}
+    ratio, slopes = {}, {}
     with tempfile.TemporaryDirectory(prefix="lift_leaves") as work:
         for lift in (True, False):
             ref = final_positions(a.lrigid, grid, "rk4", DT_REF, lift, work)
             errs = {}
-            for scheme in SCHEMES:
+            for scheme in schemes:
                 errs[scheme] = [median_error(final_positions(a.lrigid, grid, scheme, dt, lift, work),
                                              ref) for dt in DTS]
                 lines.append(f"| {'with' if lift else 'without'} lift | {scheme} | " +
                              " | ".join(f"{e:.2g} m" for e in errs[scheme]) + " |")
-            ratio[lift] = {s: errs[s][0] / max(errs["rk4"][0], 1e-300) for s in SCHEMES}
+            ratio[lift] = {s: errs[s][0] / max(errs["rk4"][0], 1e-300) for s in schemes}
+            slopes[lift] = {s: [math.log(errs[s][k] / errs[s][k + 1]) / math.log(DTS[k] / DTS[k + 1])
+                                if errs[s][k] > 0 and errs[s][k + 1] > 0 else float("nan")
+                                for k in range(len(DTS) - 1)] for s in schemes}
     text = "\n".join(lines) + "\n\nAt dt = 1e-3 s, the error over rk4's at the same step: " + "; ".join(
         f"{'with' if lift else 'without'} lift " + ", ".join(
-            f"{s} {ratio[lift][s]:.3g}x" for s in SCHEMES if s != "rk4") for lift in (True, False))
+            f"{s} {ratio[lift][s]:.3g}x" for s in schemes if s != "rk4") for lift in (True, False))
+    text += ("\n\nLocal slopes of log(error) against log(dt) between neighbouring steps: " +
+             "; ".join(f"{'with' if lift else 'without'} lift " + ", ".join(
+                 f"{s} " + "/".join(f"{x:.2f}" for x in slopes[lift][s]) for s in schemes)
+                 for lift in (True, False)))
+    if a.uniform is not None:
+        text += f"\n\n(uniform wind {a.uniform:g} m/s along x, not the grid)"
     stamp = (f"Measured: {platform.node()}, {os.cpu_count()} cores, "
              f"{datetime.datetime.now(datetime.timezone.utc):%Y-%m-%d %H:%M} UTC; "
              f"`bench/accuracy/lift_leaves.py` (median over 20 leaves of |x - x_rk4(dt = {DT_REF:g} s)| "
