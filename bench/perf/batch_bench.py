@@ -394,7 +394,7 @@ def write_doc(path, m, rows, acc, peers, mujoco, quick, leaves=None):
         "its centre of mass (the loops' `Extra` switch, with Magnus and Basset; "
         "`RigidBatch.BodiesWithTheirCentreOfMassOffTheCentroidMatchTheScalarStep`: leaves, seed"
         " pods, a leaf without added mass and a sphere, each scheme: positions within 10⁻¹³ m "
-        "and spins within 10⁻⁹ rad/s of the scalar step after 0.3 s). The loops run the scalar "
+        "and spins within 10⁻⁹ rad/s of the scalar step after 0.2 s). The loops run the scalar "
         "step's Newton iterations themselves (stiff drag; a Kirchhoff fixed point that does not"
         " contract); a lane hands its step to the scalar step only where Newton struggles (the "
         "scalar step then substeps) or the scene rules the batched step out. The physics is the"
