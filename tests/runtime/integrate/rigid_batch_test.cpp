@@ -562,6 +562,7 @@ TEST(RigidBatch, BodiesWithTheirCentreOfMassOffTheCentroidMatchTheScalarStep) {
       {"leaf, no added mass", Shape::box(0.06, 0.04, 4e-4), 600, Vec3(0.004, 0, 0), false},
       {"bead", Shape::sphere(0.003), 1500, Vec3(0, 0.0005, -0.001), true},
   };
+  const FluidField field = wind_grid(1.5e-5);
   for (const Case& c : cases) {
     for (const Integrator scheme :
          {Integrator::Splitting, Integrator::Strang, Integrator::Euler, Integrator::RK4}) {
@@ -573,7 +574,6 @@ TEST(RigidBatch, BodiesWithTheirCentreOfMassOffTheCentroidMatchTheScalarStep) {
       s.integrator = scheme;
       s.dt = 1e-3;
       s.duration = 0.2;
-      const FluidField field = wind_grid(1.5e-5);
       const std::string name = std::string(c.name) + ", " + integrator_name(scheme);
       {
         const Model m = test::compile(s, field);
