@@ -87,11 +87,20 @@ jobs_=(uniform_box.det uniform_box.stoch leaves_wind.det leaves_wind.stoch debri
 csvs=()
 for j in "${jobs_[@]}"; do csvs+=("$work/$j/accuracy.csv"); done
 # stochastic sweeps rerun with 16000 bodies (bench/accuracy/run_fine_mc.sh), where kept
-for fine in "$src"/docs/accuracy/*_stoch_16000.csv; do [ -f "$fine" ] && csvs+=("$fine"); done
+fine_note=""
+for fine in "$src"/docs/accuracy/*_stoch_16000.csv; do
+  [ -f "$fine" ] || continue
+  csvs+=("$fine")
+  fine_note+=" $(basename "$fine" _stoch_16000.csv) (committed at \
+$(git -C "$src" log -1 --format=%h -- "$fine")),"
+done
+[ -z "$fine_note" ] || fine_note=" Also read: the stochastic sweeps rerun with 16000 bodies \
+instead of 1000-1200 (bench/accuracy/run_fine_mc.sh, docs/accuracy/*_stoch_16000.csv) of\
+${fine_note%,}; of a point measured in both, the report keeps the run with more bodies."
 step $nsteps "report" "" /usr/bin/python3 "$src/bench/accuracy/make_report.py" \
   --csv "${csvs[@]}" --out "$out" \
   --doc "$src/docs/accuracy.md" --study-seconds $((SECONDS - t0)) \
   --note "Runtime measured: commit $(git -C "$src" rev-parse --short HEAD) (contains main at \
 $(git -C "$src" merge-base HEAD main 2>/dev/null | cut -c1-7)). Processes (wall, one \
 thread each, side by side): $done_lines; load average $load0 at the start, \
-$(cut -d' ' -f1-3 /proc/loadavg) at the end (2 cores)."
+$(cut -d' ' -f1-3 /proc/loadavg) at the end (2 cores).$fine_note"

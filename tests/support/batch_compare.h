@@ -137,17 +137,21 @@ inline Both scalar_and_batched(const Scene& s, const FluidField& field) {
   return b;
 }
 
+// The largest distance between where the bodies of two runs of one scene end or stopped, m.
+inline double farthest_apart(const Outcome& a, const Outcome& b) {
+  double d = 0;
+  for (size_t i = 0; i < a.state.size(); ++i)
+    d = std::max(d, (a.state.x[i] - b.state.x[i]).norm());
+  return d;
+}
+
 // How far the effects `drop` move the bodies: the largest distance between where the bodies of
 // `with` (the scene `s` run batched, double) end or stopped and where they do without them, m.
 inline double moved_by(const Scene& s, const FluidField& field, const Outcome& with,
                        std::initializer_list<Effect> drop) {
   Scene plain = s;
   for (Effect e : drop) plain.effects.remove(e);
-  const Outcome without = run(plain, field, true, Precision::Double);
-  double moved = 0;
-  for (size_t i = 0; i < with.state.size(); ++i)
-    moved = std::max(moved, (with.state.x[i] - without.state.x[i]).norm());
-  return moved;
+  return farthest_apart(with, run(plain, field, true, Precision::Double));
 }
 
 inline size_t count(const State& s, BodyStatus status) {

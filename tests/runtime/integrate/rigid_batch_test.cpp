@@ -24,6 +24,7 @@ namespace {
 
 using batch_test::count;
 using batch_test::Diff;
+using batch_test::farthest_apart;
 using batch_test::Outcome;
 using batch_test::run;
 using batch_test::scalar_and_batched;
@@ -93,9 +94,7 @@ TEST(RigidBatch, LeavesInAGustingSeriesMatchTheScalarStep) {
   // the gusts matter: the same leaves in the first frame alone end elsewhere
   const FluidField steady = wind_grid(1.5e-5);
   const Outcome first = run(s, steady, true, Precision::Double, 1);
-  double apart = 0;
-  for (size_t i = 0; i < first.state.size(); ++i)
-    apart = std::max(apart, (first.state.x[i] - batched.state.x[i]).norm());
+  const double apart = farthest_apart(first, batched);
   EXPECT_GT(apart, 0.05);  // m
 }
 
@@ -174,8 +173,7 @@ TEST(RigidBatch, StrangMatchesTheScalarStep) {
       split.integrator = Integrator::Splitting;
       const Outcome o = run(split, field, true, Precision::Double);
       Diff ds;
-      for (size_t i = 0; i < o.state.size(); ++i)
-        ds.x = std::max(ds.x, (o.state.x[i] - batched.state.x[i]).norm());
+      ds.x = farthest_apart(o, batched);
       EXPECT_GT(ds.x, 1e-6);
       std::printf("strang dt %g: scalar vs batched |dx| %.2e, strang vs splitting |dx| %.2e, "
                   "%llu of %llu steps handed to the scalar step\n",
@@ -216,9 +214,7 @@ TEST(RigidBatch, EulerAndRk4MatchTheScalarStep) {
         Scene split = s;
         split.integrator = Integrator::Splitting;
         const Outcome o = run(split, field, true, Precision::Double);
-        double apart = 0;
-        for (size_t i = 0; i < o.state.size(); ++i)
-          apart = std::max(apart, (o.state.x[i] - batched.state.x[i]).norm());
+        const double apart = farthest_apart(o, batched);
         EXPECT_GT(apart, 1e-6) << name;
         std::printf("%s %s%s: scalar vs batched |dx| %.2e |v| %.2e |w| %.2e, vs splitting %.2e m, "
                     "%llu of %llu steps handed to the scalar step\n",
@@ -356,9 +352,7 @@ TEST(RigidBatch, MeshLeavesEulerAndRk4MatchTheScalarStep) {
       Scene split = s;
       split.integrator = Integrator::Splitting;
       const Outcome o = run(split, field, true, Precision::Double);
-      double apart = 0;
-      for (size_t i = 0; i < o.state.size(); ++i)
-        apart = std::max(apart, (o.state.x[i] - batched.state.x[i]).norm());
+      const double apart = farthest_apart(o, batched);
       EXPECT_GT(apart, 1e-6) << name;
       std::printf("mesh leaves, %s%s: scalar vs batched |dx| %.2e |v| %.2e |w| %.2e, vs "
                   "splitting %.2e m, %llu of %llu steps handed to the scalar step\n",
@@ -590,9 +584,7 @@ TEST(RigidBatch, BodiesWithTheirCentreOfMassOffTheCentroidMatchTheScalarStep) {
       Scene uniform = s;
       uniform.bodies[0].mass_offset = Vec3::Zero();
       const Outcome o = run(uniform, field, true, Precision::Double);
-      double apart = 0;
-      for (size_t i = 0; i < o.state.size(); ++i)
-        apart = std::max(apart, (o.state.x[i] - batched.state.x[i]).norm());
+      const double apart = farthest_apart(o, batched);
       EXPECT_GT(apart, 1e-5) << name;
       std::printf("%s: scalar vs batched |dx| %.2e |v| %.2e |w| %.2e, vs a uniform mass %.2e m, "
                   "%llu of %llu steps handed to the scalar step\n",

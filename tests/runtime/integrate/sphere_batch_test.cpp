@@ -24,6 +24,7 @@ namespace {
 using batch_test::Both;
 using batch_test::count;
 using batch_test::Diff;
+using batch_test::farthest_apart;
 using batch_test::Outcome;
 using batch_test::run;
 using batch_test::scalar_and_batched;
@@ -217,9 +218,7 @@ TEST(SphereBatch, StrangMatchesTheScalarStep) {
     Scene split = s;
     split.integrator = Integrator::Splitting;
     const batch_test::Outcome o = batch_test::run(split, field, true, Precision::Double);
-    double apart = 0;
-    for (size_t i = 0; i < o.state.size(); ++i)
-      apart = std::max(apart, (o.state.x[i] - batched.state.x[i]).norm());
+    const double apart = farthest_apart(o, batched);
     EXPECT_GT(apart, 1e-9) << c;
     std::printf("strang spheres %d: scalar vs batched |dx| %.2e, strang vs splitting %.2e m\n", c,
                 d.x, apart);
@@ -292,9 +291,7 @@ TEST(SphereBatch, EulerAndRk4MatchTheScalarStep) {
       Scene split = s;
       split.integrator = Integrator::Splitting;
       const Outcome o = run(split, field, true, Precision::Double);
-      double apart = 0;
-      for (size_t i = 0; i < o.state.size(); ++i)
-        apart = std::max(apart, (o.state.x[i] - batched.state.x[i]).norm());
+      const double apart = farthest_apart(o, batched);
       EXPECT_GT(apart, 1e-6) << name << " " << c;
       std::printf("%s spheres %d: scalar vs batched |dx| %.2e |dV| %.2e |dw| %.2e, vs "
                   "splitting %.2e m, %llu of %llu steps handed to the scalar step\n",
