@@ -1,6 +1,8 @@
 #include "body/mass_properties.h"
 
 #include <cmath>
+#include <sstream>
+#include <string>
 
 #include "util/error.h"
 
@@ -73,5 +75,47 @@ MassProperties mass_properties(const Shape& shape) {
 }
 
 MassProperties mass_properties(const TriangleMesh& mesh) { return mesh_properties(mesh, ""); }
+
+std::string offset_outside_shape(const Shape& shape, const Vec3& offset) {
+  const Vec3& h = shape.half_extents;
+  auto vec = [](const Vec3& v) {
+    std::ostringstream o;
+    o << "[" << v.x() << ", " << v.y() << ", " << v.z() << "]";
+    return o.str();
+  };
+  bool inside = true;
+  std::string what;
+  switch (shape.type) {
+    case ShapeType::Sphere:
+    case ShapeType::Ellipsoid:
+      inside = offset.cwiseQuotient(h).squaredNorm() < 1.0;
+      if (shape.type == ShapeType::Sphere) {
+        std::ostringstream o;
+        o << "the sphere's radius " << h.x() << " m";
+        what = o.str();
+      } else {
+        what = "the ellipsoid's semi-axes " + vec(h) + " m";
+      }
+      break;
+    case ShapeType::Box:
+      inside = (offset.cwiseAbs().array() < h.array()).all();
+      what = "the box's half extents " + vec(h) + " m";
+      break;
+    case ShapeType::Mesh: {
+      // the bounding box's centre is not the centroid: the offset from the centroid within it
+      const Vec3 c = mass_properties(shape).centroid;
+      Vec3 lo = Vec3::Constant(INFINITY), hi = Vec3::Constant(-INFINITY);
+      for (const Vec3& v : shape.mesh->vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
+      const Vec3 p = c + offset;
+      inside = (p.array() > lo.array()).all() && (p.array() < hi.array()).all();
+      what = "the mesh's bounding box " + vec(lo - c) + " to " + vec(hi - c) +
+             " m from its centroid";
+      break;
+    }
+  }
+  if (inside && offset.allFinite()) return "";
+  return vec(offset) + " m from the volume centroid puts the centre of mass outside the body (" +
+         what + "); the centre of mass of a solid body lies inside it";
+}
 
 }  // namespace lrigid

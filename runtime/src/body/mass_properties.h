@@ -3,6 +3,8 @@
 // weighted keel) keeps this centroid as its centre of buoyancy; the model applies the offset of
 // its centre of mass.
 #pragma once
+#include <string>
+
 #include "body/shape.h"
 
 namespace lrigid {
@@ -16,6 +18,13 @@ struct MassProperties {
 // Exact for every shape type (meshes: polyhedral volume integrals). Throws lrigid::Error for
 // degenerate input.
 MassProperties mass_properties(const Shape& shape);
+
+// Why a centre of mass `offset` (m, shape axes) from the volume centroid cannot be the shape's:
+// empty when it lies strictly inside the shape (spheres, ellipsoids and boxes exactly; a mesh:
+// inside its bounding box), else what is wrong, for the scene's error message. The centre of mass
+// of a solid body lies inside it; one outside would make a body whose buoyancy torque no real
+// body has.
+std::string offset_outside_shape(const Shape& shape, const Vec3& offset);
 
 // Exact polyhedral volume integrals of a closed, outward-oriented triangle surface (signed
 // tetrahedra). Throws lrigid::Error(ExitCode::BadInput) if the enclosed volume is not positive.

@@ -8,6 +8,7 @@
 #include <set>
 #include <sstream>
 
+#include "body/mass_properties.h"
 #include "effects/registry.h"
 #include "io/mesh_io.h"
 #include "util/error.h"
@@ -241,6 +242,8 @@ BodySpec read_body(Obj o) {
   b.shape = read_shape(o.object("shape", kShapeKeys), &b);
   b.density = o.positive("density");
   b.mass_offset = o.vec3_or("mass_offset", Vec3::Zero());
+  if (const std::string why = offset_outside_shape(b.shape, b.mass_offset); !why.empty())
+    o.fail("mass_offset", why);
   {
     const json& c = o.get("count");
     if (!c.is_number_integer() || c.get<long long>() < 1)

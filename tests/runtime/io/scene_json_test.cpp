@@ -157,6 +157,19 @@ INSTANTIATE_TEST_SUITE_P(
                 "duration: must be a number, got \"long\""},
         BadCase{"negative size", [](json& j) { j["bodies"][0]["shape"]["radius"] = -0.1; },
                 "bodies[0].shape.radius: must be > 0, got -0.1"},
+        // the centre of mass of a solid body lies inside it (the test scene's body: a sphere of
+        // radius 1 cm)
+        BadCase{"mass offset outside the body",
+                [](json& j) { j["bodies"][0]["mass_offset"] = {0, 0.008, -0.008}; },
+                "bodies[0].mass_offset: [0, 0.008, -0.008] m from the volume centroid puts the "
+                "centre of mass outside the body (the sphere's radius 0.01 m)"},
+        BadCase{"mass offset outside a box",
+                [](json& j) {
+                  j["bodies"][0]["shape"] = {{"type", "box"}, {"size", {0.06, 0.04, 0.001}}};
+                  j["bodies"][0]["mass_offset"] = {0, 0, 0.0006};
+                },
+                "bodies[0].mass_offset: [0, 0, 0.0006] m from the volume centroid puts the centre "
+                "of mass outside the body (the box's half extents [0.03, 0.02, 0.0005] m)"},
         BadCase{"zero density", [](json& j) { j["bodies"][0]["density"] = 0; },
                 "bodies[0].density: must be > 0, got 0"},
         BadCase{"fluid density", [](json& j) { j["fluid"]["density"] = -1; },
