@@ -14,25 +14,12 @@ A field path in the scene is taken relative to the scene file, as lrigid does.
 import argparse
 import json
 import os
-import re
-import subprocess
 import sys
 import tempfile
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-
-
-def simulate_instructions(cg):
-    out = subprocess.run(["callgrind_annotate", "--inclusive=yes", cg], capture_output=True,
-                         text=True, check=True).stdout
-    best = 0
-    for line in out.splitlines():
-        m = re.match(r"\s*([\d,]+)\s+\(.*\)\s+\S*lrigid::simulate\(", line)
-        if m:
-            best = max(best, int(m.group(1).replace(",", "")))
-    if best == 0:
-        sys.exit(f"instructions_per_second: no lrigid::simulate in {cg}")
-    return best
+sys.path.insert(0, os.path.join(ROOT, "bench", "lib"))
+from callgrind_count import callgrind  # noqa: E402
 
 
 def main():
@@ -62,13 +49,10 @@ def main():
             s["integrator"] = dict(s.get("integrator", {}), scheme=scheme, dt=dt)
             path = os.path.join(work, f"{scheme}_{dt:g}.json")
             json.dump(s, open(path, "w"))
-            cg = os.path.join(work, f"{scheme}_{dt:g}.cg")
-            subprocess.run(["valgrind", "--tool=callgrind", "--callgrind-out-file=" + cg, a.lrigid,
-                            "bench", path, "--n", str(a.n), "--threads", "1", "--integrators",
-                            scheme, "--warmup", "0", "--body-steps", "1", "--min-steps",
-                            str(steps), "--quiet"], check=True, stdout=subprocess.DEVNULL,
-                           stderr=subprocess.DEVNULL, env=dict(os.environ, OMP_NUM_THREADS="1"))
-            ins = simulate_instructions(cg)
+            ins = callgrind([a.lrigid, "bench", path, "--n", str(a.n), "--threads", "1",
+                             "--integrators", scheme, "--warmup", "0", "--body-steps", "1",
+                             "--min-steps", str(steps), "--quiet"],
+                            os.path.join(work, f"{scheme}_{dt:g}.cg"))
             results.append((p, steps, ins / a.n / a.duration))
     print(f"{a.scene}: {a.n} bodies, {a.duration:g} s simulated, `simulate` inclusive (callgrind)")
     for p, steps, ips in results:

@@ -27,35 +27,16 @@ import datetime
 import json
 import os
 import platform
-import re
 import subprocess
 import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.normpath(os.path.join(HERE, "..", ".."))
+sys.path.insert(0, os.path.join(ROOT, "bench", "lib"))
+from callgrind_count import callgrind  # noqa: E402
+
 BEGIN = "<!-- contacts-cost:begin (bench/contacts/run.py; do not edit) -->"
 END = "<!-- contacts-cost:end -->"
-
-
-def simulate_instructions(cg_file):
-    """`simulate` inclusive instructions of a callgrind output (the largest simulate entry)"""
-    out = subprocess.run(["callgrind_annotate", "--inclusive=yes", cg_file], capture_output=True,
-                         text=True, check=True).stdout
-    best = 0
-    for line in out.splitlines():
-        m = re.match(r"\s*([\d,]+)\s+\(.*\)\s+\S*lrigid::simulate\(", line)
-        if m:
-            best = max(best, int(m.group(1).replace(",", "")))
-    if best == 0:
-        sys.exit("run.py: no lrigid::simulate in %s" % cg_file)
-    return best
-
-
-def callgrind(cmd, cg_file):
-    env = dict(os.environ, OMP_NUM_THREADS="1")
-    subprocess.run(["valgrind", "--tool=callgrind", "--callgrind-out-file=" + cg_file] + cmd,
-                   env=env, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    return simulate_instructions(cg_file)
 
 
 def load():
