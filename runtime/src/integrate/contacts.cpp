@@ -38,7 +38,10 @@ void gather(const Model& m, const BodyType& type, const BodyState& b, const Mat3
   // points on the ground need no wall check: the grid's floor is the ground, twice the same
   // constraint would only cost
   uint8_t on_ground[kContactMaxPoints * 4] = {};
-  auto point_velocity = [&](const Vec3& rb) { return R * (b.v + b.w.cross(rb)); };
+  // (-> Vec3: an Eigen expression returned by a lambda would refer to the cross product's
+  // temporary after it is gone, and ground_depth read that stack garbage, times 0 when not ahead:
+  // a NaN there dropped a touching point at random)
+  auto point_velocity = [&](const Vec3& rb) -> Vec3 { return R * (b.v + b.w.cross(rb)); };
   if (m.ground_collides() && b.x.z() - type.reach <= m.ground_z + slack) {
     const Vec3 ez(0, 0, 1);
     auto ground_depth = [&](const Vec3& rb) {
