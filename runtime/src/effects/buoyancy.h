@@ -10,8 +10,7 @@
 namespace lrigid {
 
 inline Wrench buoyancy_wrench(const BodyType& type, double fluid_density, const Vec3& g_body) {
-  const Vec3 f = -fluid_density * type.volume * g_body;
-  return make_wrench(f, type.r_cob.cross(f));
+  return wrench_at_centroid(type.r_cob, Vec3(-fluid_density * type.volume * g_body));
 }
 
 // the scalar step's term (the registry's row)

@@ -36,26 +36,25 @@ namespace {
 // r_cob from it) and its stiffness
 Wrench wrench_about_com(const BodyType& type, const DragOut<double>& d, DragStiffness* stiffness) {
   const Vec3 force(d.f[0], d.f[1], d.f[2]);
-  const Vec3 torque = type.r_cob.cross(force) + Vec3(d.tq[0], d.tq[1], d.tq[2]);
   if (stiffness) {
     stiffness->c_lin = d.c_lin;
     stiffness->p = d.p;
     stiffness->u_hat = Vec3(d.u_hat[0], d.u_hat[1], d.u_hat[2]);
     stiffness->c_ang = d.c_ang;
   }
-  return make_wrench(force, torque);
+  return wrench_at_centroid(type.r_cob, force, Vec3(d.tq[0], d.tq[1], d.tq[2]));
 }
 
 Wrench ellipsoid_drag(const BodyType& type, const DragParams& k, const Vec3& u_rel, const Vec3& w,
                       DragStiffness* stiffness) {
   // relative velocity of the volume centroid (where the drag acts)
-  const Vec3 u = u_rel + w.cross(type.r_cob);
+  const Vec3 u = centroid_velocity(type.r_cob, u_rel, w);
   return wrench_about_com(type, ellipsoid_drag_kernel<ScalarMath>(k, u.data(), w.data()), stiffness);
 }
 
 Wrench plate_drag(const BodyType& type, const PlateParams& k, const Vec3& u_rel, const Vec3& w,
                   DragStiffness* stiffness) {
-  const Vec3 u = u_rel + w.cross(type.r_cob);
+  const Vec3 u = centroid_velocity(type.r_cob, u_rel, w);
   DragOut<double> d;
   double lift[3];
   plate_kernel<double, true, false>(k, u.data(), w.data(), &d, lift);

@@ -31,12 +31,11 @@ double circulation_factor(double re) { return circulation_gate(re); }
 namespace {
 
 Wrench plate_lift(const BodyType& type, const PlateParams& k, const Vec3& u_rel, const Vec3& w) {
-  const Vec3 u = u_rel + w.cross(type.r_cob);
+  const Vec3 u = centroid_velocity(type.r_cob, u_rel, w);
   DragOut<double> d;
   double lift[3];
   plate_kernel<double, false, true>(k, u.data(), w.data(), &d, lift);
-  const Vec3 f(lift[0], lift[1], lift[2]);
-  return make_wrench(f, type.r_cob.cross(f));
+  return wrench_at_centroid(type.r_cob, Vec3(lift[0], lift[1], lift[2]));
 }
 
 }  // namespace

@@ -30,10 +30,10 @@ inline double magnus_factor(const BodyType& type, double rho) {
 
 // c: magnus_factor (EffectParams::magnus)
 inline Wrench magnus_wrench(const BodyType& type, double c, const Vec3& u_rel, const Vec3& w) {
-  const Vec3 u = u_rel + w.cross(type.r_cob);
+  const Vec3 u = centroid_velocity(type.r_cob, u_rel, w);
   Vec3 f;
   magnus_kernel(c, w.data(), u.data(), f.data());
-  return make_wrench(f, type.r_cob.cross(f));
+  return wrench_at_centroid(type.r_cob, f);
 }
 
 inline Wrench magnus_wrench(const BodyType& type, const Vec3& u_rel, const Vec3& w, double rho) {

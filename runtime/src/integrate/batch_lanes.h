@@ -114,16 +114,17 @@ inline void set_field_consts(const Model& model, const BodyType& type, FieldCons
   fc->grid = !model.field.is_uniform();
   fc->mean_flow_scale = model.mean_flow_scale;
   fc->turbulence_scale = model.turbulence_scale;
+  // the buoyancy alone too: with an offset centre of mass it turns the body (explicit_torque)
+  const Vec3 F_buoy = e.has(Effect::Buoyancy)
+                          ? Vec3(-model.fluid_density * type.volume * model.gravity)
+                          : Vec3::Zero();
   Vec3 F = Vec3::Zero();
   if (e.has(Effect::Gravity)) F += type.mass * model.gravity;
-  if (e.has(Effect::Buoyancy)) F -= model.fluid_density * type.volume * model.gravity;
+  if (e.has(Effect::Buoyancy)) F += F_buoy;
   for (int a = 0; a < 3; ++a) fc->F[a] = F[a];
   fc->basset = type.plan.basset;
   fc->basset_mass = fc->basset ? type.basset.implicit_mass : 0.0;
   fc->magnus = e.has(Effect::Magnus) ? type.plan.params->magnus : 0.0;
-  const Vec3 F_buoy = e.has(Effect::Buoyancy)
-                          ? Vec3(-model.fluid_density * type.volume * model.gravity)
-                          : Vec3::Zero();
   for (int a = 0; a < 3; ++a) {
     fc->r_cob[a] = type.r_cob[a];
     fc->F_buoy[a] = F_buoy[a];

@@ -22,10 +22,7 @@ bool rigid_batch_eligible(const Model& model, const BodyType& type, std::string*
     return false;
   };
   if (const std::string all = batch_exclusion(model, type, true); !all.empty()) return no(all);
-  // (a sphere whose centre of mass is off its centroid is this step's: the sphere step's loops
-  // keep no body frame)
-  if (type.M_isotropic && type.r_cob.isZero(0.0))
-    return no("an isotropic generalized mass (the sphere step's)");
+  if (uniform_sphere_mass(type)) return no("an isotropic generalized mass (the sphere step's)");
   return true;
 }
 

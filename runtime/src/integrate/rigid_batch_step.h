@@ -14,6 +14,7 @@
 #include "effects/drag.h"
 #include "effects/lift.h"
 #include "effects/plate.h"
+#include "effects/wrench.h"
 #include "integrate/batch_lanes.h"
 #include "integrate/dynamics.h"
 #include "integrate/kirchhoff.h"
@@ -132,26 +133,18 @@ LRIGID_LANE DragOut<T> ellipsoid_forces(const C& tc, const T* u, const T* w) {
   return drag;
 }
 
-// With `Extra` the centre of mass may be off the volume centroid (BodyType::r_cob, the centroid
-// from the centre of mass, body frame). The fluid's forces act at the centroid, which moves at
-// u + w x r_cob relative to the fluid (effects/drag.cpp, lift.cpp, magnus.h): centroid_velocity.
+// With `Extra` the centre of mass may be off the volume centroid (BodyType::r_cob): the fluid's
+// forces act at the centroid (effects/wrench.h centroid_velocity_kernel, add_offset_torque_kernel,
+// the scalar terms' kernels), on the type's r_cob in the lane's precision.
 template <typename T, class C>
 LRIGID_LANE void centroid_velocity(const C& tc, const T* u, const T* w, T* uc) {
   const T r[3] = {T(tc.r_cob[0]), T(tc.r_cob[1]), T(tc.r_cob[2])};
-  T wr[3];
-  cross3(w, r, wr);
-#pragma GCC unroll 3
-  for (int a = 0; a < 3; ++a) uc[a] = u[a] + wr[a];
+  centroid_velocity_kernel(r, u, w, uc);
 }
-
-// r_cob x f added to the torque tq: a force f at the centroid, about the centre of mass
 template <typename T, class C>
 LRIGID_LANE void add_offset_torque(const C& tc, const T* f, T* tq) {
   const T r[3] = {T(tc.r_cob[0]), T(tc.r_cob[1]), T(tc.r_cob[2])};
-  T rf[3];
-  cross3(r, f, rf);
-#pragma GCC unroll 3
-  for (int a = 0; a < 3; ++a) tq[a] += rf[a];
+  add_offset_torque_kernel(r, f, tq);
 }
 
 // A lane's drag (and, for plates, lift: effects/plate.h) on relative velocity u and spin w; with

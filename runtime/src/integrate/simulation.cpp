@@ -148,7 +148,7 @@ StepKind step_kind(const Model& model, const BodyType& type, std::string* why_no
   // a uniform sphere takes the sphere step or none; anything else (a sphere with its centre of
   // mass off the centroid too) the plates-and-ellipsoids step
   std::string why;
-  const bool sphere = type.M_isotropic && type.r_cob.isZero(0.0);
+  const bool sphere = uniform_sphere_mass(type);
   if (sphere ? sphere_batch_eligible(model, type, &why) : rigid_batch_eligible(model, type, &why))
     return sphere ? StepKind::SphereBlock : StepKind::RigidBlock;
   if (why_not_batched) *why_not_batched = why;

@@ -17,8 +17,7 @@ bool sphere_batch_eligible(const Model& model, const BodyType& type, std::string
   };
   if (const std::string all = batch_exclusion(model, type, true); !all.empty()) return no(all);
   if (type.shape.type != ShapeType::Sphere) return no("not a sphere");
-  if (!type.M_isotropic || !type.r_cob.isZero(0.0))
-    return no("the centre of mass is off the centroid");
+  if (!uniform_sphere_mass(type)) return no("the centre of mass is off the centroid");
   return true;
 }
 

@@ -29,6 +29,13 @@ namespace lrigid {
 
 constexpr int kBatch = 32;  // bodies per block: a multiple of every SIMD width
 
+// A uniform sphere's generalized mass: isotropic, the centre of mass at the centroid. The sphere
+// step's loops keep no body frame, so only such types are theirs (any other takes the plates'
+// step, integrate/rigid_batch.h).
+inline bool uniform_sphere_mass(const BodyType& type) {
+  return type.M_isotropic && type.r_cob.isZero(0.0);
+}
+
 // Whether bodies of this type take the batched step; when not, `why` says what excludes it.
 bool sphere_batch_eligible(const Model& model, const BodyType& type, std::string* why = nullptr);
 
