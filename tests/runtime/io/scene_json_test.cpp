@@ -467,5 +467,23 @@ TEST(SceneJson, ATypoInAnyKeyIsNamed) {
   expect_every_typo_named(ell);
 }
 
+TEST(SceneJson, AMeshsMassOffsetStaysInItsBoundingBox) {
+  // a mesh's centre of mass is checked against its bounding box, measured from the volume
+  // centroid (which is not the box's centre for a tetrahedron)
+  const std::string mesh = std::string(LRIGID_SOURCE_DIR) + "/tests/data/meshes/tetra.obj";
+  json j = valid_scene();
+  j["bodies"][0]["shape"] = {{"type", "mesh"}, {"file", mesh}, {"scale", 0.01}};
+  j["bodies"][0]["mass_offset"] = {0.0005, 0.0005, 0.0005};
+  EXPECT_EQ(error_of(j), "");
+  j["bodies"][0]["mass_offset"] = {0.02, 0, 0};
+  ExitCode code = ExitCode::Ok;
+  const std::string m = error_of(j, &code);
+  EXPECT_EQ(code, ExitCode::BadInput);
+  EXPECT_NE(m.find("bodies[0].mass_offset: [0.02, 0, 0] m from the volume centroid puts the "
+                   "centre of mass outside the body (the mesh's bounding box "),
+            std::string::npos)
+      << m;
+}
+
 }  // namespace
 }  // namespace lrigid
