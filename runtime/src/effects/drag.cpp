@@ -40,7 +40,7 @@ Wrench wrench_about_com(const BodyType& type, const DragOut<double>& d, DragStif
     stiffness->c_lin = d.c_lin;
     stiffness->p = d.p;
     stiffness->u_hat = Vec3(d.u_hat[0], d.u_hat[1], d.u_hat[2]);
-    stiffness->c_ang = d.c_ang;
+    for (int a = 0; a < 3; ++a) stiffness->c_ang[a] = d.c_ang[a];
   }
   return wrench_at_centroid(type.r_cob, force, Vec3(d.tq[0], d.tq[1], d.tq[2]));
 }

@@ -24,9 +24,12 @@ constexpr double kDragRotation = 1.2;   // C_rot (flat-plate normal drag ~1.2)
 double schiller_naumann(double re);
 
 // Stiffness of the drag for the linearly implicit step: d(-wrench)/d(xi) approximated as
-// diag(c_lin (I + p u^ u^T), c_ang I).
+// diag(c_lin (I + p u^ u^T), diag(c_ang)), c_ang per body axis (N m s). Per axis, not one value
+// for all three: a plate's damping about its normal and about its in-plane axes differ by orders
+// of magnitude on long strips (docs/physics/integrators.md, "The angular stiffness per axis").
 struct DragStiffness {
-  double c_lin = 0, p = 0, c_ang = 0;
+  double c_lin = 0, p = 0;
+  double c_ang[3] = {0, 0, 0};
   Vec3 u_hat = Vec3::Zero();
 };
 
@@ -50,7 +53,7 @@ DragParams drag_params(const BodyType& type, double rho, double nu);
 template <typename T>
 struct DragOut {
   T f[3], tq[3];
-  T c_lin, p, c_ang;
+  T c_lin, p, c_ang[3];  // c_ang per body axis
   T u_hat[3];
 };
 
@@ -100,7 +103,9 @@ LRIGID_LANE DragOut<T> drag_kernel(const DragParams& k, const T* u, const T* w, 
   const T w_norm = std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
 #pragma GCC unroll 3
   for (int a = 0; a < 3; ++a) d.tq[a] = -(T(k.c_ang0) + T(k.rot[a]) * w_norm) * w[a];
-  d.c_ang = T(k.c_ang0) + T(k.rot_max) * w_norm;
+  const T c_ang = T(k.c_ang0) + T(k.rot_max) * w_norm;
+#pragma GCC unroll 3
+  for (int a = 0; a < 3; ++a) d.c_ang[a] = c_ang;
   return d;
 }
 

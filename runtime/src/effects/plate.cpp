@@ -67,7 +67,6 @@ PlateParams plate_params(const BodyType& type, double rho, double nu, bool drag,
     k.st[a] = mu * type.stokes_torque[a];
   }
   k.c_visc = mu * type.stokes_force.maxCoeff();
-  k.st_in = mu * std::max(type.stokes_torque[i1], type.stokes_torque[i2]);
   k.rot_n = 0.5 * rho * kDragRotation * type.rot_drag_len5[na];
   k.drag = drag ? 1.0 : 0.0;
   k.lift = lift ? 1.0 : 0.0;

@@ -113,7 +113,7 @@ struct PlateParams {
   double width_over_nu = 0;  // planform width / nu (the Reynolds number per speed), s/m
   double apw_speed = 0;      // APW's velocity scale (0: the speed itself), m/s
   double sf[3] = {0, 0, 0}, c_visc = 0;  // mu k_i, mu max k_i (Stokes force), N s/m
-  double st[3] = {0, 0, 0}, st_in = 0;   // mu r_i; mu max r_i over the in-plane axes, N m s
+  double st[3] = {0, 0, 0};              // mu r_i, N m s
   double rot_n = 0;                      // out-of-roundness drag of the spin about n, N m s^2
   double drag = 0, lift = 0;             // the effects as factors 1 or 0
   // the finite-span coefficients (PlateCoeffs)
@@ -189,8 +189,17 @@ LRIGID_LANE void plate_kernel(const PlateParams& k, const T* u, const T* w, Drag
     const T c_tot = c_lin + T(k.c_visc);
     d->c_lin = dr * c_tot;
     d->p = c_tot > T(0) ? c_lin / c_tot : T(0);
-    const T ca = c_pitch + T(k.st_in), cn2 = T(2) * c_n;
-    d->c_ang = dr * (ca > cn2 ? ca : cn2);
+    // per body axis (the normal is one): in the plane the pitch damping's and that axis's
+    // Stokes torque's, about the normal twice c_n (its |w_n| part's derivative). One value for
+    // all three (the largest) made the implicit step damp the pitch of a long strip by the
+    // Stokes torque of its spin about the normal, 40 times its inertia per step
+    // (docs/physics/integrators.md, "The angular stiffness per axis")
+    const T cn2 = T(2) * c_n;
+#pragma GCC unroll 3
+    for (int a = 0; a < 3; ++a) {
+      const T nn = n[a] * n[a];  // 1 on the normal's axis, 0 on the others
+      d->c_ang[a] = dr * (nn * cn2 + (T(1) - nn) * (c_pitch + T(k.st[a])));
+    }
   }
   if constexpr (Lift) {
     // translational -rho C_T S (u_n / |u|) (|u_t|^2 n - u_n u_t) and rotational

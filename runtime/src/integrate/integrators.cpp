@@ -89,7 +89,7 @@ Vec6 implicit_impulse_change(const BodyType& type, double b, const DragStiffness
   if (ds) {
     d.c_lin = ds->c_lin;
     d.p = ds->p;
-    d.c_ang = ds->c_ang;
+    for (int a = 0; a < 3; ++a) d.c_ang[a] = ds->c_ang[a];
     for (int a = 0; a < 3; ++a) d.u_hat[a] = ds->u_hat[a];
   }
   Vec6 x;

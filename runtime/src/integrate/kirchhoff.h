@@ -289,7 +289,7 @@ LRIGID_LANE void kirchhoff_residual(const Mass& m, T h, const T* Y0, const T* Y,
 
 // x = M (M + h J + b_B P)^-1 b: the impulse change of the implicit force step (integrators.cpp
 // split_deterministic_step) for right-hand side b (6: linear, angular), where J is the drag's
-// stiffness d (linear block c_lin (I + p u u^T), angular c_ang I: never coupled) and b_B the
+// stiffness d (linear block c_lin (I + p u u^T), angular diag(c_ang): never coupled) and b_B the
 // Basset history's current interval as a mass on the linear block (0 without). Diagonal M:
 // Sherman-Morrison on the linear block, closed form on the angular one.
 template <typename T>
@@ -307,7 +307,7 @@ LRIGID_LANE bool implicit_impulse(const DiagonalMass& m, T basset_mass, const Dr
 #pragma GCC unroll 3
   for (int a = 0; a < 3; ++a) {
     x[a] = T(m.M[a]) * (Dinv_b[a] - g * Dinv_u[a]);
-    x[3 + a] = T(m.M[3 + a]) * b[3 + a] / (T(m.M[3 + a]) + h * d.c_ang);
+    x[3 + a] = T(m.M[3 + a]) * b[3 + a] / (T(m.M[3 + a]) + h * d.c_ang[a]);
   }
   return true;
 }
@@ -320,11 +320,10 @@ LRIGID_LANE bool implicit_impulse(const IsotropicMass& m, T basset_mass, const D
   const T a = T(m.m) + basset_mass + h * d.c_lin, c = h * d.c_lin * d.p;
   const T ub = dot3(d.u_hat, b);
   const T g = c / (a + c);
-  const T ja = T(m.J) + h * d.c_ang;
 #pragma GCC unroll 3
   for (int i = 0; i < 3; ++i) {
     x[i] = T(m.m) * (b[i] - g * d.u_hat[i] * ub) / a;
-    x[3 + i] = T(m.J) * b[3 + i] / ja;
+    x[3 + i] = T(m.J) * b[3 + i] / (T(m.J) + h * d.c_ang[i]);
   }
   return true;
 }
@@ -342,7 +341,7 @@ LRIGID_LANE int implicit_factor(const FullMass& m, T basset_mass, const DragOut<
     for (int c = 0; c < 3; ++c)
       A[r * 6 + c] += h * d.c_lin * ((r == c ? T(1) : T(0)) + d.p * d.u_hat[r] * d.u_hat[c]);
     A[r * 6 + r] += basset_mass;
-    A[(3 + r) * 6 + 3 + r] += h * d.c_ang;
+    A[(3 + r) * 6 + 3 + r] += h * d.c_ang[r];
   }
   return lu_factor<6>(A);
 }

@@ -129,7 +129,8 @@ LRIGID_LANE DragOut<T> ellipsoid_forces(const C& tc, const T* u, const T* w) {
     drag.tq[a] *= dr;
   }
   drag.c_lin *= dr;
-  drag.c_ang *= dr;
+#pragma GCC unroll 3
+  for (int a = 0; a < 3; ++a) drag.c_ang[a] *= dr;
   return drag;
 }
 

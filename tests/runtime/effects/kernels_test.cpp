@@ -70,7 +70,7 @@ Block random_block(uint32_t seed) {
 
 template <typename T>
 struct BlockOut {
-  T f[3][kBatch], tq[3][kBatch], lift[3][kBatch], c_lin[kBatch], p[kBatch], c_ang[kBatch];
+  T f[3][kBatch], tq[3][kBatch], lift[3][kBatch], c_lin[kBatch], p[kBatch], c_ang[3][kBatch];
 };
 
 // the kernels across a block's lanes, as integrate/*_batch.cpp call them (r_cob = 0)
@@ -98,7 +98,7 @@ BlockOut<T> run_block(const BodyType& type, const Block& in) {
     }
     o.c_lin[j] = d.c_lin;
     o.p[j] = d.p;
-    o.c_ang[j] = d.c_ang;
+    for (int a = 0; a < 3; ++a) o.c_ang[a][j] = d.c_ang[a];
   }
   return o;
 }
@@ -127,7 +127,8 @@ void expect_block_matches_scalar(const BodyType& type, const Block& in, double t
     }
     EXPECT_TRUE(close(double(o.c_lin[j]), st.c_lin, tol, 0)) << type.name << " lane " << j;
     EXPECT_TRUE(close(double(o.p[j]), st.p, tol, 1e-300)) << type.name << " lane " << j;
-    EXPECT_TRUE(close(double(o.c_ang[j]), st.c_ang, tol, 0)) << type.name << " lane " << j;
+    for (int a = 0; a < 3; ++a)
+      EXPECT_TRUE(close(double(o.c_ang[a][j]), st.c_ang[a], tol, 0)) << type.name << " lane " << j;
   }
 }
 

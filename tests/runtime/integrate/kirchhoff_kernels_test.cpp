@@ -120,7 +120,7 @@ TEST(KirchhoffKernels, ImplicitImpulseSolvesTheImplicitForceStep) {
     DragOut<double> d{};
     d.c_lin = 1e-3 * s(gen);
     d.p = s(gen);
-    d.c_ang = 1e-6 * s(gen);
+    for (int a = 0; a < 3; ++a) d.c_ang[a] = 1e-6 * s(gen);  // one per axis
     Vec3 uh(u(gen), u(gen), u(gen));
     uh.normalize();
     for (int a = 0; a < 3; ++a) d.u_hat[a] = uh[a];
@@ -130,7 +130,8 @@ TEST(KirchhoffKernels, ImplicitImpulseSolvesTheImplicitForceStep) {
     Mat6 A = c.M;
     A.topLeftCorner<3, 3>() += h * d.c_lin * (Mat3::Identity() + d.p * uh * uh.transpose()) +
                                b * Mat3::Identity();
-    A.bottomRightCorner<3, 3>() += h * d.c_ang * Mat3::Identity();
+    A.bottomRightCorner<3, 3>() +=
+        h * Mat3(Vec3(d.c_ang[0], d.c_ang[1], d.c_ang[2]).asDiagonal());
     const Vec6 ref = c.M * A.fullPivLu().solve(rhs);
     Vec6 xd, xf;
     EXPECT_TRUE(implicit_impulse(c.diag, b, d, h, rhs.data(), xd.data()));
@@ -184,13 +185,14 @@ TEST(KirchhoffKernels, FullMassKernelsMatchTheDenseAlgebra) {
     DragOut<double> d{};
     d.c_lin = 1e-3 * s(gen);
     d.p = s(gen);
-    d.c_ang = 1e-6 * s(gen);
+    for (int a = 0; a < 3; ++a) d.c_ang[a] = 1e-6 * s(gen);  // one per axis
     Vec3 uh(u(gen), u(gen), u(gen));
     uh.normalize();
     for (int a = 0; a < 3; ++a) d.u_hat[a] = uh[a];
     Mat6 A = M;
     A.topLeftCorner<3, 3>() += h * d.c_lin * (Mat3::Identity() + d.p * uh * uh.transpose());
-    A.bottomRightCorner<3, 3>() += h * d.c_ang * Mat3::Identity();
+    A.bottomRightCorner<3, 3>() +=
+        h * Mat3(Vec3(d.c_ang[0], d.c_ang[1], d.c_ang[2]).asDiagonal());
     Vec6 b1, b2, x1, x2, x;
     for (int a = 0; a < 6; ++a) b1[a] = M(a, a) * u(gen), b2[a] = M(a, a) * u(gen);
     double lu[36];
@@ -221,7 +223,7 @@ TEST(KirchhoffKernels, ImplicitImpulseOfAnIsotropicMassIsTheDiagonalOne) {
     DragOut<double> d{};
     d.c_lin = 1e-3 * s(gen);
     d.p = s(gen);
-    d.c_ang = 1e-7 * s(gen);
+    for (int a = 0; a < 3; ++a) d.c_ang[a] = 1e-7 * s(gen);
     Vec3 uh(u(gen), u(gen), u(gen));
     uh.normalize();
     for (int a = 0; a < 3; ++a) d.u_hat[a] = uh[a];
