@@ -25,8 +25,12 @@ import numpy as np
 # cop: apply the rotational circulation lift at Rayleigh's centre of pressure, a distance
 # (3/4) l cos α/(4 + π sin α) ahead of the centre (l = 2a the chord, α the angle of attack),
 # instead of at the centre. Not APW's model: the variant docs/physics/lift.md discusses.
-Coeffs = collections.namedtuple("Coeffs", "C_T C_R A B mu1 mu2 cop")
-APW = Coeffs(C_T=1.2, C_R=math.pi, A=1.4, B=1.0, mu1=0.2, mu2=0.2, cop=False)
+# rect: the strip is a thin rectangle, not an ellipse: its own moment of inertia is m a²/3
+# instead of m a²/4 (the added mass and inertia are the flat plate's either way: π ρ_f a² and
+# π ρ_f a⁴/8), i.e. (I*/3 + 1/8) ω' instead of (I* + 1/2)/4 ω'. The 3D model's rectangular
+# strip (validation/falling_plates, the box 2D limit) is this ODE.
+Coeffs = collections.namedtuple("Coeffs", "C_T C_R A B mu1 mu2 cop rect")
+APW = Coeffs(C_T=1.2, C_R=math.pi, A=1.4, B=1.0, mu1=0.2, mu2=0.2, cop=False, rect=False)
 
 
 def rates(s, istar, c=APW):
@@ -41,7 +45,8 @@ def rates(s, istar, c=APW):
     if c.cop:
         x_cp = 2 * 3 * abs(u) / V / (4 * (4 + math.pi * abs(v) / V))   # in units of a
         torque += math.copysign(x_cp, u) * G_rot * u
-    dw = torque / (0.25 * (istar + 0.5))
+    inertia = istar / 3 + 0.125 if c.rect else 0.25 * (istar + 0.5)
+    dw = torque / inertia
     return np.array([du, dv, dw, w])
 
 

@@ -173,24 +173,32 @@ def field_regime(field, re, istar):
     return "chaotic"
 
 
-def limit_strip_scene(mass_ratio, re_apw=LIMIT_RE):
+def limit_strip_scene(mass_ratio, re_apw=LIMIT_RE, box=False):
     """an elliptic strip of half chord a = 1 cm and side ratio 1000 (the 2D limit: the plate
     model's coefficients are APW's to 1e-4) whose sections have APW's mass ratio
     rho_s b / (rho_f a) = mass_ratio; water density, released at 10°. The viscosity makes
     APW's Reynolds number U 2a / nu = re_apw (U = sqrt((rho_s/rho_f - 1) g b), APW's velocity
     scale): at 10³, where APW fitted their coefficients, the model's Reynolds-number terms
-    (mu1 scaled as (10³/Re)^(1/2), the circulation gate) are about 1."""
+    (mu1 scaled as (10³/Re)^(1/2), the circulation gate) are about 1.
+    box: a rectangular strip instead (2a wide, 1000 times as long, thickness h with
+    rho_s 2a h / (pi rho_f a^2) = mass_ratio; U from its weight per span, so that APW's
+    nondimensional weight is 1): every section the same, the 2D limit of apw_ode with rect."""
     a, rho_s = 0.01, 11000.0
-    b = mass_ratio * a * RHO_F / rho_s
-    U = math.sqrt((rho_s / RHO_F - 1) * 9.81 * b)
+    if box:
+        h = mass_ratio * math.pi * RHO_F * a / (2 * rho_s)
+        U = math.sqrt((rho_s / RHO_F - 1) * 9.81 * 2 * h / math.pi)
+        shape = {"type": "box", "size": [2 * a, 2000 * a, h]}
+    else:
+        b = mass_ratio * a * RHO_F / rho_s
+        U = math.sqrt((rho_s / RHO_F - 1) * 9.81 * b)
+        shape = {"type": "ellipsoid", "semi_axes": [a, 1000 * a, b]}
     nu = U * 2 * a / re_apw
     th = math.radians(10.0)
     return {"version": 1, "fluid": vc.uniform_fluid(RHO_F, nu), "gravity": [0, 0, -9.81],
             "effects": EFFECTS, "integrator": {"scheme": vc.SCHEME, "dt": 2e-4},
             "duration": 400 * a / U, "seed": 1,
-            "bodies": [{"name": "strip", "shape": {"type": "ellipsoid",
-                                                   "semi_axes": [a, 1000 * a, b]},
-                        "density": rho_s, "count": 1, "position": [0, 0, 0],
+            "bodies": [{"name": "strip", "shape": shape, "density": rho_s, "count": 1,
+                        "position": [0, 0, 0],
                         "orientation": [math.cos(th / 2), 0, math.sin(th / 2), 0]}],
             "output": {"every": 0.1 * a / U, "formats": ["csv"]}}
 
@@ -260,16 +268,17 @@ def main():
                  "Field et al. 1997; Andersen et al. 2005", tol_text="ordering",
                  verdict="PASS" if mono else "FAIL")
     # (4) the 2D limit against APW's bifurcation
-    def limit_regimes(re_apw, tag):
+    def limit_regimes(re_apw, tag, box=False, ratios=LIMIT_I):
         out = []
-        for mr in LIMIT_I:
-            tr, _, _ = vc.run_scene(args, limit_strip_scene(mr, re_apw),
+        for mr in ratios:
+            tr, _, _ = vc.run_scene(args, limit_strip_scene(mr, re_apw, box),
                                     st.path("limit%s_I%g" % (tag, mr)))
             t = tr["t"][:, 0]
             qw, qx, qy, qz = (tr[c][:, 0] for c in ("qw", "qx", "qy", "qz"))
             phi = np.unwrap(np.arctan2(2 * (qx * qz - qy * qw), 1 - 2 * (qy * qy + qz * qz)))
             out.append(apw_ode.classify_angle(phi[t >= t[-1] / 2])[0])
-            print("2D limit, Re_APW %g, mass ratio %g: %s" % (re_apw, mr, out[-1]), flush=True)
+            print("2D limit%s, Re_APW %g, mass ratio %g: %s" % (" (box)" if box else "", re_apw,
+                                                                 mr, out[-1]), flush=True)
         return out
     lim = limit_regimes(LIMIT_RE, "")
     first = next((mr for mr, r in zip(LIMIT_I, lim) if r not in ("flutter", "steady")), math.nan)
@@ -292,6 +301,21 @@ def main():
              "transcription: %g)" % ode_first, tol_text="within [1.3, 1.7]",
              verdict="PASS" if 1.3 <= first <= 1.7 else "FAIL",
              note="; ".join("%g %s" % (m, r) for m, r in zip(LIMIT_I, lim)))
+    # the same limit with every section alike: a rectangular strip is APW's ODE with a
+    # rectangle's inertia (apw_ode rect), mass ratio by mass ratio
+    box_i = (1.0, 1.1, 1.2, 1.3, 1.4)
+    box = limit_regimes(LIMIT_RE, "_box", box=True, ratios=box_i)
+    rect = [apw_ode.regime(mr, apw_ode.APW._replace(rect=True))[0] for mr in box_i]
+    turns = ("flutter", "steady")
+    box_first = next((mr for mr, r in zip(box_i, box) if r not in turns), math.nan)
+    rect_first = next((mr for mr, r in zip(box_i, rect) if r not in turns), math.nan)
+    st.check("2D limit (rectangular strip, side ratio 1000, U 2a/ν = %g): first mass ratio that "
+             "leaves flutter, against APW's ODE with a rectangle's inertia" % LIMIT_RE,
+             box_first, rect_first, 0.05,
+             "APW 2005b's ODE (apw_ode.py, rect: moment of inertia m a²/3)",
+             tol_text="the same on a 0.1 grid",
+             note="model: " + "; ".join("%g %s" % (m, r) for m, r in zip(box_i, box))
+             + "; ODE: " + "; ".join("%g %s" % (m, r) for m, r in zip(box_i, rect)))
     st.note("APW's 2D ODE (apw_ode.py: thin-strip limit, published coefficients C_T = 1.2, "
             "C_R = π, A = 1.4, B = 1.0, μ1 = μ2 = 0.2, released from rest at 10°, regime over "
             "t = 200–400 a/U) at mass ratios " + "; ".join("%g %s" % o for o in ode) + ".")
