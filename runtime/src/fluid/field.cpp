@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cstddef>
 #include <cmath>
 
 #include "fluid/trilinear.h"
@@ -212,6 +213,7 @@ const std::vector<GridRecord>* FluidField::wall_frame(double t) const {
   // only the frames about to be sampled (prepare), so t's own frame may be gone: a caller that
   // asked at another time (exit_reason asks at t = 0) read a released frame (SIGSEGV in
   // bench/perf/stream_bench.sh, the tank series with colliding walls)
+  if (frames_.size() == 1) return frames_[0].empty() ? nullptr : &frames_[0];  // a steady field
   size_t i, j;
   double lam;
   bracket(t, &i, &j, &lam);
@@ -239,25 +241,16 @@ bool FluidField::wall_distance(const Vec3& x, double t, double* d, Vec3* gradien
   const std::vector<GridRecord>* walls = wall_frame(t);
   if (!walls) return false;
   const std::vector<GridRecord>& frame = *walls;
-  const int sy = g.n[0], sz = g.n[0] * g.n[1];
+  const size_t sy = size_t(g.n[0]), sz = size_t(g.n[0]) * size_t(g.n[1]);
   const size_t base = size_t(i0[0]) + size_t(i0[1]) * sy + size_t(i0[2]) * sz;
-  const size_t off[8] = {0, 1, size_t(sy), size_t(1 + sy), size_t(sz), size_t(1 + sz),
-                         size_t(sy + sz), size_t(1 + sy + sz)};
-  double dist = 0;
-  Vec3 grad = Vec3::Zero();
-  for (int c = 0; c < 8; ++c) {
-    const double w[3] = {(c & 1) ? f[0] : 1 - f[0], (c & 2) ? f[1] : 1 - f[1],
-                         (c & 4) ? f[2] : 1 - f[2]};
-    const double s[3] = {(c & 1) ? 1.0 : -1.0, (c & 2) ? 1.0 : -1.0, (c & 4) ? 1.0 : -1.0};
-    const double r = double(frame[base + off[c]].wall_distance);
-    dist += w[0] * w[1] * w[2] * r;
-    grad[0] += s[0] * w[1] * w[2] * r;
-    grad[1] += w[0] * s[1] * w[2] * r;
-    grad[2] += w[0] * w[1] * s[2] * r;
-  }
-  for (int a = 0; a < 3; ++a) grad[a] /= g.spacing[a];
-  *d = dist;
-  *gradient = grad;
+  // the corners' offsets in floats from the cell's first record (GridRecord: 8 floats)
+  constexpr int kFloats = sizeof(GridRecord) / sizeof(float);
+  const int ry = kFloats * g.n[0], rz = ry * g.n[1];
+  const int off[8] = {0, kFloats, ry, kFloats + ry, rz, kFloats + rz, ry + rz, kFloats + ry + rz};
+  constexpr int kSlot = offsetof(GridRecord, wall_distance) / sizeof(float);
+  double grad[3];
+  *d = trilinear_slot(reinterpret_cast<const float*>(&frame[base]), off, kSlot, f, grad);
+  for (int a = 0; a < 3; ++a) (*gradient)[a] = grad[a] / g.spacing[a];
   return true;
 }
 

@@ -69,4 +69,34 @@ LRIGID_LANE int trilinear_record(const float* r0, const int* off, const T* f,
   return nvalid;
 }
 
+// One float slot of the cell's 8 corner records (r0 + off[c] + slot, in floats), blended at
+// fractions f (0..1 per axis), and its derivative per unit index along each axis (grad). The
+// same sums as trilinear_record's for that slot without its valid weighting (every corner
+// counts), as three nested linear blends: x first, then y, then z, and the derivatives from
+// the same differences. FluidField::wall_distance (the wall distance, slot 7): a contact queries
+// it at each of a body's points near a wall, so it is the cheaper form of one slot.
+template <typename T>
+LRIGID_LANE T trilinear_slot(const float* r0, const int* off, int slot, const T* f, T* grad) {
+  T c[8];
+#pragma GCC unroll 8
+  for (int k = 0; k < 8; ++k) c[k] = T(r0[off[k] + slot]);
+  // along x: the four edges' values and differences (corners 2j and 2j + 1)
+  T ex[4], dx[4];
+#pragma GCC unroll 4
+  for (int j = 0; j < 4; ++j) {
+    dx[j] = c[2 * j + 1] - c[2 * j];
+    ex[j] = c[2 * j] + f[0] * dx[j];
+  }
+  // along y: the two faces z = 0 and z = 1
+  const T dy0 = ex[1] - ex[0], dy1 = ex[3] - ex[2];
+  const T fy0 = ex[0] + f[1] * dy0, fy1 = ex[2] + f[1] * dy1;
+  const T gx0 = dx[0] + f[1] * (dx[1] - dx[0]), gx1 = dx[2] + f[1] * (dx[3] - dx[2]);
+  // along z
+  const T dz = fy1 - fy0;
+  grad[0] = gx0 + f[2] * (gx1 - gx0);
+  grad[1] = dy0 + f[2] * (dy1 - dy0);
+  grad[2] = dz;
+  return fy0 + f[2] * dz;
+}
+
 }  // namespace lrigid

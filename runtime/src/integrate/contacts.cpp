@@ -44,9 +44,12 @@ void gather(const Model& m, const BodyType& type, const BodyState& b, const Mat3
   auto point_velocity = [&](const Vec3& rb) -> Vec3 { return R * (b.v + b.w.cross(rb)); };
   if (m.ground_collides() && b.x.z() - type.reach <= m.ground_z + slack) {
     const Vec3 ez(0, 0, 1);
+    // only the point's height: the last row of R (and its velocity only when looking ahead)
+    const Vec3 rz = R.row(2).transpose();
     auto ground_depth = [&](const Vec3& rb) {
-      const Vec3 p = b.x + R * rb + ahead * point_velocity(rb);
-      return m.ground_z - p.z();
+      double z = b.x.z() + rz.dot(rb);
+      if (ahead != 0) z += ahead * rz.dot(b.v + b.w.cross(rb));
+      return m.ground_z - z;
     };
     if (k.support) {
       const Vec3 nb = Rt * ez;
@@ -90,7 +93,8 @@ void gather(const Model& m, const BodyType& type, const BodyState& b, const Mat3
   if (!inside || dc > type.reach + slack) return;
   // a point touches where the wall distance is <= 0; its normal is the distance's gradient
   auto wall = [&](const Vec3& rb, Vec3* nw) {
-    const Vec3 p = b.x + R * rb + ahead * point_velocity(rb);
+    Vec3 p = b.x + R * rb;
+    if (ahead != 0) p += ahead * point_velocity(rb);
     double d;
     Vec3 g;
     if (!m.field.wall_distance(p, t, &d, &g) || d > slack) return -HUGE_VAL;

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 namespace lrigid {
 namespace {
 
@@ -177,11 +179,53 @@ TEST(FluidField, WallDistanceIsTheTrilinearBlendAndCrossesZeroAtThePlane) {
   EXPECT_NEAR(s.wall_distance, -0.5, 1e-6);
 }
 
+// wall_distance on a distance that is not a plane (a value per grid point, no pattern): the
+// trilinear blend of the cell's 8 corners with their weights written out, and a gradient that is
+// the blend's derivative (central differences inside a cell, where the blend is smooth).
+TEST(FluidField, WallDistanceAndItsGradientAreTheCellsTrilinearBlend) {
+  const GridGeometry g = geometry();
+  RawGridFrame fr = linear_frame(g, 0, 1);
+  fr.wall_distance.resize(g.points());
+  for (size_t p = 0; p < g.points(); ++p)
+    fr.wall_distance[p] = float(0.3 + 0.7 * std::sin(1.7 * double(p)) + 0.01 * double(p));
+  const FluidField f = FluidField::grid(g, {fr}, 1e-5, Drift::Stationary, TimeMode::Clamp);
+  auto node = [&](int i, int j, int k) {
+    return double(fr.wall_distance[size_t(i) + size_t(g.n[0]) * (size_t(j) + size_t(g.n[1]) * k)]);
+  };
+  for (const Vec3& x : {Vec3(-0.31, 0.37, 2.2), Vec3(0.55, 0.05, 3.61), Vec3(0.02, 0.61, 2.93)}) {
+    double want = 0;
+    int i0[3];
+    double fr3[3];
+    for (int a = 0; a < 3; ++a) {
+      const double s = (x[a] - g.origin[a]) / g.spacing[a];
+      i0[a] = int(s);
+      fr3[a] = s - i0[a];
+    }
+    for (int c = 0; c < 8; ++c) {
+      const int cx = c & 1, cy = (c >> 1) & 1, cz = c >> 2;
+      want += (cx ? fr3[0] : 1 - fr3[0]) * (cy ? fr3[1] : 1 - fr3[1]) * (cz ? fr3[2] : 1 - fr3[2]) *
+              node(i0[0] + cx, i0[1] + cy, i0[2] + cz);
+    }
+    double d;
+    Vec3 grad;
+    ASSERT_TRUE(f.wall_distance(x, 0, &d, &grad)) << x.transpose();
+    EXPECT_NEAR(d, want, 1e-12) << x.transpose();
+    for (int a = 0; a < 3; ++a) {
+      const double h = 1e-6 * g.spacing[a];
+      double dp, dm;
+      Vec3 gp, gm;
+      ASSERT_TRUE(f.wall_distance(x + h * Vec3::Unit(a), 0, &dp, &gp));
+      ASSERT_TRUE(f.wall_distance(x - h * Vec3::Unit(a), 0, &dm, &gm));
+      EXPECT_NEAR(grad[a], (dp - dm) / (2 * h), 1e-6 * (1 + std::abs(grad[a]))) << a;
+    }
+  }
+}
+
 // only_floor_near: true where every grid point of the cells about the body has the plane below
 // as its nearest wall (its distance is its height above it), false next to another wall, off
 // the box, for another floor height and without the array.
 TEST(FluidField, OnlyFloorNearWhereEveryCornersNearestWallIsTheFloor) {
-  const GridGeometry g = geometry();  // x -1..1 (0.5), y 0..0.75 (0.25), z 2..4 (1)
+  const GridGeometry g = geometry();     // x -1..1 (0.5), y 0..0.75 (0.25), z 2..4 (1)
   RawGridFrame fr = walled_frame(g, 0);  // the floor z = 2.7: distances z - 2.7
   const FluidField f = FluidField::grid(g, {fr}, 1e-5, Drift::Stationary, TimeMode::Clamp);
   EXPECT_TRUE(f.only_floor_near(Vec3(-0.3, 0.37, 3.0), 0.05, 2.7, 0));
