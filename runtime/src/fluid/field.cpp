@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
-#include <cstddef>
 #include <cmath>
+#include <cstddef>
 
 #include "fluid/trilinear.h"
 
@@ -13,6 +13,37 @@ namespace lrigid {
 namespace {
 // ids of grid fields' contents (FluidField::id_)
 std::atomic<uint64_t> next_field_id{1};
+
+// The cell of grid g holding x: its first corner's indices i0 and x's fractions f (0..1) along
+// each axis; false outside the grid's box (also for NaN). floor_clamp: within a cell below the
+// bottom face, the bottom layer (FluidField::set_floor_clamp).
+bool locate_cell(const GridGeometry& g, const Vec3& x, bool floor_clamp, int* i0, double* f) {
+  for (int a = 0; a < 3; ++a) {
+    double s = (x[a] - g.origin[a]) / g.spacing[a];
+    if (a == 2 && floor_clamp && s < 0.0 && s >= -1.0) s = 0.0;
+    if (!(s >= 0.0 && s <= double(g.n[a] - 1))) return false;
+    int i = static_cast<int>(s);
+    if (i > g.n[a] - 2) i = g.n[a] - 2;
+    i0[a] = i;
+    f[a] = s - i;
+  }
+  return true;
+}
+
+// A cell's 8 corner records (c = cx + 2 cy + 4 cz) as offsets in floats from its first record's
+// (the records' kernels of fluid/trilinear.h), and the first record's offset in floats.
+constexpr int kRecordFloats = sizeof(GridRecord) / sizeof(float);
+void corner_offsets(const GridGeometry& g, int* off) {
+  const int ry = kRecordFloats * g.n[0], rz = ry * g.n[1];
+  for (int c = 0; c < 8; ++c)
+    off[c] = ((c & 1) ? kRecordFloats : 0) + ((c & 2) ? ry : 0) + ((c & 4) ? rz : 0);
+}
+size_t first_record(const GridGeometry& g, const int* i0) {
+  const size_t sy = size_t(g.n[0]), sz = size_t(g.n[0]) * size_t(g.n[1]);
+  return kRecordFloats * (size_t(i0[0]) + size_t(i0[1]) * sy + size_t(i0[2]) * sz);
+}
+// the wall distance's slot in a record
+constexpr int kWallSlot = offsetof(GridRecord, wall_distance) / sizeof(float);
 }  // namespace
 
 Vec3 GridGeometry::upper() const {
@@ -230,26 +261,14 @@ bool FluidField::wall_distance(const Vec3& x, double t, double* d, Vec3* gradien
   const GridGeometry& g = geometry_;
   int i0[3];
   double f[3];
-  for (int a = 0; a < 3; ++a) {
-    const double s = (x[a] - g.origin[a]) / g.spacing[a];
-    if (!(s >= 0.0 && s <= double(g.n[a] - 1))) return false;
-    int i = static_cast<int>(s);
-    if (i > g.n[a] - 2) i = g.n[a] - 2;
-    i0[a] = i;
-    f[a] = s - i;
-  }
+  if (!locate_cell(g, x, false, i0, f)) return false;
   const std::vector<GridRecord>* walls = wall_frame(t);
   if (!walls) return false;
-  const std::vector<GridRecord>& frame = *walls;
-  const size_t sy = size_t(g.n[0]), sz = size_t(g.n[0]) * size_t(g.n[1]);
-  const size_t base = size_t(i0[0]) + size_t(i0[1]) * sy + size_t(i0[2]) * sz;
-  // the corners' offsets in floats from the cell's first record (GridRecord: 8 floats)
-  constexpr int kFloats = sizeof(GridRecord) / sizeof(float);
-  const int ry = kFloats * g.n[0], rz = ry * g.n[1];
-  const int off[8] = {0, kFloats, ry, kFloats + ry, rz, kFloats + rz, ry + rz, kFloats + ry + rz};
-  constexpr int kSlot = offsetof(GridRecord, wall_distance) / sizeof(float);
+  int off[8];
+  corner_offsets(g, off);
   double grad[3];
-  *d = trilinear_slot(reinterpret_cast<const float*>(&frame[base]), off, kSlot, f, grad);
+  *d = trilinear_slot(reinterpret_cast<const float*>(walls->data()) + first_record(g, i0), off,
+                      kWallSlot, f, grad);
   for (int a = 0; a < 3; ++a) (*gradient)[a] = grad[a] / g.spacing[a];
   return true;
 }
@@ -294,25 +313,14 @@ bool FluidField::sample_frame(const std::vector<GridRecord>& frame, const Vec3& 
   const GridGeometry& g = geometry_;
   int i0[3];
   double f[3];
-  for (int a = 0; a < 3; ++a) {
-    double s = (x[a] - g.origin[a]) / g.spacing[a];
-    // within a cell below the bottom face: the bottom layer (set_floor_clamp)
-    if (a == 2 && floor_clamp_ && s < 0.0 && s >= -1.0) s = 0.0;
-    if (!(s >= 0.0 && s <= double(g.n[a] - 1))) {  // also false for NaN
-      out->wall_distance = HUGE_VAL;
-      return false;
-    }
-    int i = static_cast<int>(s);
-    if (i > g.n[a] - 2) i = g.n[a] - 2;
-    i0[a] = i;
-    f[a] = s - i;
+  if (!locate_cell(g, x, floor_clamp_, i0, f)) {
+    out->wall_distance = HUGE_VAL;
+    return false;
   }
   // the 8 corners' records (fluid/trilinear.h, the batched step's kernel too)
-  const int sy = g.n[0], sz = g.n[0] * g.n[1];
-  const int off[8] = {0, 8, 8 * sy, 8 * (1 + sy), 8 * sz, 8 * (1 + sz), 8 * (sy + sz),
-                      8 * (1 + sy + sz)};
-  const float* r0 = reinterpret_cast<const float*>(frame.data()) +
-                    8 * (size_t(i0[0]) + size_t(i0[1]) * sy + size_t(i0[2]) * sz);
+  int off[8];
+  corner_offsets(g, off);
+  const float* r0 = reinterpret_cast<const float*>(frame.data()) + first_record(g, i0);
   Record8<double>::type v, dv[3];
   const int nvalid =
       gradients ? trilinear_record<double, true>(r0, off, f, &v, &dv[0], &dv[1], &dv[2])
@@ -323,10 +331,8 @@ bool FluidField::sample_frame(const std::vector<GridRecord>& frame, const Vec3& 
   // (only when the grid has the array: grids without it answer +infinity)
   double wall = HUGE_VAL;
   if (has_wall_distance_) {
-    wall = 0;
-    for (int c = 0; c < 8; ++c)
-      wall += ((c & 1) ? f[0] : 1 - f[0]) * ((c & 2) ? f[1] : 1 - f[1]) *
-              ((c & 4) ? f[2] : 1 - f[2]) * double(r0[off[c] + 7]);
+    double unused[3];
+    wall = trilinear_slot(r0, off, kWallSlot, f, unused);
   }
   out->wall_distance = wall;
   // the wall lies between a valid and an invalid grid point: x is in the fluid when the valid

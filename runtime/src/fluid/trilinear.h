@@ -73,8 +73,9 @@ LRIGID_LANE int trilinear_record(const float* r0, const int* off, const T* f,
 // fractions f (0..1 per axis), and its derivative per unit index along each axis (grad). The
 // same sums as trilinear_record's for that slot without its valid weighting (every corner
 // counts), as three nested linear blends: x first, then y, then z, and the derivatives from
-// the same differences. FluidField::wall_distance (the wall distance, slot 7): a contact queries
-// it at each of a body's points near a wall, so it is the cheaper form of one slot.
+// the same differences. The scalar field's wall distance (slot 7: FluidField::wall_distance and
+// sample_frame): a contact queries it at each of a body's points near a wall, so it is the
+// cheaper form of one slot.
 template <typename T>
 LRIGID_LANE T trilinear_slot(const float* r0, const int* off, int slot, const T* f, T* grad) {
   T c[8];
