@@ -84,7 +84,7 @@ LRIGID_LANE void rk4_stages(const FieldConsts& fc, const Rk4Frames& frames, Lane
   auto sample = [&](const FluidField::FrameBlend& at) LRIGID_LANE_LAMBDA {
     if (!fc.sample) return;
     if (frames.unsteady) lanes->frames = at;
-    sample_lanes(fc, k->xs, lanes);
+    sample_lanes(fc, k->xs, lanes, 0, lanes->width);
   };
   stage(std::integral_constant<int, 0>{});
   sample(frames.mid);

@@ -178,6 +178,12 @@ inline std::string batch_exclusion(const Model& model, const BodyType& type,
   return "";
 }
 
+// The lanes of one 512-bit vector: the step's loops run over a whole number of them, so that
+// every build's vector loop (2, 4 or 8 doubles; 4, 8 or 16 floats) covers them without a
+// remainder and a lane's arithmetic does not depend on how many lanes the loop runs over.
+template <typename T>
+constexpr int kLaneGrain = 64 / int(sizeof(T));
+
 // The fluid sample at a block's positions, structure of arrays, and the block's bookkeeping.
 template <typename T>
 struct Samples {
@@ -219,7 +225,18 @@ struct Samples {
   bool flying[kBatch];
   bool started[kBatch];
   uint64_t newton = 0;  // steps of live lanes on which the loops ran Newton (BlockStats)
+  // the lanes [0, width) a step computes: the live ones rounded up to whole vectors (kLaneGrain;
+  // set by drive_block before each step). A block whose bodies have landed, fallen asleep or
+  // never filled it steps only as many vectors as its last live lane needs: lanes past width
+  // keep their state and are neither stepped nor committed.
+  int width = kBatch;
 };
+
+// The width (Samples::width) that covers lanes [0, hi)
+template <typename T>
+constexpr int lane_width(int hi) {
+  return (hi + kLaneGrain<T> - 1) / kLaneGrain<T> * kLaneGrain<T>;
+}
 
 // Whether the step needs its third switch (`Extra`): the Basset history, the Magnus force or a
 // centre of mass off the centroid.
@@ -399,12 +416,13 @@ LRIGID_IVDEP
 template <typename T, bool Whole = false>
 LRIGID_MULTIVERSION void lane_normals(const FieldConsts& fc, const Samples<T>& lanes, uint64_t step,
                                       T (*z1)[kBatch], T (*z2)[kBatch]) {
+  const int nw = lanes.width;
   // words: block 0 (pairs 0, 1), block 1 words 2, 3 (pair 3), block 2 words 0, 1 (pair 4)
   alignas(64) uint32_t wd[8][kBatch];
   const uint32_t k0 = static_cast<uint32_t>(fc.seed), k1 = static_cast<uint32_t>(fc.seed >> 32);
   const uint32_t lo = static_cast<uint32_t>(step), hi = static_cast<uint32_t>(step >> 32);
 LRIGID_IVDEP
-  for (int j = 0; j < kBatch; ++j) {
+  for (int j = 0; j < nw; ++j) {
     const uint32_t body = lanes.body[j];
     uint32_t b0[4] = {body, lo, hi, 0x6c720000u};
     uint32_t b1[4] = {body, lo, hi, 0x6c720001u};
@@ -416,7 +434,7 @@ LRIGID_IVDEP
     wd[4][j] = b1[2], wd[5][j] = b1[3], wd[6][j] = b2[0], wd[7][j] = b2[1];
   }
 LRIGID_IVDEP
-  for (int j = 0; j < kBatch; ++j) {
+  for (int j = 0; j < nw; ++j) {
     double c0, s0, c1, s1, c3, s3, c4, s4;
     sincos_of_turn(wd[1][j], &c0, &s0);
     sincos_of_turn(wd[3][j], &c1, &s1);
@@ -505,18 +523,19 @@ template <typename T, bool Turb, bool OUHalfStep = true, class Lanes>
 LRIGID_LANE void end_step(const FieldConsts& fc, const T (*z2)[kBatch], const T (*V)[kBatch],
                           NewState<T>* next, Lanes* lanes, int* outcome, int* landed,
                           const T* sampled_inside0 = nullptr) {
+  const int nw = lanes->width;
   const T hh = T(0.5 * fc.h), wm = T(fc.wm);
   alignas(64) T inside0[kBatch];
   if (sampled_inside0) {
-    for (int j = 0; j < kBatch; ++j) inside0[j] = sampled_inside0[j];
+    for (int j = 0; j < nw; ++j) inside0[j] = sampled_inside0[j];
   } else {
-    for (int j = 0; j < kBatch; ++j) inside0[j] = fc.sample ? lanes->inside[j] : T(1);
-    if (fc.sample) sample_lanes(fc, next->x, lanes);
+    for (int j = 0; j < nw; ++j) inside0[j] = fc.sample ? lanes->inside[j] : T(1);
+    if (fc.sample) sample_lanes(fc, next->x, lanes, 0, nw);
   }
-  if (Turb && OUHalfStep) ou_coefficients(fc, lanes);
+  if (Turb && OUHalfStep) ou_coefficients(fc, lanes, 0, nw);
   const bool sample = fc.sample;
 LRIGID_IVDEP
-  for (int j = 0; j < kBatch; ++j) {
+  for (int j = 0; j < nw; ++j) {
     T us[3] = {next->us[0][j], next->us[1][j], next->us[2][j]};
     if constexpr (Turb && OUHalfStep) {
       const T Vj[3] = {V[0][j], V[1][j], V[2][j]};
@@ -535,19 +554,19 @@ LRIGID_IVDEP
     outcome[j] = outcome_bits(x, q, v, w, us, in, next->scalar[j] != 0);
     landed[j] = lane_landed(fc, q, x[2]);
   }
-  for (int j = 0; j < kBatch; ++j) outcome[j] = decode_outcome(outcome[j]);
+  for (int j = 0; j < nw; ++j) outcome[j] = decode_outcome(outcome[j]);
   if (fc.basset) {
     // what the Basset history takes in: the relative velocity at the end of the step
     const T mf = T(fc.mf);
 LRIGID_IVDEP
-    for (int j = 0; j < kBatch; ++j)
+    for (int j = 0; j < nw; ++j)
 #pragma GCC unroll 3
       for (int a = 0; a < 3; ++a)
         lanes->gb[a][j] = mf * lanes->U[a][j] + (Turb ? next->us[a][j] : T(0)) - V[a][j];
   }
   T(*vel)[kBatch] = lanes->velocity();
   const bool contacts = fc.contacts;
-  for (int j = 0; j < kBatch; ++j) {
+  for (int j = 0; j < nw; ++j) {
     if (outcome[j] != kOk || !lanes->live[j]) continue;
     // the start of the step of a lane that may have met a surface in it: a landing or first
     // touchdown to locate, or a flying body near a colliding surface (an impact to locate)
@@ -625,6 +644,7 @@ BlockStats drive_block(const Model& model, const BodyType& type, const FieldCons
   alignas(64) int landed[kBatch];
   for (uint64_t s = first; s < last; ++s) {
     bool any = false, sleepers = false;
+    int hi = 0;  // past the last live lane
     for (int j = 0; j < count; ++j) {
       if (dormant[j] == s) {
         // its watch wakes it: it takes this step with the u' the watch followed
@@ -637,15 +657,17 @@ BlockStats drive_block(const Model& model, const BodyType& type, const FieldCons
         dormant[j] = GustWatch::kNever;
       }
       any = any || lanes->live[j];
+      hi = lanes->live[j] ? j + 1 : hi;
       sleepers = sleepers || dormant[j] != GustWatch::kNever;
     }
+    lanes->width = lane_width<T>(hi);
     if (!any && !sleepers) break;
     const double t = static_cast<double>(s) * model.dt;
     // (the end time as the next stretch's start, first * dt: bitwise the same blend)
     if (unsteady) lanes->frames = model.field.frames_at(static_cast<double>(s + 1) * model.dt);
     if (!any) continue;  // only sleepers, waking later
     if (fc.basset) {
-      for (int j = 0; j < kBatch; ++j) {
+      for (int j = 0; j < lanes->width; ++j) {
         const Vec3 f =
             lanes->history[j] ? basset_history_force(type.basset, lanes->history[j]) : Vec3::Zero();
 #pragma GCC unroll 3

@@ -80,13 +80,14 @@ LRIGID_LANE void lane_fluid(const C& tc, const Lanes<T>* lanes, int j, const T* 
 template <typename T, bool Turb, bool Plate, bool Extra, class Mass>
 LRIGID_MULTIVERSION void euler_lanes(const StepConsts<Mass>& tc, Lanes<T>* lanes, uint64_t step,
                                      int* outcome, int* landed) {
+  const int nw = lanes->width;
   const T h = T(tc.h);
   alignas(64) T z[3][kBatch], Vn[3][kBatch];
   [[maybe_unused]] alignas(64) T unused[3][kBatch];
   if constexpr (Turb) lane_normals<T, true>(tc, *lanes, step, z, unused);
   NewState<T> next;
   LRIGID_IVDEP
-  for (int j = 0; j < kBatch; ++j) {
+  for (int j = 0; j < nw; ++j) {
     T us[3] = {lanes->us[0][j], lanes->us[1][j], lanes->us[2][j]};
     const T q[4] = {lanes->q[0][j], lanes->q[1][j], lanes->q[2][j], lanes->q[3][j]};
     const T v[3] = {lanes->v[0][j], lanes->v[1][j], lanes->v[2][j]};
@@ -161,9 +162,10 @@ LRIGID_MULTIVERSION void euler_lanes(const StepConsts<Mass>& tc, Lanes<T>* lanes
 template <typename T, bool Turb, bool Plate, bool Extra, int I, class Mass>
 LRIGID_LANE void rk4_stage(const StepConsts<Mass>& tc, const Lanes<T>* lanes, const T (*z)[kBatch],
                            Rk4Block<T>* k, NewState<T>* next) {
+  const int nw = lanes->width;
   const T h = T(tc.h);
   LRIGID_IVDEP
-  for (int j = 0; j < kBatch; ++j) {
+  for (int j = 0; j < nw; ++j) {
     const T us0[3] = {lanes->us[0][j], lanes->us[1][j], lanes->us[2][j]};
     const T q0[4] = {lanes->q[0][j], lanes->q[1][j], lanes->q[2][j], lanes->q[3][j]};
     T q[4], theta[3], v[3], w[3];
@@ -221,6 +223,7 @@ LRIGID_LANE void rk4_stage(const StepConsts<Mass>& tc, const Lanes<T>* lanes, co
 template <typename T, bool Turb, bool Plate, bool Extra, class Mass>
 LRIGID_MULTIVERSION void rk4_lanes(const StepConsts<Mass>& tc, const Rk4Frames& frames,
                                    Lanes<T>* lanes, uint64_t step, int* outcome, int* landed) {
+  const int nw = lanes->width;
   const T h = T(tc.h);
   alignas(64) T z[3][kBatch], Vn[3][kBatch];
   [[maybe_unused]] alignas(64) T unused[3][kBatch];
@@ -232,7 +235,7 @@ LRIGID_MULTIVERSION void rk4_lanes(const StepConsts<Mass>& tc, const Rk4Frames& 
   });
   const T h6 = h / T(6);
   LRIGID_IVDEP
-  for (int j = 0; j < kBatch; ++j) {
+  for (int j = 0; j < nw; ++j) {
     const T q0[4] = {lanes->q[0][j], lanes->q[1][j], lanes->q[2][j], lanes->q[3][j]};
     T theta[3], dxi[6], q1[4], R1[9], v1[3], w1[3], V1[3];
 #pragma GCC unroll 3

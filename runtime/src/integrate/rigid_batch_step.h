@@ -349,6 +349,7 @@ constexpr int kSparseNewton = 4;
 template <typename T, bool Turb, bool Plate, bool Extra, bool Strang, class Mass>
 LRIGID_MULTIVERSION void step_lanes(const StepConsts<Mass>& tc, Lanes<T>* lanes, uint64_t step,
                                     int* outcome, int* landed) {
+  const int nw = lanes->width;
   const T h = T(tc.h), hh = T(0.5 * tc.h), wm = T(tc.wm);
   alignas(64) T z1[3][kBatch], z2[3][kBatch];
   if constexpr (Turb) lane_normals(tc, *lanes, step, z1, z2);
@@ -363,7 +364,7 @@ LRIGID_MULTIVERSION void step_lanes(const StepConsts<Mass>& tc, Lanes<T>* lanes,
   T(&usn)[3][kBatch] = next.us;
   int(&scalar)[kBatch] = next.scalar;
 LRIGID_IVDEP
-  for (int j = 0; j < kBatch; ++j) {
+  for (int j = 0; j < nw; ++j) {
     T us[3] = {lanes->us[0][j], lanes->us[1][j], lanes->us[2][j]};
     const T q[4] = {lanes->q[0][j], lanes->q[1][j], lanes->q[2][j], lanes->q[3][j]};
     T v[3] = {lanes->v[0][j], lanes->v[1][j], lanes->v[2][j]};
@@ -423,7 +424,7 @@ LRIGID_IVDEP
   for (int it = 0; it < kKirchhoffMaxFixedPoint; ++it) {
     int any = 0;
 LRIGID_IVDEP
-    for (int j = 0; j < kBatch; ++j) {
+    for (int j = 0; j < nw; ++j) {
       T y0[6], y[6], y_next[6];
 #pragma GCC unroll 6
       for (int a = 0; a < 6; ++a) {
@@ -458,7 +459,7 @@ LRIGID_IVDEP
     alignas(64) T lu[36][kBatch], last_step[kBatch];
     int newton[kBatch], refactor[kBatch];
     int any_newton = 0;
-    for (int j = 0; j < kBatch; ++j) {
+    for (int j = 0; j < nw; ++j) {
       newton[j] = scalar[j] | active[j];
       any_newton |= newton[j];
     }
@@ -466,7 +467,7 @@ LRIGID_IVDEP
     // flags above)
     if (any_newton) {
 LRIGID_IVDEP
-      for (int j = 0; j < kBatch; ++j) {
+      for (int j = 0; j < nw; ++j) {
         const int nt = newton[j];
         refactor[j] = 1;
         last_step[j] = T(0);
@@ -484,19 +485,19 @@ LRIGID_IVDEP
 #pragma GCC unroll 6
         for (int a = 0; a < 6; ++a) Y[a][j] = reset ? Y0[a][j] : Y[a][j];
       }
-      for (int j = 0; j < kBatch; ++j)
+      for (int j = 0; j < nw; ++j)
         lanes->newton += uint64_t(newton[j] != 0) & uint64_t(lanes->live[j]);
       for (int e = 0; e < 36; ++e)
-        for (int j = 0; j < kBatch; ++j) lu[e][j] = T(0);
+        for (int j = 0; j < nw; ++j) lu[e][j] = T(0);
     }
     for (int it = 0; any_newton && it < kLaneKirchhoffNewton; ++it) {
       // a new factorization at the current iterate for the lanes that need one (all of them in
       // the first iteration), the kept one for the others
       int any_ref = 0;
-      for (int j = 0; j < kBatch; ++j) any_ref |= newton[j] & refactor[j];
+      for (int j = 0; j < nw; ++j) any_ref |= newton[j] & refactor[j];
       if (any_ref) {
 LRIGID_IVDEP
-        for (int j = 0; j < kBatch; ++j) {
+        for (int j = 0; j < nw; ++j) {
           T ym[6], A[36];
 #pragma GCC unroll 6
           for (int a = 0; a < 6; ++a) ym[a] = T(0.5) * (Y0[a][j] + Y[a][j]);
@@ -511,7 +512,7 @@ LRIGID_IVDEP
       }
       int any = 0;
 LRIGID_IVDEP
-      for (int j = 0; j < kBatch; ++j) {
+      for (int j = 0; j < nw; ++j) {
         const int act = newton[j];
         T y0[6], y[6], r[6], A[36];
 #pragma GCC unroll 6
@@ -559,7 +560,7 @@ LRIGID_IVDEP
     // second force half step there, and the second OU half step (end_step, on that sample)
     alignas(64) T Vn[3][kBatch], inside0[kBatch];
 LRIGID_IVDEP
-    for (int j = 0; j < kBatch; ++j) {
+    for (int j = 0; j < nw; ++j) {
       T q[4], R[9], ufb[3], v[3], w[3], Vend[3];
       lane_flow_end(tc, lanes->q, Y0, Y, uf, j, q, R, ufb, v, w);
       mul(R, v, Vend);
@@ -573,10 +574,10 @@ LRIGID_IVDEP
 #pragma GCC unroll 4
       for (int a = 0; a < 4; ++a) qn[a][j] = q[a];
     }
-    for (int j = 0; j < kBatch; ++j) inside0[j] = tc.sample ? lanes->inside[j] : T(1);
-    if (tc.sample) sample_lanes(tc, next.x, lanes);
+    for (int j = 0; j < nw; ++j) inside0[j] = tc.sample ? lanes->inside[j] : T(1);
+    if (tc.sample) sample_lanes(tc, next.x, lanes, 0, nw);
 LRIGID_IVDEP
-    for (int j = 0; j < kBatch; ++j) {
+    for (int j = 0; j < nw; ++j) {
       const T q[4] = {qn[0][j], qn[1][j], qn[2][j], qn[3][j]};
       const T acc[3] = {lanes->acc[0][j], lanes->acc[1][j], lanes->acc[2][j]};
       T R[9], u_f[3], v[3] = {vn[0][j], vn[1][j], vn[2][j]}, w[3] = {wn[0][j], wn[1][j], wn[2][j]};
@@ -607,7 +608,7 @@ LRIGID_IVDEP
   int stiff[kBatch];
   int any_stiff = 0;
 LRIGID_IVDEP
-  for (int j = 0; j < kBatch; ++j) {
+  for (int j = 0; j < nw; ++j) {
     // q <- q cay(h w_mid)
     T q[4], R[9], ufb[3], v[3], w[3], vr[3];
     lane_flow_end(tc, lanes->q, Y0, Y, uf, j, q, R, ufb, v, w);
@@ -728,20 +729,20 @@ LRIGID_IVDEP
   };
   if (tc.drag != 0 && any_stiff) {
     int idx[kBatch], m = 0;
-    for (int j = 0; j < kBatch; ++j) {
+    for (int j = 0; j < nw; ++j) {
       lanes->newton += uint64_t(stiff[j] != 0) & uint64_t(lanes->live[j]);
       idx[m] = j;
       m += stiff[j];
     }
     for (int it = 0; it < kDragMaxNewton && m > 0; ++it) {
-      if (m * kSparseNewton > kBatch) {
+      if (m * kSparseNewton > nw) {
         // many stiff lanes: every lane, vectorised, the others masked
         int any = 0;
 LRIGID_IVDEP
-        for (int j = 0; j < kBatch; ++j) any |= newton_lane(j);
+        for (int j = 0; j < nw; ++j) any |= newton_lane(j);
         if (!any) break;
         m = 0;
-        for (int j = 0; j < kBatch; ++j) {
+        for (int j = 0; j < nw; ++j) {
           idx[m] = j;
           m += stiff[j];
         }
@@ -762,7 +763,7 @@ LRIGID_IVDEP
   // 4. x by the trapezoidal rule on the world velocity
   alignas(64) T Vn[3][kBatch];  // the world velocity at the end
 LRIGID_IVDEP
-  for (int j = 0; j < kBatch; ++j) {
+  for (int j = 0; j < nw; ++j) {
     const T q[4] = {qn[0][j], qn[1][j], qn[2][j], qn[3][j]};
     const T v[3] = {vn[0][j], vn[1][j], vn[2][j]};
     T R[9], Vend[3];

@@ -165,6 +165,7 @@ LRIGID_LANE void strang_force_lane(const StepConsts& tc, const T* q, const T* u_
 template <typename T, bool Turb, bool WithDrag, bool Extra, bool Strang>
 LRIGID_MULTIVERSION void step_lanes(const StepConsts& tc, Lanes<T>* lanes, uint64_t step,
                                     int* outcome, int* landed) {
+  const int nw = lanes->width;
   const T h = T(tc.h), hh = T(0.5 * tc.h), wm = T(tc.wm);
   alignas(64) T z1[3][kBatch], z2[3][kBatch];
   if constexpr (Turb) lane_normals(tc, *lanes, step, z1, z2);
@@ -175,7 +176,7 @@ LRIGID_MULTIVERSION void step_lanes(const StepConsts& tc, Lanes<T>* lanes, uint6
     NewState<T> next;
     alignas(64) T inside0[kBatch];
 LRIGID_IVDEP
-    for (int j = 0; j < kBatch; ++j) {
+    for (int j = 0; j < nw; ++j) {
       T us[3] = {lanes->us[0][j], lanes->us[1][j], lanes->us[2][j]};
       T V[3] = {lanes->V[0][j], lanes->V[1][j], lanes->V[2][j]};
       T w[3] = {lanes->w[0][j], lanes->w[1][j], lanes->w[2][j]};
@@ -204,10 +205,10 @@ LRIGID_IVDEP
       }
       next.scalar[j] = 0;
     }
-    for (int j = 0; j < kBatch; ++j) inside0[j] = tc.sample ? lanes->inside[j] : T(1);
-    if (tc.sample) sample_lanes(tc, next.x, lanes);
+    for (int j = 0; j < nw; ++j) inside0[j] = tc.sample ? lanes->inside[j] : T(1);
+    if (tc.sample) sample_lanes(tc, next.x, lanes, 0, nw);
 LRIGID_IVDEP
-    for (int j = 0; j < kBatch; ++j) {
+    for (int j = 0; j < nw; ++j) {
       const T q[4] = {next.q[0][j], next.q[1][j], next.q[2][j], next.q[3][j]};
       const T acc[3] = {lanes->acc[0][j], lanes->acc[1][j], lanes->acc[2][j]};
       T u_f[3], V[3] = {next.vel[0][j], next.vel[1][j], next.vel[2][j]},
@@ -232,7 +233,7 @@ LRIGID_IVDEP
   T(&wn)[3][kBatch] = next.w;
   T(&qn)[4][kBatch] = next.q;
   T(&usn)[3][kBatch] = next.us;
-  for (int j = 0; j < kBatch; ++j) next.scalar[j] = 0;
+  for (int j = 0; j < nw; ++j) next.scalar[j] = 0;
   // what the Newton iteration of stiff drag needs
   alignas(64) T uf[3][kBatch], Pi[3][kBatch], dP[3][kBatch], dL[3][kBatch], V0[3][kBatch];
   alignas(64) T G[3][kBatch];  // h times the forces other than drag, + b_B h a_fluid
@@ -240,7 +241,7 @@ LRIGID_IVDEP
   int stiff[kBatch];
   int any_stiff = 0;
 LRIGID_IVDEP
-  for (int j = 0; j < kBatch; ++j) {
+  for (int j = 0; j < nw; ++j) {
     T us[3] = {lanes->us[0][j], lanes->us[1][j], lanes->us[2][j]};
     const T U[3] = {lanes->U[0][j], lanes->U[1][j], lanes->U[2][j]};
     const T gs[3] = {lanes->gs[0][j], lanes->gs[1][j], lanes->gs[2][j]};
@@ -330,12 +331,12 @@ LRIGID_IVDEP
   // stiff drag: Newton on R(dPi) = dPi - h (G_other + F_drag(xi(dPi))) - b_B (h a - dV), lanes
   // drop out as they converge
   if (WithDrag && any_stiff) {
-    for (int j = 0; j < kBatch; ++j)
+    for (int j = 0; j < nw; ++j)
       lanes->newton += uint64_t(stiff[j] != 0) & uint64_t(lanes->live[j]);
     for (int it = 0; it < kDragMaxNewton; ++it) {
       int any = 0;
 LRIGID_IVDEP
-      for (int j = 0; j < kBatch; ++j) {
+      for (int j = 0; j < nw; ++j) {
         // every lane computes, the lanes still iterating keep the result
         const bool act = stiff[j] != 0;
         T vr[3], w[3];
@@ -376,7 +377,7 @@ LRIGID_IVDEP
   }
   // 4. x by the trapezoidal rule; 5. the second OU half step at the new position
 LRIGID_IVDEP
-  for (int j = 0; j < kBatch; ++j)
+  for (int j = 0; j < nw; ++j)
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) xn[a][j] = lanes->x[a][j] + hh * (V0[a][j] + Vn[a][j]);
   end_step<T, Turb>(tc, z2, Vn, &next, lanes, outcome, landed);

@@ -67,13 +67,14 @@ LRIGID_LANE void sphere_forces(const StepConsts& tc, const T* F, const T* vr, co
 template <typename T, bool Turb, bool WithDrag, bool Extra>
 LRIGID_MULTIVERSION void euler_lanes(const StepConsts& tc, Lanes<T>* lanes, uint64_t step,
                                      int* outcome, int* landed) {
+  const int nw = lanes->width;
   const T h = T(tc.h);
   alignas(64) T z[3][kBatch];
   [[maybe_unused]] alignas(64) T unused[3][kBatch];
   if constexpr (Turb) lane_normals<T, true>(tc, *lanes, step, z, unused);
   NewState<T> next;
   LRIGID_IVDEP
-  for (int j = 0; j < kBatch; ++j) {
+  for (int j = 0; j < nw; ++j) {
     T us[3] = {lanes->us[0][j], lanes->us[1][j], lanes->us[2][j]};
     const T q[4] = {lanes->q[0][j], lanes->q[1][j], lanes->q[2][j], lanes->q[3][j]};
     const T V0[3] = {lanes->V[0][j], lanes->V[1][j], lanes->V[2][j]};
@@ -128,9 +129,10 @@ LRIGID_MULTIVERSION void euler_lanes(const StepConsts& tc, Lanes<T>* lanes, uint
 template <typename T, bool Turb, bool WithDrag, bool Extra, int I>
 LRIGID_LANE void rk4_stage(const StepConsts& tc, const Lanes<T>* lanes, const T (*z)[kBatch],
                            Rk4Block<T>* k, NewState<T>* next) {
+  const int nw = lanes->width;
   const T h = T(tc.h);
   LRIGID_IVDEP
-  for (int j = 0; j < kBatch; ++j) {
+  for (int j = 0; j < nw; ++j) {
     const T us0[3] = {lanes->us[0][j], lanes->us[1][j], lanes->us[2][j]};
     const T q0[4] = {lanes->q[0][j], lanes->q[1][j], lanes->q[2][j], lanes->q[3][j]};
     T q[4], theta[3], v[3], w[3], R[9];
@@ -212,6 +214,7 @@ LRIGID_LANE void rk4_stage(const StepConsts& tc, const Lanes<T>* lanes, const T 
 template <typename T, bool Turb, bool WithDrag, bool Extra>
 LRIGID_MULTIVERSION void rk4_lanes(const StepConsts& tc, const Rk4Frames& frames,
                                    Lanes<T>* lanes, uint64_t step, int* outcome, int* landed) {
+  const int nw = lanes->width;
   const T h = T(tc.h);
   alignas(64) T z[3][kBatch];
   [[maybe_unused]] alignas(64) T unused[3][kBatch];
@@ -223,7 +226,7 @@ LRIGID_MULTIVERSION void rk4_lanes(const StepConsts& tc, const Rk4Frames& frames
   });
   const T h6 = h / T(6);
   LRIGID_IVDEP
-  for (int j = 0; j < kBatch; ++j) {
+  for (int j = 0; j < nw; ++j) {
     const T q0[4] = {lanes->q[0][j], lanes->q[1][j], lanes->q[2][j], lanes->q[3][j]};
     T theta[3], q1[4], R0[9], R1[9], dv[3], v1[3], dR[9], a0[3], a1[3], V1[3];
 #pragma GCC unroll 3

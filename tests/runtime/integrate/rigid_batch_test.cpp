@@ -521,6 +521,22 @@ TEST(RigidBatch, IdenticalForAnyThreadCount) {
   EXPECT_EQ(d.u, 0.0);
 }
 
+// A block steps only the lanes up to its last live one, rounded up to whole vectors
+// (Samples::width): bodies 5-13 alone end bitwise where they end in a full block of 32, on both
+// precisions and both implicit schemes, with bodies landing on the way
+// (batch_test::expect_lanes_ignore_width).
+TEST(RigidBatch, ALaneEndsTheSameWhateverHowManyLanesItsBlockSteps) {
+  const FluidField field = wind_grid(1.5e-5);
+  for (const Integrator scheme : {Integrator::Splitting, Integrator::Strang}) {
+    for (const Precision p : {Precision::Double, Precision::Float}) {
+      Scene s = rigid_scene(Shape::box(0.06, 0.04, 4e-4), 600, 32);
+      s.integrator = scheme;
+      s.duration = 1.5;
+      batch_test::expect_lanes_ignore_width(s, field, p);
+    }
+  }
+}
+
 TEST(RigidBatch, FloatStaysCloseToDouble) {
   // spinning seed pods (the free Kirchhoff flow of an anisotropic inertia; not chaotic like
   // tumbling plates): float follows double closely over 1 s

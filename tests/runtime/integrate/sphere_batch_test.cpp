@@ -58,6 +58,19 @@ TEST(SphereBatch, BeadsInAGridMatchTheScalarStep) {
   EXPECT_GT((batched.state.u_seen[0] - batched.state.u_seen[1]).norm(), 0.0);
 }
 
+// The sphere step's lanes do not depend on how many lanes their block steps either
+// (batch_test::expect_lanes_ignore_width).
+TEST(SphereBatch, ALaneEndsTheSameWhateverHowManyLanesItsBlockSteps) {
+  const FluidField field = wind_grid(1.5e-5);
+  for (const Integrator scheme : {Integrator::Splitting, Integrator::Strang}) {
+    for (const Precision p : {Precision::Double, Precision::Float}) {
+      Scene s = bead_scene(2.5e-4, 2500, 32);
+      s.integrator = scheme;
+      batch_test::expect_lanes_ignore_width(s, field, p);
+    }
+  }
+}
+
 TEST(SphereBatch, BeadsInAGustingSeriesMatchTheScalarStep) {
   // a time-dependent field (four frames, batch_compare.h): blended samples and dU/dt
   const Scene s = bead_scene(2.5e-4, 2500, 100);
