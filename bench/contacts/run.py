@@ -33,8 +33,19 @@ import sys
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.normpath(os.path.join(HERE, "..", ".."))
 sys.path.insert(0, os.path.join(ROOT, "bench", "lib"))
-from callgrind_count import callgrind  # noqa: E402
+from callgrind_count import callgrind, inclusive_table, instructions_of  # noqa: E402
 
+# measure 2's difference by part: (key, the functions' symbols); the first three do not call one
+# another, so with the rest of `simulate` they split it
+PARTS = (("step", r"step_lanes<"), ("contact", r"lrigid::contact_after_step\("),
+         ("watch", r"lrigid::watch_sleeper\("), ("sample", r"sample_lanes<"))
+PART_NAMES = {
+    "step": "the batched steps' loops (`step_lanes`, every variant; with the samples they take)",
+    "contact": "the contact pass (`contact_after_step`)",
+    "watch": "the sleepers' gust watches (`watch_sleeper`)",
+    "rest": "the rest of `simulate` (block driver, samples taken again after a contact, hand-offs)",
+    "sample": "of these, the lanes' samples (`sample_lanes`, in the steps and after contacts)",
+}
 BEGIN = "<!-- contacts-cost:begin (bench/contacts/run.py; do not edit) -->"
 END = "<!-- contacts-cost:end -->"
 
@@ -85,8 +96,10 @@ def main():
                              "--body-steps", "1",
                              "--min-steps", "40", "--warmup", "0", "--quiet"],
                             os.path.join(a.out, "cg_bench_%s.out" % mode))
+        table = inclusive_table(os.path.join(a.out, "cg_run_%s.out" % mode))
         rows[mode] = {"run": run_i, "steps": summ["body_steps"], "bench": bench_i,
-                      "states": summ.get("states", {})}
+                      "states": summ.get("states", {}),
+                      "parts": {key: instructions_of(table, pat) for key, pat in PARTS}}
     c, s = rows["collide"], rows["stop"]
     per_c, per_s = c["run"] / c["steps"], s["run"] / s["steps"]
     commit = subprocess.run(["git", "-C", ROOT, "rev-parse", "--short", "HEAD"],
@@ -114,6 +127,18 @@ def main():
     w("| 3. whole run, `simulate` | %.0f M instr (%d body-steps) | %.0f M instr (%d body-steps)"
       " | **%.2fx** |" % (c["run"] / 1e6, c["steps"], s["run"] / 1e6, s["steps"],
                            c["run"] / s["run"]))
+    w("")
+    w("Measure 2 by part (callgrind inclusive instructions of the whole runs, per body-step of "
+      "each run):")
+    w("")
+    w("| part | with contacts | without | difference |")
+    w("|---|---|---|---|")
+    for r in (c, s):
+        r["parts"]["rest"] = r["run"] - r["parts"]["step"] - r["parts"]["contact"] - \
+            r["parts"]["watch"]
+    for key in ("step", "contact", "watch", "rest", "sample"):
+        pc, ps = c["parts"][key] / c["steps"], s["parts"][key] / s["steps"]
+        w("| %s | %.0f | %.0f | %+.0f |" % (PART_NAMES[key], pc, ps, pc - ps))
     w("")
     w("Final states with contacts: %s; without: %s." %
       (", ".join("%s %d" % kv for kv in sorted(c["states"].items()) if kv[1]),

@@ -7,15 +7,28 @@ import subprocess
 import sys
 
 
+def inclusive_table(cg_file):
+    """[(inclusive instructions, symbol)] of every function of a callgrind output"""
+    out = subprocess.run(["callgrind_annotate", "--inclusive=yes", "--threshold=100", cg_file],
+                         capture_output=True, text=True, check=True).stdout
+    rows = []
+    for line in out.splitlines():
+        m = re.match(r"\s*([\d,]+)\s+\(.*?\)\s+(?:\*\s+)?\S*?:(.*)$", line)
+        if m:
+            rows.append((int(m.group(1).replace(",", "")), m.group(2)))
+    return rows
+
+
+def instructions_of(rows, pattern):
+    """the summed inclusive instructions of the distinct functions whose symbol matches the regular
+    expression `pattern` (template instances of one function are distinct functions)"""
+    return sum(n for n, sym in rows if re.search(pattern, sym))
+
+
 def simulate_instructions(cg_file):
     """`simulate` inclusive instructions of a callgrind output (the largest simulate entry)"""
-    out = subprocess.run(["callgrind_annotate", "--inclusive=yes", cg_file], capture_output=True,
-                         text=True, check=True).stdout
-    best = 0
-    for line in out.splitlines():
-        m = re.match(r"\s*([\d,]+)\s+\(.*\)\s+\S*lrigid::simulate\(", line)
-        if m:
-            best = max(best, int(m.group(1).replace(",", "")))
+    best = max([n for n, sym in inclusive_table(cg_file) if re.match(r"lrigid::simulate\(", sym)],
+               default=0)
     if best == 0:
         sys.exit("callgrind_count: no lrigid::simulate in %s" % cg_file)
     return best
