@@ -522,8 +522,8 @@ TEST(RigidBatch, IdenticalForAnyThreadCount) {
 }
 
 // A block steps only the lanes up to its last live one, rounded up to whole vectors
-// (Samples::width): bodies 5-13 or 5-10 alone end bitwise where they end in a full block of 32, on both
-// precisions and both implicit schemes, with bodies landing on the way
+// (Samples::width): bodies 5-13 or 5-10 alone end bitwise where they end in a full block of
+// 32, on both precisions and both implicit schemes, with bodies landing on the way
 // (batch_test::expect_lanes_ignore_width).
 TEST(RigidBatch, ALaneEndsTheSameWhateverHowManyLanesItsBlockSteps) {
   const FluidField field = wind_grid(1.5e-5);
