@@ -428,7 +428,11 @@ int contact_rest(const ContactParams& k, const T* M, T* v, T* w, int m, const T*
 // the cone |J_t| <= mu J_n. Normal and friction impulses are solved one after the other, so a
 // sliding point's friction is mu J_n against its slip exactly (a 3x3 solve with a radial
 // projection of the coupled impulse would lose part of it to the rotation coupling). Points
-// with depth < 0 (not touching) take none. v and w (body frame) are updated in place; dx
+// with depth < 0 (not touching) take none, unless horizon > 0 (s): then they are speculative
+// points, off the surface by -depth, whose target normal velocity is depth / horizon (they may
+// approach as fast as closes the gap in that time, no faster: a body lying on a surface has
+// all its near points in the problem, docs/contacts.md "Speculative points"); contact_rest's
+// certificate is not offered while one takes part. v and w (body frame) are updated in place; dx
 // receives the deepest point's position correction (body frame). Returns the number of points
 // that carry a normal impulse. At most kContactMaxPoints points. It loops and branches per
 // point: one body at a time (a batched loop calls it per lane). With k.rolling_resistance > 0
@@ -452,7 +456,8 @@ constexpr double kContactTolerance = 1e-6;
 constexpr double kContactPlaneCos = 1e-6;
 template <typename T>
 int contact_resolve(const ContactParams& k, const T* Minv, T* v, T* w, int count, const T* r,
-                    const T* n, const T* depth, int passes, T* dx, const T* M = nullptr) {
+                    const T* n, const T* depth, int passes, T* dx, const T* M = nullptr,
+                    T horizon = T(0)) {
   const int m = count < kContactMaxPoints ? count : kContactMaxPoints;
   if (M && m >= 3 && m <= kContactRestPoints && !(k.rolling_resistance > T(0))) {
     // a body lying on one plane, every point touching and approaching slower than rest_speed:
@@ -492,6 +497,9 @@ int contact_resolve(const ContactParams& k, const T* Minv, T* v, T* w, int count
     for (int a = 0; a < 3; ++a) vc[a] = v[a] + wxr[a];
     const T vn = dot3(vc, n + 3 * i);
     target[i] = vn < -T(k.rest_speed) ? -T(k.restitution) * vn : T(0);
+    // a speculative point (off the surface by -depth): it may approach until it closes the gap
+    // in the next step, no faster
+    if (depth[i] < T(0)) target[i] = horizon > T(0) ? depth[i] / horizon : T(0);
     // K of the point: its velocity change per unit impulse (symmetric positive definite)
     T dvc[3], dv[3], dw[3];
     for (int j = 0; j < 3; ++j) {
@@ -596,7 +604,7 @@ int contact_resolve(const ContactParams& k, const T* Minv, T* v, T* w, int count
     // when it is below kContactTolerance of it (a resting body: after 2 or 3 sweeps)
     T change = T(0), scale = T(0);
     for (int i = 0; i < m; ++i) {
-      if (!(depth[i] >= T(0))) continue;
+      if (!(depth[i] >= T(0)) && !(depth[i] < T(0) && horizon > T(0))) continue;
       const T *ri = r + 3 * i, *ni = n + 3 * i;
       // the normal impulse: the point's normal velocity to its target, never pulling
       T vc[3];

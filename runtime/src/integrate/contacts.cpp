@@ -14,16 +14,19 @@ namespace lrigid {
 namespace {
 
 // The touching points of one body: body-frame offsets from the centre of mass, body-frame unit
-// normals (from the surface into the fluid) and depths (m, >= 0).
+// normals (from the surface into the fluid) and depths (m; >= 0 for a point that touches, < 0
+// for a speculative point: minus its gap to the surface, which it closes within the next step).
 struct Touching {
   double r[3 * kContactMaxPoints];
   double n[3 * kContactMaxPoints];
   double depth[kContactMaxPoints];
   int count = 0;
-  bool ground = false;
+  int touching = 0;     // of them, the points that touch (depth >= 0)
+  bool ground = false;  // a touching point is on the ground
   void add(const Vec3& rb, const Vec3& nb, double d) {
     if (count == kContactMaxPoints) return;
     for (int a = 0; a < 3; ++a) r[3 * count + a] = rb[a], n[3 * count + a] = nb[a];
+    touching += d >= 0;
     depth[count++] = d;
   }
 };
@@ -31,10 +34,22 @@ struct Touching {
 // The shape's points that reach a surface, with the positions `ahead` seconds ahead at the
 // points' current velocities (0: where they are). slack >= 0: points up to slack (m) off the
 // surface count too, with depth 0 (an impact located inside a step: the points that touch there).
+// spec > 0 (s): the points off the surface that approach it slower than Model::rest_speed and
+// reach it within spec at their velocity count too, as speculative points (depth: minus the
+// gap): a body lying on a surface tilted by less than what one step closes then has its other
+// edge in the contact problem too (docs/contacts.md "Speculative points").
 void gather(const Model& m, const BodyType& type, const BodyState& b, const Mat3& R, double t,
-            double ahead, Touching* out, WallClearance* clearance = nullptr, double slack = 0) {
+            double ahead, Touching* out, WallClearance* clearance = nullptr, double slack = 0,
+            double spec = 0) {
   const ContactParams& k = *type.contact;
   const Mat3 Rt = R.transpose();
+  // how far off a surface a speculative point can be: spec times the slowest approach of an
+  // impact (faster points are impacts, taken where they happen)
+  const double reach_spec = spec > 0 ? spec * m.rest_speed : 0.0;
+  // a point at depth d < 0 (off the surface) approaching it at `approach` m/s: speculative
+  auto speculative = [&](double d, double approach) {
+    return d < 0 && approach <= m.rest_speed && d + spec * approach >= 0;
+  };
   // points on the ground need no wall check: the grid's floor is the ground, twice the same
   // constraint would only cost
   uint8_t on_ground[kContactMaxPoints * 4] = {};
@@ -42,7 +57,7 @@ void gather(const Model& m, const BodyType& type, const BodyState& b, const Mat3
   // temporary after it is gone, and ground_depth read that stack garbage, times 0 when not ahead:
   // a NaN there dropped a touching point at random)
   auto point_velocity = [&](const Vec3& rb) -> Vec3 { return R * (b.v + b.w.cross(rb)); };
-  if (m.ground_collides() && b.x.z() - type.reach <= m.ground_z + slack) {
+  if (m.ground_collides() && b.x.z() - type.reach <= m.ground_z + slack + reach_spec) {
     const Vec3 ez(0, 0, 1);
     // only the point's height: the last row of R (and its velocity only when looking ahead)
     const Vec3 rz = R.row(2).transpose();
@@ -56,7 +71,10 @@ void gather(const Model& m, const BodyType& type, const BodyState& b, const Mat3
       Vec3 rb;
       ellipsoid_support_point(k, nb.data(), rb.data());
       const double d = ground_depth(rb);
-      if (d >= -slack) out->add(rb, nb, std::max(d, 0.0)), out->ground = true;
+      if (d >= -slack)
+        out->add(rb, nb, std::max(d, 0.0)), out->ground = true;
+      else if (spec > 0 && speculative(d, -point_velocity(rb).z()))
+        out->add(rb, nb, d);
     } else {
       const Vec3 nb = Rt * ez;
       for (size_t p = 0; p < k.count(); ++p) {
@@ -72,6 +90,11 @@ void gather(const Model& m, const BodyType& type, const BodyState& b, const Mat3
           out->add(rb, nb, std::max(d, 0.0));
           out->ground = true;
           if (p < sizeof on_ground) on_ground[p] = 1;
+        } else if (spec > 0 && speculative(d, -point_velocity(rb).z())) {
+          // (an edge's point between a touching and a speculative corner, or two speculative
+          // ones, is implied by them as well: the gap too is linear along the edge)
+          out->add(rb, nb, d);
+          if (p < sizeof on_ground) on_ground[p] = 1;
         }
       }
     }
@@ -79,7 +102,8 @@ void gather(const Model& m, const BodyType& type, const BodyState& b, const Mat3
   if (!m.walls_collide()) return;
   // a body near a colliding ground that is the grid's floor, away from every other wall: the
   // ground above was the only surface it could touch (touching or not)
-  if (m.ground_collides() && m.field.only_floor_near(b.x, type.reach + slack, m.ground_z, t))
+  if (m.ground_collides() &&
+      m.field.only_floor_near(b.x, type.reach + slack + reach_spec, m.ground_z, t))
     return;
   if (clearance && clearance->radius >= 0 && (b.x - clearance->x).norm() < clearance->radius)
     return;
@@ -88,20 +112,24 @@ void gather(const Model& m, const BodyType& type, const BodyState& b, const Mat3
   const bool inside = m.field.wall_distance(b.x, t, &dc, &gc);
   if (clearance) {
     clearance->x = b.x;
-    clearance->radius = inside ? (dc - type.reach) / std::sqrt(3.0) : -1;
+    clearance->radius = inside ? (dc - type.reach - reach_spec) / std::sqrt(3.0) : -1;
   }
-  if (!inside || dc > type.reach + slack) return;
+  if (!inside || dc > type.reach + slack + reach_spec) return;
   // a point touches where the wall distance is <= 0; its normal is the distance's gradient
   auto wall = [&](const Vec3& rb, Vec3* nw) {
     Vec3 p = b.x + R * rb;
     if (ahead != 0) p += ahead * point_velocity(rb);
     double d;
     Vec3 g;
-    if (!m.field.wall_distance(p, t, &d, &g) || d > slack) return -HUGE_VAL;
+    if (!m.field.wall_distance(p, t, &d, &g) || d > slack + reach_spec) return -HUGE_VAL;
     const double gn = g.norm();
     if (!(gn > 0)) return -HUGE_VAL;
     *nw = g / gn;
     return -d;
+  };
+  // a wall's point at depth d (< -slack: off the wall), normal nw (world): speculative?
+  auto wall_speculative = [&](const Vec3& rb, double d, const Vec3& nw) {
+    return spec > 0 && d > -HUGE_VAL && speculative(d, -point_velocity(rb).dot(nw));
   };
   Vec3 nw;
   if (k.support) {
@@ -114,13 +142,19 @@ void gather(const Model& m, const BodyType& type, const BodyState& b, const Mat3
     Vec3 rb;
     ellipsoid_support_point(k, nb.data(), rb.data());
     const double d = wall(rb, &nw);
-    if (d >= -slack) out->add(rb, Rt * nw, std::max(d, 0.0));
+    if (d >= -slack)
+      out->add(rb, Rt * nw, std::max(d, 0.0));
+    else if (wall_speculative(rb, d, nw))
+      out->add(rb, Rt * nw, d);
   } else {
     for (size_t p = 0; p < k.count(); ++p) {
       if (p < sizeof on_ground && on_ground[p]) continue;
       const Vec3 rb(k.points[3 * p], k.points[3 * p + 1], k.points[3 * p + 2]);
       const double d = wall(rb, &nw);
-      if (d >= -slack) out->add(rb, Rt * nw, std::max(d, 0.0));
+      if (d >= -slack)
+        out->add(rb, Rt * nw, std::max(d, 0.0));
+      else if (wall_speculative(rb, d, nw))
+        out->add(rb, Rt * nw, d);
     }
   }
 }
@@ -438,10 +472,13 @@ bool impact_through_floor(const Model& model, const BodyType& type, size_t i, do
 bool contact_after_step(const Model& model, const BodyType& type, size_t i, double t_end,
                         BodyState* b, State* st, WallClearance* clearance,
                         const BodyState* start) {
+  const double h = model.dt;
   Mat3 R = b->q.toRotationMatrix();
   Touching c;
-  gather(model, type, *b, R, t_end, 0.0, &c, clearance);
-  if (c.count == 0) {
+  // with the speculative points of the next step: a body lying on a surface, whatever its tilt
+  // within what a step closes, is held by all of its near points at once
+  gather(model, type, *b, R, t_end, 0.0, &c, clearance, 0.0, h);
+  if (c.touching == 0) {
     mark_flying(st, i);
     return false;
   }
@@ -455,8 +492,8 @@ bool contact_after_step(const Model& model, const BodyType& type, size_t i, doub
     st->contact[i] = ContactState::Sliding;
     R = b->q.toRotationMatrix();
     c = Touching{};
-    gather(model, type, *b, R, t_end, 0.0, &c, nullptr);
-    if (c.count == 0) {
+    gather(model, type, *b, R, t_end, 0.0, &c, nullptr, 0.0, h);
+    if (c.touching == 0) {
       mark_flying(st, i);
       return false;
     }
@@ -465,8 +502,8 @@ bool contact_after_step(const Model& model, const BodyType& type, size_t i, doub
   double dx[3];
   // M^-1 is symmetric: its column-major data is its row-major data
   contact_resolve(*type.contact, type.M_inv.data(), b->v.data(), b->w.data(), c.count, c.r, c.n,
-                  c.depth, kContactPasses, dx, type.M.data());
-  const double h = model.dt, cw = end_velocity_weight(model) * h;
+                  c.depth, kContactPasses, dx, type.M.data(), h);
+  const double cw = end_velocity_weight(model) * h;
   const Vec3 dv = b->v - v0, dw = b->w - w0;
   // the position update with the velocity after the impulse, then what remains of the deepest
   // penetration
