@@ -432,13 +432,14 @@ int contact_rest(const ContactParams& k, const T* M, T* v, T* w, int m, const T*
 // points, off the surface by -depth, whose target normal velocity is depth / horizon (they may
 // approach as fast as closes the gap in that time, no faster: a body lying on a surface has
 // all its near points in the problem, docs/contacts.md "Speculative points"); contact_rest's
-// certificate is not offered while one takes part. v and w (body frame) are updated in place; dx
-// receives the deepest point's position correction (body frame). Returns the number of points
-// that carry a normal impulse. At most kContactMaxPoints points. It loops and branches per
-// point: one body at a time (a batched loop calls it per lane). With k.rolling_resistance > 0
-// each sweep gives each point, between its normal and its friction impulse, the rolling
-// resistance's angular impulse (rolling_resistance_impulse, accumulated per point, capped by
-// mu_r |r_i| J_n,i). With M (the 6x6 generalized mass, row-major; the inverse of Minv), a body
+// certificate is offered on the touching points alone (where it holds, v = w = 0 keeps every
+// speculative point within its constraint, carrying nothing). v and w (body frame) are updated
+// in place; dx receives the deepest point's position correction (body frame). Returns the
+// number of points that carry a normal impulse. At most kContactMaxPoints points. It loops and
+// branches per point: one body at a time (a batched loop calls it per lane). With
+// k.rolling_resistance > 0 each sweep gives each point, between its normal and its friction
+// impulse, the rolling resistance's angular impulse (rolling_resistance_impulse, accumulated
+// per point, capped by mu_r |r_i| J_n,i). With M (the 6x6 generalized mass, row-major; the inverse of Minv), a body
 // lying on one plane is first offered contact_rest's certificate: when it holds, v = w = 0 at
 // once and no sweep runs.
 constexpr int kContactMaxPoints = 64;
@@ -459,20 +460,31 @@ int contact_resolve(const ContactParams& k, const T* Minv, T* v, T* w, int count
                     const T* n, const T* depth, int passes, T* dx, const T* M = nullptr,
                     T horizon = T(0)) {
   const int m = count < kContactMaxPoints ? count : kContactMaxPoints;
-  if (M && m >= 3 && m <= kContactRestPoints && !(k.rolling_resistance > T(0))) {
-    // a body lying on one plane, every point touching and approaching slower than rest_speed:
-    // contact_rest's certificate, before the sweeps' set-up
+  if (M && m >= 3 && !(k.rolling_resistance > T(0))) {
+    // a body lying on one plane, its touching points (3 to kContactRestPoints) on it and
+    // approaching slower than rest_speed: contact_rest's certificate, before the sweeps' set-up.
+    // Speculative points (depth < 0) stay out of it: where it holds, v = w = 0 leaves each of
+    // them where it is, within its constraint (it may approach at -depth / horizon), and it
+    // carries nothing -- the exact solution of the problem with them too.
+    T rt[3 * kContactRestPoints], nt[3 * kContactRestPoints];
+    int mt = 0;
     bool plane = true;
     for (int i = 0; i < m && plane; ++i) {
+      if (depth[i] < T(0)) continue;
       const T* ri = r + 3 * i;
       T wxr[3], vc[3];
       cross3(w, ri, wxr);
       for (int a = 0; a < 3; ++a) vc[a] = v[a] + wxr[a];
-      plane = depth[i] >= T(0) && dot3(n + 3 * i, n) >= T(1) - T(kContactPlaneCos) &&
+      const T* n0 = mt > 0 ? nt : n + 3 * i;
+      plane = mt < kContactRestPoints && depth[i] >= T(0) &&
+              dot3(n + 3 * i, n0) >= T(1) - T(kContactPlaneCos) &&
               dot3(vc, n + 3 * i) >= -T(k.rest_speed);
+      if (!plane) break;
+      for (int a = 0; a < 3; ++a) rt[3 * mt + a] = ri[a], nt[3 * mt + a] = n[3 * i + a];
+      ++mt;
     }
-    if (plane) {
-      const int carrying = contact_rest(k, M, v, w, m, r, n);
+    if (plane && mt >= 3) {
+      const int carrying = contact_rest(k, M, v, w, mt, rt, nt);
       if (carrying > 0) {
         int deepest = 0;
         for (int i = 1; i < m; ++i)

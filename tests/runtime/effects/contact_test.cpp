@@ -435,6 +435,26 @@ TEST(Contact, ASpeculativePointApproachesNoFasterThanClosesItsGapInTheHorizon) {
       EXPECT_NEAR(std::abs(w[1]) / (1.5 * V / L), 1.0, 1e-4);
     }
   }
+  // three corners touching, the fourth speculative, the leaf at rest but for one step of
+  // gravity: contact_rest's certificate on the three touching corners stops it exactly (v = w =
+  // 0 keeps the fourth 1e-5 m off, within its constraint, carrying nothing); the sweeps alone
+  // (no M) come to the same
+  {
+    std::vector<double> d3 = {1e-5, 1e-5, 1e-5, 1e-5};
+    d3[3] = -gap;
+    double v3[3] = {0, 0, -9.81 * h}, w3[3] = {0, 0, 0}, dx[3];
+    double vs[3] = {v3[0], v3[1], v3[2]}, ws[3] = {0, 0, 0};
+    EXPECT_EQ(contact_resolve(k, Minv.data(), v3, w3, 4, r.data(), n.data(), d3.data(), 200, dx,
+                              M.data(), h),
+              3);
+    for (int a = 0; a < 3; ++a) {
+      EXPECT_EQ(v3[a], 0.0);
+      EXPECT_EQ(w3[a], 0.0);
+    }
+    contact_resolve(k, Minv.data(), vs, ws, 4, r.data(), n.data(), d3.data(), 200, dx,
+                    static_cast<const double*>(nullptr), h);
+    for (int i = 0; i < 4; ++i) EXPECT_LT(point_velocity(vs, ws, &r[3 * i]).norm(), 1e-6) << i;
+  }
   // a speculative point moving away takes no impulse (points never pull): the leaf rising at
   // its +x edge is left alone there
   double v[3] = {0, 0, 0}, w[3] = {0, -0.5, 0}, dx[3];
