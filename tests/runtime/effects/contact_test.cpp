@@ -332,23 +332,33 @@ std::vector<double> lower_corners(const ContactParams& k) {
   return r;
 }
 
+// A 6 x 4 cm leaf, 0.4 mm thick, 5.76e-4 kg, lying on the ground: its diagonal M^-1 and M
+// (row-major), its contact parameters (e 0.1, mu 0.6, rest_speed 0.08 m/s), its 4 lower
+// corners and their normal +z.
+struct LyingLeaf {
+  Vec3 size{0.06, 0.04, 0.0004};
+  double m = 5.76e-4;
+  std::array<double, 36> Minv{}, M{};
+  ContactParams k;
+  std::vector<double> r, n = {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1};
+  LyingLeaf() {
+    const Vec3 I(m / 12 * (size.y() * size.y() + size.z() * size.z()),
+                 m / 12 * (size.x() * size.x() + size.z() * size.z()),
+                 m / 12 * (size.x() * size.x() + size.y() * size.y()));
+    Minv = diag_inverse(m, I);
+    for (int a = 0; a < 6; ++a) M[7 * a] = 1 / Minv[7 * a];
+    k = contact_params(Shape::box(size.x(), size.y(), size.z()), Vec3::Zero(), 0.1, 0.6, 0.01);
+    k.rest_speed = 0.08;
+    r = lower_corners(k);
+  }
+};
+
 TEST(Contact, ALeafLyingOnTheGroundStopsAtOnceWhereTheSweepsStopIt) {
   // a 6 x 4 cm leaf after one 2 ms step of gravity on the ground: contact_rest's certificate
   // holds and stops it exactly; the sweeps alone (no M) reach the same to their tolerance
-  const Vec3 size(0.06, 0.04, 0.0004);
-  const double m = 5.76e-4;
-  const Vec3 I(m / 12 * (size.y() * size.y() + size.z() * size.z()),
-               m / 12 * (size.x() * size.x() + size.z() * size.z()),
-               m / 12 * (size.x() * size.x() + size.y() * size.y()));
-  const std::array<double, 36> Minv = diag_inverse(m, I);
-  std::array<double, 36> M{};
-  for (int a = 0; a < 6; ++a) M[7 * a] = 1 / Minv[7 * a];
-  ContactParams k = contact_params(Shape::box(size.x(), size.y(), size.z()), Vec3::Zero(), 0.1,
-                                   0.6, 0.01);
-  k.rest_speed = 0.08;
-  const std::vector<double> r = lower_corners(k);
+  const LyingLeaf leaf;
+  const auto& [size, m, Minv, M, k, r, n] = leaf;
   ASSERT_EQ(r.size(), 12u);
-  const std::vector<double> n = {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1};
   const std::vector<double> depth = {2e-5, 1e-5, 2e-5, 1e-5};
   double v[3] = {0.004, -0.002, -9.81 * 0.002}, w[3] = {0.01, -0.02, 0.03}, dx[3];
   double vs[3] = {v[0], v[1], v[2]}, ws[3] = {w[0], w[1], w[2]};
@@ -387,20 +397,10 @@ TEST(Contact, ASpeculativePointApproachesNoFasterThanClosesItsGapInTheHorizon) {
   // -1e-5, horizon 2 ms) they may approach at 5 mm/s, no faster: the leaf stops nearly level.
   // Without them only the touching edge holds it, and it tips onto the other edge at 1.5 times
   // the speed it fell.
-  const Vec3 size(0.06, 0.04, 0.0004);
-  const double m = 5.76e-4, h = 2e-3, gap = 1e-5;
-  const Vec3 I(m / 12 * (size.y() * size.y() + size.z() * size.z()),
-               m / 12 * (size.x() * size.x() + size.z() * size.z()),
-               m / 12 * (size.x() * size.x() + size.y() * size.y()));
-  const std::array<double, 36> Minv = diag_inverse(m, I);
-  std::array<double, 36> M{};
-  for (int a = 0; a < 6; ++a) M[7 * a] = 1 / Minv[7 * a];
-  ContactParams k = contact_params(Shape::box(size.x(), size.y(), size.z()), Vec3::Zero(), 0.1,
-                                   0.6, 0.01);
-  k.rest_speed = 0.08;
-  const std::vector<double> r = lower_corners(k);
+  const double h = 2e-3, gap = 1e-5;
+  const LyingLeaf leaf;
+  const auto& [size, m, Minv, M, k, r, n] = leaf;
   ASSERT_EQ(r.size(), 12u);
-  const std::vector<double> n = {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1};
   std::vector<double> depth(4);
   for (int i = 0; i < 4; ++i) depth[size_t(i)] = r[3 * size_t(i)] < 0 ? 1e-5 : -gap;
   const double tol = 1e-6;
