@@ -759,7 +759,7 @@ BlockStats drive_block(const Model& model, const BodyType& type, const FieldCons
             if (asleep) {
               lanes->live[j] = false;
               // asleep until its watch wakes it, in this stretch or a later one
-              const uint64_t wake = watch_sleeper(model, &st, i, t + model.dt, last);
+              const uint64_t wake = watch_sleeper(model, &st, i, last);
               if (wake < last) dormant[j] = wake;
             }
           }

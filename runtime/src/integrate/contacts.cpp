@@ -308,35 +308,92 @@ bool fall_asleep(const Model& model, const BodyType& type, size_t i, double t_en
     w = GustWatch{};
     w.u = b->u_seen;
     w.gust = gust;
-    w.step = static_cast<uint64_t>(std::llround(t_end / model.dt));
+    w.start = w.step = static_cast<uint64_t>(std::llround(t_end / model.dt));
     w.valid = 1;
   }
   return true;
 }
 
 constexpr uint64_t kWatchSalt = 0x9e3779b97f4a7c15ull;  // the watches' stream: another key
+constexpr uint64_t kWatchAcrossSalt = 0xc2b2ae3d27d4eb4full;  // their draws at the wake
 
 }  // namespace
 
-uint64_t watch_sleeper(const Model& model, State* st, size_t i, double t, uint64_t upto) {
+namespace {
+
+// An OU process of per-step decay a < 1 (its coefficient over one step of h) taken S steps at
+// once: the exact sum of S updates x <- a x + c + b z is x <- aS x + D c + bS z with aS = a^S,
+// D = (1 - a^S) / (1 - a) and bS the noise of the exact update over S h (ou_exact: its variance
+// is the S steps' b^2 (1 - a^2S) / (1 - a^2)).
+struct OUStride {
+  double decay, drift, noise;
+};
+OUStride ou_stride(const FluidSample& s, double h, const OUStep& one, uint64_t S) {
+  if (S == 1) return {one.decay, 1.0, one.noise_std};
+  const OUStep all = ou_exact(s.alpha, s.beta, double(S) * h);
+  const double drift = one.decay < 1 ? (1 - all.decay) / (1 - one.decay) : double(S);
+  return {all.decay, drift, all.noise_std};
+}
+
+}  // namespace
+
+uint64_t watch_sleeper(const Model& model, State* st, size_t i, uint64_t upto) {
   if (i >= st->watch.size() || !st->watch[i].valid) return GustWatch::kNever;
   GustWatch& w = st->watch[i];
   if (w.wake != GustWatch::kNever || !(w.gust < HUGE_VAL) || w.step >= upto) return w.wake;
+  // the flow where and when the body fell asleep (whenever the watch is asked: its steps do not
+  // depend on when)
   FluidSample s;
-  if (!sample_fluid(model, st->x[i], t, !model.field.is_uniform(), &s)) return w.wake;
+  if (!sample_fluid(model, st->x[i], double(w.start) * model.dt, !model.field.is_uniform(), &s))
+    return w.wake;
   const double un = s.U.norm();
   const Vec3 along = un > 0 ? Vec3(s.U / un) : Vec3::UnitX();
-  const OUStep ou = ou_exact(s.alpha, s.beta, model.dt);
-  // the seen model's update (turbulence_update) for a body at rest: its path velocity is 0
-  const double wm = model.well_mixed_correction ? 1.0 : 0.0;
-  const double rest[3] = {0, 0, 0};
-  for (; w.step < upto; ++w.step) {
-    double z[3];
-    NormalStream(model.seed ^ kWatchSalt, static_cast<uint32_t>(i), w.step).normals(z);
-    ou_update(wm, ou.decay, ou.noise_std, s.sigma2, rest, s.grad_sigma2.data(), z, model.dt,
-              w.u.data());
-    if (w.u.dot(along) >= w.gust) {
-      w.wake = ++w.step;
+  const double h = model.dt;
+  const OUStep one = ou_exact(s.alpha, s.beta, h);
+  // the seen model's update (turbulence_update, ou_update) for a body at rest, whose path
+  // velocity is 0: u' <- decay u' + c + noise z, each component apart, c = h 0.5 grad(sigma^2)
+  // with Thomson's drift
+  const double on = model.well_mixed_correction && s.sigma2 > 0 ? 1.0 : 0.0;
+  const Vec3 c = h * on * 0.5 * s.grad_sigma2;
+  const double ca = c.dot(along);
+  if (w.step == w.start) w.ua = w.u.dot(along);
+  // the highest the update's mean path can go from ua: the process's mean or ua itself
+  const double top = one.decay < 1 ? ca / (1 - one.decay) : (ca > 0 ? HUGE_VAL : 0.0);
+  // the draws: one normal per step it starts from, four steps to a Philox block
+  uint64_t block = GustWatch::kNever;
+  double z4[4];
+  while (w.step < upto) {
+    // S steps at once where the gust is out of reach within them: the noise's part of the
+    // path after k steps is a^k M_k, M a sum of independent symmetric terms of variance at most
+    // S b^2 a^-2S by step S, so (Levy's inequality) it reaches `room` with a probability below
+    // 2 Phi(-kWatchStrideSigmas) = 6e-14
+    uint64_t S = 1;
+    const double room = w.gust - std::max(w.ua, top);
+    if (room > 0 && one.decay < 1) {
+      const double q = room / (kWatchStrideSigmas * one.noise_std);
+      S = q * q < double(kWatchMaxStride) ? std::max<uint64_t>(1, uint64_t(q * q))
+                                          : kWatchMaxStride;
+      while (S > 1 && kWatchStrideSigmas * one.noise_std * std::sqrt(double(S)) >
+                          room * std::pow(one.decay, double(S)))
+        S /= 2;
+    }
+    if (w.step / 4 != block) {
+      block = w.step / 4;
+      NormalStream(model.seed ^ kWatchSalt, static_cast<uint32_t>(i), block).normals(z4);
+    }
+    const OUStride o = ou_stride(s, h, one, S);
+    w.ua = o.decay * w.ua + o.drift * ca + o.noise * z4[w.step % 4];
+    w.step += S;
+    if (w.ua >= w.gust) {
+      // the wake: u' across the mean flow, independent of ua, drawn at once over the whole
+      // sleep from where it was when the body fell asleep
+      const OUStride all = ou_stride(s, h, one, w.step - w.start);
+      double z[3];
+      NormalStream(model.seed ^ kWatchAcrossSalt, static_cast<uint32_t>(i), w.step).normals(z);
+      Vec3 u = all.decay * w.u + all.drift * c + all.noise * Vec3(z[0], z[1], z[2]);
+      u += (w.ua - u.dot(along)) * along;
+      w.u = u;
+      w.wake = w.step;
       break;
     }
   }
@@ -564,14 +621,13 @@ bool speculative_ground_contact(const Model& model, const BodyType& type, BodySt
 void wake_bodies(const Model& model, State* st, size_t n0, size_t n, uint64_t first,
                  uint64_t last) {
   const bool changes = model.field.frame_count() >= 2 || model.field.is_streamed();
-  const double t = static_cast<double>(first) * model.dt;
   for (size_t i = n0; i < n; ++i) {
     if (st->status[i] != BodyStatus::Sleeping) continue;
     if (changes && model.field.next_frame_time(st->t_stop[i]) <= st->t) {
       wake_sleeper(st, i);  // its flow changed: it keeps the u' it fell asleep with
       continue;
     }
-    if (watch_sleeper(model, st, i, t, last) <= first) st->u_seen[i] = wake_sleeper(st, i);
+    if (watch_sleeper(model, st, i, last) <= first) st->u_seen[i] = wake_sleeper(st, i);
   }
 }
 

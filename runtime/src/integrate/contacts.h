@@ -111,14 +111,19 @@ double wake_gust(const Model& model, const BodyType& type, const BodyState& b, c
 constexpr double kGustSigmas = 3.0;
 bool keeps_gust_watch(const Model& model, const BodyType& type);
 
-// Sleeping body i's gust watch advanced to step `upto` at the latest (t: a time whose field frame
-// is resident, for the OU coefficients at the body: the field is steady between the wakes of
-// wake_bodies). Returns the step the body wakes at: the first step whose u' along the mean flow
-// reaches the watch's gust (the step after the update that reached it), or GustWatch::kNever
-// when not before `upto`. u' follows the seen model's exact OU update with Thomson's drift for a
-// body at rest, drawn from its own counter-based stream (seed, body, step), so the wake step does
-// not depend on threads, stretches or a resumed run.
-uint64_t watch_sleeper(const Model& model, State* st, size_t i, double t, uint64_t upto);
+// Sleeping body i's gust watch advanced to step `upto` at least (the OU coefficients at the body
+// are those of the flow where and when it fell asleep: the field is steady for it until
+// wake_bodies wakes it at the next frame). Returns the step the body wakes at: the first step
+// whose u' along the mean flow reaches the watch's gust (the step after the update that reached
+// it), or GustWatch::kNever when not by `upto`. u' along the mean flow follows the seen model's
+// exact OU update with Thomson's drift for a body at rest, drawn from its own counter-based
+// stream (seed, body, step); far below the gust the watch takes many steps in one draw of their
+// exact sum, where it cannot reach the gust in between but with a probability below 1e-13
+// (kWatchStrideSigmas); the other components of u' are drawn at the wake, exactly. The wake
+// step and u' there do not depend on threads, stretches, `upto` or a resumed run.
+constexpr double kWatchStrideSigmas = 7.5;
+constexpr uint64_t kWatchMaxStride = 1024;
+uint64_t watch_sleeper(const Model& model, State* st, size_t i, uint64_t upto);
 
 // Wakes sleeping body i: status Moving, at rest, resting count reset, its watch closed; returns
 // the u' its watch followed (the state's u_seen without a watch), which the caller puts into the

@@ -94,7 +94,7 @@ uint64_t advance_body(const Model& model, State& st, int64_t i, uint64_t first, 
         record_touchdown(model, type, size_t(i), t, start, end, &st);
       if (asleep) {
         // asleep until its watch wakes it, in this stretch or a later one
-        wake = watch_sleeper(model, &st, size_t(i), t + model.dt, last);
+        wake = watch_sleeper(model, &st, size_t(i), last);
         if (wake >= last) break;
         continue;
       }

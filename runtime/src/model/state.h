@@ -21,12 +21,16 @@ enum class ContactState : uint8_t { Flying = 0, Sliding = 1, Resting = 2 };
 // A sleeping body's gust watch (integrate/contacts.h, docs/contacts.md "Resting, sleeping,
 // waking"): the turbulent velocity u' it would see, kept evolving by its Ornstein-Uhlenbeck
 // process while the body sleeps, and the gust along the mean flow that would move it. The body
-// wakes at the first step where u' reaches the gust.
+// wakes at the first step where u' reaches the gust. The watch follows u' along the mean flow
+// only (ua); the other two components, independent of it, are drawn at the wake.
 struct GustWatch {
   static constexpr uint64_t kNever = ~uint64_t(0);
-  Vec3 u = Vec3::Zero();  // u' at t = step dt, world frame, m/s
+  Vec3 u = Vec3::Zero();  // u' (world frame, m/s) when the body fell asleep; at the wake, once
+                          // the watch has found it
+  double ua = 0;          // u' along the mean flow at t = step dt, m/s
   double gust = 0;        // m/s along the mean flow; +infinity: no gust the watch follows can
-  uint64_t step = 0;      // the step the watch has reached
+  uint64_t start = 0;     // the step the body fell asleep at
+  uint64_t step = 0;      // the step the watch has reached (it may pass the one asked for)
   uint64_t wake = kNever; // the step the body wakes at, once the watch has found it
   uint8_t valid = 0;      // 1: set when the body fell asleep
 };

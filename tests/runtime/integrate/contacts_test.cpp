@@ -665,7 +665,10 @@ TEST(Sleeping, TheWakeGustIsWhereTheFlowStartsToMoveTheBody) {
 //   T(a) = integral_0^a sqrt(2 pi) Phi(x) exp(x^2/2) dx
 // (the backward equation -x T' + T'' = -1 with T(a) = 0). Checked over 4000 watches with
 // a = 1.5; the watch looks at whole steps, which delays the passage as a barrier raised by
-// 0.5826 sigma sqrt(2 alpha dt) would (Broadie, Glasserman & Kou 1997's correction).
+// 0.5826 sigma sqrt(2 alpha dt) would (Broadie, Glasserman & Kou 1997's correction). The
+// components of u' across the mean flow, drawn at the wake, are those of the process at that
+// time: mean 0, variance sigma^2 (1 - exp(-2 alpha t)). A watch asked again and again, a few
+// steps further each time, wakes at the same step with the same u' as one asked once.
 TEST(Sleeping, AGustWatchWakesAtTheOuProcesssFirstPassage) {
   const int n = 4000;
   Scene s = test::sphere_scene(0.01, 1000, 1.2, 1.5e-5, n);
@@ -684,21 +687,41 @@ TEST(Sleeping, AGustWatchWakesAtTheOuProcesssFirstPassage) {
   ASSERT_GT(alpha * s.dt, 1e-4);
   ASSERT_LT(alpha * s.dt, 1e-2);
   State st = initial_state(m, s);
-  double sum = 0, sum2 = 0;
+  double sum = 0, sum2 = 0, across = 0, across2 = 0, across_sq = 0, across_sq2 = 0;
   for (int i = 0; i < n; ++i) {
     st.status[i] = BodyStatus::Sleeping;
     GustWatch& w = st.watch[i];
     w = GustWatch{};
     w.gust = a * sigma;
     w.valid = 1;
-    const uint64_t wake = watch_sleeper(m, &st, size_t(i), 0, 100000000);
+    const GustWatch fresh = w;
+    const uint64_t wake = watch_sleeper(m, &st, size_t(i), 100000000);
     ASSERT_NE(wake, GustWatch::kNever);
     EXPECT_GE(w.u.x(), a * sigma);
     const double T = double(wake) * s.dt * alpha;
     sum += T;
     sum2 += T * T;
+    // across the mean flow (x): y and z, each N(0, sigma^2 (1 - exp(-2 alpha t)))
+    const double sd = sigma * std::sqrt(-std::expm1(-2 * T));
+    for (const double c : {w.u.y() / sd, w.u.z() / sd}) {
+      across += c, across2 += c * c;
+      across_sq += c * c, across_sq2 += c * c * c * c;
+    }
+    if (i < 100) {
+      const GustWatch once = w;
+      w = fresh;
+      uint64_t upto = 1, again = GustWatch::kNever;
+      while (again == GustWatch::kNever) again = watch_sleeper(m, &st, size_t(i), upto += 7);
+      EXPECT_EQ(again, once.wake) << i;
+      EXPECT_EQ(w.u, once.u) << i;
+    }
   }
   const double mean = sum / n, se = std::sqrt((sum2 / n - mean * mean) / n);
+  const double am = across / (2 * n), ase = std::sqrt((across2 / (2 * n) - am * am) / (2 * n));
+  const double vm = across_sq / (2 * n),
+               vse = std::sqrt((across_sq2 / (2 * n) - vm * vm) / (2 * n));
+  EXPECT_NEAR(am, 0, 4 * ase) << "mean across the flow, in its standard deviations";
+  EXPECT_NEAR(vm, 1, 4 * vse) << "variance across the flow / sigma^2 (1 - exp(-2 alpha t))";
   auto mfpt = [](double level) {  // Simpson's rule on 2000 intervals
     auto f = [](double x) {
       return std::sqrt(2 * M_PI) * 0.5 * std::erfc(-x / std::sqrt(2.0)) * std::exp(0.5 * x * x);

@@ -42,7 +42,9 @@ TEST(Checkpoint, KeepsTheSleepersGustWatches) {
   st.t_stop[1] = 2.468;
   GustWatch& w = st.watch[1];
   w.u = Vec3(0.1, -0.2, 0.3);
+  w.ua = -0.25;
   w.gust = 0.7;
+  w.start = 1200;
   w.step = 1234;
   w.wake = 5678;
   w.valid = 1;
@@ -54,6 +56,8 @@ TEST(Checkpoint, KeepsTheSleepersGustWatches) {
   EXPECT_EQ(back.status[1], BodyStatus::Sleeping);
   EXPECT_EQ(back.watch[1].u, w.u);
   EXPECT_EQ(back.watch[1].gust, 0.7);
+  EXPECT_EQ(back.watch[1].ua, -0.25);
+  EXPECT_EQ(back.watch[1].start, 1200u);
   EXPECT_EQ(back.watch[1].step, 1234u);
   EXPECT_EQ(back.watch[1].wake, 5678u);
   EXPECT_EQ(back.watch[1].valid, 1);
