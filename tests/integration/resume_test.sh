@@ -147,7 +147,21 @@ sed 's/"count": 100/"count": 99/' scene.json > other.json
 expect_fail 3 "another scene" "$lrigid" run other.json --resume half
 expect_fail 3 "started with 1 MPI rank(s): resume it with one process" mpirun -np 2 "$lrigid" run scene.json --resume half
 expect_fail 4 "--resume half" "$lrigid" run scene.json -o half --checkpoint-every 1e-9
-cp "$lrigid" ./lrigid_other_build && printf 'x' >> ./lrigid_other_build
+# another build: the same binary with another build-id (the linker's hash of what it linked,
+# which is what identifies a build; a file without one is identified by its bytes)
+cp "$lrigid" ./lrigid_other_build
+id=$(readelf -n ./lrigid_other_build | sed -n 's/.*Build ID: //p')
+if [ -n "$id" ]; then
+  /usr/bin/python3 - "$id" <<'PY'
+import sys
+old = bytes.fromhex(sys.argv[1])
+data = open("lrigid_other_build", "rb").read()
+assert data.count(old) == 1, "the build-id should occur once"
+open("lrigid_other_build", "wb").write(data.replace(old, bytes([old[0] ^ 1]) + old[1:]))
+PY
+else
+  printf 'x' >> ./lrigid_other_build
+fi
 expect_fail 3 "another build" ./lrigid_other_build run scene.json --resume half
 "$lrigid" run scene.json --resume half --quiet
 compare ref half

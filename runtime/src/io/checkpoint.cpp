@@ -1,5 +1,8 @@
 #include "io/checkpoint.h"
 
+#include <elf.h>
+#include <link.h>
+
 #include <cinttypes>
 #include <cstdio>
 #include <cstring>
@@ -62,7 +65,49 @@ std::string file_fingerprint(const std::string& path) {
   return f.hex();
 }
 
-std::string build_fingerprint() { return file_fingerprint("/proc/self/exe"); }
+namespace {
+
+// The GNU build-id note of the running program (dl_iterate_phdr visits it first), as hex; ""
+// when it has none
+int program_build_id(dl_phdr_info* info, size_t, void* out) {
+  for (int k = 0; k < info->dlpi_phnum; ++k) {
+    const ElfW(Phdr)& ph = info->dlpi_phdr[k];
+    if (ph.p_type != PT_NOTE) continue;
+    const size_t align = ph.p_align == 8 ? 8 : 4;
+    auto padded = [align](size_t n) { return (n + align - 1) / align * align; };
+    const char* p = reinterpret_cast<const char*>(info->dlpi_addr + ph.p_vaddr);
+    const char* end = p + ph.p_memsz;
+    while (p + sizeof(ElfW(Nhdr)) <= end) {
+      ElfW(Nhdr) nh;
+      std::memcpy(&nh, p, sizeof nh);
+      const char* name = p + sizeof nh;
+      const char* desc = name + padded(nh.n_namesz);
+      const char* next = desc + padded(nh.n_descsz);
+      if (next > end) break;
+      if (nh.n_type == NT_GNU_BUILD_ID && nh.n_namesz == 4 && std::memcmp(name, "GNU", 4) == 0) {
+        std::string& hex = *static_cast<std::string*>(out);
+        char two[3];
+        for (size_t b = 0; b < nh.n_descsz; ++b) {
+          std::snprintf(two, sizeof two, "%02x", static_cast<unsigned char>(desc[b]));
+          hex += two;
+        }
+        return 1;
+      }
+      p = next;
+    }
+  }
+  return 1;  // the program only, not its libraries
+}
+
+}  // namespace
+
+std::string build_fingerprint() {
+  // the build-id the linker wrote (a hash of the linked binary), read from memory at once; the
+  // whole file's FNV where there is none (35 MB read at each run: 0.05 s)
+  std::string id;
+  dl_iterate_phdr(program_build_id, &id);
+  return id.empty() ? file_fingerprint("/proc/self/exe") : "gnu-build-id:" + id;
+}
 
 void write_checkpoint(const std::string& path, const CheckpointId& id, int rank,
                       const State& st, const RunStats& stats,

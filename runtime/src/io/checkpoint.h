@@ -75,7 +75,8 @@ struct CheckpointId {
 // FNV-1a 64 of a file's bytes as 16 hex digits ("" when it cannot be read).
 std::string file_fingerprint(const std::string& path);
 std::string text_fingerprint(const std::string& text);
-// the running binary (/proc/self/exe)
+// the running binary: its GNU build-id ("gnu-build-id:" and hex digits, as `readelf -n` shows
+// it), or the FNV of /proc/self/exe where it has none
 std::string build_fingerprint();
 
 // Writes one rank's checkpoint atomically (io/atomic_file.h): throws ExitCode::Output.

@@ -32,6 +32,24 @@ State bodies(size_t n, bool watches) {
   return st;
 }
 
+// The running build's fingerprint is the build-id the linker wrote into it, as readelf reads it
+// from the file
+TEST(Checkpoint, TheBuildFingerprintIsTheLinkersBuildId) {
+  std::string readelf;
+  FILE* p = popen("readelf -n /proc/$PPID/exe 2>/dev/null", "r");
+  ASSERT_NE(p, nullptr);
+  char line[512];
+  while (std::fgets(line, sizeof line, p)) readelf += line;
+  pclose(p);
+  const size_t at = readelf.find("Build ID: ");
+  ASSERT_NE(at, std::string::npos) << "readelf found no build-id:\n" << readelf;
+  std::string id = readelf.substr(at + 10);
+  id = id.substr(0, id.find_first_of(" \n"));
+  ASSERT_GE(id.size(), 16u);
+  EXPECT_EQ(build_fingerprint(), "gnu-build-id:" + id);
+  EXPECT_EQ(build_fingerprint(), build_fingerprint());
+}
+
 TEST(Checkpoint, KeepsTheSleepersGustWatches) {
   const std::string path = ::testing::TempDir() + "/watch.ckpt";
   const CheckpointId id{"build", "scene", 1, "scene.json"};
