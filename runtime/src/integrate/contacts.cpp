@@ -350,15 +350,19 @@ uint64_t watch_sleeper(const Model& model, State* st, size_t i, uint64_t upto) {
   const Vec3 along = un > 0 ? Vec3(s.U / un) : Vec3::UnitX();
   const double h = model.dt;
   const OUStep one = ou_exact(s.alpha, s.beta, h);
-  // the seen model's update (turbulence_update, ou_update) for a body at rest, whose path
-  // velocity is 0: u' <- decay u' + c + noise z, each component apart, c = h 0.5 grad(sigma^2)
-  // with Thomson's drift
-  const double on = model.well_mixed_correction && s.sigma2 > 0 ? 1.0 : 0.0;
-  const Vec3 c = h * on * 0.5 * s.grad_sigma2;
+  // the seen model's update (ou_update) for a body at rest, whose path velocity is 0, is
+  // u' <- decay u' + c + noise z, each component apart: c, its drift per step (Thomson's), is
+  // the update of u' = 0 without decay or noise
+  const double wm = model.well_mixed_correction ? 1.0 : 0.0;
+  const double rest[3] = {0, 0, 0};
+  auto update = [&](double decay, double noise, double over, const double* z, Vec3* u) {
+    ou_update(wm, decay, noise, s.sigma2, rest, s.grad_sigma2.data(), z, over, u->data());
+  };
+  Vec3 c = Vec3::Zero();
+  update(0.0, 0.0, h, rest, &c);
   const double ca = c.dot(along);
+  // first asked: u' along the mean flow when the body fell asleep
   if (w.step == w.start) w.ua = w.u.dot(along);
-  // the highest the update's mean path can go from ua: the process's mean or ua itself
-  const double top = one.decay < 1 ? ca / (1 - one.decay) : (ca > 0 ? HUGE_VAL : 0.0);
   // the draws: one normal per step it starts from, four steps to a Philox block
   uint64_t block = GustWatch::kNever;
   double z4[4];
@@ -367,9 +371,11 @@ uint64_t watch_sleeper(const Model& model, State* st, size_t i, uint64_t upto) {
     // path after k steps is a^k M_k, M a sum of independent symmetric terms of variance at most
     // S b^2 a^-2S by step S, so (Levy's inequality) it reaches `room` with a probability below
     // 2 Phi(-kWatchStrideSigmas) = 6e-14
+    // (the mean part of the path stays between ua and the process's mean)
     uint64_t S = 1;
-    const double room = w.gust - std::max(w.ua, top);
-    if (room > 0 && one.decay < 1) {
+    const double room =
+        one.decay < 1 ? w.gust - std::max(w.ua, ca / (1 - one.decay)) : 0.0;
+    if (room > 0) {
       const double q = room / (kWatchStrideSigmas * one.noise_std);
       S = q * q < double(kWatchMaxStride) ? std::max<uint64_t>(1, uint64_t(q * q))
                                           : kWatchMaxStride;
@@ -390,7 +396,8 @@ uint64_t watch_sleeper(const Model& model, State* st, size_t i, uint64_t upto) {
       const OUStride all = ou_stride(s, h, one, w.step - w.start);
       double z[3];
       NormalStream(model.seed ^ kWatchAcrossSalt, static_cast<uint32_t>(i), w.step).normals(z);
-      Vec3 u = all.decay * w.u + all.drift * c + all.noise * Vec3(z[0], z[1], z[2]);
+      Vec3 u = w.u;
+      update(all.decay, all.noise, all.drift * h, z, &u);
       u += (w.ua - u.dot(along)) * along;
       w.u = u;
       w.wake = w.step;
