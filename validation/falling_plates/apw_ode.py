@@ -50,10 +50,21 @@ def rates(s, istar, c=APW):
     return np.array([du, dv, dw, w])
 
 
-def regime(istar, c=APW, t_end=400.0, dt=0.01, theta0=math.radians(10.0)):
+# Releases (u, v, ω, θ in the units above) for asking whether a regime depends on how the strip
+# starts: from rest at 10° and at 60°, spinning at ω a/U = 0.5 and 1.5 from level, and moving
+# along and across the plate while spinning
+RELEASES = (("rest, 10°", (0.0, 0.0, 0.0, math.radians(10.0))),
+            ("rest, 60°", (0.0, 0.0, 0.0, math.radians(60.0))),
+            ("level, spin 0.5", (0.0, 0.0, 0.5, 0.0)),
+            ("level, spin 1.5", (0.0, 0.0, 1.5, 0.0)),
+            ("moving, spin 1", (1.0, -1.0, 1.0, 0.5)))
+
+
+def regime(istar, c=APW, t_end=400.0, dt=0.01, theta0=math.radians(10.0), state0=None):
     """("steady" | "flutter" | "chaotic" | "tumble" | "runaway", net turns and pitch peak-to-peak
-    in degrees over the second half); "runaway" when the state overflows."""
-    s = np.array([0.0, 0.0, 0.0, theta0])
+    in degrees over the second half); "runaway" when the state overflows. state0: the release
+    (u, v, ω, θ) instead of rest at theta0."""
+    s = np.array(state0 if state0 is not None else [0.0, 0.0, 0.0, theta0], dtype=float)
     n = int(round(t_end / dt))
     th = np.empty(n)
     for i in range(n):
@@ -88,6 +99,11 @@ def classify_angle(phi):
     else:
         reg = "unclassified"
     return reg, net, p2p
+
+
+def release_regimes(istar, c=APW, t_end=400.0):
+    """[(release label, regime)] for every release of RELEASES."""
+    return [(label, regime(istar, c, t_end=t_end, state0=s0)[0]) for label, s0 in RELEASES]
 
 
 def transition(istars=(0.2, 0.4, 0.6, 0.8, 1.0, 1.2, 1.5, 2.0, 3.0), c=APW):

@@ -251,6 +251,18 @@ def main():
                      "tumble", 0, "Andersen, Pesavento & Wang 2005a/b; Belmonte et al. 1998",
                      tol_text="regime", verdict="PASS" if reg == "tumble" else "FAIL",
                      note="Re = %.3g, pitch peak-to-peak %.0f°" % (re, p2p))
+    # does APW's own 2D model tumble at the heavy strip's mass ratio, from any release?
+    heavy = max(ISTARS)
+    heavy_ode = 4 / math.pi * heavy
+    st.note("APW's 2D ODE (apw_ode.py, a rectangle's inertia) at the mass ratio of the I*_s = %g "
+            "strip, I*_ODE = (4/π) I*_s = %.2f, from five releases (regime over the second half "
+            "of 400 a/U): %s; at I*_ODE = 4: %s. APW's own model does not tumble steadily there, "
+            "so a 3D model that reduces to it (issue 30, item 1) has no reason to, whatever the "
+            "experiments show (docs/physics/lift.md, \"Where the boundary lies\")." % (
+                heavy, heavy_ode, "; ".join("%s %s" % r for r in apw_ode.release_regimes(
+                    heavy_ode, apw_ode.APW._replace(rect=True))),
+                "; ".join("%s %s" % r for r in apw_ode.release_regimes(
+                    4.0, apw_ode.APW._replace(rect=True)))))
     st.note("Strips between I*_s = 0.15 and 2 at ν = %g (not checked; the sources put the "
             "flutter–tumble band there): " % nu_hi + "; ".join(
                 "I*_s = %g %s (pitch %.0f°)" % (i, res[(i, nu_hi)][0], res[(i, nu_hi)][3])

@@ -1,0 +1,121 @@
+#!/usr/bin/python3
+"""Scratch exploration for issue 30 (not a validation study, not run by run_all): how close can
+the 3D plate model's coefficients, fitted to Howison et al.'s paper squares, bring the drops of
+validation/paper_drops, and do the circles (not fitted) follow?
+
+Needs an lrigid built with plate_knobs.patch (README.md beside this file): it scales every
+plate's C_R, C_T, mu1, mu2 by the environment's LR_CR, LR_CT, LR_MU1, LR_MU2 and sets the edgewise
+drag coefficient A - B to LR_E with the broadside A + B kept (the textbook C_D). Modes:
+
+  coefficient_search.py --bin LR random --seed S --count N   random configurations, squares
+  coefficient_search.py --bin LR refine --seed S --count N   log-normal steps around --centre
+  coefficient_search.py --bin LR check --cfg JSON --n 10     squares and circles
+
+Each configuration prints one JSON line: the factors, the loss (the sum of squared log errors of
+the median descent speed in units of 15 %, of the median lateral displacement in units of a
+factor 1.5, and of the tumbling fraction), the number of paper_drops checks it would pass, and
+per bin (speed, data, lateral, data, tumbling fraction, data).
+"""
+import argparse
+import json
+import math
+import os
+import subprocess
+import sys
+import tempfile
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, ".."))
+sys.path.insert(0, os.path.join(HERE, "..", "..", "lib"))
+import run as pd  # noqa: E402  (validation/paper_drops/run.py: the drops and their segments)
+import vcommon as vc  # noqa: E402
+from vcommon import np  # noqa: E402
+
+with open(os.path.join(HERE, "..", "reference.json")) as f:
+    REF = json.load(f)
+SEEDS = {"square": 7, "circle": 8}   # those of run.py
+
+
+def evaluate(lrigid, cfg, kinds, n, work):
+    env = dict(os.environ)
+    env.update({k: repr(float(v)) for k, v in cfg.items()})
+    res = {}
+    for kind in kinds:
+        sc, meta = pd.drop_scene(kind, n, SEEDS[kind])
+        d = os.path.join(work, kind)
+        os.makedirs(d, exist_ok=True)
+        sp = vc.write_scene(os.path.join(d, "scene.json"), sc)
+        subprocess.run([lrigid, "run", sp, "-o", os.path.join(d, "out"), "--quiet"], env=env,
+                       check=True)
+        tr = vc.read_traj(os.path.join(d, "out", "trajectories.csv"))
+        rows = []
+        for R, r in zip(pd.RADII, REF[kind]):
+            segs = []
+            for j, (Rj, vertical) in enumerate(meta):
+                if Rj == R:
+                    segs += pd.segments(tr, j, R, vertical)
+            m = pd.bin_stats(segs)
+            fr = r["n_tumbling"] / max(1, r["n_tumbling"] + r["n_chaotic"])
+            rows.append((m["median_speed"], r["median_speed"], m["median_lateral"],
+                         r["median_lateral"], m["tumbling_fraction"], fr))
+        res[kind] = rows
+    return res
+
+
+def loss(res):
+    total = 0.0
+    for rows in res.values():
+        for ms, rs, ml, rl, mf, rf in rows:
+            total += (math.log(ms / rs) / 0.15) ** 2
+            total += (math.log(max(ml, 1e-3) / rl) / math.log(1.5)) ** 2
+            total += 4 * (mf - rf) ** 2 / 0.09 if not math.isnan(mf) else 4
+    return total
+
+
+def passes(res):
+    """paper_drops' checks this result would pass (of 9 per shape)"""
+    n = 0
+    for rows in res.values():
+        for ms, rs, ml, rl, _, _ in rows:
+            n += abs(ms / rs - 1) <= 0.15
+            n += 1 / 1.5 <= max(ml, 1e-12) / rl <= 1.5
+        n += rows[0][4] >= 0.5 and rows[-1][4] <= 0.3
+    return n
+
+
+def main():
+    p = argparse.ArgumentParser()
+    p.add_argument("--bin", required=True, help="lrigid built with plate_knobs.patch")
+    p.add_argument("mode", choices=("random", "refine", "check"))
+    p.add_argument("--seed", type=int, default=1)
+    p.add_argument("--count", type=int, default=100)
+    p.add_argument("--n", type=int, default=3, help="drops per release and radius")
+    p.add_argument("--centre", default='{"LR_CR": 0.22, "LR_CT": 0.9, "LR_MU1": 0.35, '
+                   '"LR_MU2": 0.18, "LR_E": 0.55}')
+    p.add_argument("--cfg", help="check: the configuration, JSON")
+    a = p.parse_args()
+    rng = np.random.default_rng(a.seed)
+    with tempfile.TemporaryDirectory() as work:
+        if a.mode == "check":
+            cfgs, kinds = [json.loads(a.cfg)], ("square", "circle")
+        else:
+            cfgs, kinds = [], ("square",)
+            c0 = json.loads(a.centre)
+            for _ in range(a.count):
+                if a.mode == "random":
+                    cfgs.append(dict(LR_CR=rng.uniform(0.1, 1.5), LR_CT=rng.uniform(0.2, 2.0),
+                                     LR_MU1=math.exp(rng.uniform(-2.3, 1.1)),
+                                     LR_MU2=math.exp(rng.uniform(-2.3, 1.1)),
+                                     LR_E=rng.uniform(0.2, 0.8)))
+                else:
+                    c = {k: v * math.exp(rng.normal(0, 0.35)) for k, v in c0.items()}
+                    c["LR_E"] = min(c["LR_E"], 0.9)
+                    cfgs.append(c)
+        for cfg in cfgs:
+            res = evaluate(a.bin, cfg, kinds, a.n, work)
+            print(json.dumps(dict(cfg=cfg, loss=loss(res), passes=passes(res), res=res)),
+                  flush=True)
+
+
+if __name__ == "__main__":
+    main()
