@@ -28,9 +28,12 @@ Checks per shape and radius bin: median descent speed within 15 % of the data's,
 displacement within a factor 1.5; per shape, the tumbling fraction's trend: at least 0.5 in the
 smallest bin and at most 0.3 in the largest (data: 0.82–0.85 and 0.0–0.08).
 Fitting: no coefficient is fitted to these data. Which plate terms follow the aspect ratio
-(docs/physics/lift.md) was chosen among three variants, one of them rejected on the squares'
-drops, another on Field et al.'s disks (validation/falling_plates); the circles played no part
-and are the independent check.
+(docs/physics/lift.md) was chosen among variants: of the drag's, one was rejected on the squares'
+drops, another on Field et al.'s disks (validation/falling_plates); the pitch-rate terms' finite
+span (Helmbold's factor, no free number) was found by a search fitted to the squares
+(explore/README.md) and chosen over a variant without mu1 on the squares' checks (the circles
+were looked at too). So the circles are an independent check of the formula, not of every
+choice made on the way.
 
 Which term slows the descent (notes, no checks): the squares' drops again with the effects added one
 at a time — gravity, buoyancy and drag; then added mass; then lift (the full "auto" set) — per

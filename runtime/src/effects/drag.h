@@ -134,8 +134,8 @@ Wrench drag_wrench(const BodyType& type, const Vec3& u_rel, const Vec3& w, doubl
 // exact Stokes resistance of the equivalent ellipsoid, F_i = -mu k_i u_i and T_i = -mu r_i w_i
 // (BodyType::stokes_force, stokes_torque), which dominates as Re falls (Re < ~30). Spin about the
 // normal: the Stokes torque plus the generic out-of-roundness drag.
-// APW's strip values; a finite plate's B (and so A = (A - B) + B) follows its broadside C_D
-// (plate_coefficients, effects/plate.h)
+// APW's strip values; a finite plate's B (and so A = (A - B) + B) follows its broadside C_D and
+// its mu1, mu2 its aspect ratio (plate_coefficients, effects/plate.h)
 constexpr double kPlateDragA = 1.4;   // APW 2005
 constexpr double kPlateDragB = 1.0;
 constexpr double kPlateTorqueMu1 = 0.2;  // at Re = kPlateTorqueFitRe

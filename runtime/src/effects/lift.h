@@ -18,7 +18,7 @@
 namespace lrigid {
 
 constexpr double kLiftTranslational = 1.2;  // C_T, APW 2005 (fit to experiments and DNS)
-constexpr double kLiftRotational = M_PI;    // C_R, APW 2005
+constexpr double kLiftRotational = M_PI;    // C_R, APW 2005 (2D; a plate's: PlateCoeffs)
 // The circulation (both terms) is scaled by f(Re) = x / (1 + x), x = (Re / Re_c)^n, Re = |u| w / nu
 // (w: planform width): APW's circulation comes from separated, shedding flow at Re ~ 10^3; below
 // the wake instability the flow stays steady and plates descend steadily (Field et al. 1997:

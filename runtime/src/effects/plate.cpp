@@ -1,6 +1,7 @@
 #include "effects/plate.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace lrigid {
 
@@ -30,6 +31,11 @@ double plate_broadside_cd(double aspect, bool box) {
   return box ? cd : cd + (kCd90Disk - kCd90Rect[0]) * x;
 }
 
+double plate_finite_span(double span_aspect) {
+  const double ar = std::max(span_aspect, 0.0);
+  return ar / (2.0 + std::sqrt(ar * ar + 4.0));
+}
+
 PlateCoeffs plate_coefficients(const BodyType& type) {
   PlateCoeffs c;
   const int na = type.normal_axis, i1 = (na + 1) % 3, i2 = (na + 2) % 3;
@@ -39,12 +45,21 @@ PlateCoeffs plate_coefficients(const BodyType& type) {
   c.aspect = lo > 0 ? hi / lo : 1.0;
   c.cd90 = plate_broadside_cd(c.aspect, box);
   // APW's edgewise coefficient A - B is kept and the normal-force part 2 B scales to the
-  // planform's broadside value. The circulation (C_T, C_R) and the damping torque (mu1, mu2) stay
-  // APW's: scaling them with the same factor made heavy disks and strips stop tumbling and paper
-  // squares descend steadily broadside (docs/physics/lift.md, "The 3D model").
+  // planform's broadside value (docs/physics/lift.md, "The 3D model").
   c.span_factor = (c.cd90 - (kPlateDragA - kPlateDragB)) / (2.0 * kPlateDragB);
   c.B = kPlateDragB * c.span_factor;
   c.A = (kPlateDragA - kPlateDragB) + c.B;
+  // The pitch-rate terms, the rotational circulation C_R and the damping torque mu1, mu2, take
+  // the finite wing's share of the 2D lift slope (Helmbold) at the planform's aspect ratio
+  // span^2 / S: the rectangle's side ratio, 4/pi times an ellipse's axis ratio. The translational
+  // circulation C_T stays APW's: its lift peaks at 45 degrees, where a low-aspect-ratio plate's
+  // separated-flow lift is not reduced like its attached-flow slope (docs/physics/lift.md,
+  // "Finite span: the pitch-rate terms").
+  c.span_aspect = box ? c.aspect : 4.0 / M_PI * c.aspect;
+  c.finite_span = plate_finite_span(c.span_aspect);
+  c.C_R = kLiftRotational * c.finite_span;
+  c.mu1 = kPlateTorqueMu1 * c.finite_span;
+  c.mu2 = kPlateTorqueMu2 * c.finite_span;
   return c;
 }
 

@@ -36,13 +36,16 @@ LRIGID_LANE T circulation_gate(T re) {
 
 // The plate's finite-span coefficients (docs/physics/lift.md, "The 3D model"): APW's 2D
 // constants, with the drag's normal-force part B scaled so that the broadside drag coefficient
-// A + B is the planform's; C_T, C_R, mu1, mu2 are APW's. aspect: the planform's side ratio
-// (long / short side of a rectangle, major / minor axis of an ellipse or of a mesh's equivalent
+// A + B is the planform's, and the pitch-rate terms C_R, mu1, mu2 scaled by the finite wing's
+// share of the 2D lift slope; C_T and A - B are APW's. aspect: the planform's side ratio (long /
+// short side of a rectangle, major / minor axis of an ellipse or of a mesh's equivalent
 // ellipse), >= 1.
 struct PlateCoeffs {
   double aspect = 1;       // planform side ratio
   double cd90 = 0;         // broadside drag coefficient C_D(90 deg) of the planform
   double span_factor = 1;  // (cd90 - (A - B)) / (2 B) of APW's A, B: 1 for an infinite strip
+  double span_aspect = 0;  // aspect ratio span^2 / S (a rectangle's side ratio, 4/pi an ellipse's)
+  double finite_span = 1;  // plate_finite_span(span_aspect): 1 for an infinite strip
   double A = kPlateDragA, B = kPlateDragB;  // drag (A - B cos 2a)
   double C_T = kLiftTranslational, C_R = kLiftRotational;
   double mu1 = kPlateTorqueMu1;  // linear damping torque (at Re_fit)
@@ -50,6 +53,9 @@ struct PlateCoeffs {
 };
 // broadside C_D of a flat plate of side ratio `aspect` (rectangle, or ellipse if !box)
 double plate_broadside_cd(double aspect, bool box);
+// Helmbold's ratio of a finite wing's lift slope to the 2D 2 pi at aspect ratio span^2 / S:
+// AR / (2 + sqrt(AR^2 + 4)); 0.236 for a square, 0.291 for a disk, -> 1 for a long strip
+double plate_finite_span(double span_aspect);
 PlateCoeffs plate_coefficients(const BodyType& type);
 
 // The planform integrals of strip theory about an in-plane axis through the centroid: the plate

@@ -181,8 +181,9 @@ TEST(Kernels, PlateBroadsideAndEdgewiseDragFollowTheAspectRatio) {
 }
 
 // The finite-span coefficients: the broadside C_D of the table (White Table 7.3 after Hoerner:
-// square 1.18, disk 1.17, side ratio 5: 1.2, 10: 1.3, 20: 1.5), APW's 2D constants in the limit
-// of an infinite strip; the circulation and the damping torque are APW's
+// square 1.18, disk 1.17, side ratio 5: 1.2, 10: 1.3, 20: 1.5), the pitch-rate terms (C_R, mu1,
+// mu2) times Helmbold's lift-slope ratio, APW's 2D constants in the limit of an infinite strip;
+// C_T and the edgewise drag A - B are APW's for every plate
 TEST(Kernels, PlateCoefficientsReduceToApwForLongStrips) {
   EXPECT_NEAR(plate_broadside_cd(1, true), 1.18, 1e-12);
   EXPECT_NEAR(plate_broadside_cd(1, false), 1.17, 1e-12);
@@ -204,10 +205,14 @@ TEST(Kernels, PlateCoefficientsReduceToApwForLongStrips) {
   const double r = (1.18 - 0.4) / 2.0;
   EXPECT_NEAR(sq.span_factor, r, 1e-12);
   EXPECT_NEAR(sq.B, kPlateDragB * r, 1e-12);
-  EXPECT_NEAR(sq.C_T, kLiftTranslational, 1e-12);  // the circulation and damping: APW's
-  EXPECT_NEAR(sq.C_R, kLiftRotational, 1e-12);
-  EXPECT_NEAR(sq.mu1, kPlateTorqueMu1, 1e-12);
-  EXPECT_NEAR(sq.mu2, kPlateTorqueMu2, 1e-12);
+  EXPECT_NEAR(sq.C_T, kLiftTranslational, 1e-12);  // the translational circulation: APW's
+  // the pitch-rate terms: a square's aspect ratio span^2 / S is 1, Helmbold's ratio 1/(2 + sqrt 5)
+  EXPECT_NEAR(sq.span_aspect, 1.0, 1e-12);
+  const double h_sq = 1.0 / (2.0 + std::sqrt(5.0));
+  EXPECT_NEAR(sq.finite_span, h_sq, 1e-12);
+  EXPECT_NEAR(sq.C_R, kLiftRotational * h_sq, 1e-12);
+  EXPECT_NEAR(sq.mu1, kPlateTorqueMu1 * h_sq, 1e-12);
+  EXPECT_NEAR(sq.mu2, kPlateTorqueMu2 * h_sq, 1e-12);
   // the aspect ratio of a plate whose normal is not body z, and of an ellipse
   const PlateCoeffs rect = plate_coefficients(type_of(Shape::box(0.0002, 0.02, 0.1)));
   EXPECT_NEAR(rect.aspect, 5.0, 1e-12);
@@ -215,13 +220,36 @@ TEST(Kernels, PlateCoefficientsReduceToApwForLongStrips) {
   const PlateCoeffs ell = plate_coefficients(type_of(Shape::ellipsoid(0.03, 0.01, 0.0005)));
   EXPECT_NEAR(ell.aspect, 3.0, 1e-12);
   EXPECT_NEAR(ell.A + ell.B, plate_broadside_cd(3, false), 1e-12);
+  // an ellipse of semi-axes a, b: span^2 / S = (2a)^2 / (pi a b) = 4/pi times its axis ratio
+  EXPECT_NEAR(ell.span_aspect, 12.0 / M_PI, 1e-12);
+  EXPECT_NEAR(rect.span_aspect, 5.0, 1e-12);
+  EXPECT_NEAR(rect.C_R, kLiftRotational * 5.0 / (2.0 + std::sqrt(29.0)), 1e-12);
   // a long strip (side ratio 10^6) has APW's 2D constants
   const PlateCoeffs strip = plate_coefficients(type_of(Shape::ellipsoid(0.01, 1e4, 0.001)));
   EXPECT_NEAR(strip.A, kPlateDragA, 1e-4 * kPlateDragA);
   EXPECT_NEAR(strip.B, kPlateDragB, 1e-4 * kPlateDragB);
   EXPECT_NEAR(strip.C_T, kLiftTranslational, 1e-4 * kLiftTranslational);
   EXPECT_NEAR(strip.C_R, kLiftRotational, 1e-4 * kLiftRotational);
+  EXPECT_NEAR(strip.mu1, kPlateTorqueMu1, 1e-4 * kPlateTorqueMu1);
   EXPECT_NEAR(strip.mu2, kPlateTorqueMu2, 1e-4 * kPlateTorqueMu2);
+}
+
+// Helmbold's lift-slope ratio a / 2 pi = AR / (2 + sqrt(AR^2 + 4)) against its two limits:
+// lifting-line theory's AR / (AR + 2) for a long wing (they differ by O(1 / AR^2)) and R. T.
+// Jones' slender wing pi AR / 2 (a / 2 pi = AR / 4) for a short one; a disk (AR = 4/pi): 0.2913
+TEST(Kernels, PlateFiniteSpanFollowsHelmboldsFormula) {
+  EXPECT_NEAR(plate_finite_span(1.0), 0.2360680, 1e-7);
+  EXPECT_NEAR(plate_finite_span(4.0 / M_PI), 0.29130, 1e-5);
+  for (double ar : {50.0, 200.0, 1000.0}) {
+    EXPECT_NEAR(plate_finite_span(ar), ar / (ar + 2.0), 2.0 / (ar * ar)) << ar;
+  }
+  for (double ar : {1e-3, 1e-2}) EXPECT_NEAR(plate_finite_span(ar), ar / 4.0, ar * ar) << ar;
+  double last = 0;
+  for (double ar = 0.01; ar < 1e5; ar *= 1.5) {  // rising towards the 2D slope, never above it
+    EXPECT_GT(plate_finite_span(ar), last) << ar;
+    EXPECT_LT(plate_finite_span(ar), 1.0) << ar;
+    last = plate_finite_span(ar);
+  }
 }
 
 // Strip theory's planform integrals (plate_strips) against brute-force quadrature over the

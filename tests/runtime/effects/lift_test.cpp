@@ -162,14 +162,17 @@ TEST(PlateDrag, DissipativeTorqueOpposesPitch) {
   const double rho = 1000, wy = 2.0, a = 0.02;
   const double nu = 1e-6;
   const Vec3 tq = plate_drag_wrench(t, Vec3::Zero(), Vec3(0, wy, 0), rho, nu).tail<3>();
-  // at rest (Re below kPlateTorqueReMin) mu1 is scaled by (Re_fit / Re_min)^(1/2)
-  const double mu1 = kPlateTorqueMu1 * std::sqrt(kPlateTorqueFitRe / kPlateTorqueReMin);
+  // at rest (Re below kPlateTorqueReMin) mu1 is scaled by (Re_fit / Re_min)^(1/2); a disk's mu1
+  // and mu2 are APW's times Helmbold's lift-slope ratio at aspect ratio 4/pi (plate_coefficients)
+  const PlateCoeffs pc = plate_coefficients(t);
+  EXPECT_NEAR(pc.mu1, kPlateTorqueMu1 * plate_finite_span(4.0 / M_PI), 1e-12);
+  const double mu1 = pc.mu1 * std::sqrt(kPlateTorqueFitRe / kPlateTorqueReMin);
   // APW's pi rho a^4 (mu1 U / a + mu2 |w|) w per unit span on the disk's mid-chord strip
   // (half chord a, span S / (2 a))
   const double span = t.plate_area / (2 * a);
   const double expect =
       -M_PI * rho * std::pow(a, 4) * span *
-          (mu1 * t.apw_speed / a + plate_coefficients(t).mu2 * wy) * wy -
+          (mu1 * t.apw_speed / a + pc.mu2 * wy) * wy -
       rho * nu * t.stokes_torque.y() * wy;
   EXPECT_NEAR(tq.y(), expect, 1e-15);
   EXPECT_GT(t.stokes_torque.y(), 0);

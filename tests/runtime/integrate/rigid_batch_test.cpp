@@ -108,7 +108,10 @@ TEST(RigidBatch, EllipsoidsAndDisksMatchTheScalarStep) {
     const Model m = test::compile(s, field);
     const auto [scalar, batched, d] = scalar_and_batched(s, field);
     EXPECT_EQ(scalar.stats.body_steps, batched.stats.body_steps);
-    expect_close(d, 1e-9);
+    // the disks tumble (their pitch-rate terms take the finite span, effects/plate.h), which
+    // grows the rounding as in the leaves' test above (measured 1.2e-8 rad/s in w, 2026-12-04);
+    // the pods stay below 1e-9
+    expect_close(d, m.types[0].flat ? 1e-7 : 1e-9);
     // they flew for a while (50 steps on average) and some landed
     EXPECT_GT(batched.stats.body_steps, 50u * s.bodies[0].count) << m.types[0].flat;
     EXPECT_GT(count(batched.state, BodyStatus::Landed), 0u) << m.types[0].flat;
