@@ -3,6 +3,7 @@
 #pragma once
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <string>
 
 #include "body/added_mass.h"
@@ -27,6 +28,25 @@ inline Scene sphere_scene(double radius, double density, double fluid_density, d
   b.count = count;
   s.bodies.push_back(b);
   return s;
+}
+
+// A closed, outward prism over a regular n-gon of circumradius r (a vertex on +x), thickness t,
+// axis z: a thin one is a flat disk (paper, a coin) as a mesh
+inline TriangleMesh polygon_prism(int n, double r, double t) {
+  TriangleMesh m;
+  for (double z : {-t / 2, t / 2})
+    for (int i = 0; i < n; ++i)
+      m.vertices.emplace_back(r * std::cos(2 * M_PI * i / n), r * std::sin(2 * M_PI * i / n), z);
+  m.vertices.emplace_back(0, 0, -t / 2);
+  m.vertices.emplace_back(0, 0, t / 2);
+  for (int i = 0; i < n; ++i) {
+    const int j = (i + 1) % n;
+    m.faces.push_back({2 * n, j, i});              // bottom, facing -z
+    m.faces.push_back({2 * n + 1, n + i, n + j});  // top
+    m.faces.push_back({i, j, n + j});              // sides
+    m.faces.push_back({i, n + j, n + i});
+  }
+  return m;
 }
 
 inline EffectSet effects(std::initializer_list<Effect> list) {

@@ -76,6 +76,15 @@ MassProperties mass_properties(const Shape& shape) {
 
 MassProperties mass_properties(const TriangleMesh& mesh) { return mesh_properties(mesh, ""); }
 
+double projected_area(const TriangleMesh& mesh, int axis) {
+  double twice = 0;  // sum of |(b - a) x (c - a)| along the axis: twice the projected areas
+  for (const auto& f : mesh.faces) {
+    const Vec3& a = mesh.vertices[f[0]];
+    twice += std::abs((mesh.vertices[f[1]] - a).cross(mesh.vertices[f[2]] - a)[axis]);
+  }
+  return 0.25 * twice;  // each point of the shadow is covered twice (entering and leaving)
+}
+
 std::string offset_outside_shape(const Shape& shape, const Vec3& offset) {
   const Vec3& h = shape.half_extents;
   auto vec = [](const Vec3& v) {

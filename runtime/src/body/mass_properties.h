@@ -30,4 +30,9 @@ std::string offset_outside_shape(const Shape& shape, const Vec3& offset);
 // tetrahedra). Throws lrigid::Error(ExitCode::BadInput) if the enclosed volume is not positive.
 MassProperties mass_properties(const TriangleMesh& mesh);
 
+// Area of a closed triangle surface's shadow on the plane normal to the shape axis `axis`
+// (0, 1, 2): half the sum of the triangles' projected areas, exact for a surface that every line
+// along the axis crosses twice (a convex body, a flat plate of any outline: its planform), m^2
+double projected_area(const TriangleMesh& mesh, int axis);
+
 }  // namespace lrigid

@@ -210,12 +210,27 @@ BodyType make_body_type(const Scene& scene, const BodySpec& b, const Shape& shap
   t.M_body.block<3, 3>(3, 3) = density * mp.inertia;
 
   // equivalent ellipsoid for drag: exact for spheres/ellipsoids; boxes and meshes use their
-  // bounding box scaled by sqrt(4/pi), so face areas match (pi l1 l2 = 4 h1 h2)
+  // bounding box scaled by sqrt(4/pi), so face areas match (pi l1 l2 = 4 h1 h2); a flat mesh's
+  // in-plane axes then take its outline's area
   const Vec3 h = shape.half_extents;
   t.half_extents = h;
   t.ell = (shape.type == ShapeType::Sphere || shape.type == ShapeType::Ellipsoid)
               ? h
               : Vec3(h * std::sqrt(4.0 / M_PI));
+  if (shape.type == ShapeType::Mesh) {
+    // a flat mesh's planform is its own outline (a disk's pi r^2, a leaf's), not its bounding
+    // box's 4 h1 h2: the in-plane semi-axes keep their ratio and take the outline's area
+    Vec3 s = t.ell;
+    std::sort(s.data(), s.data() + 3);
+    int na = 0;
+    t.ell.minCoeff(&na);
+    if (s[0] <= kFlatRatio * s[1]) {
+      const int i1 = (na + 1) % 3, i2 = (na + 2) % 3;
+      const double f = std::sqrt(projected_area(*shape.mesh, na) / (M_PI * t.ell[i1] * t.ell[i2]));
+      t.ell[i1] *= f;
+      t.ell[i2] *= f;
+    }
+  }
   Vec3 sorted = t.ell;
   std::sort(sorted.data(), sorted.data() + 3);
   t.area_max = M_PI * sorted[1] * sorted[2];

@@ -10,6 +10,7 @@
 #include "body/mass_properties.h"
 #include "body/mesh_check.h"
 #include "body/tessellate.h"
+#include "support/fixture.h"
 #include "util/error.h"
 
 namespace lrigid {
@@ -81,6 +82,22 @@ TEST(MassProperties, BoxMeshMatchesClosedFormAfterRotationAndShift) {
   EXPECT_LT((mp.centroid - shift).norm(), 1e-12);
   EXPECT_LT((mp.inertia - r * exact.inertia * r.transpose()).norm(),
             1e-12 * exact.inertia.norm() * 10);
+}
+
+// the shadow of a closed surface: a box's faces, a thin n-gon plate's outline along its normal
+// (not its bounding box), a convex body seen along any axis
+TEST(MassProperties, ProjectedAreaIsTheShadowsArea) {
+  const TriangleMesh box = tessellate(Shape::box(0.4, 0.2, 0.1), 200);
+  EXPECT_NEAR(projected_area(box, 0), 0.2 * 0.1, 1e-14);
+  EXPECT_NEAR(projected_area(box, 1), 0.4 * 0.1, 1e-14);
+  EXPECT_NEAR(projected_area(box, 2), 0.4 * 0.2, 1e-14);
+  const int n = 48;
+  const double r = 0.03, t = 7e-5;
+  const TriangleMesh disk = test::polygon_prism(n, r, t);
+  EXPECT_NO_THROW(mass_properties(mesh_shape(disk)));  // closed and outward
+  EXPECT_NEAR(projected_area(disk, 2), 0.5 * n * r * r * std::sin(2 * M_PI / n), 1e-15);
+  // edge-on: the rectangle of the polygon's width (2r, a vertex on the x axis) by t
+  EXPECT_NEAR(projected_area(disk, 1), 2 * r * t, 1e-15);
 }
 
 TEST(MassProperties, Tetrahedron) {

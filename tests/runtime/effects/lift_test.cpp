@@ -3,7 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <memory>
 
+#include "body/tessellate.h"
 #include "effects/drag.h"
 #include "effects/lift.h"
 #include "effects/magnus.h"
@@ -39,6 +41,34 @@ TEST(Lift, FlatnessAndNormal) {
   EXPECT_EQ(wrench_term(sph.types[0], Effect::Lift), nullptr);
   EXPECT_NE(wrench_term(m.types[0], Effect::Lift), nullptr);
   EXPECT_NE(wrench_term(m.types[0], Effect::Drag), wrench_term(sph.types[0], Effect::Drag));
+}
+
+// A flat mesh's planform is its outline: a 48-gon paper disk's area and equivalent ellipse are
+// the disk's (its bounding box's square is 4/pi larger), and a box mesh keeps the box's
+TEST(Lift, AFlatMeshsPlanformIsItsOutline) {
+  const int n = 48;
+  const double r = 0.03, t = 7e-5;
+  Scene s = test::sphere_scene(1, 1000, 1.2, 1.5e-5);
+  s.bodies[0].shape =
+      Shape::from_mesh(std::make_shared<const TriangleMesh>(test::polygon_prism(n, r, t)), "disk");
+  s.effects = effects({Effect::Drag, Effect::Lift});
+  const BodyType disk = compile(s).types[0];
+  const double area = 0.5 * n * r * r * std::sin(2 * M_PI / n);
+  ASSERT_TRUE(disk.flat);
+  EXPECT_EQ(disk.normal_axis, 2);
+  EXPECT_NEAR(disk.plate_area, area, 1e-12);
+  EXPECT_NEAR(disk.ell.x() * disk.ell.y() * M_PI, area, 1e-12);
+  EXPECT_NEAR(disk.ell.x(), disk.ell.y(), 1e-12);  // the outline's side ratio is the box's
+  EXPECT_NEAR(plate_coefficients(disk).aspect, 1.0, 1e-12);
+  // a box as a mesh: the planform of the analytic box, 4 h1 h2
+  s.bodies[0].shape = Shape::from_mesh(
+      std::make_shared<const TriangleMesh>(tessellate(Shape::box(0.06, 0.04, 4e-4), 500)), "leaf");
+  const BodyType leaf = compile(s).types[0];
+  s.bodies[0].shape = Shape::box(0.06, 0.04, 4e-4);
+  const BodyType box = compile(s).types[0];
+  EXPECT_NEAR(leaf.plate_area, 0.06 * 0.04, 1e-15);
+  EXPECT_NEAR(leaf.plate_area, box.plate_area, 1e-15);
+  EXPECT_TRUE(((leaf.ell - box.ell).array().abs() < 1e-15).all());
 }
 
 TEST(Lift, TranslationalLiftIsNormalToVelocityAndPeaksAt45Degrees) {
