@@ -191,6 +191,15 @@ EffectSet auto_effects(const Scene& scene, const BodyType& type, const FlowScale
 
 namespace {
 
+// The axis of the equivalent ellipsoid's smallest semi-axis (the plate normal when flat), and
+// whether the body is flat: that semi-axis is at most kFlatRatio of the middle one
+bool flat_axis(const Vec3& ell, int* axis) {
+  Vec3 s = ell;
+  std::sort(s.data(), s.data() + 3);
+  ell.minCoeff(axis);
+  return s[0] <= kFlatRatio * s[1];
+}
+
 BodyType make_body_type(const Scene& scene, const BodySpec& b, const Shape& shape,
                         double density, const FluidField& field, const FlowScales& flow,
                         const AddedMassProvider& added_mass, const std::string& key) {
@@ -217,19 +226,14 @@ BodyType make_body_type(const Scene& scene, const BodySpec& b, const Shape& shap
   t.ell = (shape.type == ShapeType::Sphere || shape.type == ShapeType::Ellipsoid)
               ? h
               : Vec3(h * std::sqrt(4.0 / M_PI));
-  if (shape.type == ShapeType::Mesh) {
+  int na = 0;
+  if (shape.type == ShapeType::Mesh && flat_axis(t.ell, &na)) {
     // a flat mesh's planform is its own outline (a disk's pi r^2, a leaf's), not its bounding
     // box's 4 h1 h2: the in-plane semi-axes keep their ratio and take the outline's area
-    Vec3 s = t.ell;
-    std::sort(s.data(), s.data() + 3);
-    int na = 0;
-    t.ell.minCoeff(&na);
-    if (s[0] <= kFlatRatio * s[1]) {
-      const int i1 = (na + 1) % 3, i2 = (na + 2) % 3;
-      const double f = std::sqrt(projected_area(*shape.mesh, na) / (M_PI * t.ell[i1] * t.ell[i2]));
-      t.ell[i1] *= f;
-      t.ell[i2] *= f;
-    }
+    const int i1 = (na + 1) % 3, i2 = (na + 2) % 3;
+    const double f = std::sqrt(projected_area(*shape.mesh, na) / (M_PI * t.ell[i1] * t.ell[i2]));
+    t.ell[i1] *= f;
+    t.ell[i2] *= f;
   }
   Vec3 sorted = t.ell;
   std::sort(sorted.data(), sorted.data() + 3);
@@ -240,9 +244,7 @@ BodyType make_body_type(const Scene& scene, const BodySpec& b, const Shape& shap
     // rotation about axis a pushes fluid in proportion to the body's out-of-roundness
     t.rot_drag_len5[a] = t.ell[a] * std::abs(std::pow(lj, 4) - std::pow(lk, 4));
   }
-  // flat: the smallest semi-axis is at most kFlatRatio of the middle one
-  t.ell.minCoeff(&t.normal_axis);
-  t.flat = sorted[0] <= kFlatRatio * sorted[1];
+  t.flat = flat_axis(t.ell, &t.normal_axis);
   t.plate_area = t.area_max;
   t.apw_speed =
       std::sqrt(std::abs(density / scene.fluid_density - 1.0) * scene.gravity.norm() * sorted[0]);
