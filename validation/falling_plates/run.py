@@ -254,15 +254,20 @@ def main():
     # does APW's own 2D model tumble at the heavy strip's mass ratio, from any release?
     heavy = max(ISTARS)
     heavy_ode = 4 / math.pi * heavy
+    rect_ode = apw_ode.APW._replace(rect=True)
+    at_heavy = apw_ode.release_regimes(heavy_ode, rect_ode)
+    at_4 = apw_ode.release_regimes(4.0, rect_ode)
+    tumbles = any(r == "tumble" for _, r in at_heavy)
     st.note("APW's 2D ODE (apw_ode.py, a rectangle's inertia) at the mass ratio of the I*_s = %g "
             "strip, I*_ODE = (4/π) I*_s = %.2f, from five releases (regime over the second half "
-            "of 400 a/U): %s; at I*_ODE = 4: %s. APW's own model does not tumble steadily there, "
-            "so a 3D model that reduces to it (issue 30, item 1) has no reason to, whatever the "
-            "experiments show (docs/physics/lift.md, \"Where the boundary lies\")." % (
-                heavy, heavy_ode, "; ".join("%s %s" % r for r in apw_ode.release_regimes(
-                    heavy_ode, apw_ode.APW._replace(rect=True))),
-                "; ".join("%s %s" % r for r in apw_ode.release_regimes(
-                    4.0, apw_ode.APW._replace(rect=True)))))
+            "of 400 a/U): %s; at I*_ODE = 4: %s. %s" % (
+                heavy, heavy_ode, "; ".join("%s %s" % r for r in at_heavy),
+                "; ".join("%s %s" % r for r in at_4),
+                "It tumbles from some release there, so the strip check asks what APW's model "
+                "can do." if tumbles else
+                "APW's own model does not tumble there from any of them, so a 3D model that "
+                "reduces to it (issue 30, item 1) has no reason to, whatever the experiments "
+                "show (docs/physics/lift.md, \"Where the boundary lies\")."))
     st.note("Strips between I*_s = 0.15 and 2 at ν = %g (not checked; the sources put the "
             "flutter–tumble band there): " % nu_hi + "; ".join(
                 "I*_s = %g %s (pitch %.0f°)" % (i, res[(i, nu_hi)][0], res[(i, nu_hi)][3])

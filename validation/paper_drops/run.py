@@ -172,18 +172,22 @@ def mesh_circles(args, st, n_per, ref):
         b["density"] = RHO_BOX
     tr, _, _ = vc.run_scene(args, sc, st.path("drops_circle_mesh"))
     parts = []
-    for R, r in zip(RADII, ref["circle"]):
-        segs = []
-        for j, (Rj, vertical) in enumerate(meta):
-            if Rj == R:
-                segs += segments(tr, j, R, vertical)
-        m = bin_stats(segs)
+    for R, r, m in zip(RADII, ref["circle"], radius_bins(tr, meta)):
         parts.append("R = %.3g cm: %.2f m/s (data %.2f), lateral %.2f m (data %.2f), tumbling %.2f"
                      % (100 * R, m["median_speed"], r["median_speed"], m["median_lateral"],
                         r["median_lateral"], m["tumbling_fraction"]))
     st.note("Circles as flat 48-gon meshes (the disk's inertia; the checks above use thin "
             "ellipsoids, whose inertia about a diameter is 4/5 of it), %d drops per release and "
             "radius, no check: " % n_per + "; ".join(parts))
+
+
+def radius_bins(tr, meta):
+    """bin_stats of the segments of every drop in each radius bin of RADII (meta: (R, vertical)
+    per body, as drop_scene returns it)"""
+    per_bin = {R: [] for R in RADII}
+    for j, (R, vertical) in enumerate(meta):
+        per_bin[R] += segments(tr, j, R, vertical)
+    return [bin_stats(per_bin[R]) for R in RADII]
 
 
 def bin_stats(segs):
@@ -277,10 +281,7 @@ def main():
     for kind, ref_key, seed in (("square", "square", 7), ("circle", "circle", 8)):
         sc, meta = drop_scene(kind, n_per, seed)
         tr, summ, _ = vc.run_scene(args, sc, st.path("drops_%s" % kind))
-        per_bin = {R: [] for R in RADII}
-        for j, (R, vertical) in enumerate(meta):
-            per_bin[R] += segments(tr, j, R, vertical)
-        model[kind] = [bin_stats(per_bin[R]) for R in RADII]
+        model[kind] = radius_bins(tr, meta)
         role = "used to reject a model variant" if kind == "square" else "independent check"
         for R, m, r in zip(RADII, model[kind], ref[ref_key]):
             rng_txt = "R %.1f–%.1f cm" % (100 * r["r_lo"], 100 * r["r_hi"])

@@ -49,12 +49,7 @@ def evaluate(lrigid, cfg, kinds, n, work):
                        check=True)
         tr = vc.read_traj(os.path.join(d, "out", "trajectories.csv"))
         rows = []
-        for R, r in zip(pd.RADII, REF[kind]):
-            segs = []
-            for j, (Rj, vertical) in enumerate(meta):
-                if Rj == R:
-                    segs += pd.segments(tr, j, R, vertical)
-            m = pd.bin_stats(segs)
+        for r, m in zip(REF[kind], pd.radius_bins(tr, meta)):
             fr = r["n_tumbling"] / max(1, r["n_tumbling"] + r["n_chaotic"])
             rows.append((m["median_speed"], r["median_speed"], m["median_lateral"],
                          r["median_lateral"], m["tumbling_fraction"], fr))
