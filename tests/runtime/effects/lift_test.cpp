@@ -3,7 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <memory>
+#include <vector>
 
 #include "body/tessellate.h"
 #include "effects/drag.h"
@@ -11,7 +13,9 @@
 #include "effects/magnus.h"
 #include "effects/plan.h"
 #include "effects/plate.h"
+#include "effects/plate_cop.h"
 #include "support/fixture.h"
+#include "util/error.h"
 
 namespace lrigid {
 namespace {
@@ -69,6 +73,77 @@ TEST(Lift, AFlatMeshsPlanformIsItsOutline) {
   EXPECT_NEAR(leaf.plate_area, 0.06 * 0.04, 1e-15);
   EXPECT_NEAR(leaf.plate_area, box.plate_area, 1e-15);
   EXPECT_TRUE(((leaf.ell - box.ell).array().abs() < 1e-15).all());
+}
+
+// The quasi-steady centre of pressure (effects/plate_cop.h; docs/physics/lift.md, "The centre of
+// pressure"): the Munk couple of the plate's own added mass over the normal force of its drag
+// and translational lift. A long elliptic strip's is APW's 2D one summed over its strips
+// (moment ~ l^2, force ~ l per unit span): ahead = (4/3) a cos(a) / (C_T cos^2 a + (A - B cos 2a)
+// / 2), 8/(3 pi) times that of APW's strip of constant chord, (pi/2) a cos a / (...), which lies
+// ahead of the leading edge up to about 30 degrees. Finite plates carry less added mass per
+// strip, so their centre of pressure moves back onto the plate as the aspect ratio falls, and
+// every plate's reaches the centroid broadside.
+TEST(Lift, CentreOfPressureFollowsTheAspectRatio) {
+  const double rho = 1.2, nu = 1.5e-5, U = 10;  // Re ~ 10^4: the circulation fully developed
+  Scene s = test::sphere_scene(1, 1000, rho, nu);
+  s.effects = effects({Effect::AddedMass, Effect::Drag, Effect::Lift});
+  auto type = [&](const Shape& shape) {
+    s.bodies[0].shape = shape;
+    return compile(s).types[0];
+  };
+  const double a = 0.01;  // half chord along body x
+  const BodyType strip = type(Shape::ellipsoid(a, 1000 * a, 1e-3 * a));
+  const PlateCoeffs sc = plate_coefficients(strip);
+  const std::vector<double> degrees = {5, 10, 20, 30, 45, 60, 75, 85};
+  for (double deg : degrees) {
+    const double al = deg * M_PI / 180, c = std::cos(al);
+    const PlateCentreOfPressure p = plate_centre_of_pressure(strip, rho, nu, U, al, 0);
+    const double expect =
+        4.0 / 3.0 * a * c / (sc.C_T * c * c + 0.5 * (sc.A - sc.B * std::cos(2 * al)));
+    EXPECT_NEAR(p.ahead / expect, 1.0, 3e-3) << deg;
+    EXPECT_NEAR(p.chord, 2 * a, 1e-15);
+  }
+  // rectangles of side ratio 5, 2, 1 (chord 2a along x) and a disk: further back the lower the
+  // aspect ratio, the disk behind the elliptic strip up to 45 degrees; on the plate (between the
+  // leading edge and the centroid) from side ratio 2 down; at the centroid broadside
+  const BodyType r5 = type(Shape::box(2 * a, 10 * a, 0.02 * a));
+  const BodyType r2 = type(Shape::box(2 * a, 4 * a, 0.02 * a));
+  const BodyType sq = type(Shape::box(2 * a, 2 * a, 0.02 * a));
+  const BodyType disk = type(Shape::ellipsoid(a, a, 1e-3 * a));
+  std::printf(
+      "centre of pressure from the leading edge / chord (alpha: APW's 2D strip; "
+      "elliptic strip 1000:1, rectangles 5:1, 2:1, 1:1, disk)\n");
+  for (double deg : degrees) {
+    const double al = deg * M_PI / 180, c = std::cos(al);
+    double x[5];
+    int i = 0;
+    for (const BodyType* t : {&strip, &r5, &r2, &sq, &disk})
+      x[i++] = plate_centre_of_pressure(*t, rho, nu, U, al, 0).from_leading_edge;
+    const double apw = 0.5 - 0.5 * (M_PI / 2) * c /
+                                 (kLiftTranslational * c * c +
+                                  0.5 * (kPlateDragA - kPlateDragB * std::cos(2 * al)));
+    std::printf("  %4.0f deg: %7.3f; %7.3f %7.3f %7.3f %7.3f %7.3f\n", deg, apw, x[0], x[1], x[2],
+                x[3], x[4]);
+    EXPECT_LT(x[1], x[2]) << deg;
+    EXPECT_LT(x[2], x[3]) << deg;
+    if (deg <= 45) {
+      EXPECT_LT(x[0], x[4]) << deg;  // (broadside the disk's smaller drag moves it forward)
+    }
+    for (int j : {2, 3, 4}) {
+      EXPECT_GT(x[j], 0.0) << deg << " " << j;
+      EXPECT_LT(x[j], 0.5) << deg << " " << j;
+    }
+    if (deg <= 30) {
+      EXPECT_LT(apw, 0.0) << deg;  // APW's: ahead of the leading edge
+    }
+  }
+  for (const BodyType* t : {&strip, &r5, &sq, &disk})
+    EXPECT_NEAR(plate_centre_of_pressure(*t, rho, nu, U, 0.5 * M_PI, 0).from_leading_edge, 0.5,
+                1e-12);
+  // bad input is refused with the reason
+  EXPECT_THROW(plate_centre_of_pressure(sq, rho, nu, U, 0.3, sq.normal_axis), Error);
+  EXPECT_THROW(plate_centre_of_pressure(sq, rho, nu, U, 0.0, 0), Error);
+  EXPECT_THROW(plate_centre_of_pressure(type(Shape::sphere(0.01)), rho, nu, U, 0.3, 0), Error);
 }
 
 TEST(Lift, TranslationalLiftIsNormalToVelocityAndPeaksAt45Degrees) {

@@ -10,6 +10,8 @@ drag coefficient A - B to LR_E with the broadside A + B kept (the textbook C_D).
   coefficient_search.py --bin LR random --seed S --count N   random configurations, squares
   coefficient_search.py --bin LR refine --seed S --count N   log-normal steps around --centre
   coefficient_search.py --bin LR check --cfg JSON --n 10     squares and circles
+  coefficient_search.py --bin LR check --cfg '{"square": JSON, "circle": JSON}' --n 10
+                                                           each shape with its own factors
 
 Each configuration prints one JSON line: the factors, the loss (the sum of squared log errors of
 the median descent speed in units of 15 %, of the median lateral displacement in units of a
@@ -92,7 +94,14 @@ def main():
     rng = np.random.default_rng(a.seed)
     with tempfile.TemporaryDirectory() as work:
         if a.mode == "check":
-            cfgs, kinds = [json.loads(a.cfg)], ("square", "circle")
+            cfg = json.loads(a.cfg)
+            if set(cfg) <= {"square", "circle"}:  # per shape (factors that follow the planform)
+                res = {}
+                for kind, c in cfg.items():
+                    res.update(evaluate(a.bin, c, (kind,), a.n, work))
+                print(json.dumps(dict(cfg=cfg, loss=loss(res), passes=passes(res), res=res)))
+                return
+            cfgs, kinds = [cfg], ("square", "circle")
         else:
             cfgs, kinds = [], ("square",)
             c0 = json.loads(a.centre)
