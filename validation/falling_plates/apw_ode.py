@@ -60,23 +60,43 @@ RELEASES = (("rest, 10°", (0.0, 0.0, 0.0, math.radians(10.0))),
             ("moving, spin 1", (1.0, -1.0, 1.0, 0.5)))
 
 
-def regime(istar, c=APW, t_end=400.0, dt=0.01, theta0=math.radians(10.0), state0=None):
-    """("steady" | "flutter" | "chaotic" | "tumble" | "runaway", net turns and pitch peak-to-peak
-    in degrees over the second half); "runaway" when the state overflows. state0: the release
-    (u, v, ω, θ) instead of rest at theta0."""
+def trajectory(istar, c=APW, t_end=400.0, dt=0.01, theta0=math.radians(10.0), state0=None):
+    """States (u, v, ω, θ) after each RK4 step from the release (state0, or rest at theta0), an
+    array of shape (n, 4); None when the state overflows."""
     s = np.array(state0 if state0 is not None else [0.0, 0.0, 0.0, theta0], dtype=float)
     n = int(round(t_end / dt))
-    th = np.empty(n)
+    out = np.empty((n, 4))
     for i in range(n):
         k1 = rates(s, istar, c)
         k2 = rates(s + 0.5 * dt * k1, istar, c)
         k3 = rates(s + 0.5 * dt * k2, istar, c)
         k4 = rates(s + dt * k3, istar, c)
         s = s + dt / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
-        th[i] = s[3]
+        out[i] = s
         if not math.isfinite(s[0] + s[1] + s[2] + s[3]) or abs(s[2]) > 1e6:
-            return "runaway", math.nan, math.nan
-    return classify_angle(th[n // 2:])
+            return None
+    return out
+
+
+def regime(istar, c=APW, t_end=400.0, dt=0.01, theta0=math.radians(10.0), state0=None):
+    """("steady" | "flutter" | "chaotic" | "tumble" | "runaway", net turns and pitch peak-to-peak
+    in degrees over the second half); "runaway" when the state overflows. state0: the release
+    (u, v, ω, θ) instead of rest at theta0."""
+    tr = trajectory(istar, c, t_end, dt, theta0, state0)
+    if tr is None:
+        return "runaway", math.nan, math.nan
+    return classify_angle(tr[len(tr) // 2:, 3])
+
+
+def tip_speed_ratio(istar, c=APW, t_end=400.0):
+    """(regime, mean|ω| a / mean|V|) over the second half, released from rest at 10°: how fast
+    the strip turns against how fast it moves (ω a/|V| in the ODE's units)."""
+    tr = trajectory(istar, c, t_end)
+    if tr is None:
+        return "runaway", math.nan
+    h = tr[len(tr) // 2:]
+    return (classify_angle(h[:, 3])[0],
+            float(np.mean(np.abs(h[:, 2])) / np.mean(np.hypot(h[:, 0], h[:, 1]))))
 
 
 def classify_angle(phi):

@@ -53,10 +53,13 @@ import os
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "lib"))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "falling_plates"))
+import apw_ode  # noqa: E402  (APW's 2D ODE: how fast its tumbling strip turns)
 import vcommon as vc  # noqa: E402
 from vcommon import np, plt  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+APW_TUMBLING = (1.3, 1.4, 1.45)  # mass ratios at which APW's ODE tumbles (falling_plates notes)
 RHO_F, NU, G = 1.2, 1.5e-5, 9.81
 AREAL, H = 0.070, 6.94e-5            # kg/m², m (Howison et al.: 70 gsm, 2.5/36 mm)
 RHO_BOX = AREAL / H                   # 1008 kg/m³
@@ -190,6 +193,33 @@ def radius_bins(tr, meta):
     return [bin_stats(per_bin[R]) for R in RADII]
 
 
+def rotation_rates(tr, meta):
+    """Per radius bin of RADII, over the drops' second halves (airborne, z >= 5 cm): the median
+    tip-speed ratio mean|ω_p| R / mean|v| (ω_p the spin about in-plane axes, R the radius or half
+    side, v the velocity) and the median number of flips (sign changes of the normal's vertical
+    component) over the whole drop, the quantity Howison et al.'s classification counts."""
+    per_bin = {R: [] for R in RADII}
+    for j, (R, _) in enumerate(meta):
+        z = tr["z"][:, j]
+        keep = np.nonzero(z >= 0.05)[0]
+        n = keep[-1] + 1 if len(keep) else 0
+        if n < 10:
+            continue
+        qw, qx, qy, qz = (tr[k][:n, j] for k in ("qw", "qx", "qy", "qz"))
+        nrm = np.stack([2 * (qx * qz + qw * qy), 2 * (qy * qz - qw * qx),
+                        1 - 2 * (qx * qx + qy * qy)])
+        w = np.stack([tr["wx"][:n, j], tr["wy"][:n, j], tr["wz"][:n, j]])
+        wp = w - np.sum(w * nrm, axis=0) * nrm
+        v = np.sqrt(tr["vx"][:n, j] ** 2 + tr["vy"][:n, j] ** 2 + tr["vz"][:n, j] ** 2)
+        h = n // 2
+        nz = nrm[2][nrm[2] != 0]
+        per_bin[R].append((float(np.mean(np.linalg.norm(wp[:, h:], axis=0))) * R
+                           / max(float(np.mean(v[h:])), 1e-9),
+                           int(np.count_nonzero(np.diff(np.sign(nz)) != 0))))
+    return [(float(np.median([r[0] for r in per_bin[R]])),
+             float(np.median([r[1] for r in per_bin[R]]))) for R in RADII]
+
+
 def bin_stats(segs):
     v = [s[1] for s in segs]
     lat = [s[2] for s in segs]
@@ -278,6 +308,8 @@ def main():
     terminal_checks(args, st)
     n_per = 3 if args.quick else 10
     model = {}
+    apw_rates = "; ".join("I* = %g %s at %.2f" % ((i,) + apw_ode.tip_speed_ratio(i))
+                          for i in APW_TUMBLING)
     for kind, ref_key, seed in (("square", "square", 7), ("circle", "circle", 8)):
         sc, meta = drop_scene(kind, n_per, seed)
         tr, summ, _ = vc.run_scene(args, sc, st.path("drops_%s" % kind))
@@ -300,6 +332,19 @@ def main():
                  " ".join("%.2f" % f for f in fr_m), " ".join("%.2f" % f for f in fr_r), 0,
                  "Howison et al. 2020 data, %s" % role,
                  tol_text="≥ 0.5 smallest, ≤ 0.3 largest", verdict="PASS" if ok else "FAIL")
+        rates = rotation_rates(tr, meta)
+        st.note("%s drops, how fast they turn (no check): median tip-speed ratio mean|ω| R / "
+                "mean|v| over each drop's second half, and median flips of the normal per drop, "
+                % kind + "; ".join("R = %.3g cm: %.2f, %.0f flips" % (100 * R, q, f)
+                                   for R, (q, f) in zip(RADII, rates))
+                + ". Howison et al.'s classification calls a segment tumbling from 4 flips, so "
+                "at a fixed tip-speed ratio a 1 m drop counts fewer flips the larger the plate. "
+                "Autorotating flat plates approach a tip-speed ratio of 0.35 (Smith 1970, "
+                "AD0710288, high aspect ratio at Re = 2.4·10⁵: abstract only, which does not "
+                "define the ratio; Ω c/(2V) assumed, as Iversen 1979 uses it); APW's 2D ODE "
+                "(apw_ode.tip_speed_ratio, mean|ω| a / mean|V|): "
+                + apw_rates
+                + ". docs/physics/lift.md, \"How fast the plates turn\".")
         st.note("%s drops (%d per release and radius): " % (kind, n_per) + "; ".join(
             "R = %.3g cm: %d segments (%d steady start, %d tumbling, %d chaotic), median %.2f m/s, "
             "lateral %.2f m" % (100 * R, m["n"], m["n_steady"], m["n_tumbling"], m["n_chaotic"],
