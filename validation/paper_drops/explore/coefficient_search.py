@@ -12,6 +12,7 @@ drag coefficient A - B to LR_E with the broadside A + B kept (the textbook C_D).
   coefficient_search.py --bin LR check --cfg JSON --n 10     squares and circles
   coefficient_search.py --bin LR check --cfg '{"square": JSON, "circle": JSON}' --n 10
                                                            each shape with its own factors
+  ... check ... --ambient UPRIME L                         in stirred instead of still air
 
 Each configuration prints one JSON line: the factors, the loss (the sum of squared log errors of
 the median descent speed in units of 15 %, of the median lateral displacement in units of a
@@ -38,12 +39,20 @@ with open(os.path.join(HERE, "..", "reference.json")) as f:
 SEEDS = {"square": 7, "circle": 8}   # those of run.py
 
 
-def evaluate(lrigid, cfg, kinds, n, work):
+def evaluate(lrigid, cfg, kinds, n, work, ambient=None):
+    """ambient: (u', L) for still air stirred by turbulence of rms velocity u' (m/s) and integral
+    scale L (m), i.e. k = 3/2 u'^2, epsilon = u'^3 / L (the Langevin effect); None: still air"""
     env = dict(os.environ)
     env.update({k: repr(float(v)) for k, v in cfg.items()})
     res = {}
     for kind in kinds:
         sc, meta = pd.drop_scene(kind, n, SEEDS[kind])
+        if ambient:
+            up, scale = ambient
+            sc["fluid"] = vc.uniform_fluid(pd.RHO_F, pd.NU, k=1.5 * up * up, eps=up ** 3 / scale)
+            # the effects "auto" chooses in still air, with the turbulence always (auto skips it
+            # below u' of about 1 cm/s here)
+            sc["effects"] = ["gravity", "buoyancy", "added_mass", "drag", "lift", "turbulence"]
         d = os.path.join(work, kind)
         os.makedirs(d, exist_ok=True)
         sp = vc.write_scene(os.path.join(d, "scene.json"), sc)
@@ -90,6 +99,8 @@ def main():
     p.add_argument("--centre", default='{"LR_CR": 0.22, "LR_CT": 0.9, "LR_MU1": 0.35, '
                    '"LR_MU2": 0.18, "LR_E": 0.55}')
     p.add_argument("--cfg", help="check: the configuration, JSON")
+    p.add_argument("--ambient", nargs=2, type=float, metavar=("UPRIME", "L"),
+                   help="check: drop in air stirred at rms velocity UPRIME (m/s), scale L (m)")
     a = p.parse_args()
     rng = np.random.default_rng(a.seed)
     with tempfile.TemporaryDirectory() as work:
@@ -98,7 +109,7 @@ def main():
             if set(cfg) <= {"square", "circle"}:  # per shape (factors that follow the planform)
                 res = {}
                 for kind, c in cfg.items():
-                    res.update(evaluate(a.bin, c, (kind,), a.n, work))
+                    res.update(evaluate(a.bin, c, (kind,), a.n, work, a.ambient))
                 print(json.dumps(dict(cfg=cfg, loss=loss(res), passes=passes(res), res=res)))
                 return
             cfgs, kinds = [cfg], ("square", "circle")
@@ -116,7 +127,7 @@ def main():
                     c["LR_E"] = min(c["LR_E"], 0.9)
                     cfgs.append(c)
         for cfg in cfgs:
-            res = evaluate(a.bin, cfg, kinds, a.n, work)
+            res = evaluate(a.bin, cfg, kinds, a.n, work, a.ambient)
             print(json.dumps(dict(cfg=cfg, loss=loss(res), passes=passes(res), res=res)),
                   flush=True)
 
