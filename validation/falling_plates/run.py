@@ -62,6 +62,7 @@ LIMIT_RE = 1000.0
 
 RHO_F, W, SPAN, H = 1000.0, 0.02, 0.1, 0.0005
 ISTARS = (0.05, 0.1, 0.2, 0.4, 0.8, 1.2, 2.0)
+HEAVIER = (3.0, 4.0, 6.0)  # strips above the checked range, noted at Re ~ 10^3
 NUS = (1e-6, 1e-5, 1e-4, 3e-4)
 EFFECTS = ["gravity", "buoyancy", "added_mass", "drag", "lift"]
 
@@ -76,6 +77,13 @@ def scene(istar, nu, dur):
                         "density": rho_s, "count": 1, "position": [0, 0, 0],
                         "orientation": [math.cos(th / 2), 0, math.sin(th / 2), 0]}],
             "output": {"every": 0.01, "formats": ["csv"]}}
+
+
+def strip_duration(istar):
+    """at least 60 chord lengths at the strip's velocity scale and 4 s (the tumbling transient),
+    at most 20 s"""
+    u_est = math.sqrt((istar * W / H - 1) * 9.81 * H)
+    return min(max(60 * W / u_est, 4.0), 20.0)
 
 
 def lift_available(args, st):
@@ -111,6 +119,15 @@ def disk_density(istar):
     I*_d rho_f d^5 (I*_d = I / (rho_f d^5) = pi rho_s h / (64 rho_f d) for a flat disk)"""
     R = DISK_D / 2
     return istar * RHO_F * DISK_D ** 5 * 5 / (4 / 3 * math.pi * R ** 4 * DISK_C)
+
+
+def disk_duration(istar):
+    """at least 80 diameters at the disk's broadside terminal speed and 4 s, at most 15 s"""
+    rho_s = disk_density(istar)
+    m = rho_s * 4 / 3 * math.pi * (DISK_D / 2) ** 2 * DISK_C
+    u_est = math.sqrt(2 * (m - RHO_F * m / rho_s) * 9.81 /
+                      (RHO_F * math.pi * (DISK_D / 2) ** 2 * 1.17))
+    return min(max(80 * DISK_D / u_est, 4.0), 15.0)
 
 
 def disk_scene(istar, nu, dur):
@@ -215,10 +232,7 @@ def main():
     res = {}
     for nu in NUS:
         for istar in ISTARS:
-            u_est = math.sqrt((istar * W / H - 1) * 9.81 * H)
-            # at least 60 chord lengths and 4 s (the tumbling transient)
-            dur = min(max(60 * W / u_est, 4.0), 20.0)
-            tr, summ, _ = vc.run_scene(args, scene(istar, nu, dur),
+            tr, summ, _ = vc.run_scene(args, scene(istar, nu, strip_duration(istar)),
                                        st.path("plate_I%g_nu%g" % (istar, nu)))
             reg, U, ang, p2p, period = classify(tr)
             res[(istar, nu)] = (reg, U * W / nu, ang, p2p)
@@ -272,6 +286,19 @@ def main():
             "flutter–tumble band there): " % nu_hi + "; ".join(
                 "I*_s = %g %s (pitch %.0f°)" % (i, res[(i, nu_hi)][0], res[(i, nu_hi)][3])
                 for i in ISTARS if 0.15 < i < 2))
+    # where the side-ratio-5 strip does tumble (issue 30's third session: 3 and 4 are chaotic
+    # from releases at 10° and 45°, 6 tumbles from both)
+    heavier = []
+    for istar in HEAVIER:
+        tr, _, _ = vc.run_scene(args, scene(istar, nu_hi, strip_duration(istar)),
+                                st.path("plate_I%g_nu%g" % (istar, nu_hi)))
+        reg, U, _, p2p, _ = classify(tr)
+        heavier.append((istar, reg, p2p, U * W / nu_hi))
+    st.note("Heavier strips at ν = %g (not checked): %s." % (nu_hi, "; ".join(
+        "I*_s = %g %s (pitch %.0f°, Re = %.3g)" % h for h in heavier)))
+    strip_reg = {i: res[(i, nu_hi)][0] for i in ISTARS}
+    strip_reg.update({h[0]: h[1] for h in heavier})
+    strip_tumbles = next((i for i in sorted(strip_reg) if strip_reg[i] == "tumble"), math.nan)
     # (3) ordering
     # chaotic and tumbling both turn over: the band between flutter and tumbling is allowed to
     # mix them, so only a return to steady or flutter above a turning-over run is a disorder
@@ -341,12 +368,7 @@ def main():
         field = json.load(f)
     disks = []
     for istar, nu in DISKS:
-        rho_s = disk_density(istar)
-        m = rho_s * 4 / 3 * math.pi * (DISK_D / 2) ** 2 * DISK_C
-        u_est = math.sqrt(2 * (m - RHO_F * m / rho_s) * 9.81 /
-                          (RHO_F * math.pi * (DISK_D / 2) ** 2 * 1.17))
-        dur = min(max(80 * DISK_D / u_est, 4.0), 15.0)
-        tr, _, _ = vc.run_scene(args, disk_scene(istar, nu, dur),
+        tr, _, _ = vc.run_scene(args, disk_scene(istar, nu, disk_duration(istar)),
                                 st.path("disk_I%g_nu%g" % (istar, nu)))
         reg, U, swing = classify_disk(tr)
         re = U * DISK_D / nu
@@ -386,6 +408,16 @@ def main():
             "|---|---|---|---|---|---|"]
     tbl += ["| %g | %g | %.3g | %s | %s | %.0f |" % d for d in disks]
     st.table(tbl)
+    # one unit for both: I*_s = rho_s h / (rho_f w), w a disk's diameter, = (64/pi) I*_d
+    disk_tumbles = min((d[0] for d in disks if d[3] == "tumbling" and d[2] > 100),
+                       default=math.nan)
+    st.note("Where the model starts to tumble, in one unit (I*_s = ρ_s h/(ρ_f w), w a disk's "
+            "diameter, = (64/π) I*_d): the side-ratio-5 strip from I*_s = %g at Re ~ 10³ (of "
+            "%s; the sources: by 2), the disks from I*_d = %g, I*_s = %.2g (of the disks above; "
+            "Field et al.: I*_d ≈ 0.038–0.045, I*_s ≈ 0.8–0.9). The boundary moves far more with "
+            "the aspect ratio than the experiments' (docs/physics/lift.md, \"Where the boundary "
+            "lies\")." % (strip_tumbles, ", ".join("%g" % i for i in ISTARS + HEAVIER),
+                          disk_tumbles, 64 / math.pi * disk_tumbles))
     # plots: the strips' sweep and the disks over Field's map
     fig, axs = plt.subplots(1, 2, figsize=(12, 4.5))
     mk = {"steady": ("o", "tab:green"), "flutter": ("s", "tab:blue"),
