@@ -24,8 +24,10 @@ struct PlateCentreOfPressure {
 // The centre of pressure of flat body type `type` moving at `speed` (m/s) relative to fluid of
 // density rho (kg/m^3) and kinematic viscosity nu (m^2/s) at rest, along the in-plane body axis
 // `in_plane_axis` (0, 1 or 2, not the normal) tilted by alpha (rad, 0 < alpha <= pi/2) towards the
-// normal, without spin. Throws lrigid::Error if the type is not flat, the axis is the normal or
-// alpha, speed, rho or nu are out of range.
+// normal, without spin, with the effects the type simulates (without added_mass there is no Munk
+// couple, and the centre of pressure is the centroid). Throws lrigid::Error if the type is not
+// flat or has a mass offset (its Kirchhoff tensor is then about the centre of mass, not the
+// centroid), the axis is the normal, or alpha, speed, rho or nu are out of range.
 PlateCentreOfPressure plate_centre_of_pressure(const BodyType& type, double rho, double nu,
                                                double speed, double alpha, int in_plane_axis);
 

@@ -144,6 +144,17 @@ TEST(Lift, CentreOfPressureFollowsTheAspectRatio) {
   EXPECT_THROW(plate_centre_of_pressure(sq, rho, nu, U, 0.3, sq.normal_axis), Error);
   EXPECT_THROW(plate_centre_of_pressure(sq, rho, nu, U, 0.0, 0), Error);
   EXPECT_THROW(plate_centre_of_pressure(type(Shape::sphere(0.01)), rho, nu, U, 0.3, 0), Error);
+  s.bodies[0].mass_offset = Vec3(0.1 * a, 0, 0);  // the tensor is then about another point
+  EXPECT_THROW(
+      plate_centre_of_pressure(type(Shape::box(2 * a, 2 * a, 0.02 * a)), rho, nu, U, 0.3, 0),
+      Error);
+  s.bodies[0].mass_offset = Vec3::Zero();
+  // without the added-mass effect the model has no pitching moment in steady translation
+  s.effects = effects({Effect::Drag, Effect::Lift});
+  const PlateCentreOfPressure bare =
+      plate_centre_of_pressure(type(Shape::box(2 * a, 2 * a, 0.02 * a)), rho, nu, U, 0.3, 0);
+  EXPECT_EQ(bare.from_leading_edge, 0.5);
+  EXPECT_GT(bare.normal_force, 0);
 }
 
 TEST(Lift, TranslationalLiftIsNormalToVelocityAndPeaksAt45Degrees) {
