@@ -110,14 +110,25 @@ def drop_scene(kind, n_per_release, seed):
     return sc, meta
 
 
+def airborne(z):
+    """samples of a drop up to its last one at least 5 cm above the ground (0: never)"""
+    keep = np.nonzero(z >= 0.05)[0]
+    return keep[-1] + 1 if len(keep) else 0
+
+
+def flips(nz):
+    """sign changes of the normal's vertical component nz: the plate turning over"""
+    s = np.sign(nz)
+    return int(np.count_nonzero(np.diff(s[s != 0]) != 0))
+
+
 def segments(tr, j, R, vertical):
     """Howison et al.'s segmentation of body j's trajectory: list of (label, dz/time, lateral),
     label "steady" (initial steady/periodic part), "tumbling" or "chaotic"."""
     x, y, z = tr["x"][:, j] - tr["x"][0, j], tr["y"][:, j] - tr["y"][0, j], tr["z"][:, j]
     qw, qx, qy = tr["qw"][:, j], tr["qx"][:, j], tr["qy"][:, j]
     nz = 1 - 2 * (qx * qx + qy * qy)   # world z of the body's z axis (the plate normal)
-    keep = np.nonzero(z >= 0.05)[0]
-    n = keep[-1] + 1 if len(keep) else 0
+    n = airborne(z)
     if n < 3:
         return []
     lat = np.hypot(x[:n], y[:n])
@@ -127,8 +138,7 @@ def segments(tr, j, R, vertical):
         dz = abs(z[b - 1] - z[a])
         t = (b - a) * DT_OUT
         if label is None:
-            s = np.sign(nz[a:b])
-            label = "tumbling" if np.count_nonzero(np.diff(s[s != 0]) != 0) >= 4 else "chaotic"
+            label = "tumbling" if flips(nz[a:b]) >= 4 else "chaotic"
         out.append((label, dz / t, math.hypot(x[b - 1] - x[a], y[b - 1] - y[a])))
 
     if not vertical:
@@ -200,9 +210,7 @@ def rotation_rates(tr, meta):
     component) over the whole drop, the quantity Howison et al.'s classification counts."""
     per_bin = {R: [] for R in RADII}
     for j, (R, _) in enumerate(meta):
-        z = tr["z"][:, j]
-        keep = np.nonzero(z >= 0.05)[0]
-        n = keep[-1] + 1 if len(keep) else 0
+        n = airborne(tr["z"][:, j])
         if n < 10:
             continue
         qw, qx, qy, qz = (tr[k][:n, j] for k in ("qw", "qx", "qy", "qz"))
@@ -212,10 +220,8 @@ def rotation_rates(tr, meta):
         wp = w - np.sum(w * nrm, axis=0) * nrm
         v = np.sqrt(tr["vx"][:n, j] ** 2 + tr["vy"][:n, j] ** 2 + tr["vz"][:n, j] ** 2)
         h = n // 2
-        nz = nrm[2][nrm[2] != 0]
         per_bin[R].append((float(np.mean(np.linalg.norm(wp[:, h:], axis=0))) * R
-                           / max(float(np.mean(v[h:])), 1e-9),
-                           int(np.count_nonzero(np.diff(np.sign(nz)) != 0))))
+                           / max(float(np.mean(v[h:])), 1e-9), flips(nrm[2])))
     return [(float(np.median([r[0] for r in per_bin[R]])),
              float(np.median([r[1] for r in per_bin[R]]))) for R in RADII]
 
