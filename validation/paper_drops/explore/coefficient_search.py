@@ -23,7 +23,6 @@ import argparse
 import json
 import math
 import os
-import subprocess
 import sys
 import tempfile
 
@@ -32,6 +31,7 @@ sys.path.insert(0, os.path.join(HERE, ".."))
 sys.path.insert(0, os.path.join(HERE, "..", "..", "lib"))
 import run as pd  # noqa: E402  (validation/paper_drops/run.py: the drops and their segments)
 import vcommon as vc  # noqa: E402
+from knobs import run_with_knobs  # noqa: E402
 from vcommon import np  # noqa: E402
 
 with open(os.path.join(HERE, "..", "reference.json")) as f:
@@ -42,8 +42,6 @@ SEEDS = {"square": 7, "circle": 8}   # those of run.py
 def evaluate(lrigid, cfg, kinds, n, work, ambient=None):
     """ambient: (u', L) for still air stirred by turbulence of rms velocity u' (m/s) and integral
     scale L (m), i.e. k = 3/2 u'^2, epsilon = u'^3 / L (the Langevin effect); None: still air"""
-    env = dict(os.environ)
-    env.update({k: repr(float(v)) for k, v in cfg.items()})
     res = {}
     for kind in kinds:
         sc, meta = pd.drop_scene(kind, n, SEEDS[kind])
@@ -53,12 +51,7 @@ def evaluate(lrigid, cfg, kinds, n, work, ambient=None):
             # the effects "auto" chooses in still air, with the turbulence always (auto skips it
             # below u' of about 1 cm/s here)
             sc["effects"] = ["gravity", "buoyancy", "added_mass", "drag", "lift", "turbulence"]
-        d = os.path.join(work, kind)
-        os.makedirs(d, exist_ok=True)
-        sp = vc.write_scene(os.path.join(d, "scene.json"), sc)
-        subprocess.run([lrigid, "run", sp, "-o", os.path.join(d, "out"), "--quiet"], env=env,
-                       check=True)
-        tr = vc.read_traj(os.path.join(d, "out", "trajectories.csv"))
+        tr = run_with_knobs(lrigid, sc, cfg, work, kind)
         rows = []
         for r, m in zip(REF[kind], pd.radius_bins(tr, meta)):
             fr = r["n_tumbling"] / max(1, r["n_tumbling"] + r["n_chaotic"])

@@ -10,7 +10,6 @@ LRIGID: an lrigid, or one built with plate_knobs.patch to apply KNOBS_JSON (READ
 import json
 import math
 import os
-import subprocess
 import sys
 import tempfile
 
@@ -19,6 +18,7 @@ sys.path.insert(0, os.path.join(HERE, ".."))
 sys.path.insert(0, os.path.join(HERE, "..", "..", "lib"))
 import run as pd  # noqa: E402  (validation/paper_drops/run.py: the paper's shapes)
 import vcommon as vc  # noqa: E402
+from knobs import run_with_knobs  # noqa: E402
 from vcommon import np  # noqa: E402
 
 B, knobs, kind = sys.argv[1], json.loads(sys.argv[2]), sys.argv[3]
@@ -32,12 +32,8 @@ sc = {"version": 1, "fluid": vc.uniform_fluid(pd.RHO_F, pd.NU), "gravity": [0, 0
                   "orientation": [math.cos(th / 2), math.sin(th / 2) * 0.6,
                                   math.sin(th / 2) * 0.8, 0]}],
       "output": {"every": 0.01, "formats": ["csv"]}}
-env = dict(os.environ)
-env.update({k: repr(float(v)) for k, v in knobs.items()})
 with tempfile.TemporaryDirectory() as d:
-    p = vc.write_scene(os.path.join(d, "s.json"), sc)
-    subprocess.run([B, "run", p, "-o", os.path.join(d, "o"), "--quiet"], check=True, env=env)
-    tr = vc.read_traj(os.path.join(d, "o", "trajectories.csv"))
+    tr = run_with_knobs(B, sc, knobs, d, "onset")
 qx, qy = tr["qx"][:, 0], tr["qy"][:, 0]
 tiltd = np.degrees(np.arccos(np.clip(np.abs(1 - 2 * (qx * qx + qy * qy)), 0, 1)))
 t = tr["t"][:, 0]

@@ -12,7 +12,6 @@ import argparse
 import json
 import math
 import os
-import subprocess
 import sys
 import tempfile
 
@@ -20,20 +19,9 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "..", "falling_plates"))
 sys.path.insert(0, os.path.join(HERE, "..", "..", "lib"))
 import run as fp  # noqa: E402  (validation/falling_plates/run.py: the scenes and classifiers)
-import vcommon as vc  # noqa: E402
+from knobs import run_with_knobs  # noqa: E402
 
 NU = 1e-6  # the strips' Re ~ 10^3 row, and Field's disks at 1e-6 m^2/s
-
-
-def run(lrigid, sc, knobs, work, name):
-    env = dict(os.environ)
-    env.update({k: repr(float(v)) for k, v in knobs.items()})
-    d = os.path.join(work, name)
-    os.makedirs(d, exist_ok=True)
-    p = vc.write_scene(os.path.join(d, "scene.json"), sc)
-    subprocess.run([lrigid, "run", p, "-o", os.path.join(d, "out"), "--quiet"], env=env,
-                   check=True)
-    return vc.read_traj(os.path.join(d, "out", "trajectories.csv"))
 
 
 def main():
@@ -52,12 +40,12 @@ def main():
                 sc = fp.scene(istar, NU, fp.strip_duration(istar))
                 th = math.radians(th0)
                 sc["bodies"][0]["orientation"] = [math.cos(th / 2), 0, math.sin(th / 2), 0]
-                tr = run(a.bin, sc, json.loads(a.strip_knobs), work, "s%g_%g" % (istar, th0))
+                tr = run_with_knobs(a.bin, sc, json.loads(a.strip_knobs), work, "s%g_%g" % (istar, th0))
                 reg, U, _, p2p, _ = fp.classify(tr)
                 print("strip I*_s = %g, released at %g°: %s (pitch %.0f°, Re = %.3g)"
                       % (istar, th0, reg, p2p, U * fp.W / NU), flush=True)
         for istar in a.disks:
-            tr = run(a.bin, fp.disk_scene(istar, NU, fp.disk_duration(istar)),
+            tr = run_with_knobs(a.bin, fp.disk_scene(istar, NU, fp.disk_duration(istar)),
                      json.loads(a.disk_knobs), work, "d%g" % istar)
             reg, U, swing = fp.classify_disk(tr)
             re = U * fp.DISK_D / NU
