@@ -414,10 +414,11 @@ def main():
     st.note("Where the model starts to tumble, in one unit (I*_s = ρ_s h/(ρ_f w), w a disk's "
             "diameter, = (64/π) I*_d): the side-ratio-5 strip from I*_s = %g at Re ~ 10³ (of "
             "%s; the sources: by 2), the disks from I*_d = %g, I*_s = %.2g (of the disks above; "
-            "Field et al.: I*_d ≈ 0.038–0.045, I*_s ≈ 0.8–0.9). The boundary moves far more with "
-            "the aspect ratio than the experiments' (docs/physics/lift.md, \"Where the boundary "
-            "lies\")." % (strip_tumbles, ", ".join("%g" % i for i in ISTARS + HEAVIER),
-                          disk_tumbles, 64 / math.pi * disk_tumbles))
+            "Field et al.: I*_d ≈ 0.038–0.045, I*_s ≈ 0.8–0.9): the strip's onset over the "
+            "disks' is %.2g in the model, about 2.5 in the experiments (docs/physics/lift.md, "
+            "\"Where the boundary lies\")."
+            % (strip_tumbles, ", ".join("%g" % i for i in ISTARS + HEAVIER), disk_tumbles,
+               64 / math.pi * disk_tumbles, strip_tumbles / (64 / math.pi * disk_tumbles)))
     # plots: the strips' sweep and the disks over Field's map
     fig, axs = plt.subplots(1, 2, figsize=(12, 4.5))
     mk = {"steady": ("o", "tab:green"), "flutter": ("s", "tab:blue"),

@@ -21,20 +21,23 @@ namespace lrigid {
 // relative to the fluid, w the angular velocity, fluid_acc a~ above (body frame, m/s^2). The
 // velocity form (rk4): K (a~; 0) - (w x P_f; w x L_f + v_r x P_f), (P_f; L_f) = K (v_r; w); the
 // impulse form (euler, splitting; the rest lives in the impulse, integrate/dynamics.h):
-// (0; -v_r x P_f).
+// (0; -v_r x P_f). Both take back the Munk share K.S of a flat body with drag (BodyType::
+// munk_back, integrate/kirchhoff.h): + v_r x (S v_r) on the moment.
 template <bool ImpulseForm, typename T, class Tensor>
 LRIGID_LANE void added_mass_kernel(const Tensor& K, const T* v_rel, const T* w, const T* fluid_acc,
                                    T* f) {
   const T xi_r[6] = {v_rel[0], v_rel[1], v_rel[2], w[0], w[1], w[2]};
-  T mom[6];
+  T mom[6], sv[3], back[3];
   mass_times(K, xi_r, mom);
+  munk_back_momentum(K, v_rel, sv);
+  cross3(v_rel, sv, back);
   if constexpr (ImpulseForm) {
     T m[3];
     cross3(v_rel, mom, m);
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
       f[a] = T(0);
-      f[3 + a] = -m[a];
+      f[3 + a] = back[a] - m[a];
     }
   } else {
     const T acc[6] = {fluid_acc[0], fluid_acc[1], fluid_acc[2], T(0), T(0), T(0)};
@@ -43,12 +46,14 @@ LRIGID_LANE void added_mass_kernel(const Tensor& K, const T* v_rel, const T* w, 
     kirchhoff_gyro_kernel(v_rel, w, mom, mom + 3, g);
 #pragma GCC unroll 6
     for (int a = 0; a < 6; ++a) f[a] = ka[a] - g[a];
+#pragma GCC unroll 3
+    for (int a = 0; a < 3; ++a) f[3 + a] += back[a];
   }
 }
 
 // The body type's K for the kernel (symmetric: row or column major alike)
 inline FullMass fluid_tensor(const BodyType& type) {
-  return FullMass{type.K_fluid.data(), nullptr};
+  return FullMass{type.K_fluid.data(), nullptr, type.munk_back.data()};
 }
 
 // v_rel: velocity of the centre of mass relative to the fluid, body frame; w: angular velocity;

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include <Eigen/Eigenvalues>
+
 #include "body/mass_properties.h"
 #include "effects/basset.h"
 #include "effects/drag.h"
@@ -259,6 +261,16 @@ BodyType make_body_type(const Scene& scene, const BodySpec& b, const Shape& shap
   t.added_mass_panels = am.panels;
 
   t.effects = scene.effects_auto ? auto_effects(scene, t, flow, b) : scene.effects;
+  // A flat body's separated flow keeps only the share PlateCoeffs::munk of its added mass's Munk
+  // couple (docs/physics/lift.md, "The Munk couple of a finite plate"): the plate model's, so
+  // with its drag; in an ideal fluid (no drag) the Kirchhoff equations stay whole. The couple
+  // -v x K_tt v comes from K_tt's anisotropic part, K_tt less its smallest eigenvalue.
+  if (t.flat && t.effects.has(Effect::AddedMass) && t.effects.has(Effect::Drag)) {
+    const Mat3 ktt = t.K_fluid.block<3, 3>(0, 0);
+    const double lo =
+        Eigen::SelfAdjointEigenSolver<Mat3>(ktt, Eigen::EigenvaluesOnly).eigenvalues().minCoeff();
+    t.munk_back = (1.0 - plate_coefficients(t).munk) * (ktt - lo * Mat3::Identity());
+  }
   t.M = t.M_body;
   if (t.effects.has(Effect::AddedMass)) t.M += t.K_fluid;
   t.M = 0.5 * (t.M + t.M.transpose());

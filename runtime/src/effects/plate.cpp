@@ -60,6 +60,11 @@ PlateCoeffs plate_coefficients(const BodyType& type) {
   c.C_R = kLiftRotational * c.finite_span;
   c.mu1 = kPlateTorqueMu1 * c.finite_span;
   c.mu2 = kPlateTorqueMu2 * c.finite_span;
+  // The Munk couple of the plate's added mass takes the same share (BodyType::munk_back): the
+  // 3D tensor's acyclic couple puts a square's centre of pressure at 0.16 of the chord from the
+  // leading edge, where a plate in separated flow has it near 0.4 (docs/physics/lift.md, "The
+  // Munk couple of a finite plate"); a long strip keeps APW's whole couple.
+  c.munk = c.finite_span;
   return c;
 }
 

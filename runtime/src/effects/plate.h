@@ -50,6 +50,7 @@ struct PlateCoeffs {
   double C_T = kLiftTranslational, C_R = kLiftRotational;
   double mu1 = kPlateTorqueMu1;  // linear damping torque (at Re_fit)
   double mu2 = kPlateTorqueMu2;  // quadratic (pressure) damping torque
+  double munk = 1;  // the share of its added mass's Munk couple the plate keeps: finite_span
 };
 // broadside C_D of a flat plate of side ratio `aspect` (rectangle, or ellipse if !box)
 double plate_broadside_cd(double aspect, bool box);

@@ -30,9 +30,12 @@ inline DiagonalMass diagonal_mass(const BodyType& t) {
     m.M[a] = t.M(a, a);
     m.Mi[a] = t.M_inv_diagonal[a];
   }
+  for (int a = 0; a < 3; ++a) m.S[a] = t.munk_back(a, a);
   return m;
 }
-inline FullMass full_mass(const BodyType& t) { return FullMass{t.M.data(), t.M_inv.data()}; }
+inline FullMass full_mass(const BodyType& t) {
+  return FullMass{t.M.data(), t.M_inv.data(), t.munk_back.data()};
+}
 
 // Does the body need the fluid field sampled at all?
 inline bool needs_field(const BodyType& t) { return t.plan.sample_field; }

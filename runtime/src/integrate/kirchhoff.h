@@ -19,11 +19,18 @@ namespace lrigid {
 
 // ---- M as the kernels see it --------------------------------------------------------------------
 
+// The Munk couple's share a flat body's separated flow takes back (BodyType::munk_back,
+// docs/physics/lift.md "The Munk couple of a finite plate"): with S that 3 x 3 matrix (kg, zero
+// for every other body), the moment of the translational momentum P is -v x (P - S v) instead of
+// -v x P, the rest of the flow unchanged.
+inline constexpr double kNoMunkBack[9] = {};
+
 // A diagonal M (boxes, ellipsoids, spheres with the centre of mass at the centroid): its
-// diagonal and the inverse's, kg and kg m^2.
+// diagonal and the inverse's, kg and kg m^2; S: the diagonal of the Munk share taken back, kg.
 struct DiagonalMass {
   double M[6] = {0, 0, 0, 0, 0, 0};
   double Mi[6] = {0, 0, 0, 0, 0, 0};
+  double S[3] = {0, 0, 0};
 };
 
 // An isotropic M = diag(m, m, m, J, J, J) (spheres): the implicit step's closed form is cheaper
@@ -37,6 +44,7 @@ struct IsotropicMass {
 struct FullMass {
   const double* M = nullptr;
   const double* Mi = nullptr;
+  const double* S = kNoMunkBack;  // the Munk share taken back, 3 x 3 (kg)
 };
 
 // x = M^-1 y and x = M y
@@ -167,17 +175,36 @@ LRIGID_LANE void impulse_of_velocity(const Mass& m, const Fluid& k, const T* xi,
   for (int a = 0; a < 6; ++a) Pi[a] -= p[a];
 }
 
+// ---- the Munk share taken back ------------------------------------------------------------------
+
+// s = S v, the translational momentum that exerts no Munk couple
+template <typename T>
+LRIGID_LANE void munk_back_momentum(const DiagonalMass& m, const T* v, T* s) {
+#pragma GCC unroll 3
+  for (int a = 0; a < 3; ++a) s[a] = T(m.S[a]) * v[a];
+}
+template <typename T>
+LRIGID_LANE void munk_back_momentum(const FullMass& m, const T* v, T* s) {
+#pragma GCC unroll 3
+  for (int a = 0; a < 3; ++a)
+    s[a] = T(m.S[3 * a]) * v[0] + T(m.S[3 * a + 1]) * v[1] + T(m.S[3 * a + 2]) * v[2];
+}
+
 // ---- the free flow --------------------------------------------------------------------------
 
-// g = G(Y) = (w x P; w x L + v x P) with (v; w) = M^-1 Y (effects/wrench.h kirchhoff_gyro)
+// g = G(Y) = (w x P; w x L + v x (P - S v)) with (v; w) = M^-1 Y (effects/wrench.h
+// kirchhoff_gyro; S: the Munk share taken back, zero but for flat bodies with drag)
 template <typename T, class Mass>
 LRIGID_LANE void kirchhoff_gyro_kernel(const Mass& m, const T* Y, T* g) {
   T xi[6];
   mass_inv_times(m, Y, xi);
-  T a[3], b[3], c[3];
+  T a[3], b[3], c[3], Pm[3], sv[3];
+  munk_back_momentum(m, xi, sv);
+#pragma GCC unroll 3
+  for (int i = 0; i < 3; ++i) Pm[i] = Y[i] - sv[i];
   cross3(xi + 3, Y, a);
   cross3(xi + 3, Y + 3, b);
-  cross3(xi, Y, c);
+  cross3(xi, Pm, c);
 #pragma GCC unroll 3
   for (int i = 0; i < 3; ++i) {
     g[i] = a[i];
@@ -190,18 +217,37 @@ template <typename T>
 LRIGID_LANE T skew_entry(const T* a, int r, int c) {
   return r == c ? T(0) : ((c - r + 3) % 3 == 1 ? -a[3 - r - c] : a[3 - r - c]);
 }
+// (v^ S)(r, c)
+template <typename T>
+LRIGID_LANE T skew_times_S(const DiagonalMass& m, const T* v, int r, int c) {
+  return skew_entry(v, r, c) * T(m.S[c]);
+}
+template <typename T>
+LRIGID_LANE T skew_times_S(const FullMass& m, const T* v, int r, int c) {
+  return skew_entry(v, r, 0) * T(m.S[c]) + skew_entry(v, r, 1) * T(m.S[3 + c]) +
+         skew_entry(v, r, 2) * T(m.S[6 + c]);
+}
+// The derivative of v x (P - S v) in v is -(P - S v)^ - v^ S: B = -v^ S is the Munk share's part
+// besides P's
+template <typename T, class Mass>
+LRIGID_LANE T munk_back_jacobian(const Mass& m, const T* v, int r, int c) {
+  return -skew_times_S(m, v, r, c);
+}
 
 // A = I + h2 dG/dY at the midpoint impulse ym (h2 = h / 2), row major:
-// dG/dY = D + E M^-1 with D = [w^ 0; v^ w^] and E = [0 -P^; -P^ -L^]. Diagonal M: E M^-1 scales
-// E's columns.
+// dG/dY = D + E M^-1 with D = [w^ 0; v^ w^] and E = [0 -P^; -(P - S v)^ + B -L^], B = -v^ S
+// the Munk share's (munk_back_jacobian). Diagonal M: E M^-1 scales E's columns.
 template <typename T>
 LRIGID_LANE void kirchhoff_newton_matrix(const DiagonalMass& m, const T* ym, T h2, T* A) {
-  T xi[6];
+  T xi[6], sv[3], Pm[3];
   mass_inv_times(m, ym, xi);
+  munk_back_momentum(m, xi, sv);
   const T* v = xi;
   const T* w = xi + 3;
   const T* P = ym;
   const T* L = ym + 3;
+#pragma GCC unroll 3
+  for (int a = 0; a < 3; ++a) Pm[a] = P[a] - sv[a];
 #pragma GCC unroll 3
   for (int r = 0; r < 3; ++r)
 #pragma GCC unroll 3
@@ -209,7 +255,9 @@ LRIGID_LANE void kirchhoff_newton_matrix(const DiagonalMass& m, const T* ym, T h
       const T one = r == c ? T(1) : T(0);
       A[r * 6 + c] = one + h2 * skew_entry(w, r, c);
       A[r * 6 + 3 + c] = -h2 * skew_entry(P, r, c) * T(m.Mi[3 + c]);
-      A[(3 + r) * 6 + c] = h2 * (skew_entry(v, r, c) - skew_entry(P, r, c) * T(m.Mi[c]));
+      A[(3 + r) * 6 + c] =
+          h2 * (skew_entry(v, r, c) +
+                (munk_back_jacobian(m, v, r, c) - skew_entry(Pm, r, c)) * T(m.Mi[c]));
       A[(3 + r) * 6 + 3 + c] =
           one + h2 * (skew_entry(w, r, c) - skew_entry(L, r, c) * T(m.Mi[3 + c]));
     }
@@ -218,18 +266,22 @@ LRIGID_LANE void kirchhoff_newton_matrix(const DiagonalMass& m, const T* ym, T h
 // Full M: E M^-1 row by row (M^-1 symmetric: row r of E M^-1 is M^-1 times E's row r)
 template <typename T>
 LRIGID_LANE void kirchhoff_newton_matrix(const FullMass& m, const T* ym, T h2, T* A) {
-  T xi[6];
+  T xi[6], sv[3], Pm[3];
   mass_inv_times(m, ym, xi);
+  munk_back_momentum(m, xi, sv);
   const T* v = xi;
   const T* w = xi + 3;
   const T* P = ym;
   const T* L = ym + 3;
+#pragma GCC unroll 3
+  for (int a = 0; a < 3; ++a) Pm[a] = P[a] - sv[a];
 #pragma GCC unroll 6
   for (int r = 0; r < 6; ++r) {
     T E[6];
 #pragma GCC unroll 3
     for (int c = 0; c < 3; ++c) {
-      E[c] = r < 3 ? T(0) : -skew_entry(P, r - 3, c);
+      E[c] = r < 3 ? T(0)
+                   : munk_back_jacobian(m, v, r - 3, c) - skew_entry(Pm, r - 3, c);
       E[3 + c] = r < 3 ? -skew_entry(P, r, c) : -skew_entry(L, r - 3, c);
     }
     T EMi[6];

@@ -74,10 +74,12 @@ StepConsts<Mass> make_consts(const Model& model, const BodyType& type) {
       tc.body.M[a] = type.M_body(a, a);
       tc.fluid.M[a] = am ? type.K_fluid(a, a) : 0.0;
     }
+    for (int a = 0; a < 3; ++a) tc.fluid.S[a] = type.munk_back(a, a);  // (zero without am)
     for (int a = 0; a < 3; ++a) tc.basset_inv.K[a] = tc.basset ? inv(a, a) : 0.0;
   } else {
     tc.body.M = type.M_body.data();  // symmetric: row or column major alike
     tc.fluid.M = am ? type.K_fluid.data() : kNoTensor;
+    tc.fluid.S = type.munk_back.data();  // (zero without added mass)
     for (int r = 0; r < 6; ++r)
       for (int c = 0; c < 3; ++c) tc.basset_inv.K[r * 3 + c] = tc.basset ? inv(r, c) : 0.0;
   }

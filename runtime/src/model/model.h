@@ -60,6 +60,10 @@ struct BodyType {
   Vec3 r_cob = Vec3::Zero();     // centre of buoyancy minus centre of mass, body frame, m
   Mat6 M_body = Mat6::Zero();    // rigid-body generalized mass about the COM (kg, kg m^2)
   Mat6 K_fluid = Mat6::Zero();   // fluid Kirchhoff tensor about the COM
+  // The share of its Munk couple a flat body's separated flow takes back (kg; zero unless
+  // flat with added mass and drag): the couple is -v x (K_tt - munk_back) v
+  // (effects/compile_model.cpp, docs/physics/lift.md "The Munk couple of a finite plate")
+  Mat3 munk_back = Mat3::Zero();
   Mat6 M = Mat6::Zero();         // what the step inverts: M_body (+ K_fluid with added_mass)
   Mat6 M_inv = Mat6::Zero();
   // M has no linear-angular coupling (centre of mass at the centroid of a symmetric shape): the

@@ -88,6 +88,51 @@ TEST(KirchhoffKernels, NewtonMatrixIsTheDerivativeOfTheMidpointEquation) {
   }
 }
 
+// A flat body with drag keeps a share of its Munk couple (BodyType::munk_back, S): the moment
+// of P is -v x (P - S v). The gyro kernel against that equation, and the Newton matrix against
+// finite differences, in both mass forms (S diagonal, as for boxes and ellipsoids).
+TEST(KirchhoffKernels, TheMunkShareTakenBackInBothMassForms) {
+  std::mt19937_64 gen(11);
+  std::uniform_real_distribution<double> share(0.2, 0.9);
+  const double h = 1e-3;
+  for (int trial = 0; trial < 50; ++trial) {
+    Case c = make_case(gen);
+    Mat3 S = Mat3::Zero();
+    const double lo = c.M.diagonal().head<3>().minCoeff();
+    for (int a = 0; a < 3; ++a) {
+      S(a, a) = share(gen) * (c.M(a, a) - lo);
+      c.diag.S[a] = S(a, a);
+    }
+    c.full.S = S.data();
+    const Vec6 xi = c.Mi * c.Y;
+    const Vec3 v = xi.head<3>();
+    Vec6 ref = kirchhoff_gyro(v, xi.tail<3>(), c.Y);
+    ref.tail<3>() -= v.cross(S * v);
+    EXPECT_GT(v.cross(S * v).norm(), 1e-6 * ref.tail<3>().norm());  // the term is there
+    Vec6 gd, gf;
+    kirchhoff_gyro_kernel(c.diag, c.Y.data(), gd.data());
+    kirchhoff_gyro_kernel(c.full, c.Y.data(), gf.data());
+    EXPECT_LE((gd - ref).norm(), 1e-14 * ref.norm());
+    EXPECT_LE((gf - ref).norm(), 1e-14 * ref.norm());
+    double Ad[36], Af[36];
+    kirchhoff_newton_matrix(c.diag, c.Y.data(), 0.5 * h, Ad);
+    kirchhoff_newton_matrix(c.full, c.Y.data(), 0.5 * h, Af);
+    for (int col = 0; col < 6; ++col) {
+      const double e = 1e-6 * std::abs(c.Y[col]) + 1e-12;
+      Vec6 yp = c.Y, ym = c.Y, gp, gm;
+      yp[col] += e;
+      ym[col] -= e;
+      kirchhoff_gyro_kernel(c.full, yp.data(), gp.data());
+      kirchhoff_gyro_kernel(c.full, ym.data(), gm.data());
+      for (int row = 0; row < 6; ++row) {
+        const double fd = (row == col ? 1.0 : 0.0) + 0.5 * h * (gp[row] - gm[row]) / (2 * e);
+        EXPECT_NEAR(Ad[row * 6 + col], fd, 1e-6 * (1 + std::abs(fd))) << row << "," << col;
+        EXPECT_NEAR(Af[row * 6 + col], Ad[row * 6 + col], 1e-14 * (1 + std::abs(fd)));
+      }
+    }
+  }
+}
+
 TEST(KirchhoffKernels, FixedPointAndResidualAgreeWithTheMidpointEquation) {
   std::mt19937_64 gen(9);
   const double h = 1e-3;
