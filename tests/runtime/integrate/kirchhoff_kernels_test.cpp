@@ -63,29 +63,30 @@ TEST(KirchhoffKernels, GyroMatchesTheEquationInBothMassForms) {
   }
 }
 
-TEST(KirchhoffKernels, NewtonMatrixIsTheDerivativeOfTheMidpointEquation) {
-  // A = I + h/2 dG/dY: central differences of Y -> Y + h/2 G(Y)
-  std::mt19937_64 gen(5);
-  const double h = 1e-3;
-  for (int trial = 0; trial < 50; ++trial) {
-    Case c = make_case(gen);
-    double Ad[36], Af[36];
-    kirchhoff_newton_matrix(c.diag, c.Y.data(), 0.5 * h, Ad);
-    kirchhoff_newton_matrix(c.full, c.Y.data(), 0.5 * h, Af);
-    for (int col = 0; col < 6; ++col) {
-      const double e = 1e-6 * std::abs(c.Y[col]) + 1e-12;
-      Vec6 yp = c.Y, ym = c.Y, gp, gm;
-      yp[col] += e;
-      ym[col] -= e;
-      kirchhoff_gyro_kernel(c.full, yp.data(), gp.data());
-      kirchhoff_gyro_kernel(c.full, ym.data(), gm.data());
-      for (int row = 0; row < 6; ++row) {
-        const double fd = (row == col ? 1.0 : 0.0) + 0.5 * h * (gp[row] - gm[row]) / (2 * e);
-        EXPECT_NEAR(Ad[row * 6 + col], fd, 1e-6 * (1 + std::abs(fd))) << row << "," << col;
-        EXPECT_NEAR(Af[row * 6 + col], Ad[row * 6 + col], 1e-14 * (1 + std::abs(fd)));
-      }
+// A = I + h/2 dG/dY in both mass forms against central differences of Y -> Y + h/2 G(Y)
+void expect_newton_matrix_is_the_derivative(const Case& c, double h) {
+  double Ad[36], Af[36];
+  kirchhoff_newton_matrix(c.diag, c.Y.data(), 0.5 * h, Ad);
+  kirchhoff_newton_matrix(c.full, c.Y.data(), 0.5 * h, Af);
+  for (int col = 0; col < 6; ++col) {
+    const double e = 1e-6 * std::abs(c.Y[col]) + 1e-12;
+    Vec6 yp = c.Y, ym = c.Y, gp, gm;
+    yp[col] += e;
+    ym[col] -= e;
+    kirchhoff_gyro_kernel(c.full, yp.data(), gp.data());
+    kirchhoff_gyro_kernel(c.full, ym.data(), gm.data());
+    for (int row = 0; row < 6; ++row) {
+      const double fd = (row == col ? 1.0 : 0.0) + 0.5 * h * (gp[row] - gm[row]) / (2 * e);
+      EXPECT_NEAR(Ad[row * 6 + col], fd, 1e-6 * (1 + std::abs(fd))) << row << "," << col;
+      EXPECT_NEAR(Af[row * 6 + col], Ad[row * 6 + col], 1e-14 * (1 + std::abs(fd)));
     }
   }
+}
+
+TEST(KirchhoffKernels, NewtonMatrixIsTheDerivativeOfTheMidpointEquation) {
+  std::mt19937_64 gen(5);
+  for (int trial = 0; trial < 50; ++trial)
+    expect_newton_matrix_is_the_derivative(make_case(gen), 1e-3);
 }
 
 // A flat body with drag keeps a share of its Munk couple (BodyType::munk_back, S): the moment
@@ -114,22 +115,7 @@ TEST(KirchhoffKernels, TheMunkShareTakenBackInBothMassForms) {
     kirchhoff_gyro_kernel(c.full, c.Y.data(), gf.data());
     EXPECT_LE((gd - ref).norm(), 1e-14 * ref.norm());
     EXPECT_LE((gf - ref).norm(), 1e-14 * ref.norm());
-    double Ad[36], Af[36];
-    kirchhoff_newton_matrix(c.diag, c.Y.data(), 0.5 * h, Ad);
-    kirchhoff_newton_matrix(c.full, c.Y.data(), 0.5 * h, Af);
-    for (int col = 0; col < 6; ++col) {
-      const double e = 1e-6 * std::abs(c.Y[col]) + 1e-12;
-      Vec6 yp = c.Y, ym = c.Y, gp, gm;
-      yp[col] += e;
-      ym[col] -= e;
-      kirchhoff_gyro_kernel(c.full, yp.data(), gp.data());
-      kirchhoff_gyro_kernel(c.full, ym.data(), gm.data());
-      for (int row = 0; row < 6; ++row) {
-        const double fd = (row == col ? 1.0 : 0.0) + 0.5 * h * (gp[row] - gm[row]) / (2 * e);
-        EXPECT_NEAR(Ad[row * 6 + col], fd, 1e-6 * (1 + std::abs(fd))) << row << "," << col;
-        EXPECT_NEAR(Af[row * 6 + col], Ad[row * 6 + col], 1e-14 * (1 + std::abs(fd)));
-      }
-    }
+    expect_newton_matrix_is_the_derivative(c, h);
   }
 }
 
