@@ -7,11 +7,16 @@ Paper: 70 g/m² (thickness 0.0694 mm, 1008 kg/m³, as in Howison et al.'s analys
 Shapes: squares (box 2R × 2R × h) and circles (thin oblate ellipsoid of radius R whose mass per
 area is the paper's; its moment of inertia about a diameter is 4/5 of the flat disk's) of
 "radius" R (a square's half side, as in the data) at the centres of the data's bins 1.5–2.5,
-2.5–3.5, 3.5–4.5 and 4.5–5 cm. Air 1.2 kg/m³, ν = 1.5e-5 m²/s (20 °C). Released from rest with
-the centre 1 m above the floor, half of them horizontal and half vertical (as in the experiments,
-which used both), each tilted by a random 0–5° about a random axis (the release is never exactly
-symmetric); effects "auto" (gravity, buoyancy, added mass, plate drag and lift), strang (the
-shipped scheme, vcommon.SCHEME), dt = 5e-4 s, states every 0.01 s.
+2.5–3.5, 3.5–4.5 and 4.5–5 cm. Air 1.2 kg/m³, ν = 1.5e-5 m²/s (20 °C). Released from rest,
+40 per radius bin, horizontal and vertical in the proportion of the bin's measured drops (squares
+12:14, 12:15, 16:10, 10:3; circles 21:36, 19:29, 16:23, 10:16) from the bin's median measured
+release height (1.01–1.10 m; the first tracked sample's height, reference.json), each tilted by
+a random 0–5° about a random axis (the release is never exactly symmetric). Until 2026-12-04's
+fifth session: 10 per release and radius, half and half, from 1.0 m; the measured mix puts more
+vertical releases (no steady start segment) into the circles' bins and more horizontal ones into
+the large squares'. The recorded drops do not start from rest (a note prints how fast they move
+at the first sample); the model's do. Effects "auto" (gravity, buoyancy, added mass, plate
+drag and lift), strang (the shipped scheme, vcommon.SCHEME), dt = 5e-4 s, states every 0.01 s.
 
 Each simulated trajectory is cut into segments the way the experiments' were
 (Classification/classifyBehaviour.m of github.com/th533/Falling-Paper): samples below 5 cm are
@@ -23,6 +28,15 @@ video (projected-area oscillation frequency, spread of the vertical speed), whic
 cannot reproduce; here a segment tumbles when the plate's normal turns over at least twice
 (n_z changes sign four or more times). The tumbling fraction is tumbling / (tumbling + chaotic),
 in the data and in the model.
+
+The shape of the whole paths (notes, no checks; medians per drop and bin, the model's beside the
+measured drops', extract_reference.py): horizontal path per metre of descent; straightness, the
+net lateral displacement over that horizontal path (1: one direction all the way); planarity,
+sqrt(λ_min / λ_max) of the covariance of the horizontal positions (0: one vertical plane); the
+net lateral displacement of the horizontal and of the vertical releases. A square or disk is
+symmetric about its normal in this model, so a release tilted about one axis in perfectly still
+air falls in one vertical plane; the measured drops wander (planarity 0.1–0.3) and turn back
+(straightness 0.3–0.8).
 
 Checks per shape and radius bin: median descent speed within 15 % of the data's, median lateral
 displacement within a factor 1.5; per shape, the tumbling fraction's trend: at least 0.5 in the
@@ -66,7 +80,6 @@ RHO_BOX = AREAL / H                   # 1008 kg/m³
 RHO_ELL = AREAL / (4.0 / 3.0 * H / 2)  # oblate ellipsoid of centre thickness H, same mass per area
 RADII = (0.02, 0.03, 0.04, 0.0475)    # bin centres, m
 DT_OUT = 0.01
-Z0 = 1.0
 
 
 def shape_of(kind, R, aspect=1.0):
@@ -91,18 +104,29 @@ def tilt_quat(rng, vertical):
             w1 * y2 - x1 * z2 + y1 * w2 + z1 * x2, w1 * z2 + x1 * y2 - y1 * x2 + z1 * w2]
 
 
-def drop_scene(kind, n_per_release, seed):
+def releases(ref_row, n_bin):
+    """(horizontal, vertical) release counts of a bin of n_bin drops, in the proportion of the
+    measured drops of the bin (reference.json)"""
+    h, v = ref_row["n_drops_horizontal"], ref_row["n_drops_vertical"]
+    nh = int(round(n_bin * h / (h + v)))
+    return nh, n_bin - nh
+
+
+def drop_scene(kind, n_bin, seed, ref_rows):
+    """n_bin drops per radius bin of RADII (ref_rows: the shape's rows of reference.json, which
+    give each bin's release mix and height); returns the scene and (R, vertical, z0) per body"""
     rng = np.random.default_rng(seed)
     bodies, meta = [], []
-    for R in RADII:
+    for R, row in zip(RADII, ref_rows):
         sh, rho = shape_of(kind, R)
-        for vertical in (False, True):
-            for _ in range(n_per_release):
+        z0 = row["median_release_height"]
+        for vertical, count in zip((False, True), releases(row, n_bin)):
+            for _ in range(count):
                 bodies.append({"name": "%s_R%g_%s" % (kind, R, "v" if vertical else "h"),
                                "shape": sh, "density": rho, "count": 1,
-                               "position": [0, 0, Z0],
+                               "position": [0, 0, z0],
                                "orientation": tilt_quat(rng, vertical)})
-                meta.append((R, vertical))
+                meta.append((R, vertical, z0))
     sc = {"version": 1, "fluid": vc.uniform_fluid(RHO_F, NU), "gravity": [0, 0, -G],
           "effects": "auto", "integrator": {"scheme": vc.SCHEME, "dt": 5e-4},
           "duration": 6.0, "seed": seed, "ground": {"z": 0.0}, "bodies": bodies,
@@ -126,7 +150,7 @@ def segments(tr, j, R, vertical):
     """Howison et al.'s segmentation of body j's trajectory: list of (label, dz/time, lateral),
     label "steady" (initial steady/periodic part), "tumbling" or "chaotic"."""
     x, y, z = tr["x"][:, j] - tr["x"][0, j], tr["y"][:, j] - tr["y"][0, j], tr["z"][:, j]
-    qw, qx, qy = tr["qw"][:, j], tr["qx"][:, j], tr["qy"][:, j]
+    qx, qy = tr["qx"][:, j], tr["qy"][:, j]
     nz = 1 - 2 * (qx * qx + qy * qy)   # world z of the body's z axis (the plate normal)
     n = airborne(z)
     if n < 3:
@@ -176,8 +200,8 @@ def write_disk_obj(path, R, n=48):
 def mesh_circles(args, st, n_per, ref):
     """The circles' drops again as flat 48-gon meshes (note, no check): the ellipsoid's moment of
     inertia about a diameter is 4/5 of the flat disk's, which the mesh has."""
-    sc, meta = drop_scene("circle", n_per, 8)
-    for b, (R, _) in zip(sc["bodies"], meta):
+    sc, meta = drop_scene("circle", n_per, 8, ref["circle"])
+    for b, (R, _, _) in zip(sc["bodies"], meta):
         obj = st.path("disk_R%g.obj" % R)
         if not os.path.exists(obj):
             write_disk_obj(obj, R)
@@ -190,15 +214,15 @@ def mesh_circles(args, st, n_per, ref):
                      % (100 * R, m["median_speed"], r["median_speed"], m["median_lateral"],
                         r["median_lateral"], m["tumbling_fraction"]))
     st.note("Circles as flat 48-gon meshes (the disk's inertia; the checks above use thin "
-            "ellipsoids, whose inertia about a diameter is 4/5 of it), %d drops per release and "
-            "radius, no check: " % n_per + "; ".join(parts))
+            "ellipsoids, whose inertia about a diameter is 4/5 of it), %d drops per radius bin, "
+            "no check: " % n_per + "; ".join(parts))
 
 
 def radius_bins(tr, meta):
-    """bin_stats of the segments of every drop in each radius bin of RADII (meta: (R, vertical)
+    """bin_stats of the segments of every drop in each radius bin of RADII (meta: (R, vertical, z0)
     per body, as drop_scene returns it)"""
     per_bin = {R: [] for R in RADII}
-    for j, (R, vertical) in enumerate(meta):
+    for j, (R, vertical, _) in enumerate(meta):
         per_bin[R] += segments(tr, j, R, vertical)
     return [bin_stats(per_bin[R]) for R in RADII]
 
@@ -209,7 +233,7 @@ def rotation_rates(tr, meta):
     side, v the velocity) and the median number of flips (sign changes of the normal's vertical
     component) over the whole drop, the quantity Howison et al.'s classification counts."""
     per_bin = {R: [] for R in RADII}
-    for j, (R, _) in enumerate(meta):
+    for j, (R, _, _) in enumerate(meta):
         n = airborne(tr["z"][:, j])
         if n < 10:
             continue
@@ -226,6 +250,39 @@ def rotation_rates(tr, meta):
              float(np.median([r[1] for r in per_bin[R]]))) for R in RADII]
 
 
+def planarity(x, y):
+    """sqrt(λ_min / λ_max) of the covariance of a path's horizontal positions: 0 when it stays in
+    one vertical plane (as extract_reference.planarity measures the data's)"""
+    if len(x) < 3:
+        return math.nan
+    lo, hi = np.linalg.eigvalsh(np.cov(np.vstack([x, y])))
+    return math.sqrt(max(lo, 0.0) / hi) if hi > 0 else 0.0
+
+
+def path_measures(tr, meta):
+    """per radius bin of RADII, medians over the drops' airborne paths (z >= 5 cm), the quantities
+    extract_reference.py measures on the data: planarity, straightness (net horizontal
+    displacement over the horizontal path length), horizontal path per metre of descent, and the
+    net lateral displacement of the horizontal and of the vertical releases"""
+    per_bin = {R: [] for R in RADII}
+    for j, (R, vertical, _) in enumerate(meta):
+        n = airborne(tr["z"][:, j])
+        if n <= 10:
+            continue
+        x, y, z = tr["x"][:n, j], tr["y"][:n, j], tr["z"][:n, j]
+        path = float(np.sum(np.hypot(np.diff(x), np.diff(y))))
+        net = math.hypot(x[-1] - x[0], y[-1] - y[0])
+        per_bin[R].append((planarity(x, y), net / path if path > 0 else 1.0,
+                           path / (z[0] - z[-1]), net, vertical))
+
+    def med(rows, k, vertical=None):
+        v = [r[k] for r in rows if vertical is None or r[4] == vertical]
+        return float(np.median(v)) if v else math.nan
+    return [dict(planarity=med(per_bin[R], 0), straightness=med(per_bin[R], 1),
+                 path_per_descent=med(per_bin[R], 2), lateral_h=med(per_bin[R], 3, False),
+                 lateral_v=med(per_bin[R], 3, True)) for R in RADII]
+
+
 def bin_stats(segs):
     v = [s[1] for s in segs]
     lat = [s[2] for s in segs]
@@ -237,7 +294,7 @@ def bin_stats(segs):
                 tumbling_fraction=nt / (nt + nc) if nt + nc else math.nan)
 
 
-def ladder(args, st, n_per):
+def ladder(args, st, n_per, ref):
     """The squares' drops with the effects added one at a time: which term slows the descent."""
     steps = (("gravity, buoyancy, drag", ["gravity", "buoyancy", "drag"]),
              ("+ added mass", ["gravity", "buoyancy", "drag", "added_mass"]),
@@ -246,27 +303,27 @@ def ladder(args, st, n_per):
              "median lateral (m) | tumbling fraction | fastest rise (m/s) |",
              "|---|---|---|---|---|---|---|"]
     for label, eff in steps:
-        sc, meta = drop_scene("square", n_per, 7)
+        sc, meta = drop_scene("square", n_per, 7, ref["square"])
         sc["effects"] = eff
         tr, _, _ = vc.run_scene(args, sc, st.path("ladder_%d" % len(lines)))
         for R in RADII:
             segs, whole, rise = [], [], 0.0
-            for j, (Rj, vertical) in enumerate(meta):
+            for j, (Rj, vertical, z0) in enumerate(meta):
                 if Rj != R:
                     continue
                 segs += segments(tr, j, R, vertical)
                 low = np.nonzero(tr["z"][:, j] <= 0.05)[0]
                 if len(low):
-                    whole.append((Z0 - 0.05) / tr["t"][low[0], j])
+                    whole.append((z0 - 0.05) / tr["t"][low[0], j])
                 rise = max(rise, float(np.max(tr["vz"][:, j])))
             m = bin_stats(segs)
             lines.append("| %s | %.3g | %.2f | %s | %.2f | %s | %.2f |" % (
                 label, 100 * R, m["median_speed"],
-                "%.2f (%d of %d landed)" % (np.median(whole), len(whole), 2 * n_per) if whole
+                "%.2f (%d of %d landed)" % (np.median(whole), len(whole), n_per) if whole
                 else "none landed in 6 s", m["median_lateral"],
                 "%.2f" % m["tumbling_fraction"] if m["n_tumbling"] + m["n_chaotic"] else "–",
                 rise))
-    st.table(["Squares, the effects added one at a time (%d drops per release and radius; "
+    st.table(["Squares, the effects added one at a time (%d drops per radius bin; "
               "data: 0.70–0.73 m/s):" % n_per, ""] + lines)
 
 
@@ -312,12 +369,12 @@ def main():
     with open(os.path.join(HERE, "reference.json")) as f:
         ref = json.load(f)
     terminal_checks(args, st)
-    n_per = 3 if args.quick else 10
+    n_per = 6 if args.quick else 40   # drops per radius bin
     model = {}
     apw_rates = "; ".join("I* = %g %s at %.2f" % ((i,) + apw_ode.tip_speed_ratio(i))
                           for i in APW_TUMBLING)
     for kind, ref_key, seed in (("square", "square", 7), ("circle", "circle", 8)):
-        sc, meta = drop_scene(kind, n_per, seed)
+        sc, meta = drop_scene(kind, n_per, seed, ref[ref_key])
         tr, summ, _ = vc.run_scene(args, sc, st.path("drops_%s" % kind))
         model[kind] = radius_bins(tr, meta)
         role = "used to reject a model variant" if kind == "square" else "independent check"
@@ -338,6 +395,34 @@ def main():
                  " ".join("%.2f" % f for f in fr_m), " ".join("%.2f" % f for f in fr_r), 0,
                  "Howison et al. 2020 data, %s" % role,
                  tol_text="≥ 0.5 smallest, ≤ 0.3 largest", verdict="PASS" if ok else "FAIL")
+        st.note("%s drops, the whole airborne path (no check; medians per drop, model (data)): "
+                "horizontal path per metre of descent; straightness, the net lateral displacement "
+                "over that path; planarity, sqrt(λ_min / λ_max) of the horizontal positions' "
+                "covariance (0: one vertical plane); net lateral displacement of the horizontal "
+                "and of the vertical releases. " % kind + "; ".join(
+                    "R = %.3g cm: path %.2f (%.2f), straightness %.2f (%.2f), planarity %.3f "
+                    "(%.2f), lateral %.2f (%.2f) and %.2f (%.2f) m" % (
+                        100 * R, p["path_per_descent"], r["median_path_per_descent"],
+                        p["straightness"], r["median_straightness"], p["planarity"],
+                        r["median_planarity"], p["lateral_h"],
+                        r["median_lateral_horizontal_release"], p["lateral_v"],
+                        r["median_lateral_vertical_release"])
+                    for R, p, r in zip(RADII, path_measures(tr, meta), ref[ref_key]))
+                + ". The model's plates move sideways as far per metre of descent as the paper "
+                "does, but along a straighter path: the measured ones turn back and wander. A "
+                "symmetric plate tilted about one axis in perfectly still air stays in the plane "
+                "of its release tilt (planarity 0).")
+        st.note("%s drops, the data's first tracked samples (no check; median over the first two "
+                "frames at 98 Hz, per release, descent / sideways speed in m/s): " % kind
+                + "; ".join("R %.1f–%.1f cm: horizontal %.2f / %.2f, vertical %.2f / %.2f" % (
+                    100 * r["r_lo"], 100 * r["r_hi"], r["median_initial_descent_speed_horizontal"],
+                    r["median_initial_sideways_speed_horizontal"],
+                    r["median_initial_descent_speed_vertical"],
+                    r["median_initial_sideways_speed_vertical"]) for r in ref[ref_key])
+                + ". The recorded drops do not start from rest: the vertical releases already "
+                "fall at about 1 m/s, the horizontal ones move sideways at 0.1–1.1 m/s, a push "
+                "the release gives them. The model's drops start from rest at the first "
+                "sample's height.")
         rates = rotation_rates(tr, meta)
         st.note("%s drops, how fast they turn (no check): median tip-speed ratio mean|ω| R / "
                 "mean|v| over each drop's second half, and median flips of the normal per drop, "
@@ -351,13 +436,14 @@ def main():
                 "(apw_ode.tip_speed_ratio, mean|ω| a / mean|V|): "
                 + apw_rates
                 + ". docs/physics/lift.md, \"How fast the plates turn\".")
-        st.note("%s drops (%d per release and radius): " % (kind, n_per) + "; ".join(
+        st.note("%s drops (%d per radius bin, releases in the data's proportion): "
+                % (kind, n_per) + "; ".join(
             "R = %.3g cm: %d segments (%d steady start, %d tumbling, %d chaotic), median %.2f m/s, "
             "lateral %.2f m" % (100 * R, m["n"], m["n_steady"], m["n_tumbling"], m["n_chaotic"],
                                 m["median_speed"], m["median_lateral"])
             for R, m in zip(RADII, model[kind])))
     mesh_circles(args, st, n_per, ref)
-    ladder(args, st, n_per)
+    ladder(args, st, n_per, ref)
     with open(st.path("model_bins.json"), "w") as f:
         json.dump(model, f, indent=1)
     fig, axs = plt.subplots(1, 3, figsize=(12, 3.6))

@@ -17,7 +17,9 @@ drag coefficient A - B to LR_E with the broadside A + B kept (the textbook C_D).
 Each configuration prints one JSON line: the factors, the loss (the sum of squared log errors of
 the median descent speed in units of 15 %, of the median lateral displacement in units of a
 factor 1.5, and of the tumbling fraction), the number of paper_drops checks it would pass, and
-per bin (speed, data, lateral, data, tumbling fraction, data).
+per bin (speed, data, lateral, data, tumbling fraction, data), and per shape the median
+straightness of the whole paths per bin (net lateral displacement over the horizontal path; the
+data's in reference.json: 0.29-0.77).
 """
 import argparse
 import json
@@ -44,7 +46,7 @@ def evaluate(lrigid, cfg, kinds, n, work, ambient=None):
     scale L (m), i.e. k = 3/2 u'^2, epsilon = u'^3 / L (the Langevin effect); None: still air"""
     res = {}
     for kind in kinds:
-        sc, meta = pd.drop_scene(kind, n, SEEDS[kind])
+        sc, meta = pd.drop_scene(kind, n, SEEDS[kind], REF[kind])
         if ambient:
             up, scale = ambient
             sc["fluid"] = vc.uniform_fluid(pd.RHO_F, pd.NU, k=1.5 * up * up, eps=up ** 3 / scale)
@@ -58,12 +60,16 @@ def evaluate(lrigid, cfg, kinds, n, work, ambient=None):
             rows.append((m["median_speed"], r["median_speed"], m["median_lateral"],
                          r["median_lateral"], m["tumbling_fraction"], fr))
         res[kind] = rows
+        res[kind + "_straightness"] = [round(m["straightness"], 2)
+                                       for m in pd.path_measures(tr, meta)]
     return res
 
 
 def loss(res):
     total = 0.0
-    for rows in res.values():
+    for kind, rows in res.items():
+        if kind.endswith("_straightness"):
+            continue
         for ms, rs, ml, rl, mf, rf in rows:
             total += (math.log(ms / rs) / 0.15) ** 2
             total += (math.log(max(ml, 1e-3) / rl) / math.log(1.5)) ** 2
@@ -74,7 +80,9 @@ def loss(res):
 def passes(res):
     """paper_drops' checks this result would pass (of 9 per shape)"""
     n = 0
-    for rows in res.values():
+    for kind, rows in res.items():
+        if kind.endswith("_straightness"):
+            continue
         for ms, rs, ml, rl, _, _ in rows:
             n += abs(ms / rs - 1) <= 0.15
             n += 1 / 1.5 <= max(ml, 1e-12) / rl <= 1.5
@@ -88,7 +96,8 @@ def main():
     p.add_argument("mode", choices=("random", "refine", "check"))
     p.add_argument("--seed", type=int, default=1)
     p.add_argument("--count", type=int, default=100)
-    p.add_argument("--n", type=int, default=3, help="drops per release and radius")
+    p.add_argument("--n", type=int, default=6,
+                   help="drops per radius bin, releases in the data's proportion (run.py: 40)")
     p.add_argument("--centre", default='{"LR_CR": 0.22, "LR_CT": 0.9, "LR_MU1": 0.35, '
                    '"LR_MU2": 0.18, "LR_E": 0.55}')
     p.add_argument("--cfg", help="check: the configuration, JSON")
