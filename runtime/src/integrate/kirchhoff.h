@@ -227,16 +227,10 @@ LRIGID_LANE T skew_times_S(const FullMass& m, const T* v, int r, int c) {
   return skew_entry(v, r, 0) * T(m.S[c]) + skew_entry(v, r, 1) * T(m.S[3 + c]) +
          skew_entry(v, r, 2) * T(m.S[6 + c]);
 }
-// The derivative of v x (P - S v) in v is -(P - S v)^ - v^ S: B = -v^ S is the Munk share's part
-// besides P's
-template <typename T, class Mass>
-LRIGID_LANE T munk_back_jacobian(const Mass& m, const T* v, int r, int c) {
-  return -skew_times_S(m, v, r, c);
-}
-
 // A = I + h2 dG/dY at the midpoint impulse ym (h2 = h / 2), row major:
-// dG/dY = D + E M^-1 with D = [w^ 0; v^ w^] and E = [0 -P^; -(P - S v)^ + B -L^], B = -v^ S
-// the Munk share's (munk_back_jacobian). Diagonal M: E M^-1 scales E's columns.
+// dG/dY = D + E M^-1 with D = [w^ 0; v^ w^] and E = [0 -P^; -(P - S v)^ - v^ S -L^]: the
+// derivative of v x (P - S v) in v is -(P - S v)^ - v^ S, the second term the Munk share's
+// (skew_times_S). Diagonal M: E M^-1 scales E's columns.
 template <typename T>
 LRIGID_LANE void kirchhoff_newton_matrix(const DiagonalMass& m, const T* ym, T h2, T* A) {
   T xi[6], sv[3], Pm[3];
@@ -256,8 +250,8 @@ LRIGID_LANE void kirchhoff_newton_matrix(const DiagonalMass& m, const T* ym, T h
       A[r * 6 + c] = one + h2 * skew_entry(w, r, c);
       A[r * 6 + 3 + c] = -h2 * skew_entry(P, r, c) * T(m.Mi[3 + c]);
       A[(3 + r) * 6 + c] =
-          h2 * (skew_entry(v, r, c) +
-                (munk_back_jacobian(m, v, r, c) - skew_entry(Pm, r, c)) * T(m.Mi[c]));
+          h2 * (skew_entry(v, r, c) -
+                (skew_times_S(m, v, r, c) + skew_entry(Pm, r, c)) * T(m.Mi[c]));
       A[(3 + r) * 6 + 3 + c] =
           one + h2 * (skew_entry(w, r, c) - skew_entry(L, r, c) * T(m.Mi[3 + c]));
     }
@@ -281,7 +275,7 @@ LRIGID_LANE void kirchhoff_newton_matrix(const FullMass& m, const T* ym, T h2, T
 #pragma GCC unroll 3
     for (int c = 0; c < 3; ++c) {
       E[c] = r < 3 ? T(0)
-                   : munk_back_jacobian(m, v, r - 3, c) - skew_entry(Pm, r - 3, c);
+                   : -(skew_times_S(m, v, r - 3, c) + skew_entry(Pm, r - 3, c));
       E[3 + c] = r < 3 ? -skew_entry(P, r, c) : -skew_entry(L, r - 3, c);
     }
     T EMi[6];
