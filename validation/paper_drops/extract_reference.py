@@ -30,25 +30,12 @@ import sys
 import numpy as np
 import scipy.io
 
+from paths import path_measures, planarity  # the measures run.py applies to the model's drops
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 # radius bins (m): the radius is a circle's radius or a square's half side
 BINS = [(0.015, 0.025), (0.025, 0.035), (0.035, 0.045), (0.045, 0.0501)]
 FPS = 98.0   # the trajectories' frame rate (classifyBehaviour.m: time = samples / 98)
-
-
-def planarity(xy):
-    """sqrt(λ_min / λ_max) of the covariance of horizontal positions xy (n × 2): 0 when a path
-    stays in one vertical plane, 1 when it wanders equally in every horizontal direction"""
-    c = np.cov(xy.T)
-    lo, hi = np.linalg.eigvalsh(c)
-    return float(np.sqrt(max(lo, 0.0) / hi)) if hi > 0 else 0.0
-
-
-def path_measures(tr):
-    """(straightness, horizontal path per descent, net lateral) of a trimmed trajectory (n × 3)"""
-    path = float(np.sum(np.hypot(*np.diff(tr[:, :2], axis=0).T)))
-    net = float(np.hypot(*(tr[-1, :2] - tr[0, :2])))
-    return net / path if path > 0 else 1.0, path / (tr[0, 2] - tr[-1, 2]), net
 
 
 def drops_table(path):
@@ -65,13 +52,13 @@ def drops_table(path):
     rows = []
     for lo, hi in BINS:
         b = [x for x in drops if lo <= x[0] < hi]
-        pm = [(x[1], path_measures(x[2])) for x in b if len(x[2]) > 10]
+        pm = [(x[1], path_measures(*x[2].T)) for x in b if len(x[2]) > 10]
         rows.append(dict(n_drops_horizontal=sum(x[1] == 0 for x in b),
                          n_drops_vertical=sum(x[1] == 1 for x in b),
                          median_release_height=float(np.median([x[2][0, 2] for x in b
                                                                 if len(x[2])])),
-                         median_planarity=float(np.median([planarity(x[2][:, :2]) for x in b
-                                                           if len(x[2]) > 10])),
+                         median_planarity=float(np.median([planarity(x[2][:, 0], x[2][:, 1])
+                                                           for x in b if len(x[2]) > 10])),
                          median_straightness=float(np.median([m[0] for _, m in pm])),
                          median_path_per_descent=float(np.median([m[1] for _, m in pm])),
                          median_lateral_horizontal_release=float(np.median(

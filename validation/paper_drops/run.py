@@ -69,6 +69,7 @@ import sys
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "lib"))
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "falling_plates"))
 import apw_ode  # noqa: E402  (APW's 2D ODE: how fast its tumbling strip turns)
+from paths import path_measures as path_measures_of, planarity  # noqa: E402
 import vcommon as vc  # noqa: E402
 from vcommon import np, plt  # noqa: E402
 
@@ -250,15 +251,6 @@ def rotation_rates(tr, meta):
              float(np.median([r[1] for r in per_bin[R]]))) for R in RADII]
 
 
-def planarity(x, y):
-    """sqrt(λ_min / λ_max) of the covariance of a path's horizontal positions: 0 when it stays in
-    one vertical plane (as extract_reference.planarity measures the data's)"""
-    if len(x) < 3:
-        return math.nan
-    lo, hi = np.linalg.eigvalsh(np.cov(np.vstack([x, y])))
-    return math.sqrt(max(lo, 0.0) / hi) if hi > 0 else 0.0
-
-
 def path_measures(tr, meta):
     """per radius bin of RADII, medians over the drops' airborne paths (z >= 5 cm), the quantities
     extract_reference.py measures on the data: planarity, straightness (net horizontal
@@ -270,10 +262,7 @@ def path_measures(tr, meta):
         if n <= 10:
             continue
         x, y, z = tr["x"][:n, j], tr["y"][:n, j], tr["z"][:n, j]
-        path = float(np.sum(np.hypot(np.diff(x), np.diff(y))))
-        net = math.hypot(x[-1] - x[0], y[-1] - y[0])
-        per_bin[R].append((planarity(x, y), net / path if path > 0 else 1.0,
-                           path / (z[0] - z[-1]), net, vertical))
+        per_bin[R].append((planarity(x, y),) + path_measures_of(x, y, z) + (vertical,))
 
     def med(rows, k, vertical=None):
         v = [r[k] for r in rows if vertical is None or r[4] == vertical]
