@@ -9,14 +9,16 @@ Writes (next to this script and into ../falling_plates/):
 * paper_drops/reference.json: per shape (circle, square) and radius bin, the number of classified
   trajectory segments, the median descent speed dz/time (m/s), the median lateral displacement
   sqrt(dx² + dy²) (m) and the counts of their behaviour labels (1 tumbling, 2 chaotic,
-  3 steady/periodic), from data{Circle,Square}Classified.mat; and from the raw drops
+  3 steady/periodic) and a bootstrap 90 % interval of the median lateral displacement, from
+  data{Circle,Square}Classified.mat; and from the raw drops
   (data{Circle,Square}.mat, trimmed below 5 cm as the classification does): the number of drops
-  released horizontally (initialCondition 0) and vertically (1), their median release height (m)
+  released horizontally (initialCondition 0) and vertically (1), their median release height (m),
   the median planarity of their paths, sqrt(λ_min / λ_max) of the horizontal positions'
   covariance (0: the plate stays in one vertical plane), the median straightness (net horizontal
   displacement over the horizontal path length), the median horizontal path per metre of descent,
-  the median whole-drop lateral displacement per release (horizontal, vertical), and how fast
-  the plate already moves at the first tracked sample (98 Hz, over the first two intervals):
+  the median whole-drop lateral displacement per release (horizontal, vertical), the tracked
+  horizontal positions' noise level (m, from their second differences), and how fast the plate
+  already moves at the first tracked sample (98 Hz, over the first two intervals):
   median descent and sideways speed per release;
 * falling_plates/field1997.json: Field, Klaus, Moore & Nori (Nature 388, 1997)'s disk regime map
   as digitised by Howison et al. (Field1997_data.mat): points (Re, I*_d, regime 1 steady,
@@ -53,7 +55,11 @@ def drops_table(path):
     for lo, hi in BINS:
         b = [x for x in drops if lo <= x[0] < hi]
         pm = [(x[1], path_measures(*x[2].T)) for x in b if len(x[2]) > 10]
+        # white-noise level of the tracked horizontal positions: the second differences' MAD
+        noise = [np.median(np.abs(np.diff(x[2][:, :2], 2, axis=0))) / 0.6745 / np.sqrt(6)
+                 for x in b if len(x[2]) > 10]
         rows.append(dict(n_drops_horizontal=sum(x[1] == 0 for x in b),
+                         median_position_noise=float(np.median(noise)),
                          n_drops_vertical=sum(x[1] == 1 for x in b),
                          median_release_height=float(np.median([x[2][0, 2] for x in b
                                                                 if len(x[2])])),
@@ -74,6 +80,14 @@ def drops_table(path):
     return rows
 
 
+def median_ci90(x, resamples=4000, seed=1):
+    """the 5th and 95th percentiles of the median of x over bootstrap resamples: how well the
+    sample fixes its median"""
+    rng = np.random.default_rng(seed)
+    meds = np.median(rng.choice(x, size=(resamples, len(x))), axis=1)
+    return [float(q) for q in np.percentile(meds, [5, 95])]
+
+
 def shape_table(path, raw):
     d = scipy.io.loadmat(path, squeeze_me=True)
     R, b = d["radius"], d["behaviourAuto"]
@@ -85,6 +99,7 @@ def shape_table(path, raw):
         rows.append(dict(**extra, r_lo=lo, r_hi=min(hi, 0.05), n=int(m.sum()),
                          median_speed=float(np.median(v[m])),
                          median_lateral=float(np.median(lat[m])),
+                         median_lateral_ci90=median_ci90(lat[m]),
                          n_tumbling=int((b[m] == 1).sum()), n_chaotic=int((b[m] == 2).sum()),
                          n_steady_periodic=int((b[m] == 3).sum())))
     return rows

@@ -376,7 +376,8 @@ def main():
             st.check("%s %s: median lateral displacement" % (kind, rng_txt),
                      m["median_lateral"], r["median_lateral"], 0, src, unit="m",
                      tol_text="factor 1.5", verdict="PASS" if 1 / 1.5 <= ratio <= 1.5 else "FAIL",
-                     note="ratio %.2f" % ratio)
+                     note="ratio %.2f; the data's median, bootstrap 90 %%: %.2f–%.2f m"
+                     % ((ratio,) + tuple(r["median_lateral_ci90"])))
         fr_m = [m["tumbling_fraction"] for m in model[kind]]
         fr_r = [r["n_tumbling"] / max(1, r["n_tumbling"] + r["n_chaotic"]) for r in ref[ref_key]]
         ok = fr_m[0] >= 0.5 and fr_m[-1] <= 0.3
@@ -400,7 +401,10 @@ def main():
                 + ". The model's plates move sideways as far per metre of descent as the paper "
                 "does, but along a straighter path: the measured ones turn back and wander. A "
                 "symmetric plate tilted about one axis in perfectly still air stays in the plane "
-                "of its release tilt (planarity 0).")
+                "of its release tilt (planarity 0). The recorded positions' noise (their second "
+                "differences) is %.2f mm, far below the paths' spread, so the recorded "
+                "planarity is the plates' own." % (1e3 * float(np.median(
+                    [r["median_position_noise"] for r in ref[ref_key]]))))
         st.note("%s drops, the data's first tracked samples (no check; median over the first two "
                 "frames at 98 Hz, per release, descent / sideways speed in m/s): " % kind
                 + "; ".join("R %.1f–%.1f cm: horizontal %.2f / %.2f, vertical %.2f / %.2f" % (

@@ -13,6 +13,8 @@ drag coefficient A - B to LR_E with the broadside A + B kept (the textbook C_D).
   coefficient_search.py --bin LR check --cfg '{"square": JSON, "circle": JSON}' --n 10
                                                            each shape with its own factors
   ... check ... --ambient UPRIME L                         in stirred instead of still air
+  ... check ... --half --height 1.0                        half/half releases from 1.0 m (the
+                                                           set-up before the recorded one)
 
 Each configuration prints one JSON line: the factors, the loss (the sum of squared log errors of
 the median descent speed in units of 15 %, of the median lateral displacement in units of a
@@ -41,12 +43,20 @@ with open(os.path.join(HERE, "..", "reference.json")) as f:
 SEEDS = {"square": 7, "circle": 8}   # those of run.py
 
 
-def evaluate(lrigid, cfg, kinds, n, work, ambient=None):
+def evaluate(lrigid, cfg, kinds, n, work, ambient=None, half=False, height=None):
     """ambient: (u', L) for still air stirred by turbulence of rms velocity u' (m/s) and integral
-    scale L (m), i.e. k = 3/2 u'^2, epsilon = u'^3 / L (the Langevin effect); None: still air"""
+    scale L (m), i.e. k = 3/2 u'^2, epsilon = u'^3 / L (the Langevin effect); None: still air.
+    half: half the drops released horizontally (instead of the recorded mix); height: release
+    height in m (instead of the recorded one)"""
     res = {}
     for kind in kinds:
-        sc, meta = pd.drop_scene(kind, n, SEEDS[kind], REF[kind])
+        rows = [dict(r) for r in REF[kind]]
+        for r in rows:
+            if half:
+                r["n_drops_horizontal"] = r["n_drops_vertical"] = 1
+            if height is not None:
+                r["median_release_height"] = height
+        sc, meta = pd.drop_scene(kind, n, SEEDS[kind], rows)
         if ambient:
             up, scale = ambient
             sc["fluid"] = vc.uniform_fluid(pd.RHO_F, pd.NU, k=1.5 * up * up, eps=up ** 3 / scale)
@@ -103,6 +113,11 @@ def main():
     p.add_argument("--cfg", help="check: the configuration, JSON")
     p.add_argument("--ambient", nargs=2, type=float, metavar=("UPRIME", "L"),
                    help="check: drop in air stirred at rms velocity UPRIME (m/s), scale L (m)")
+    p.add_argument("--half", action="store_true",
+                   help="half of each bin's drops horizontal (run.py before 2026-12-04's fifth "
+                   "session) instead of the recorded mix")
+    p.add_argument("--height", type=float,
+                   help="release height (m) instead of each bin's recorded one (before: 1.0)")
     a = p.parse_args()
     rng = np.random.default_rng(a.seed)
     with tempfile.TemporaryDirectory() as work:
@@ -111,7 +126,8 @@ def main():
             if set(cfg) <= {"square", "circle"}:  # per shape (factors that follow the planform)
                 res = {}
                 for kind, c in cfg.items():
-                    res.update(evaluate(a.bin, c, (kind,), a.n, work, a.ambient))
+                    res.update(evaluate(a.bin, c, (kind,), a.n, work, a.ambient, a.half,
+                                        a.height))
                 print(json.dumps(dict(cfg=cfg, loss=loss(res), passes=passes(res), res=res)))
                 return
             cfgs, kinds = [cfg], ("square", "circle")
@@ -129,7 +145,7 @@ def main():
                     c["LR_E"] = min(c["LR_E"], 0.9)
                     cfgs.append(c)
         for cfg in cfgs:
-            res = evaluate(a.bin, cfg, kinds, a.n, work, a.ambient)
+            res = evaluate(a.bin, cfg, kinds, a.n, work, a.ambient, a.half, a.height)
             print(json.dumps(dict(cfg=cfg, loss=loss(res), passes=passes(res), res=res)),
                   flush=True)
 
