@@ -189,6 +189,14 @@ LRIGID_LANE void munk_back_momentum(const FullMass& m, const T* v, T* s) {
   for (int a = 0; a < 3; ++a)
     s[a] = T(m.S[3 * a]) * v[0] + T(m.S[3 * a + 1]) * v[1] + T(m.S[3 * a + 2]) * v[2];
 }
+// Pm = P - S v, the translational momentum whose moment the flow keeps
+template <typename T, class Mass>
+LRIGID_LANE void munk_kept_momentum(const Mass& m, const T* v, const T* P, T* Pm) {
+  T sv[3];
+  munk_back_momentum(m, v, sv);
+#pragma GCC unroll 3
+  for (int a = 0; a < 3; ++a) Pm[a] = P[a] - sv[a];
+}
 
 // ---- the free flow --------------------------------------------------------------------------
 
@@ -198,10 +206,8 @@ template <typename T, class Mass>
 LRIGID_LANE void kirchhoff_gyro_kernel(const Mass& m, const T* Y, T* g) {
   T xi[6];
   mass_inv_times(m, Y, xi);
-  T a[3], b[3], c[3], Pm[3], sv[3];
-  munk_back_momentum(m, xi, sv);
-#pragma GCC unroll 3
-  for (int i = 0; i < 3; ++i) Pm[i] = Y[i] - sv[i];
+  T a[3], b[3], c[3], Pm[3];
+  munk_kept_momentum(m, xi, Y, Pm);
   cross3(xi + 3, Y, a);
   cross3(xi + 3, Y + 3, b);
   cross3(xi, Pm, c);
@@ -233,15 +239,13 @@ LRIGID_LANE T skew_times_S(const FullMass& m, const T* v, int r, int c) {
 // (skew_times_S). Diagonal M: E M^-1 scales E's columns.
 template <typename T>
 LRIGID_LANE void kirchhoff_newton_matrix(const DiagonalMass& m, const T* ym, T h2, T* A) {
-  T xi[6], sv[3], Pm[3];
+  T xi[6], Pm[3];
   mass_inv_times(m, ym, xi);
-  munk_back_momentum(m, xi, sv);
   const T* v = xi;
   const T* w = xi + 3;
   const T* P = ym;
   const T* L = ym + 3;
-#pragma GCC unroll 3
-  for (int a = 0; a < 3; ++a) Pm[a] = P[a] - sv[a];
+  munk_kept_momentum(m, v, P, Pm);
 #pragma GCC unroll 3
   for (int r = 0; r < 3; ++r)
 #pragma GCC unroll 3
@@ -260,15 +264,13 @@ LRIGID_LANE void kirchhoff_newton_matrix(const DiagonalMass& m, const T* ym, T h
 // Full M: E M^-1 row by row (M^-1 symmetric: row r of E M^-1 is M^-1 times E's row r)
 template <typename T>
 LRIGID_LANE void kirchhoff_newton_matrix(const FullMass& m, const T* ym, T h2, T* A) {
-  T xi[6], sv[3], Pm[3];
+  T xi[6], Pm[3];
   mass_inv_times(m, ym, xi);
-  munk_back_momentum(m, xi, sv);
   const T* v = xi;
   const T* w = xi + 3;
   const T* P = ym;
   const T* L = ym + 3;
-#pragma GCC unroll 3
-  for (int a = 0; a < 3; ++a) Pm[a] = P[a] - sv[a];
+  munk_kept_momentum(m, v, P, Pm);
 #pragma GCC unroll 6
   for (int r = 0; r < 6; ++r) {
     T E[6];
