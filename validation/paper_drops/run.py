@@ -69,7 +69,7 @@ import sys
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "lib"))
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "falling_plates"))
 import apw_ode  # noqa: E402  (APW's 2D ODE: how fast its tumbling strip turns)
-from paths import path_measures as path_measures_of, planarity  # noqa: E402
+from paths import path_measures, planarity  # noqa: E402
 import vcommon as vc  # noqa: E402
 from vcommon import np, plt  # noqa: E402
 
@@ -251,7 +251,7 @@ def rotation_rates(tr, meta):
              float(np.median([r[1] for r in per_bin[R]]))) for R in RADII]
 
 
-def path_measures(tr, meta):
+def path_shapes(tr, meta):
     """per radius bin of RADII, medians over the drops' airborne paths (z >= 5 cm), the quantities
     extract_reference.py measures on the data: planarity, straightness (net horizontal
     displacement over the horizontal path length), horizontal path per metre of descent, and the
@@ -262,7 +262,7 @@ def path_measures(tr, meta):
         if n <= 10:
             continue
         x, y, z = tr["x"][:n, j], tr["y"][:n, j], tr["z"][:n, j]
-        per_bin[R].append((planarity(x, y),) + path_measures_of(x, y, z) + (vertical,))
+        per_bin[R].append((planarity(x, y),) + path_measures(x, y, z) + (vertical,))
 
     def med(rows, k, vertical=None):
         v = [r[k] for r in rows if vertical is None or r[4] == vertical]
@@ -397,7 +397,7 @@ def main():
                         r["median_planarity"], p["lateral_h"],
                         r["median_lateral_horizontal_release"], p["lateral_v"],
                         r["median_lateral_vertical_release"])
-                    for R, p, r in zip(RADII, path_measures(tr, meta), ref[ref_key]))
+                    for R, p, r in zip(RADII, path_shapes(tr, meta), ref[ref_key]))
                 + ". The model's plates move sideways as far per metre of descent as the paper "
                 "does, but along a straighter path: the measured ones turn back and wander. A "
                 "symmetric plate tilted about one axis in perfectly still air stays in the plane "

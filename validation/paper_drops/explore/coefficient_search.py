@@ -71,7 +71,7 @@ def evaluate(lrigid, cfg, kinds, n, work, ambient=None, half=False, height=None)
                          r["median_lateral"], m["tumbling_fraction"], fr))
         res[kind] = rows
         res[kind + "_straightness"] = [round(m["straightness"], 2)
-                                       for m in pd.path_measures(tr, meta)]
+                                       for m in pd.path_shapes(tr, meta)]
     return res
 
 
