@@ -11,7 +11,8 @@ area is the paper's; its moment of inertia about a diameter is 4/5 of the flat d
 40 per radius bin, horizontal and vertical in the proportion of the bin's measured drops (squares
 12:14, 12:15, 16:10, 10:3; circles 21:36, 19:29, 16:23, 10:16) from the bin's median measured
 release height (1.01–1.10 m; the first tracked sample's height, reference.json), each tilted by
-a random 0–5° about a random axis (the release is never exactly symmetric). Until 2026-12-04's
+a random 0–5° about a random horizontal axis and turning at a random rate of 0–1 rad/s about a
+random axis (RELEASE_SPIN; the release is never exactly symmetric). Until 2026-12-04's
 fifth session: 10 per release and radius, half and half, from 1.0 m; the measured mix puts more
 vertical releases (no steady start segment) into the circles' bins and more horizontal ones into
 the large squares'. The recorded drops do not start from rest (a note prints how fast they move
@@ -35,13 +36,19 @@ net lateral displacement over that horizontal path (1: one direction all the way
 sqrt(λ_min / λ_max) of the covariance of the horizontal positions (0: one vertical plane); the
 net lateral displacement of the horizontal and of the vertical releases. A square or disk is
 symmetric about its normal in this model, so a release tilted about one axis in perfectly still
-air falls in one vertical plane; the measured drops wander (planarity 0.1–0.3) and turn back
-(straightness 0.3–0.8).
+air, with no spin, falls in one vertical plane (planarity 0, straightness up to 1; the study did so
+until 2026-12-05), while the measured drops wander (planarity 0.1–0.3) and turn back
+(straightness 0.3–0.8). That plane is unstable: any out-of-plane spin at release lets the model's
+plates wander as the paper does, and the release spin RELEASE_SPIN was fitted on the squares'
+planarity alone (explore/release_spin.py: 0.1 to 10 rad/s scanned over four seeds; the fit is
+shallow from 0.5 to 10 rad/s); the circles' planarity and every check validate it.
 
 Checks per shape and radius bin: median descent speed within 15 % of the data's, median lateral
 displacement within a factor 1.5; per shape, the tumbling fraction's trend: at least 0.5 in the
 smallest bin and at most 0.3 in the largest (data: 0.82–0.85 and 0.0–0.08).
-Fitting: no coefficient is fitted to these data. Which plate terms follow the aspect ratio
+Fitting: no coefficient of the model is fitted to these data; one number of the set-up is, the
+release spin bound (above, on the squares' planarity, not on a check). Which plate terms follow
+the aspect ratio
 (docs/physics/lift.md) was chosen among variants: of the drag's, one was rejected on the squares'
 drops, another on Field et al.'s disks (validation/falling_plates); the pitch-rate terms' finite
 span (Helmbold's factor, no free number) was found by a search fitted to the squares
@@ -81,6 +88,11 @@ RHO_BOX = AREAL / H                   # 1008 kg/m³
 RHO_ELL = AREAL / (4.0 / 3.0 * H / 2)  # oblate ellipsoid of centre thickness H, same mass per area
 RADII = (0.02, 0.03, 0.04, 0.0475)    # bin centres, m
 DT_OUT = 0.01
+# Release spin (rad/s): each drop starts turning at a uniformly random rate in [0, RELEASE_SPIN]
+# about a uniformly random axis (the scene's "variation": {"spin": ...}). Without it a plate
+# symmetric about its normal, tilted about one axis in still air, never leaves one vertical plane.
+# Fitted on the squares' planarity alone (explore/release_spin.py); the circles validate it.
+RELEASE_SPIN = 1.0
 
 
 def shape_of(kind, R, aspect=1.0):
@@ -113,20 +125,30 @@ def releases(ref_row, n_bin):
     return nh, n_bin - nh
 
 
-def drop_scene(kind, n_bin, seed, ref_rows):
+def drop_scene(kind, n_bin, seed, ref_rows, spin=None, moving=False):
     """n_bin drops per radius bin of RADII (ref_rows: the shape's rows of reference.json, which
-    give each bin's release mix and height); returns the scene and (R, vertical, z0) per body"""
+    give each bin's release mix and height), each spinning at up to `spin` rad/s about a random
+    axis (None: RELEASE_SPIN); moving: each starts with its bin's and release's median velocity at
+    the first tracked sample (descent and sideways speed, the sideways direction random), else
+    from rest; returns the scene and (R, vertical, z0) per body"""
+    spin = RELEASE_SPIN if spin is None else spin
     rng = np.random.default_rng(seed)
     bodies, meta = [], []
     for R, row in zip(RADII, ref_rows):
         sh, rho = shape_of(kind, R)
         z0 = row["median_release_height"]
         for vertical, count in zip((False, True), releases(row, n_bin)):
+            rel = "vertical" if vertical else "horizontal"
+            down = row["median_initial_descent_speed_" + rel] if moving else 0.0
+            side = row["median_initial_sideways_speed_" + rel] if moving else 0.0
             for _ in range(count):
+                a = rng.uniform(0, 2 * math.pi) if moving else 0.0
                 bodies.append({"name": "%s_R%g_%s" % (kind, R, "v" if vertical else "h"),
                                "shape": sh, "density": rho, "count": 1,
                                "position": [0, 0, z0],
-                               "orientation": tilt_quat(rng, vertical)})
+                               "orientation": tilt_quat(rng, vertical),
+                               "velocity": [side * math.cos(a), side * math.sin(a), -down],
+                               "variation": {"spin": [0.0, spin]}})
                 meta.append((R, vertical, z0))
     sc = {"version": 1, "fluid": vc.uniform_fluid(RHO_F, NU), "gravity": [0, 0, -G],
           "effects": "auto", "integrator": {"scheme": vc.SCHEME, "dt": 5e-4},
@@ -398,12 +420,12 @@ def main():
                         r["median_lateral_horizontal_release"], p["lateral_v"],
                         r["median_lateral_vertical_release"])
                     for R, p, r in zip(RADII, path_shapes(tr, meta), ref[ref_key]))
-                + ". The model's plates move sideways as far per metre of descent as the paper "
-                "does, but along a straighter path: the measured ones turn back and wander. A "
-                "symmetric plate tilted about one axis in perfectly still air stays in the plane "
-                "of its release tilt (planarity 0). The recorded positions' noise (their second "
-                "differences) is %.2f mm, far below the paths' spread, so the recorded "
-                "planarity is the plates' own." % (1e3 * float(np.median(
+                + ". Released with no spin, the model's plates stay in the plane of their "
+                "release tilt (planarity 0, straightness up to 1); the release spin of up to "
+                "%g rad/s (fitted on the squares' planarity) lets them wander. The recorded "
+                "positions' noise (their second differences) is %.2f mm, far below the paths' "
+                "spread, so the recorded planarity is the plates' own." % (
+                    RELEASE_SPIN, 1e3 * float(np.median(
                     [r["median_position_noise"] for r in ref[ref_key]]))))
         st.note("%s drops, the data's first tracked samples (no check; median over the first two "
                 "frames at 98 Hz, per release, descent / sideways speed in m/s): " % kind

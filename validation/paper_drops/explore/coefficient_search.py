@@ -15,6 +15,7 @@ drag coefficient A - B to LR_E with the broadside A + B kept (the textbook C_D).
   ... check ... --ambient UPRIME L                         in stirred instead of still air
   ... check ... --half --height 1.0                        half/half releases from 1.0 m (the
                                                            set-up before the recorded one)
+  ... --spin 0                                             no release spin (before 2026-12-05)
 
 Each configuration prints one JSON line: the factors, the loss (the sum of squared log errors of
 the median descent speed in units of 15 %, of the median lateral displacement in units of a
@@ -43,11 +44,12 @@ with open(os.path.join(HERE, "..", "reference.json")) as f:
 SEEDS = {"square": 7, "circle": 8}   # those of run.py
 
 
-def evaluate(lrigid, cfg, kinds, n, work, ambient=None, half=False, height=None):
+def evaluate(lrigid, cfg, kinds, n, work, ambient=None, half=False, height=None, spin=None):
     """ambient: (u', L) for still air stirred by turbulence of rms velocity u' (m/s) and integral
     scale L (m), i.e. k = 3/2 u'^2, epsilon = u'^3 / L (the Langevin effect); None: still air.
     half: half the drops released horizontally (instead of the recorded mix); height: release
-    height in m (instead of the recorded one)"""
+    height in m (instead of the recorded one); spin: the release spin bound in rad/s (None:
+    run.py's RELEASE_SPIN)"""
     res = {}
     for kind in kinds:
         rows = [dict(r) for r in REF[kind]]
@@ -56,7 +58,7 @@ def evaluate(lrigid, cfg, kinds, n, work, ambient=None, half=False, height=None)
                 r["n_drops_horizontal"] = r["n_drops_vertical"] = 1
             if height is not None:
                 r["median_release_height"] = height
-        sc, meta = pd.drop_scene(kind, n, SEEDS[kind], rows)
+        sc, meta = pd.drop_scene(kind, n, SEEDS[kind], rows, spin=spin)
         if ambient:
             up, scale = ambient
             sc["fluid"] = vc.uniform_fluid(pd.RHO_F, pd.NU, k=1.5 * up * up, eps=up ** 3 / scale)
@@ -118,6 +120,9 @@ def main():
                    "session) instead of the recorded mix")
     p.add_argument("--height", type=float,
                    help="release height (m) instead of each bin's recorded one (before: 1.0)")
+    p.add_argument("--spin", type=float,
+                   help="release spin bound in rad/s (default run.py's RELEASE_SPIN; before "
+                   "2026-12-05 the drops had none: --spin 0)")
     a = p.parse_args()
     rng = np.random.default_rng(a.seed)
     with tempfile.TemporaryDirectory() as work:
@@ -127,7 +132,7 @@ def main():
                 res = {}
                 for kind, c in cfg.items():
                     res.update(evaluate(a.bin, c, (kind,), a.n, work, a.ambient, a.half,
-                                        a.height))
+                                        a.height, a.spin))
                 print(json.dumps(dict(cfg=cfg, loss=loss(res), passes=passes(res), res=res)))
                 return
             cfgs, kinds = [cfg], ("square", "circle")
@@ -145,7 +150,7 @@ def main():
                     c["LR_E"] = min(c["LR_E"], 0.9)
                     cfgs.append(c)
         for cfg in cfgs:
-            res = evaluate(a.bin, cfg, kinds, a.n, work, a.ambient, a.half, a.height)
+            res = evaluate(a.bin, cfg, kinds, a.n, work, a.ambient, a.half, a.height, a.spin)
             print(json.dumps(dict(cfg=cfg, loss=loss(res), passes=passes(res), res=res)),
                   flush=True)
 
