@@ -173,5 +173,86 @@ TEST(PlateRegimes, PaperSquaresFallAtTheMeasuredSpeed) {
   EXPECT_NEAR(median, 0.72, 0.2 * 0.72);
 }
 
+// The vertical plane a falling plate glides in is not stable, so only the release's symmetry keeps
+// a plate in it (docs/physics/lift.md, "Why the paper drifted too far: a release with no spin";
+// validation/paper_drops spins its releases for this reason). Paper disks (R = 3 cm, 70 g/m^2, as
+// thin ellipsoids) fall 1 m in still air, tilted 3 degrees about x. With no spin the tilt, the
+// forces and the torques all lie in the y-z plane, so x stays 0. With a spin of 1 rad/s about six
+// axes out of that plane, the horizontal paths spread in two directions: the median planarity,
+// sqrt(lambda_min / lambda_max) of the horizontal positions' covariance, is above 0.05 (Howison et
+// al.'s paper: 0.1-0.3 per bin; the model with spins up to 1 rad/s: 0.1-0.26).
+TEST(PlateRegimes, PaperDisksLeaveTheirPlaneOnlyWhenSpun) {
+  const int n = 7;  // body 0: no spin; 1-6: spun
+  const double axes[6][3] = {{1, 0.3, 0.2}, {0.2, 0.5, 1}, {-0.6, 0.4, 0.7},
+                             {0.9, -0.7, 0.1}, {0.1, 0.2, -1}, {-0.8, -0.5, -0.3}};
+  std::string bodies;
+  const double tilt = 3 * M_PI / 180;
+  for (int i = 0; i < n; ++i) {
+    double w[3] = {0, 0, 0};
+    if (i > 0) {
+      const double* a = axes[i - 1];
+      const double len = std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+      for (int k = 0; k < 3; ++k) w[k] = a[k] / len;  // 1 rad/s
+    }
+    char b[500];
+    std::snprintf(b, sizeof b,
+                  "%s{\"name\": \"disk%d\", \"shape\": {\"type\": \"ellipsoid\", "
+                  "\"semi_axes\": [0.03, 0.03, 3.47e-5]}, \"density\": 1512.9, \"count\": 1, "
+                  "\"position\": [%d, 0, 1], \"orientation\": [%.12f, %.12f, 0, 0], "
+                  "\"angular_velocity\": [%.6f, %.6f, %.6f]}",
+                  i ? ", " : "", i, 10 * i, std::cos(tilt / 2), std::sin(tilt / 2), w[0], w[1],
+                  w[2]);
+    bodies += b;
+  }
+  const std::string text =
+      "{\"version\": 1, \"fluid\": {\"density\": 1.2, \"kinematic_viscosity\": 1.5e-5, "
+      "\"uniform\": {\"U\": [0, 0, 0], \"k\": 0, \"epsilon\": 0}}, \"gravity\": [0, 0, -9.81], "
+      "\"effects\": \"auto\", \"integrator\": {\"scheme\": \"strang\", \"dt\": 5e-4}, "
+      "\"duration\": 4.0, \"seed\": 1, \"bodies\": [" + bodies + "]}";
+  const Scene s = parse_scene(text, "paper_disks.json");
+  const Model m = test::compile(s);
+  State st = initial_state(m, s);
+  std::vector<std::vector<double>> xs(n), ys(n);
+  RunOptions opt;
+  opt.every = 0.01;
+  opt.threads = 1;
+  opt.on_output = [&](const State& x) {
+    for (int i = 0; i < n; ++i)
+      if (x.x[i].z() > 0.05) {
+        xs[i].push_back(x.x[i].x() - 10 * i);
+        ys[i].push_back(x.x[i].y());
+      }
+  };
+  simulate(m, &st, opt);
+  std::vector<double> planarity(n);
+  double max_x0 = 0;
+  for (int i = 0; i < n; ++i) {
+    ASSERT_GT(xs[i].size(), 20u) << "disk " << i;
+    ASSERT_LT(xs[i].size(), 400u) << "disk " << i << " did not fall 0.95 m in 4 s";
+    double mx = 0, my = 0;
+    for (size_t k = 0; k < xs[i].size(); ++k) mx += xs[i][k], my += ys[i][k];
+    mx /= xs[i].size();
+    my /= ys[i].size();
+    double cxx = 0, cyy = 0, cxy = 0;
+    for (size_t k = 0; k < xs[i].size(); ++k) {
+      cxx += (xs[i][k] - mx) * (xs[i][k] - mx);
+      cyy += (ys[i][k] - my) * (ys[i][k] - my);
+      cxy += (xs[i][k] - mx) * (ys[i][k] - my);
+    }
+    const double tr = cxx + cyy, det = cxx * cyy - cxy * cxy;
+    const double disc = std::sqrt(std::max(0.0, 0.25 * tr * tr - det));
+    planarity[i] = std::sqrt(std::max(0.0, 0.5 * tr - disc) / (0.5 * tr + disc));
+    if (i == 0)
+      for (double x : xs[0]) max_x0 = std::max(max_x0, std::abs(x));
+  }
+  std::vector<double> spun(planarity.begin() + 1, planarity.end());
+  std::sort(spun.begin(), spun.end());
+  const double median = 0.5 * (spun[2] + spun[3]);
+  std::printf("paper disks: no spin |x| <= %.2g m, planarity %.2g; spun: planarity %.3f to %.3f, "
+              "median %.3f\n", max_x0, planarity[0], spun.front(), spun.back(), median);
+  EXPECT_LT(max_x0, 1e-9);
+  EXPECT_GT(median, 0.05);
+}
+
 }  // namespace
 }  // namespace lrigid
