@@ -61,6 +61,17 @@ int sign_changes(const Motion& m, double t0, std::vector<double>* times) {
   return n;
 }
 
+// a scene of `bodies` (JSON entries) falling in still air (20 degC) for 4 s, effects "auto",
+// strang at 5e-4 s
+Scene still_air(const std::string& bodies, const std::string& name) {
+  return parse_scene(
+      "{\"version\": 1, \"fluid\": {\"density\": 1.2, \"kinematic_viscosity\": 1.5e-5, "
+      "\"uniform\": {\"U\": [0, 0, 0], \"k\": 0, \"epsilon\": 0}}, \"gravity\": [0, 0, -9.81], "
+      "\"effects\": \"auto\", \"integrator\": {\"scheme\": \"strang\", \"dt\": 5e-4}, "
+      "\"duration\": 4.0, \"seed\": 1, \"bodies\": [" + bodies + "]}",
+      name);
+}
+
 TEST(PlateRegimes, ThinPlateFlutters) {
   const Motion m = fall("plate_flutter.json");
   std::vector<double> crossings;
@@ -144,12 +155,7 @@ TEST(PlateRegimes, PaperSquaresFallAtTheMeasuredSpeed) {
                   i ? ", " : "", i, 10 * i, q[0], q[1], q[2], q[3]);
     bodies += b;
   }
-  const std::string text =
-      "{\"version\": 1, \"fluid\": {\"density\": 1.2, \"kinematic_viscosity\": 1.5e-5, "
-      "\"uniform\": {\"U\": [0, 0, 0], \"k\": 0, \"epsilon\": 0}}, \"gravity\": [0, 0, -9.81], "
-      "\"effects\": \"auto\", \"integrator\": {\"scheme\": \"strang\", \"dt\": 5e-4}, "
-      "\"duration\": 4.0, \"seed\": 1, \"bodies\": [" + bodies + "]}";
-  const Scene s = parse_scene(text, "paper_squares.json");
+  const Scene s = still_air(bodies, "paper_squares.json");
   const Model m = test::compile(s);
   State st = initial_state(m, s);
   std::vector<double> reached(8, 0.0);
@@ -204,12 +210,7 @@ TEST(PlateRegimes, PaperDisksLeaveTheirPlaneOnlyWhenSpun) {
                   w[2]);
     bodies += b;
   }
-  const std::string text =
-      "{\"version\": 1, \"fluid\": {\"density\": 1.2, \"kinematic_viscosity\": 1.5e-5, "
-      "\"uniform\": {\"U\": [0, 0, 0], \"k\": 0, \"epsilon\": 0}}, \"gravity\": [0, 0, -9.81], "
-      "\"effects\": \"auto\", \"integrator\": {\"scheme\": \"strang\", \"dt\": 5e-4}, "
-      "\"duration\": 4.0, \"seed\": 1, \"bodies\": [" + bodies + "]}";
-  const Scene s = parse_scene(text, "paper_disks.json");
+  const Scene s = still_air(bodies, "paper_disks.json");
   const Model m = test::compile(s);
   State st = initial_state(m, s);
   std::vector<std::vector<double>> xs(n), ys(n);
