@@ -89,17 +89,31 @@ def loss(res):
     return total
 
 
+def verdicts(kind, rows):
+    """paper_drops' 9 checks on one shape, rows as evaluate returns them (speed, data, lateral,
+    data, tumbling fraction, data per bin of run.py's RADII): (number passed, texts of the
+    failed ones)"""
+    n, failed = 0, []
+    for R, (ms, rs, ml, rl, _, _) in zip(pd.RADII, rows):
+        if abs(ms / rs - 1) <= 0.15:
+            n += 1
+        else:
+            failed.append("%s R %g cm speed x%.2f" % (kind, 100 * R, ms / rs))
+        if 1 / 1.5 <= max(ml, 1e-12) / rl <= 1.5:
+            n += 1
+        else:
+            failed.append("%s R %g cm lateral x%.2f" % (kind, 100 * R, ml / rl))
+    if rows[0][4] >= 0.5 and rows[-1][4] <= 0.3:
+        n += 1
+    else:
+        failed.append("%s tumbling trend" % kind)
+    return n, failed
+
+
 def passes(res):
     """paper_drops' checks this result would pass (of 9 per shape)"""
-    n = 0
-    for kind, rows in res.items():
-        if kind.endswith("_straightness"):
-            continue
-        for ms, rs, ml, rl, _, _ in rows:
-            n += abs(ms / rs - 1) <= 0.15
-            n += 1 / 1.5 <= max(ml, 1e-12) / rl <= 1.5
-        n += rows[0][4] >= 0.5 and rows[-1][4] <= 0.3
-    return n
+    return sum(verdicts(kind, rows)[0] for kind, rows in res.items()
+               if not kind.endswith("_straightness"))
 
 
 def main():

@@ -28,7 +28,6 @@ import argparse
 import json
 import math
 import os
-import subprocess
 import sys
 import tempfile
 
@@ -36,42 +35,23 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, ".."))
 sys.path.insert(0, os.path.join(HERE, "..", "..", "lib"))
 import run as pd  # noqa: E402  (validation/paper_drops/run.py)
-import vcommon as vc  # noqa: E402
+from coefficient_search import SEEDS, verdicts  # noqa: E402  (run.py's seeds; its checks)
+from knobs import run_with_knobs  # noqa: E402
 from vcommon import np  # noqa: E402
 
 with open(os.path.join(HERE, "..", "reference.json")) as f:
     REF = json.load(f)
-SEEDS = {"square": 7, "circle": 8}   # those of run.py; seed k adds 1000 k
 
 
 def drops(lrigid, kind, spin, seed, n, work, moving):
+    """n drops per bin at release spin bound `spin`: per bin the rows coefficient_search.verdicts
+    judges (from run.py's radius_bins) and the path shapes (run.py's path_shapes)"""
     sc, meta = pd.drop_scene(kind, n, seed, REF[kind], spin=spin, moving=moving)
-    d = os.path.join(work, "%s_%g_%d" % (kind, spin, seed))
-    os.makedirs(d, exist_ok=True)
-    p = vc.write_scene(os.path.join(d, "scene.json"), sc)
-    subprocess.run([lrigid, "run", p, "-o", os.path.join(d, "out"), "--quiet"], check=True)
-    tr = vc.read_traj(os.path.join(d, "out", "trajectories.csv"))
-    return pd.radius_bins(tr, meta), pd.path_shapes(tr, meta)
-
-
-def checks(kind, bins):
-    """paper_drops' checks on one shape: passed, and the failures' texts"""
-    ok, fails = 0, []
-    for R, m, r in zip(pd.RADII, bins, REF[kind]):
-        sp, lat = m["median_speed"] / r["median_speed"], m["median_lateral"] / r["median_lateral"]
-        if abs(sp - 1) <= 0.15:
-            ok += 1
-        else:
-            fails.append("%s R %g cm speed x%.2f" % (kind, 100 * R, sp))
-        if 1 / 1.5 <= lat <= 1.5:
-            ok += 1
-        else:
-            fails.append("%s R %g cm lateral x%.2f" % (kind, 100 * R, lat))
-    if bins[0]["tumbling_fraction"] >= 0.5 and bins[-1]["tumbling_fraction"] <= 0.3:
-        ok += 1
-    else:
-        fails.append("%s tumbling trend" % kind)
-    return ok, fails
+    tr = run_with_knobs(lrigid, sc, {}, work, "%s_%g_%d" % (kind, spin, seed))
+    bins = pd.radius_bins(tr, meta)
+    rows = [(m["median_speed"], r["median_speed"], m["median_lateral"], r["median_lateral"],
+             m["tumbling_fraction"], math.nan) for m, r in zip(bins, REF[kind])]
+    return rows, pd.path_shapes(tr, meta)
 
 
 def data_rates(src):
@@ -115,8 +95,8 @@ def main():
             loss, passes, plan, stra, fails = 0.0, [], {}, {}, {}
             for k in range(a.seeds):
                 total = 0
-                for kind in ("square", "circle"):
-                    bins, shapes = drops(a.bin, kind, w, SEEDS[kind] + 1000 * k, a.n, work,
+                for kind in ("square", "circle"):   # seed k: run.py's + 1000 k
+                    rows, shapes = drops(a.bin, kind, w, SEEDS[kind] + 1000 * k, a.n, work,
                                           a.moving)
                     pl = [s["planarity"] for s in shapes]
                     plan.setdefault(kind, []).append(pl)
@@ -124,7 +104,7 @@ def main():
                     if kind == "square":   # the fit: squares' planarity only
                         loss += sum(math.log(max(m, 1e-3) / r) ** 2
                                     for m, r in zip(pl, ref_plan[kind])) / a.seeds
-                    ok, f = checks(kind, bins)
+                    ok, f = verdicts(kind, rows)
                     total += ok
                     for t in f:
                         fails[t] = fails.get(t, 0) + 1
