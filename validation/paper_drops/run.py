@@ -141,16 +141,17 @@ def drop_scene(kind, n_bin, seed, ref_rows, spin=None, moving=False):
         z0 = row["median_release_height"]
         for vertical, count in zip((False, True), releases(row, n_bin)):
             rel = "vertical" if vertical else "horizontal"
-            down = row["median_initial_descent_speed_" + rel] if moving else 0.0
-            side = row["median_initial_sideways_speed_" + rel] if moving else 0.0
+            down = row["median_initial_descent_speed_" + rel]
+            side = row["median_initial_sideways_speed_" + rel]
             for _ in range(count):
-                a = rng.uniform(0, 2 * math.pi) if moving else 0.0
-                bodies.append({"name": "%s_R%g_%s" % (kind, R, "v" if vertical else "h"),
-                               "shape": sh, "density": rho, "count": 1,
-                               "position": [0, 0, z0],
-                               "orientation": tilt_quat(rng, vertical),
-                               "velocity": [side * math.cos(a), side * math.sin(a), -down],
-                               "variation": {"spin": [0.0, spin]}})
+                body = {"name": "%s_R%g_%s" % (kind, R, "v" if vertical else "h"),
+                        "shape": sh, "density": rho, "count": 1, "position": [0, 0, z0]}
+                if moving:
+                    a = rng.uniform(0, 2 * math.pi)
+                    body["velocity"] = [side * math.cos(a), side * math.sin(a), -down]
+                body["orientation"] = tilt_quat(rng, vertical)
+                body["variation"] = {"spin": [0.0, spin]}
+                bodies.append(body)
                 meta.append((R, vertical, z0))
     sc = {"version": 1, "fluid": vc.uniform_fluid(RHO_F, NU), "gravity": [0, 0, -G],
           "effects": "auto", "integrator": {"scheme": vc.SCHEME, "dt": 5e-4},
