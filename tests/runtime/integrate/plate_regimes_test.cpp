@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include <Eigen/Eigenvalues>
+
 #include "effects/compile_model.h"
 #include "integrate/simulation.h"
 #include "io/scene_json.h"
@@ -213,39 +215,30 @@ TEST(PlateRegimes, PaperDisksLeaveTheirPlaneOnlyWhenSpun) {
   const Scene s = still_air(bodies, "paper_disks.json");
   const Model m = test::compile(s);
   State st = initial_state(m, s);
-  std::vector<std::vector<double>> xs(n), ys(n);
+  std::vector<std::vector<Eigen::Vector2d>> xy(n);  // horizontal positions while above 5 cm
   RunOptions opt;
   opt.every = 0.01;
   opt.threads = 1;
   opt.on_output = [&](const State& x) {
     for (int i = 0; i < n; ++i)
-      if (x.x[i].z() > 0.05) {
-        xs[i].push_back(x.x[i].x() - 10 * i);
-        ys[i].push_back(x.x[i].y());
-      }
+      if (x.x[i].z() > 0.05) xy[i].emplace_back(x.x[i].x() - 10 * i, x.x[i].y());
   };
   simulate(m, &st, opt);
   std::vector<double> planarity(n);
-  double max_x0 = 0;
   for (int i = 0; i < n; ++i) {
-    ASSERT_GT(xs[i].size(), 20u) << "disk " << i;
-    ASSERT_LT(xs[i].size(), 400u) << "disk " << i << " did not fall 0.95 m in 4 s";
-    double mx = 0, my = 0;
-    for (size_t k = 0; k < xs[i].size(); ++k) mx += xs[i][k], my += ys[i][k];
-    mx /= xs[i].size();
-    my /= ys[i].size();
-    double cxx = 0, cyy = 0, cxy = 0;
-    for (size_t k = 0; k < xs[i].size(); ++k) {
-      cxx += (xs[i][k] - mx) * (xs[i][k] - mx);
-      cyy += (ys[i][k] - my) * (ys[i][k] - my);
-      cxy += (xs[i][k] - mx) * (ys[i][k] - my);
-    }
-    const double tr = cxx + cyy, det = cxx * cyy - cxy * cxy;
-    const double disc = std::sqrt(std::max(0.0, 0.25 * tr * tr - det));
-    planarity[i] = std::sqrt(std::max(0.0, 0.5 * tr - disc) / (0.5 * tr + disc));
-    if (i == 0)
-      for (double x : xs[0]) max_x0 = std::max(max_x0, std::abs(x));
+    ASSERT_GT(xy[i].size(), 20u) << "disk " << i;
+    ASSERT_LT(xy[i].size(), 400u) << "disk " << i << " did not fall 0.95 m in 4 s";
+    Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+    for (const auto& p : xy[i]) mean += p;
+    mean /= double(xy[i].size());
+    Eigen::Matrix2d cov = Eigen::Matrix2d::Zero();
+    for (const auto& p : xy[i]) cov += (p - mean) * (p - mean).transpose();
+    const Eigen::Vector2d lam =
+        Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(cov, Eigen::EigenvaluesOnly).eigenvalues();
+    planarity[i] = std::sqrt(std::max(0.0, lam(0)) / lam(1));
   }
+  double max_x0 = 0;
+  for (const auto& p : xy[0]) max_x0 = std::max(max_x0, std::abs(p.x()));
   std::vector<double> spun(planarity.begin() + 1, planarity.end());
   std::sort(spun.begin(), spun.end());
   const double median = 0.5 * (spun[2] + spun[3]);
