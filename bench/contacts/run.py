@@ -151,7 +151,7 @@ def main():
     print(body)
     if a.no_docs:
         return
-    for doc, head in ((os.path.join(ROOT, "docs", "performance.md"), "## Contacts (issue 23)"),
+    for doc, head in ((os.path.join(ROOT, "docs", "performance.md"), "## Contacts"),
                       (os.path.join(ROOT, "docs", "contacts.md"), None)):
         text = open(doc).read()
         i, j = text.find(BEGIN), text.find(END)

@@ -280,7 +280,7 @@ def main():
                 "It tumbles from some release there, so the strip check asks what APW's model "
                 "can do." if tumbles else
                 "APW's own model does not tumble there from any of them, so a 3D model that "
-                "reduces to it (issue 30, item 1) has no reason to, whatever the experiments "
+                "reduces to it has no reason to, whatever the experiments "
                 "show (docs/physics/lift.md, \"Where the boundary lies\")."))
     st.note("Strips between I*_s = 0.15 and 2 at ν = %g (not checked; the sources put the "
             "flutter–tumble band there): " % nu_hi + "; ".join(
@@ -341,7 +341,8 @@ def main():
     ode_first = next((mr for mr, r in ode if r not in ("flutter", "steady")), math.nan)
     st.check("2D limit (elliptic strip, side ratio 1000, U 2a/ν = %g): first mass ratio I*_ODE "
              "that leaves flutter" % LIMIT_RE, first, "1.3–1.7", 0,
-             "APW 2005b's bifurcation, ≈ 1.45–1.6 (the issue's reading; this project's ODE "
+             "APW 2005b's bifurcation, ≈ 1.45–1.6 (physics-notes §4's reading; this "
+             "project's ODE "
              "transcription: %g)" % ode_first, tol_text="within [1.3, 1.7]",
              verdict="PASS" if 1.3 <= first <= 1.7 else "FAIL",
              note="; ".join("%g %s" % (m, r) for m, r in zip(LIMIT_I, lim)))
