@@ -146,7 +146,7 @@ def main():
     body = "\n".join(L)
     md = os.path.join(HERE, "contacts_cost.md")
     with open(md + ".tmp", "w") as f:
-        f.write("## Contacts (issue 23)\n\n" + BEGIN + "\n" + body + "\n" + END + "\n")
+        f.write("## Contacts\n\n" + BEGIN + "\n" + body + "\n" + END + "\n")
     os.replace(md + ".tmp", md)
     print(body)
     if a.no_docs:
