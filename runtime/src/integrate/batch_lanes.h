@@ -22,6 +22,7 @@
 #include "integrate/dynamics.h"
 #include "integrate/integrators.h"
 #include "integrate/sphere_batch.h"
+#include "integrate/step_end.h"
 #include "integrate/stops.h"
 #include "model/model.h"
 #include "model/state.h"
@@ -77,14 +78,18 @@ struct FieldConsts {
   double mf = 0, wm = 0, gu = 0;
   double mean_flow_scale = 1, turbulence_scale = 1;
   double F[3] = {0, 0, 0};  // gravity and buoyancy, world frame, N
-  // the effects with memory or spin (the steps' third template switch, `Extra`): the Basset
+  // the effects with memory or spin, as runtime factors (0 without them): the Basset
   // history's current interval as a mass on the left-hand side (BassetKernel::implicit_mass, kg;
   // 0 without) and its history force Samples::fb; the Magnus factor C_M rho V (0 without), kg
-  bool basset = false;
+  bool basset = false, has_magnus = false;
   double basset_mass = 0, magnus = 0;
-  // a centre of mass off the volume centroid (also `Extra`): r_cob, the centroid from the centre
+  // a centre of mass off the volume centroid (zero for a uniform body): r_cob, the centroid from the centre
   // of mass (body frame, m), where the fluid's forces and the buoyancy F_buoy (world, N) act
   double r_cob[3] = {0, 0, 0}, F_buoy[3] = {0, 0, 0};
+  bool offset = false;  // r_cob is not zero
+  // (the loops compute every term for every body and select by these flags: a term that is off
+  // is exactly zero, also where a non-finite state would make its product with 0 a NaN, so that
+  // a step fails with the same reason as the scalar step)
   // grid
   double origin[3] = {0, 0, 0}, spacing[3] = {1, 1, 1}, upper_index[3] = {0, 0, 0};
   int points[3] = {0, 0, 0};  // grid points per axis
@@ -125,6 +130,8 @@ inline void set_field_consts(const Model& model, const BodyType& type, FieldCons
   fc->basset = type.plan.basset;
   fc->basset_mass = fc->basset ? type.basset.implicit_mass : 0.0;
   fc->magnus = e.has(Effect::Magnus) ? type.plan.params->magnus : 0.0;
+  fc->has_magnus = fc->magnus != 0;
+  fc->offset = !type.r_cob.isZero(0.0);
   for (int a = 0; a < 3; ++a) {
     fc->r_cob[a] = type.r_cob[a];
     fc->F_buoy[a] = F_buoy[a];
@@ -236,12 +243,6 @@ struct Samples {
 template <typename T>
 constexpr int lane_width(int hi) {
   return (hi + kLaneGrain<T> - 1) / kLaneGrain<T> * kLaneGrain<T>;
-}
-
-// Whether the step needs its third switch (`Extra`): the Basset history, the Magnus force or a
-// centre of mass off the centroid.
-inline bool extra_effects(const FieldConsts& fc) {
-  return fc.basset || fc.magnus != 0 || fc.r_cob[0] != 0 || fc.r_cob[1] != 0 || fc.r_cob[2] != 0;
 }
 
 // Fills the sample arrays of lanes at positions x (may be lanes.x itself), lanes [lo, hi).
@@ -417,6 +418,12 @@ template <typename T, bool Whole = false>
 LRIGID_MULTIVERSION void lane_normals(const FieldConsts& fc, const Samples<T>& lanes, uint64_t step,
                                       T (*z1)[kBatch], T (*z2)[kBatch]) {
   const int nw = lanes.width;
+  if (!fc.turb) {
+    // no seen turbulence: no draw (the OU updates' results are not taken, lane_ou_half)
+    for (int c = 0; c < 3; ++c)
+      for (int j = 0; j < nw; ++j) z1[c][j] = z2[c][j] = T(0);
+    return;
+  }
   // words: block 0 (pairs 0, 1), block 1 words 2, 3 (pair 3), block 2 words 0, 1 (pair 4)
   alignas(64) uint32_t wd[8][kBatch];
   const uint32_t k0 = static_cast<uint32_t>(fc.seed), k1 = static_cast<uint32_t>(fc.seed >> 32);
@@ -497,6 +504,21 @@ LRIGID_LANE int lane_landed(const FieldConsts& fc, const T* q, T z) {
   return int(fc.ground & (z - ground_reach(fc.round, r, h, c) <= T(fc.ground_z)));
 }
 
+// The exact OU half step (effects/turbulence.h ou_update, Thomson's drift along the world
+// velocity V) of lane j's seen fluctuation us, with normals z (3 x kBatch) and the lanes'
+// coefficients at their samples; without seen turbulence (turb false) us is kept. Inlined into
+// the loops across lanes, where the runtime flag becomes a select.
+template <typename T>
+LRIGID_LANE void lane_ou_half(bool turb, T wm, T hh, const Samples<T>& lanes,
+                              const T (*z)[kBatch], int j, const T* V, T* us) {
+  const T gs[3] = {lanes.gs[0][j], lanes.gs[1][j], lanes.gs[2][j]};
+  const T zj[3] = {z[0][j], z[1][j], z[2][j]};
+  T u[3] = {us[0], us[1], us[2]};
+  ou_update(wm, lanes.decay[j], lanes.noise[j], lanes.sigma2[j], V, gs, zj, hh, u);
+#pragma GCC unroll 3
+  for (int a = 0; a < 3; ++a) us[a] = turb ? u[a] : us[a];
+}
+
 // A step's new state per lane, filled by a batched step before end_step: position,
 // orientation, the velocity the lane keeps (Lanes::velocity: world V for spheres, body-frame v
 // for plates), spin, and the seen fluctuation after the first OU half step; scalar: 1 for lanes
@@ -519,7 +541,7 @@ struct NewState {
 // false: no OU half step here (euler and rk4 update the seen fluctuation within the step). Inlined
 // into each version of the step (as target_clones of its own it halved the sphere step's speed:
 // 9.5 against 14.5 M body-steps/s per core on the beads scene).
-template <typename T, bool Turb, bool OUHalfStep = true, class Lanes>
+template <typename T, bool OUHalfStep = true, class Lanes>
 LRIGID_LANE void end_step(const FieldConsts& fc, const T (*z2)[kBatch], const T (*V)[kBatch],
                           NewState<T>* next, Lanes* lanes, int* outcome, int* landed,
                           const T* sampled_inside0 = nullptr) {
@@ -532,16 +554,15 @@ LRIGID_LANE void end_step(const FieldConsts& fc, const T (*z2)[kBatch], const T 
     for (int j = 0; j < nw; ++j) inside0[j] = fc.sample ? lanes->inside[j] : T(1);
     if (fc.sample) sample_lanes(fc, next->x, lanes, 0, nw);
   }
-  if (Turb && OUHalfStep) ou_coefficients(fc, lanes, 0, nw);
+  const bool turb = fc.turb;
+  if (turb && OUHalfStep) ou_coefficients(fc, lanes, 0, nw);
   const bool sample = fc.sample;
 LRIGID_IVDEP
   for (int j = 0; j < nw; ++j) {
     T us[3] = {next->us[0][j], next->us[1][j], next->us[2][j]};
-    if constexpr (Turb && OUHalfStep) {
+    if constexpr (OUHalfStep) {
       const T Vj[3] = {V[0][j], V[1][j], V[2][j]};
-      const T gs[3] = {lanes->gs[0][j], lanes->gs[1][j], lanes->gs[2][j]};
-      const T z[3] = {z2[0][j], z2[1][j], z2[2][j]};
-      ou_update(wm, lanes->decay[j], lanes->noise[j], lanes->sigma2[j], Vj, gs, z, hh, us);
+      lane_ou_half(turb, wm, hh, *lanes, z2, j, Vj, us);
     }
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) next->us[a][j] = us[a];
@@ -557,12 +578,12 @@ LRIGID_IVDEP
   for (int j = 0; j < nw; ++j) outcome[j] = decode_outcome(outcome[j]);
   if (fc.basset) {
     // what the Basset history takes in: the relative velocity at the end of the step
-    const T mf = T(fc.mf);
+    const T mf = T(fc.mf), tu = T(turb ? 1 : 0);
 LRIGID_IVDEP
     for (int j = 0; j < nw; ++j)
 #pragma GCC unroll 3
       for (int a = 0; a < 3; ++a)
-        lanes->gb[a][j] = mf * lanes->U[a][j] + (Turb ? next->us[a][j] : T(0)) - V[a][j];
+        lanes->gb[a][j] = mf * lanes->U[a][j] + tu * next->us[a][j] - V[a][j];
   }
   T(*vel)[kBatch] = lanes->velocity();
   const bool contacts = fc.contacts;
@@ -588,30 +609,27 @@ LRIGID_IVDEP
   }
 }
 
-// Calls f(A, B, C) with the std::bool_constant of each of a, b and c.
+// Calls f with std::bool_constant<a>.
 template <class F>
-void with_switches(bool a, bool b, bool c, F f) {
-  auto pick = [](bool x, auto g) {
-    if (x)
-      g(std::true_type{});
-    else
-      g(std::false_type{});
-  };
-  pick(a, [&](auto A) { pick(b, [&](auto B) { pick(c, [&](auto C) { f(A, B, C); }); }); });
+void with_switch(bool a, F f) {
+  if (a)
+    f(std::true_type{});
+  else
+    f(std::false_type{});
 }
 
 // Runs a block of count bodies (indices body[0..count)) of one type through steps [first, last)
 // with the scalar loop's statuses, stop times and reasons. Lanes (derived from Samples<T>) holds
 // the block's state and provides load(j, BodyState), store(j, BodyState*), rest(j) (set at rest
-// after landing) and velocity(); step(A, B, C, &lanes, step,
-// outcome, landed), called with std::bool_constant<a>, <b> and <extra_effects(k)> (the step's
-// template switches), advances every lane by one step, keeping the start state of lanes that are
+// after landing) and velocity(); step(A, &lanes, step, outcome, landed), called with
+// std::bool_constant<a> (the step's one template switch: the plates' kernels, or none for
+// spheres), advances every lane by one step, keeping the start state of lanes that are
 // not kOk, and leaves the samples at the new positions (end_step). The Basset history is the
 // driver's: it sets each lane's history force before the step (Samples::fb) and appends the step
 // to the history of the lanes that took it (as step_body does at its end).
 template <typename T, class Lanes, class Step>
 BlockStats drive_block(const Model& model, const BodyType& type, const FieldConsts& fc, bool a,
-                       bool b, State* state, const uint32_t* body, int count, uint64_t first,
+                       State* state, const uint32_t* body, int count, uint64_t first,
                        uint64_t last, Step step) {
   BlockStats stats;
   State& st = *state;
@@ -674,8 +692,7 @@ BlockStats drive_block(const Model& model, const BodyType& type, const FieldCons
         for (int c = 0; c < 3; ++c) lanes->fb[c][j] = T(f[c]);
       }
     }
-    with_switches(a, b, extra_effects(fc),
-                  [&](auto A, auto B, auto C) { step(A, B, C, lanes, s, outcome, landed); });
+    with_switch(a, [&](auto A) { step(A, lanes, s, outcome, landed); });
     if (fc.basset) {
       // the relative velocity g = u_f - V at the end of the step enters the history
       for (int j = 0; j < count; ++j) {
@@ -687,97 +704,79 @@ BlockStats drive_block(const Model& model, const BodyType& type, const FieldCons
     for (int j = 0; j < count; ++j) {
       if (!lanes->live[j]) continue;
       const size_t i = lanes->body[j];
+      bool land = landed[j] != 0;
+      // one comparison per surface: near a colliding ground (the bounding box reaches it) or a
+      // wall
+      bool near = (land & fc.ground_collide) |
+                  (fc.walls_collide & (double(lanes->wall[j]) <= fc.reach));
+      if (outcome[j] == kOk && step_end_is_quiet(model, StepOutcome::Ok, near, land)) {
+        // most lanes: a step in free flight, nothing to do at its end
+        ++stats.body_steps;
+        if (fc.contacts) {
+          mark_flying(&st, i);
+          lanes->flying[j] = true;
+        }
+        continue;
+      }
+      // the lane's state: after the step where it succeeded, at its start otherwise
       BodyState b;
+      lanes->store(j, &b);
+      b.history = lanes->history[j];
       StepOutcome out = StepOutcome::Ok;
       std::string reason;
-      bool land = landed[j] != 0;
-      // the lane kept its state at the start of the step: a lane heading into a colliding
-      // ground below the grid's bottom takes the speculative contact and the scalar step
-      bool redo = outcome[j] == kScalar;
-      // (or, heading through the grid's floor into the ground, takes the impact located inside
-      // the step, integrate/contacts.h impact_through_floor)
-      bool floor_impact = false;
-      if (outcome[j] == kOutside && fc.contacts) {
-        lanes->store(j, &b);
-        if (heads_into_ground(model, type, b)) {
-          b.history = lanes->history[j];
-          floor_impact = impact_through_floor(model, type, i, t, &b, &st);
-          if (!floor_impact) redo = speculative_ground_contact(model, type, &b);
-        }
-        if (redo) lanes->load(j, b);
-      }
-      if (floor_impact) {
-        ++stats.scalar_steps;
-        lanes->load(j, b);
-        resample(j, j + 1);
-        land = model.has_ground && touches_ground(model, type, b);
-        lanes->started[j] = false;  // the impact is taken: the contact pass gets no start
-        if (!std::isnan(st.t_touch[i])) lanes->track[j] = false;  // recorded where located
-      } else if (redo) {
-        lanes->store(j, &b);
-        b.history = lanes->history[j];  // step_body appends to it
-        ++stats.scalar_steps;
+      bool floor_impact = false, retaken = false;
+      if (outcome[j] == kScalar) {
+        // what the loops leave to the scalar step: the lane's whole step, taken again there
         lanes->start[j] = b;
         lanes->started[j] = true;
         out = step_body(model, type, lanes->body[j], s, t, &b, &reason);
+        retaken = true;
+      } else if (outcome[j] != kOk) {
+        out = outcome[j] == kOutside ? StepOutcome::Exited : StepOutcome::Failed;
+        if (out == StepOutcome::Failed)
+          reason = std::string("non-finite ") + kNonFiniteName[outcome[j] - kNonFinite];
+      }
+      if (out == StepOutcome::Exited && fc.contacts) {
+        // heading through the grid's floor into the ground: the impact located inside the
+        // step, or the speculative contact and the scalar step
+        bool again = false;
+        lanes->start[j] = b;
+        out = retry_into_ground(model, type, i, s, t, &b, &lanes->start[j], &reason, &st,
+                                &floor_impact, &again);
+        retaken = retaken || again;
+        lanes->started[j] = again && !floor_impact;
+      }
+      if (retaken) {
+        ++stats.scalar_steps;
         if (out == StepOutcome::Ok) {
-          // the lane's sample is at its batched position: sample it where the scalar step took it
+          // the lane's sample is at its batched position: sample it where the step took it
           lanes->load(j, b);
           resample(j, j + 1);
           land = model.has_ground && touches_ground(model, type, b);
+          near = (land & fc.ground_collide) |
+                 (fc.walls_collide & (double(lanes->wall[j]) <= fc.reach));
         }
-      } else if (outcome[j] != kOk) {
-        // the lane kept its state at the start of the step (as step_body restores it)
-        lanes->store(j, &b);
-        const bool outside = outcome[j] == kOutside;
-        out = outside ? StepOutcome::Exited : StepOutcome::Failed;
-        if (!outside) reason = std::string("non-finite ") + kNonFiniteName[outcome[j] - kNonFinite];
       }
-      if (out == StepOutcome::Ok) {
-        ++stats.body_steps;
-        if (fc.contacts) {
-          // one comparison per surface: near a colliding ground (the bounding box reaches it)
-          // or a wall
-          const bool near = (land & fc.ground_collide) |
-                            (fc.walls_collide & (double(lanes->wall[j]) <= fc.reach));
-          if (!near) {
-            mark_flying(&st, i);
-          } else {
-            lanes->store(j, &b);
-            b.history = lanes->history[j];
-            const BodyState end = b;
-            const bool asleep = contact_after_step(model, type, i, t + model.dt, &b, &st, nullptr,
-                                                   lanes->started[j] ? &lanes->start[j] : nullptr);
-            if (lanes->track[j] && land && !std::isnan(st.t_touch[i])) {
-              record_touchdown(model, type, i, t, lanes->start[j], end, &st);
-              lanes->track[j] = false;
-            }
-            lanes->load(j, b);
-            // the lane's sample is at the step's end: taken again only where the contact moved the body
-            // (no point touching: it did not)
-            if (!asleep && b.x != end.x) resample(j, j + 1);
-            if (asleep) {
-              lanes->live[j] = false;
-              // asleep until its watch wakes it, in this stretch or a later one
-              const uint64_t wake = watch_sleeper(model, &st, i, last);
-              if (wake < last) dormant[j] = wake;
-            }
-          }
-          lanes->flying[j] = st.contact[i] == ContactState::Flying;
-          // a ground with "stop" still lands the bodies (walls colliding)
-          if (!lanes->live[j] || fc.ground_collide) continue;
-        }
-        if (!land) continue;
-        st.status[i] = BodyStatus::Landed;
-        lanes->store(j, &b);
-        st.t_stop[i] = t + locate_touchdown(model, type, lanes->start[j], b, &b);
+      if (out == StepOutcome::Ok) ++stats.body_steps;
+      const StepEnd end =
+          finish_step(model, type, i, t, last, out, reason, near, &land,
+                      lanes->started[j] && !floor_impact ? &lanes->start[j] : nullptr, nullptr,
+                      &b, &st);
+      lanes->track[j] = fc.ground && (!fc.ground_collide || std::isnan(st.t_touch[i]));
+      lanes->flying[j] = fc.contacts && st.contact[i] == ContactState::Flying;
+      // the contact's impulses and corrections, where a landing put the body, or the state a
+      // step taken again stopped in (an exit or a failure of the lanes' own step leaves the lane
+      // as it was at the start of the step)
+      if (retaken || end.next != AfterStep::Stopped || st.status[i] == BodyStatus::Landed)
         lanes->load(j, b);
-      } else {
-        stop_body(model, type, i, t, out, reason, &b, &st);
-        // an exited body that reached the ground moved to where it met it
-        if (st.status[i] == BodyStatus::Landed) lanes->load(j, b);
+      if (end.next == AfterStep::Moving) {
+        // the contact moved the body: its sample is taken again where it is now
+        if (end.moved) resample(j, j + 1);
+        continue;
       }
       lanes->live[j] = false;
+      // asleep until its watch wakes it, in this stretch or a later one
+      if (end.next == AfterStep::Asleep && end.wake < last) dormant[j] = end.wake;
       if (st.status[i] == BodyStatus::Landed) lanes->rest(j);
     }
   }

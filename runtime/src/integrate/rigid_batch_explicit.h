@@ -32,19 +32,14 @@ namespace {  // NOLINT(build/namespaces): internal to rigid_batch_step.h
 // (world, the gu factor applied). ImpulseForm: euler's (the added mass's -v_r x P_f alone), else
 // rk4's velocity form (the added mass's Kirchhoff terms and the drag-along K a~). As
 // integrate/dynamics.cpp context_from_sample and the plan's terms.
-template <typename T, bool Plate, bool Extra, bool ImpulseForm, class Mass>
+template <typename T, bool Plate, bool ImpulseForm, class Mass>
 LRIGID_LANE void lane_wrench(const StepConsts<Mass>& tc, const T* R, const T* Fw, const T* ufb,
                              const T* acc, const T* v, const T* w, T* f) {
-  T vr[3], Fb[3], lift[3] = {0, 0, 0}, fx[3] = {0, 0, 0}, fa[3] = {0, 0, 0}, am[6];
+  T vr[3], Fb[3], fe[6], fa[3] = {0, 0, 0}, am[6];
 #pragma GCC unroll 3
   for (int a = 0; a < 3; ++a) vr[a] = v[a] - ufb[a];
   mul_t(R, Fw, Fb);
-  const DragOut<T> d = body_forces<T, Plate, Extra>(tc, vr, w, lift);
-  T tx[3] = {0, 0, 0};  // (Extra) the torque of the forces at the centroid about the centre of mass
-  if constexpr (Extra) {
-    lane_magnus(tc, vr, w, fx);
-    explicit_torque(tc, R, lift, fx, tx);
-  }
+  const DragOut<T> d = lane_forces<T, Plate>(tc, R, Fb, vr, w, fe);
   if constexpr (!ImpulseForm) {
     // a~ = R^T Du/Dt - w x u_f (effects/added_mass.h)
     T ab[3], wu[3];
@@ -56,35 +51,38 @@ LRIGID_LANE void lane_wrench(const StepConsts<Mass>& tc, const T* R, const T* Fw
   added_mass_kernel<ImpulseForm>(tc.fluid, vr, w, fa, am);
 #pragma GCC unroll 3
   for (int a = 0; a < 3; ++a) {
-    f[a] = Fb[a] + lift[a] + fx[a] + d.f[a] + am[a];
-    f[3 + a] = d.tq[a] + am[3 + a] + tx[a];
+    f[a] = fe[a] + d.f[a] + am[a];
+    f[3 + a] = fe[3 + a] + d.tq[a] + am[3 + a];
   }
 }
 
 // A lane's fluid velocity (world): the mean flow and the seen fluctuation us; its material
 // derivative (world, 0 without gradients); the weight and buoyancy with the Basset history force
-template <typename T, bool Turb, bool Extra, class C>
+// (zero without the history)
+template <typename T, class C>
 LRIGID_LANE void lane_fluid(const C& tc, const Lanes<T>* lanes, int j, const T* us, T* u_f, T* acc,
                             T* Fw) {
+  const T tu = T(tc.turb ? 1 : 0);
 #pragma GCC unroll 3
   for (int a = 0; a < 3; ++a) {
-    u_f[a] = T(tc.mf) * lanes->U[a][j] + (Turb ? us[a] : T(0));
+    u_f[a] = T(tc.mf) * lanes->U[a][j] + tu * us[a];
     acc[a] = T(tc.gu) * lanes->acc[a][j];
-    Fw[a] = T(tc.F[a]) + (Extra ? lanes->fb[a][j] : T(0));
+    Fw[a] = T(tc.F[a]) + lanes->fb[a][j];
   }
 }
 
 // euler (integrators.cpp impulse_step): one explicit step of the world-frame impulse, the forces,
 // Munk moment and rotation from the start of the step, the Basset history's current interval
 // implicit; then the seen fluctuation by Euler-Maruyama.
-template <typename T, bool Turb, bool Plate, bool Extra, class Mass>
+template <typename T, bool Plate, class Mass>
 LRIGID_MULTIVERSION void euler_lanes(const StepConsts<Mass>& tc, Lanes<T>* lanes, uint64_t step,
                                      int* outcome, int* landed) {
   const int nw = lanes->width;
   const T h = T(tc.h);
   alignas(64) T z[3][kBatch], Vn[3][kBatch];
   [[maybe_unused]] alignas(64) T unused[3][kBatch];
-  if constexpr (Turb) lane_normals<T, true>(tc, *lanes, step, z, unused);
+  const bool turb = tc.turb, basset = tc.basset;
+  lane_normals<T, true>(tc, *lanes, step, z, unused);
   NewState<T> next;
   LRIGID_IVDEP
   for (int j = 0; j < nw; ++j) {
@@ -95,16 +93,16 @@ LRIGID_MULTIVERSION void euler_lanes(const StepConsts<Mass>& tc, Lanes<T>* lanes
     T R[9], V0[3], u_f[3], acc[3], Fw[3], ufb[3], rate[6];
     rotation(q, R);
     mul(R, v, V0);
-    lane_fluid<T, Turb, Extra>(tc, lanes, j, us, u_f, acc, Fw);
+    lane_fluid(tc, lanes, j, us, u_f, acc, Fw);
     mul_t(R, u_f, ufb);
-    lane_wrench<T, Plate, Extra, true>(tc, R, Fw, ufb, acc, v, w, rate);
+    lane_wrench<T, Plate, true>(tc, R, Fw, ufb, acc, v, w, rate);
     // the impulse Pi = M xi - K (u_f; 0) and its change h rate
     const T xi[6] = {v[0], v[1], v[2], w[0], w[1], w[2]};
     T Pi[6], dPi[6];
     impulse_of_velocity(tc.mass, tc.K, xi, ufb, Pi);
 #pragma GCC unroll 6
     for (int a = 0; a < 6; ++a) dPi[a] = h * rate[a];
-    if constexpr (Extra) {
+    if (basset) {
       // the Basset history's current interval, 2 C sqrt(h) (du_f - dv) / h, implicitly
       const T b = T(tc.basset_mass);
       T ha[3], hab[3], x[6];
@@ -116,7 +114,7 @@ LRIGID_MULTIVERSION void euler_lanes(const StepConsts<Mass>& tc, Lanes<T>* lanes
       const DragOut<T> none{};
       implicit_impulse(tc.mass, b, none, h, dPi, x);
 #pragma GCC unroll 6
-      for (int a = 0; a < 6; ++a) dPi[a] = tc.basset ? x[a] : dPi[a];
+      for (int a = 0; a < 6; ++a) dPi[a] = x[a];
     }
     // the world-frame impulse is carried to the new orientation q exp(h w)
     T P[3], L[3], Pw[3], Lw[3], ufn[3];
@@ -140,7 +138,7 @@ LRIGID_MULTIVERSION void euler_lanes(const StepConsts<Mass>& tc, Lanes<T>* lanes
     const T* v1 = xi1;
     const T* w1 = xi1 + 3;
     mul(R1, v1, V1);
-    if constexpr (Turb) ou_euler_lane(tc, lanes, j, V0, z, us);
+    if (turb) ou_euler_lane(tc, lanes, j, V0, z, us);
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
       next.x[a][j] = lanes->x[a][j] + h * V0[a];
@@ -153,13 +151,13 @@ LRIGID_MULTIVERSION void euler_lanes(const StepConsts<Mass>& tc, Lanes<T>* lanes
     for (int a = 0; a < 4; ++a) next.q[a][j] = q1[a];
     next.scalar[j] = 0;
   }
-  end_step<T, Turb, false>(tc, z, Vn, &next, lanes, outcome, landed);
+  end_step<T, false>(tc, z, Vn, &next, lanes, outcome, landed);
 }
 
 // rk4's stage I (0 to 3) on every lane: the rates at the stage's state on the lanes' samples
 // there, added to the sums, and the next stage's state (c = 1/2, 1/2, 1); stage 0 also updates
 // the seen fluctuation (into next->us) from the start's sample
-template <typename T, bool Turb, bool Plate, bool Extra, int I, class Mass>
+template <typename T, bool Plate, int I, class Mass>
 LRIGID_LANE void rk4_stage(const StepConsts<Mass>& tc, const Lanes<T>* lanes, const T (*z)[kBatch],
                            Rk4Block<T>* k, NewState<T>* next) {
   const int nw = lanes->width;
@@ -189,9 +187,9 @@ LRIGID_LANE void rk4_stage(const StepConsts<Mass>& tc, const Lanes<T>* lanes, co
     }
     T R[9], u_f[3], acc[3], Fw[3], ufb[3], f[6];
     rotation(q, R);
-    lane_fluid<T, Turb, Extra>(tc, lanes, j, us0, u_f, acc, Fw);
+    lane_fluid(tc, lanes, j, us0, u_f, acc, Fw);
     mul_t(R, u_f, ufb);
-    lane_wrench<T, Plate, Extra, false>(tc, R, Fw, ufb, acc, v, w, f);
+    lane_wrench<T, Plate, false>(tc, R, Fw, ufb, acc, v, w, f);
     // the rigid body's own gyroscopic terms (about the centre of mass), xi' = M^-1 (f - g)
     const T xi[6] = {v[0], v[1], v[2], w[0], w[1], w[2]};
     T PL[6], g[6], kx[3], kth[3], kxi[6];
@@ -209,7 +207,7 @@ LRIGID_LANE void rk4_stage(const StepConsts<Mass>& tc, const Lanes<T>* lanes, co
     rk4_sum_lane<I>(k, j, in, h, x0, v0, w0, kx, kth, kxi);
     if constexpr (I == 0) {
       T us[3] = {us0[0], us0[1], us0[2]};
-      if constexpr (Turb) ou_euler_lane(tc, lanes, j, kx, z, us);
+      if (tc.turb) ou_euler_lane(tc, lanes, j, kx, z, us);
 #pragma GCC unroll 3
       for (int a = 0; a < 3; ++a) next->us[a][j] = us[a];
     }
@@ -220,18 +218,18 @@ LRIGID_LANE void rk4_stage(const StepConsts<Mass>& tc, const Lanes<T>* lanes, co
 // rotation q exp(theta), theta through dexp^-1), the field sampled at each stage (time
 // t + c h); the Basset history's current interval as an implicit correction after the step; the
 // seen fluctuation by Euler-Maruyama from the start of the step.
-template <typename T, bool Turb, bool Plate, bool Extra, class Mass>
+template <typename T, bool Plate, class Mass>
 LRIGID_MULTIVERSION void rk4_lanes(const StepConsts<Mass>& tc, const Rk4Frames& frames,
                                    Lanes<T>* lanes, uint64_t step, int* outcome, int* landed) {
   const int nw = lanes->width;
   const T h = T(tc.h);
   alignas(64) T z[3][kBatch], Vn[3][kBatch];
   [[maybe_unused]] alignas(64) T unused[3][kBatch];
-  if constexpr (Turb) lane_normals<T, true>(tc, *lanes, step, z, unused);
+  lane_normals<T, true>(tc, *lanes, step, z, unused);
   Rk4Block<T> k;
   NewState<T> next;
   rk4_stages(tc, frames, lanes, &k, [&](auto stage) LRIGID_LANE_LAMBDA {
-    rk4_stage<T, Turb, Plate, Extra, decltype(stage)::value>(tc, lanes, z, &k, &next);
+    rk4_stage<T, Plate, decltype(stage)::value>(tc, lanes, z, &k, &next);
   });
   const T h6 = h / T(6);
   LRIGID_IVDEP
@@ -249,8 +247,8 @@ LRIGID_MULTIVERSION void rk4_lanes(const StepConsts<Mass>& tc, const Rk4Frames& 
       v1[a] = lanes->v[a][j] + dxi[a];
       w1[a] = lanes->w[a][j] + dxi[3 + a];
     }
-    if constexpr (Extra) {
-      // the Basset history's current interval, implicitly: (M + b P) xi = M xi* + b P xi_0,
+    {
+      // the Basset history's current interval, implicitly (zero without it): (M + b P) xi = M xi* + b P xi_0,
       // xi_0 the start's velocity in the new body frame; the correction (M + b P)^-1 (b (v0 - v);
       // 0) (a full M: the spin too)
       T R0[9], va[3], vw[3], v0[3], d[3], corr[6];
@@ -262,6 +260,8 @@ LRIGID_MULTIVERSION void rk4_lanes(const StepConsts<Mass>& tc, const Rk4Frames& 
 #pragma GCC unroll 3
       for (int a = 0; a < 3; ++a) d[a] = T(tc.basset_mass) * (v0[a] - v1[a]);
       fluid_impulse(tc.basset_inv, d, corr);
+#pragma GCC unroll 6
+      for (int a = 0; a < 6; ++a) corr[a] = tc.basset ? corr[a] : T(0);
 #pragma GCC unroll 3
       for (int a = 0; a < 3; ++a) {
         v1[a] += corr[a];
@@ -280,7 +280,7 @@ LRIGID_MULTIVERSION void rk4_lanes(const StepConsts<Mass>& tc, const Rk4Frames& 
     for (int a = 0; a < 4; ++a) next.q[a][j] = q1[a];
     next.scalar[j] = k.ok[j] != T(0) ? 0 : 1;
   }
-  end_step<T, Turb, false>(tc, z, Vn, &next, lanes, outcome, landed);
+  end_step<T, false>(tc, z, Vn, &next, lanes, outcome, landed);
 }
 
 }  // namespace

@@ -136,38 +136,41 @@ LRIGID_LANE DragOut<T> ellipsoid_forces(const C& tc, const T* u, const T* w) {
   return drag;
 }
 
-// With `Extra` the centre of mass may be off the volume centroid (BodyType::r_cob): the fluid's
+// The centre of mass may be off the volume centroid (BodyType::r_cob): the fluid's
 // forces act at the centroid (effects/wrench.h centroid_velocity_kernel, add_offset_torque_kernel,
 // the scalar terms' kernels), on the type's r_cob in the lane's precision.
+// A uniform body (tc.offset false) takes u itself and no torque: selected, not u + w x 0.
 template <typename T, class C>
 LRIGID_LANE void centroid_velocity(const C& tc, const T* u, const T* w, T* uc) {
   const T r[3] = {T(tc.r_cob[0]), T(tc.r_cob[1]), T(tc.r_cob[2])};
   centroid_velocity_kernel(r, u, w, uc);
+#pragma GCC unroll 3
+  for (int a = 0; a < 3; ++a) uc[a] = tc.offset ? uc[a] : u[a];
 }
 template <typename T, class C>
 LRIGID_LANE void add_offset_torque(const C& tc, const T* f, T* tq) {
   const T r[3] = {T(tc.r_cob[0]), T(tc.r_cob[1]), T(tc.r_cob[2])};
-  add_offset_torque_kernel(r, f, tq);
+  T t[3] = {0, 0, 0};
+  add_offset_torque_kernel(r, f, t);
+#pragma GCC unroll 3
+  for (int a = 0; a < 3; ++a) tq[a] += tc.offset ? t[a] : T(0);
 }
 
-// A lane's drag (and, for plates, lift: effects/plate.h) on relative velocity u and spin w; with
-// Extra at the centroid, the drag's torque about the centre of mass (the lift's, explicit:
-// explicit_torque)
-template <typename T, bool Plate, bool Extra, class C>
+// A lane's drag (and, for plates, lift: effects/plate.h) on relative velocity u and spin w, at
+// the volume centroid, with the drag's torque about the centre of mass (the lift's, explicit:
+// explicit_torque). A uniform body has r_cob = 0, which leaves u and the torque unchanged to the
+// bit (u + w x 0 = u), so one loop serves bodies with and without an offset centre of mass.
+template <typename T, bool Plate, class C>
 LRIGID_LANE DragOut<T> body_forces(const C& tc, const T* u, const T* w, T* lift) {
-  if constexpr (Extra) {
-    T uc[3];
-    centroid_velocity(tc, u, w, uc);
-    DragOut<T> drag = body_forces<T, Plate, false>(tc, uc, w, lift);
-    add_offset_torque(tc, drag.f, drag.tq);
-    return drag;
-  } else if constexpr (Plate) {
-    DragOut<T> drag;
-    plate_kernel(tc.plate_model, u, w, &drag, lift);
-    return drag;
-  } else {
-    return ellipsoid_forces(tc, u, w);
-  }
+  T uc[3];
+  centroid_velocity(tc, u, w, uc);
+  DragOut<T> drag;
+  if constexpr (Plate)
+    plate_kernel(tc.plate_model, uc, w, &drag, lift);
+  else
+    drag = ellipsoid_forces(tc, uc, w);
+  add_offset_torque(tc, drag.f, drag.tq);
+  return drag;
 }
 
 // The Magnus force (body frame) on a lane with relative velocity u and spin w, at the centroid
@@ -176,9 +179,11 @@ LRIGID_LANE void lane_magnus(const C& tc, const T* u, const T* w, T* f) {
   T uc[3];
   centroid_velocity(tc, u, w, uc);
   magnus_kernel(T(tc.magnus), w, uc, f);
+#pragma GCC unroll 3
+  for (int a = 0; a < 3; ++a) f[a] = tc.has_magnus ? f[a] : T(0);
 }
 
-// With Extra, the torque about the centre of mass of the explicit forces that act at the centroid
+// The torque about the centre of mass of the explicit forces that act at the centroid
 // (effects/buoyancy.h, lift.cpp, magnus.h): r_cob x (buoyancy + lift + Magnus), the buoyancy
 // rotated to the body by R (body -> world); zero for a uniform body
 template <typename T, class C>
@@ -194,11 +199,33 @@ LRIGID_LANE void explicit_torque(const C& tc, const T* R, const T* lift, const T
   add_offset_torque(tc, f, tq);
 }
 
+// The forces stage's sum on one lane, written once for every scheme (the batched counterpart of
+// the scalar step's EffectPlan): at rotation R (body -> world), relative velocity vr and spin w
+// (body frame), with Fb the weight and buoyancy (and the Basset history force) in the body
+// frame. Returns the drag (and the plate's dissipative torque) with its stiffness, which the
+// splitting and strang steps take implicitly; fe = (force; torque) of the explicit rest: Fb, the
+// plate's lift, Magnus, and their torque about an offset centre of mass. Each term is its
+// effect's kernel (effects/); an effect off contributes its factor 0.
+template <typename T, bool Plate, class Mass>
+LRIGID_LANE DragOut<T> lane_forces(const StepConsts<Mass>& tc, const T* R, const T* Fb,
+                                   const T* vr, const T* w, T* fe) {
+  T lift[3] = {0, 0, 0}, fx[3], tx[3];
+  const DragOut<T> d = body_forces<T, Plate>(tc, vr, w, lift);
+  lane_magnus(tc, vr, w, fx);
+  explicit_torque(tc, R, lift, fx, tx);
+#pragma GCC unroll 3
+  for (int a = 0; a < 3; ++a) {
+    fe[a] = Fb[a] + lift[a] + fx[a];
+    fe[3 + a] = tx[a];
+  }
+  return d;
+}
+
 // The Strang scheme's force step over hs on a lane's body-frame velocities v, w (in place), at
 // orientation R (body -> world) and the fluid velocity u_f (world) with its material derivative
 // acc (world, the gu factor applied here): ROS2 (integrate/kirchhoff.h ros2_impulse), as
 // integrators.cpp strang_force_step. Not with the Basset history (tc.strang).
-template <typename T, bool Plate, bool Extra, class Mass>
+template <typename T, bool Plate, class Mass>
 LRIGID_LANE void strang_force_lane(const StepConsts<Mass>& tc, const T* R, const T* u_f,
                                    const T* acc, T hs, T* v, T* w) {
   const T F[3] = {T(tc.F[0]), T(tc.F[1]), T(tc.F[2])};
@@ -215,23 +242,17 @@ LRIGID_LANE void strang_force_lane(const StepConsts<Mass>& tc, const T* R, const
   impulse_of_velocity(tc.mass, tc.K, xi0, ufb, P);
   DragOut<T> J{};
   auto forces = [&](const T* dPi, bool first, T* f) LRIGID_LANE_LAMBDA {
-    T Pn[6], xi[6], vr[3], lift[3] = {0, 0, 0}, fx[3] = {0, 0, 0};
+    T Pn[6], xi[6], vr[3], fe[6];
 #pragma GCC unroll 6
     for (int a = 0; a < 6; ++a) Pn[a] = P[a] + dPi[a];
     velocity_of_impulse(tc.mass, tc.K, Pn, ufb, xi);
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) vr[a] = xi[a] - ufb[a];
-    const T* ws = xi + 3;
-    const DragOut<T> d = body_forces<T, Plate, Extra>(tc, vr, ws, lift);
-    T tx[3] = {0, 0, 0};
-    if constexpr (Extra) {
-      lane_magnus(tc, vr, ws, fx);
-      explicit_torque(tc, R, lift, fx, tx);
-    }
+    const DragOut<T> d = lane_forces<T, Plate>(tc, R, Fb, vr, xi + 3, fe);
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
-      f[a] = Fb[a] + drag_along[a] + lift[a] + fx[a] + d.f[a];
-      f[3 + a] = drag_along[3 + a] + d.tq[a] + tx[a];
+      f[a] = fe[a] + drag_along[a] + d.f[a];
+      f[3 + a] = fe[3 + a] + drag_along[3 + a] + d.tq[a];
     }
     if (first) J = d;
   };
@@ -346,25 +367,46 @@ constexpr int kLaneKirchhoffNewton = kKirchhoffMaxNewton / 2;
 // lanes need it, and vectorised over the whole block (masked) when more do
 constexpr int kSparseNewton = 4;
 
-// Advances every lane of lanes by one step (see rigid_batch.h); lanes that are not kOk keep their
-// state at the start of the step. landed: the lane is on or below the ground after the step.
-template <typename T, bool Turb, bool Plate, bool Extra, bool Strang, class Mass>
-LRIGID_MULTIVERSION void step_lanes(const StepConsts<Mass>& tc, Lanes<T>* lanes, uint64_t step,
-                                    int* outcome, int* landed) {
-  const int nw = lanes->width;
-  const T h = T(tc.h), hh = T(0.5 * tc.h), wm = T(tc.wm);
-  alignas(64) T z1[3][kBatch], z2[3][kBatch];
-  if constexpr (Turb) lane_normals(tc, *lanes, step, z1, z2);
-  // the Kirchhoff iteration: start impulse Y0 and iterate Y (relative to the fluid), the fluid
-  // velocity uf (world), the world velocity V0 at the start, the seen fluctuation after the
-  // first half step
+// The splitting and strang steps' state within a step, across a block: the free Kirchhoff
+// flow's start impulse Y0 and iterate Y (relative to the fluid), its tolerance tol2 and last
+// update norm per lane, the lanes still iterating (active), the fluid velocity uf (world) the
+// flow moves in, and the world velocity V0 at the start of the step.
+template <typename T>
+struct FlowBlock {
   alignas(64) T Y0[6][kBatch], Y[6][kBatch], tol2[kBatch], last[kBatch];
   alignas(64) T uf[3][kBatch], V0[3][kBatch];
   int active[kBatch];
-  // new state, committed at the end for the lanes whose step succeeded
-  NewState<T> next;
-  T(&usn)[3][kBatch] = next.us;
-  int(&scalar)[kBatch] = next.scalar;
+};
+
+// The stages of the splitting and strang steps (integrators.h), each a loop (or a few) across the
+// block's live lanes, inlined into each scheme's loop function below. "in => out" names what a
+// stage reads and writes of the block (lanes: the state at the start of the step and the samples;
+// flow: FlowBlock; next: NewState).
+
+// Stage 1, the turbulence and the start of the flow: lanes (state, sample), z1 => next.us (the
+// seen fluctuation after the first exact OU half step), next.scalar = 0, flow (uf, V0, Y0, the
+// predictor Y, tol2). Strang: also the first force half step (ROS2 over h/2) at the start's
+// orientation, and the flow relative to the fluid velocity at the midpoint.
+template <typename T, bool Plate, bool Strang, class Mass>
+LRIGID_LANE void stage_flow_start(const StepConsts<Mass>& tc, const Lanes<T>* lanes,
+                                  const T (*z1)[kBatch], FlowBlock<T>* flow, NewState<T>* next) {
+  const int nw = lanes->width;
+  const T h = T(tc.h), hh = T(0.5 * tc.h);
+  (void)h, (void)hh;
+  const T wm = T(tc.wm);
+  const bool turb = tc.turb;
+  const T tu = T(tc.turb ? 1 : 0);  // the seen fluctuation's factor in the fluid velocity
+  T(&Y0)[6][kBatch] = flow->Y0;
+  T(&Y)[6][kBatch] = flow->Y;
+  T(&tol2)[kBatch] = flow->tol2;
+  T(&last)[kBatch] = flow->last;
+  T(&uf)[3][kBatch] = flow->uf;
+  T(&V0)[3][kBatch] = flow->V0;
+  int(&active)[kBatch] = flow->active;
+  T(&usn)[3][kBatch] = next->us;
+  int(&scalar)[kBatch] = next->scalar;
+  (void)Y0, (void)Y, (void)tol2, (void)last, (void)uf, (void)V0, (void)active, (void)usn,
+      (void)scalar;
 LRIGID_IVDEP
   for (int j = 0; j < nw; ++j) {
     T us[3] = {lanes->us[0][j], lanes->us[1][j], lanes->us[2][j]};
@@ -375,19 +417,15 @@ LRIGID_IVDEP
     rotation(q, R);
     mul(R, v, V);
     // 1. first OU half step
-    if constexpr (Turb) {
-      const T gs[3] = {lanes->gs[0][j], lanes->gs[1][j], lanes->gs[2][j]};
-      const T z[3] = {z1[0][j], z1[1][j], z1[2][j]};
-      ou_update(wm, lanes->decay[j], lanes->noise[j], lanes->sigma2[j], V, gs, z, hh, us);
-    }
+    lane_ou_half(turb, wm, hh, *lanes, z1, j, V, us);
     T u_f[3], ufb[3];
 #pragma GCC unroll 3
-    for (int a = 0; a < 3; ++a) u_f[a] = T(tc.mf) * lanes->U[a][j] + (Turb ? us[a] : T(0));
+    for (int a = 0; a < 3; ++a) u_f[a] = T(tc.mf) * lanes->U[a][j] + tu * us[a];
     mul_t(R, u_f, ufb);
     if constexpr (Strang) {
       // strang: the first force half step at the start's position and orientation
       const T acc[3] = {lanes->acc[0][j], lanes->acc[1][j], lanes->acc[2][j]};
-      strang_force_lane<T, Plate, Extra>(tc, R, u_f, acc, hh, v, w);
+      strang_force_lane<T, Plate>(tc, R, u_f, acc, hh, v, w);
       mul(R, v, V);
       // the flow moves relative to the fluid velocity at the midpoint (integrators.cpp
       // strang_deterministic_step): U + grad U (h/2 V)
@@ -421,6 +459,29 @@ LRIGID_IVDEP
       usn[a][j] = us[a];
     }
   }
+}
+
+// Stage 2, the free Kirchhoff flow (gyroscopic and Munk terms) by the implicit midpoint rule:
+// flow (Y0, Y) => flow.Y converged, flow.active and next.scalar for the lanes left to the scalar
+// step. The fixed-point iteration per lane under a convergence mask, then Newton for the lanes
+// whose fixed point stopped.
+template <typename T, class Mass>
+LRIGID_LANE void stage_kirchhoff_flow(const StepConsts<Mass>& tc, Lanes<T>* lanes,
+                                      FlowBlock<T>* flow, NewState<T>* next) {
+  const int nw = lanes->width;
+  const T h = T(tc.h), hh = T(0.5 * tc.h);
+  (void)h, (void)hh;
+  T(&Y0)[6][kBatch] = flow->Y0;
+  T(&Y)[6][kBatch] = flow->Y;
+  T(&tol2)[kBatch] = flow->tol2;
+  T(&last)[kBatch] = flow->last;
+  T(&uf)[3][kBatch] = flow->uf;
+  T(&V0)[3][kBatch] = flow->V0;
+  int(&active)[kBatch] = flow->active;
+  T(&usn)[3][kBatch] = next->us;
+  int(&scalar)[kBatch] = next->scalar;
+  (void)Y0, (void)Y, (void)tol2, (void)last, (void)uf, (void)V0, (void)active, (void)usn,
+      (void)scalar;
   // the fixed-point iteration Y <- Y0 - h gyro((Y0 + Y)/2); lanes drop out as they converge;
   // a lane that contracts slowly or diverges goes to the scalar step (its Newton iteration)
   for (int it = 0; it < kKirchhoffMaxFixedPoint; ++it) {
@@ -551,60 +612,39 @@ LRIGID_IVDEP
     }
     // lanes still in Newton after kLaneKirchhoffNewton iterations go to the scalar step
   }
-  // 3. the forces at the new orientation, drag implicit: (M + h J + b_B P) M^-1 dPi = h G +
-  //    b_B h a_fluid, from one linearly implicit step, or Newton (below) for stiff drag
-  T(&xn)[3][kBatch] = next.x;
-  T(&qn)[4][kBatch] = next.q;
-  T(&vn)[3][kBatch] = next.vel;
-  T(&wn)[3][kBatch] = next.w;
-  if constexpr (Strang) {
-    // strang: x by the trapezoidal rule over the flow, the field at the new positions, the
-    // second force half step there, and the second OU half step (end_step, on that sample)
-    alignas(64) T Vn[3][kBatch], inside0[kBatch];
-LRIGID_IVDEP
-    for (int j = 0; j < nw; ++j) {
-      T q[4], R[9], ufb[3], v[3], w[3], Vend[3];
-      lane_flow_end(tc, lanes->q, Y0, Y, uf, j, q, R, ufb, v, w);
-      mul(R, v, Vend);
-      scalar[j] |= active[j];
-#pragma GCC unroll 3
-      for (int a = 0; a < 3; ++a) {
-        xn[a][j] = lanes->x[a][j] + hh * (V0[a][j] + Vend[a]);
-        vn[a][j] = v[a];
-        wn[a][j] = w[a];
-      }
-#pragma GCC unroll 4
-      for (int a = 0; a < 4; ++a) qn[a][j] = q[a];
-    }
-    for (int j = 0; j < nw; ++j) inside0[j] = tc.sample ? lanes->inside[j] : T(1);
-    if (tc.sample) sample_lanes(tc, next.x, lanes, 0, nw);
-LRIGID_IVDEP
-    for (int j = 0; j < nw; ++j) {
-      const T q[4] = {qn[0][j], qn[1][j], qn[2][j], qn[3][j]};
-      const T acc[3] = {lanes->acc[0][j], lanes->acc[1][j], lanes->acc[2][j]};
-      T R[9], u_f[3], v[3] = {vn[0][j], vn[1][j], vn[2][j]}, w[3] = {wn[0][j], wn[1][j], wn[2][j]};
-      rotation(q, R);
-#pragma GCC unroll 3
-      for (int a = 0; a < 3; ++a) u_f[a] = T(tc.mf) * lanes->U[a][j] + (Turb ? usn[a][j] : T(0));
-      strang_force_lane<T, Plate, Extra>(tc, R, u_f, acc, hh, v, w);
-      T Vend[3];
-      mul(R, v, Vend);
-#pragma GCC unroll 3
-      for (int a = 0; a < 3; ++a) {
-        vn[a][j] = v[a];
-        wn[a][j] = w[a];
-        Vn[a][j] = Vend[a];
-      }
-    }
-    end_step<T, Turb>(tc, z2, Vn, &next, lanes, outcome, landed, inside0);
-    return;
-  }
+}
+
+// Stage 3 of splitting, the forces at the new orientation with the drag implicit:
+// (M + h J + b_B P) M^-1 dPi = h G + b_B h a_fluid, one linearly implicit step, then Newton for
+// the lanes whose drag is stiff. flow (Y0, Y, uf), lanes (sample, Basset force) => next.q, the
+// body-frame velocities next.vel, next.w.
+template <typename T, bool Plate, class Mass>
+LRIGID_LANE void stage_forces_implicit(const StepConsts<Mass>& tc, Lanes<T>* lanes,
+                                       FlowBlock<T>* flow, NewState<T>* next) {
+  const int nw = lanes->width;
+  const T h = T(tc.h), hh = T(0.5 * tc.h);
+  (void)h, (void)hh;
+  T(&Y0)[6][kBatch] = flow->Y0;
+  T(&Y)[6][kBatch] = flow->Y;
+  T(&tol2)[kBatch] = flow->tol2;
+  T(&last)[kBatch] = flow->last;
+  T(&uf)[3][kBatch] = flow->uf;
+  T(&V0)[3][kBatch] = flow->V0;
+  int(&active)[kBatch] = flow->active;
+  T(&usn)[3][kBatch] = next->us;
+  int(&scalar)[kBatch] = next->scalar;
+  (void)Y0, (void)Y, (void)tol2, (void)last, (void)uf, (void)V0, (void)active, (void)usn,
+      (void)scalar;
+  T(&xn)[3][kBatch] = next->x;
+  T(&qn)[4][kBatch] = next->q;
+  T(&vn)[3][kBatch] = next->vel;
+  T(&wn)[3][kBatch] = next->w;
+  (void)xn, (void)qn, (void)vn, (void)wn;
   // what Newton needs: the impulse P (linear, relative to the fluid's added-mass impulse) and lanes
-  // before the forces, their changes dP and dL, h times the forces other than drag G (linear;
-  // none of them has a torque about the centroid: with Extra also their torque about an offset
-  // centre of mass), the fluid velocity (body frame) at the end, and the norm of the relative
-  // velocity
-  alignas(64) T Pl[6][kBatch], dPL[6][kBatch], G[Extra ? 6 : 3][kBatch], ufe[3][kBatch],
+  // before the forces, their changes dP and dL, h times the forces other than drag G (and their
+  // torque about an offset centre of mass: zero for a uniform body), the fluid velocity (body
+  // frame) at the end, and the norm of the relative velocity
+  alignas(64) T Pl[6][kBatch], dPL[6][kBatch], G[6][kBatch], ufe[3][kBatch],
       ufs[3][kBatch];
   alignas(64) T norm_r[kBatch];
   int stiff[kBatch];
@@ -616,36 +656,27 @@ LRIGID_IVDEP
     lane_flow_end(tc, lanes->q, Y0, Y, uf, j, q, R, ufb, v, w);
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) vr[a] = v[a] - ufb[a];
-    T lift[3] = {0, 0, 0};
-    const DragOut<T> drag = body_forces<T, Plate, Extra>(tc, vr, w, lift);
-    T F[3] = {T(tc.F[0]), T(tc.F[1]), T(tc.F[2])};
-    T Fb[3], u_end[3], ufb_end[3], fx[3] = {0, 0, 0}, ab[3] = {0, 0, 0}, tx[3] = {0, 0, 0};
-    if constexpr (Extra) {
-      // the Basset history force (world) joins the weight; Magnus (body frame) and the
-      // current interval's b_B h a_fluid (body frame, below) join the rest; the torque of the
-      // forces at the centroid about an offset centre of mass
-      T acc[3];
+    // the Basset history force (world; zero without the history) joins the weight; the current
+    // interval's b_B h a_fluid (body frame) joins the explicit forces
+    T F[3], acc[3], Fb[3], u_end[3], ufb_end[3], ab[3], fe[6];
 #pragma GCC unroll 3
-      for (int a = 0; a < 3; ++a) {
-        F[a] += lanes->fb[a][j];
-        acc[a] = T(tc.gu) * lanes->acc[a][j];
-      }
-      lane_magnus(tc, vr, w, fx);
-      mul_t(R, acc, ab);
-      explicit_torque(tc, R, lift, fx, tx);
+    for (int a = 0; a < 3; ++a) {
+      F[a] = T(tc.F[a]) + lanes->fb[a][j];
+      acc[a] = T(tc.gu) * lanes->acc[a][j];
     }
+    mul_t(R, acc, ab);
     mul_t(R, F, Fb);
+    const DragOut<T> drag = lane_forces<T, Plate>(tc, R, Fb, vr, w, fe);
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) u_end[a] = uf[a][j] + h * T(tc.gu) * lanes->acc[a][j];
     mul_t(R, u_end, ufb_end);
     T Gj[6], rhs[6], dPL_j[6];
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
-      Gj[a] = Extra ? h * (Fb[a] + lift[a] + fx[a]) + T(tc.basset_mass) * h * ab[a]
-                    : h * (Fb[a] + lift[a]);
-      Gj[3 + a] = h * tx[a];
+      Gj[a] = h * fe[a] + (tc.basset ? T(tc.basset_mass) * h * ab[a] : T(0));
+      Gj[3 + a] = h * fe[3 + a];
       rhs[a] = Gj[a] + h * drag.f[a];
-      rhs[3 + a] = Extra ? Gj[3 + a] + h * drag.tq[a] : h * drag.tq[a];
+      rhs[3 + a] = Gj[3 + a] + h * drag.tq[a];
     }
     implicit_impulse(tc.mass, T(tc.basset_mass), drag, h, rhs, dPL_j);
     // the impulse Pi before the forces (relative to the fluid's added-mass impulse) and the
@@ -667,7 +698,7 @@ LRIGID_IVDEP
       vn[a][j] = xin[a];
       wn[a][j] = xin[3 + a];
       G[a][j] = Gj[a];
-      if constexpr (Extra) G[3 + a][j] = Gj[3 + a];
+      G[3 + a][j] = Gj[3 + a];
       ufe[a][j] = ufb_end[a];
       ufs[a][j] = ufb[a];
     }
@@ -693,7 +724,7 @@ LRIGID_IVDEP
       vr[a] = vn[a][j] - ufs[a][j];
       w[a] = wn[a][j];
     }
-    const DragOut<T> drag = body_forces<T, Plate, Extra>(tc, vr, w, lift);
+    const DragOut<T> drag = body_forces<T, Plate>(tc, vr, w, lift);
     // the Newton step -M (M + h J + b_B P)^-1 res, J the drag's stiffness here
     // (the Basset term: b_B times the linear velocity change M^-1 dPi)
     T res[6], x[6], dPi[6], ddv[6], Pn[6], xin[6];
@@ -706,8 +737,7 @@ LRIGID_IVDEP
       if constexpr (std::is_same_v<Mass, DiagonalMass>)
         b_dv = T(tc.basset_mass) * T(tc.mass.Mi[a]) * dPi[a];  // (the diagonal step's rounding)
       res[a] = dPi[a] - G[a][j] - h * drag.f[a] + b_dv;
-      res[3 + a] = dPi[3 + a] - h * drag.tq[a];
-      if constexpr (Extra) res[3 + a] -= G[3 + a][j];
+      res[3 + a] = dPi[3 + a] - h * drag.tq[a] - G[3 + a][j];
     }
     implicit_impulse(tc.mass, T(tc.basset_mass), drag, h, res, x);
 #pragma GCC unroll 6
@@ -762,8 +792,33 @@ LRIGID_IVDEP
       }
     }
   }
+}
+
+// Stage 4 of splitting, the positions by the trapezoidal rule on the world velocity:
+// lanes.x, flow.V0, next (q, vel) => next.x and Vn, the world velocity at the end.
+template <typename T, class Mass>
+LRIGID_LANE void stage_positions(const StepConsts<Mass>& tc, const Lanes<T>* lanes,
+                                 FlowBlock<T>* flow, NewState<T>* next, T (*Vn)[kBatch]) {
+  const int nw = lanes->width;
+  const T h = T(tc.h), hh = T(0.5 * tc.h);
+  (void)h, (void)hh;
+  T(&Y0)[6][kBatch] = flow->Y0;
+  T(&Y)[6][kBatch] = flow->Y;
+  T(&tol2)[kBatch] = flow->tol2;
+  T(&last)[kBatch] = flow->last;
+  T(&uf)[3][kBatch] = flow->uf;
+  T(&V0)[3][kBatch] = flow->V0;
+  int(&active)[kBatch] = flow->active;
+  T(&usn)[3][kBatch] = next->us;
+  int(&scalar)[kBatch] = next->scalar;
+  (void)Y0, (void)Y, (void)tol2, (void)last, (void)uf, (void)V0, (void)active, (void)usn,
+      (void)scalar;
+  T(&xn)[3][kBatch] = next->x;
+  T(&qn)[4][kBatch] = next->q;
+  T(&vn)[3][kBatch] = next->vel;
+  T(&wn)[3][kBatch] = next->w;
+  (void)xn, (void)qn, (void)vn, (void)wn;
   // 4. x by the trapezoidal rule on the world velocity
-  alignas(64) T Vn[3][kBatch];  // the world velocity at the end
 LRIGID_IVDEP
   for (int j = 0; j < nw; ++j) {
     const T q[4] = {qn[0][j], qn[1][j], qn[2][j], qn[3][j]};
@@ -777,8 +832,106 @@ LRIGID_IVDEP
       Vn[a][j] = Vend[a];
     }
   }
-  // 5. the second OU half step at the new position
-  end_step<T, Turb>(tc, z2, Vn, &next, lanes, outcome, landed);
+}
+
+// Stages 3-4 of strang, the end of the flow and the second force half step: flow => next.q,
+// next.x by the trapezoidal rule over the flow; the field sampled at next.x (inside0: each lane's
+// inside flag before); the second force half step there => next.vel, next.w and Vn, the world
+// velocity at the end.
+template <typename T, bool Plate, class Mass>
+LRIGID_LANE void stage_strang_end(const StepConsts<Mass>& tc, Lanes<T>* lanes, FlowBlock<T>* flow,
+                                  NewState<T>* next, T (*Vn)[kBatch], T* inside0) {
+  const int nw = lanes->width;
+  const T h = T(tc.h), hh = T(0.5 * tc.h);
+  (void)h, (void)hh;
+  const T tu = T(tc.turb ? 1 : 0);
+  T(&Y0)[6][kBatch] = flow->Y0;
+  T(&Y)[6][kBatch] = flow->Y;
+  T(&tol2)[kBatch] = flow->tol2;
+  T(&last)[kBatch] = flow->last;
+  T(&uf)[3][kBatch] = flow->uf;
+  T(&V0)[3][kBatch] = flow->V0;
+  int(&active)[kBatch] = flow->active;
+  T(&usn)[3][kBatch] = next->us;
+  int(&scalar)[kBatch] = next->scalar;
+  (void)Y0, (void)Y, (void)tol2, (void)last, (void)uf, (void)V0, (void)active, (void)usn,
+      (void)scalar;
+  T(&xn)[3][kBatch] = next->x;
+  T(&qn)[4][kBatch] = next->q;
+  T(&vn)[3][kBatch] = next->vel;
+  T(&wn)[3][kBatch] = next->w;
+  (void)xn, (void)qn, (void)vn, (void)wn;
+  // strang: x by the trapezoidal rule over the flow, the field at the new positions, the
+  // second force half step there, and the second OU half step (end_step, on that sample)
+LRIGID_IVDEP
+  for (int j = 0; j < nw; ++j) {
+    T q[4], R[9], ufb[3], v[3], w[3], Vend[3];
+    lane_flow_end(tc, lanes->q, Y0, Y, uf, j, q, R, ufb, v, w);
+    mul(R, v, Vend);
+    scalar[j] |= active[j];
+#pragma GCC unroll 3
+    for (int a = 0; a < 3; ++a) {
+      xn[a][j] = lanes->x[a][j] + hh * (V0[a][j] + Vend[a]);
+      vn[a][j] = v[a];
+      wn[a][j] = w[a];
+    }
+#pragma GCC unroll 4
+    for (int a = 0; a < 4; ++a) qn[a][j] = q[a];
+  }
+  for (int j = 0; j < nw; ++j) inside0[j] = tc.sample ? lanes->inside[j] : T(1);
+  if (tc.sample) sample_lanes(tc, next->x, lanes, 0, nw);
+LRIGID_IVDEP
+  for (int j = 0; j < nw; ++j) {
+    const T q[4] = {qn[0][j], qn[1][j], qn[2][j], qn[3][j]};
+    const T acc[3] = {lanes->acc[0][j], lanes->acc[1][j], lanes->acc[2][j]};
+    T R[9], u_f[3], v[3] = {vn[0][j], vn[1][j], vn[2][j]}, w[3] = {wn[0][j], wn[1][j], wn[2][j]};
+    rotation(q, R);
+#pragma GCC unroll 3
+    for (int a = 0; a < 3; ++a) u_f[a] = T(tc.mf) * lanes->U[a][j] + tu * usn[a][j];
+    strang_force_lane<T, Plate>(tc, R, u_f, acc, hh, v, w);
+    T Vend[3];
+    mul(R, v, Vend);
+#pragma GCC unroll 3
+    for (int a = 0; a < 3; ++a) {
+      vn[a][j] = v[a];
+      wn[a][j] = w[a];
+      Vn[a][j] = Vend[a];
+    }
+  }
+}
+
+// The splitting step (integrators.h): the first OU half step, the free Kirchhoff flow, the
+// forces with the drag implicit, the positions, the second OU half step at the new positions
+// (end_step). Lanes that are not kOk keep their state at the start of the step; landed: the lane
+// is on or below the ground after the step.
+template <typename T, bool Plate, class Mass>
+LRIGID_MULTIVERSION void splitting_lanes(const StepConsts<Mass>& tc, Lanes<T>* lanes,
+                                         uint64_t step, int* outcome, int* landed) {
+  alignas(64) T z1[3][kBatch], z2[3][kBatch], Vn[3][kBatch];
+  lane_normals(tc, *lanes, step, z1, z2);
+  FlowBlock<T> flow;
+  NewState<T> next;  // committed by end_step for the lanes whose step succeeded
+  stage_flow_start<T, Plate, false>(tc, lanes, z1, &flow, &next);
+  stage_kirchhoff_flow(tc, lanes, &flow, &next);
+  stage_forces_implicit<T, Plate>(tc, lanes, &flow, &next);
+  stage_positions(tc, lanes, &flow, &next, Vn);
+  end_step<T>(tc, z2, Vn, &next, lanes, outcome, landed);
+}
+
+// The strang step (integrators.h): the first OU half step and force half step, the free
+// Kirchhoff flow, the positions, the second force half step and OU half step at the new
+// positions.
+template <typename T, bool Plate, class Mass>
+LRIGID_MULTIVERSION void strang_lanes(const StepConsts<Mass>& tc, Lanes<T>* lanes, uint64_t step,
+                                      int* outcome, int* landed) {
+  alignas(64) T z1[3][kBatch], z2[3][kBatch], Vn[3][kBatch], inside0[kBatch];
+  lane_normals(tc, *lanes, step, z1, z2);
+  FlowBlock<T> flow;
+  NewState<T> next;
+  stage_flow_start<T, Plate, true>(tc, lanes, z1, &flow, &next);
+  stage_kirchhoff_flow(tc, lanes, &flow, &next);
+  stage_strang_end<T, Plate>(tc, lanes, &flow, &next, Vn, inside0);
+  end_step<T>(tc, z2, Vn, &next, lanes, outcome, landed, inside0);
 }
 
 }  // namespace
@@ -792,22 +945,18 @@ BlockStats advance(const Model& model, const BodyType& type, State* state, const
                    int count, uint64_t first, uint64_t last) {
   const StepConsts<Mass> tc = make_consts<Mass>(model, type);
   const bool unsteady = tc.grid && model.field.frame_count() > 1;
-  auto step = [&](auto turb, auto plate, auto extra, Lanes<T>* lanes, uint64_t s, int* outcome,
-                  int* landed) {
-    constexpr bool A = decltype(turb)::value, B = decltype(plate)::value,
-                   C = decltype(extra)::value;
-    if (tc.scheme == Integrator::Euler)
-      return euler_lanes<T, A, B, C>(tc, lanes, s, outcome, landed);
+  auto step = [&](auto plate, Lanes<T>* lanes, uint64_t s, int* outcome, int* landed) {
+    constexpr bool P = decltype(plate)::value;
+    if (tc.scheme == Integrator::Euler) return euler_lanes<T, P>(tc, lanes, s, outcome, landed);
     if (tc.scheme == Integrator::RK4)
-      return rk4_lanes<T, A, B, C>(tc, rk4_frames(model, unsteady, s), lanes, s, outcome,
-                                   landed);
+      return rk4_lanes<T, P>(tc, rk4_frames(model, unsteady, s), lanes, s, outcome, landed);
     if (tc.strang)
-      step_lanes<T, A, B, C, true>(tc, lanes, s, outcome, landed);
+      strang_lanes<T, P>(tc, lanes, s, outcome, landed);
     else
-      step_lanes<T, A, B, C, false>(tc, lanes, s, outcome, landed);
+      splitting_lanes<T, P>(tc, lanes, s, outcome, landed);
   };
-  return drive_block<T, Lanes<T>>(model, type, tc, tc.turb, tc.plate, state, body, count, first,
-                                  last, step);
+  return drive_block<T, Lanes<T>>(model, type, tc, tc.plate, state, body, count, first, last,
+                                  step);
 }
 
 }  // namespace

@@ -11,6 +11,7 @@
 #include "integrate/integrators.h"
 #include "integrate/rigid_batch.h"
 #include "integrate/sphere_batch.h"
+#include "integrate/step_end.h"
 #include "integrate/stops.h"
 
 namespace lrigid {
@@ -51,10 +52,9 @@ uint64_t advance_body(const Model& model, State& st, int64_t i, uint64_t first, 
   uint64_t body_steps = 0;
   const BodyType& type = model.types[st.type[i]];
   BodyState b = load_body(st, size_t(i));
-  const bool contacts = model.contacts();
-  const bool lands = model.has_ground && !model.ground_collides();
+  const bool keep_start = model.has_ground || model.contacts();
   WallClearance clearance;
-  // the state at the start of the step, for a touchdown located inside it (stops.h)
+  // the state at the start of the step, for an event located inside it (step_end.h)
   BodyState start;
   // a sleeping body that its gust watch wakes in this stretch is stepped from its wake on
   uint64_t wake = st.status[i] == BodyStatus::Sleeping ? st.watch[i].wake : first;
@@ -64,47 +64,20 @@ uint64_t advance_body(const Model& model, State& st, int64_t i, uint64_t first, 
     if (k == wake && st.status[i] == BodyStatus::Sleeping) b.u_seen = wake_sleeper(&st, size_t(i));
     const double t = static_cast<double>(k) * model.dt;
     std::string reason;
-    if (lands || contacts) start = b;
+    if (keep_start) start = b;
     StepOutcome out = step_body(model, type, static_cast<uint32_t>(i), k, t, &b, &reason);
-    // a step through the grid's floor into a colliding ground: the impact located inside it, or
-    // (a body that does not bounce clear) the speculative contact and the step again
-    bool floor_impact = false;
-    if (out == StepOutcome::Exited && heads_into_ground(model, type, b)) {
-      floor_impact = impact_through_floor(model, type, size_t(i), t, &b, &st);
-      if (floor_impact)
-        out = StepOutcome::Ok;
-      else if (speculative_ground_contact(model, type, &b))
-        out = step_body(model, type, static_cast<uint32_t>(i), k, t, &b, &reason);
-    }
-    if (out != StepOutcome::Ok) {
-      if (stop_body(model, type, size_t(i), t, out, reason, &b, &st) == BodyStatus::Landed) {
-        b.v.setZero();
-        b.w.setZero();
-      }
-      break;
-    }
-    ++body_steps;
-    if (contacts) {
-      const bool first_touch = std::isnan(st.t_touch[i]);
-      const BodyState end = b;
-      const bool asleep = contact_after_step(model, type, size_t(i), t + model.dt, &b, &st,
-                                             &clearance, floor_impact ? nullptr : &start);
-      // (an impact through the floor recorded its touchdown where it located it)
-      if (first_touch && !floor_impact && !std::isnan(st.t_touch[i]))
-        record_touchdown(model, type, size_t(i), t, start, end, &st);
-      if (asleep) {
-        // asleep until its watch wakes it, in this stretch or a later one
-        wake = watch_sleeper(model, &st, size_t(i), last);
-        if (wake >= last) break;
-        continue;
-      }
-    }
-    if (lands && touches_ground(model, type, b)) {
-      st.status[i] = BodyStatus::Landed;
-      st.t_stop[i] = t + locate_touchdown(model, type, start, b, &b);
-      b.v.setZero();
-      b.w.setZero();
-      break;
+    bool floor_impact = false, retaken = false;
+    if (out == StepOutcome::Exited)
+      out = retry_into_ground(model, type, size_t(i), k, t, &b, &start, &reason, &st,
+                              &floor_impact, &retaken);
+    if (out == StepOutcome::Ok) ++body_steps;
+    const StepEnd end = finish_step(model, type, size_t(i), t, last, out, reason, true, nullptr,
+                                    floor_impact ? nullptr : &start, &clearance, &b, &st);
+    if (end.next == AfterStep::Stopped) break;
+    if (end.next == AfterStep::Asleep) {
+      // asleep until its watch wakes it, in this stretch or a later one
+      wake = end.wake;
+      if (wake >= last) break;
     }
   }
   store_body(b, size_t(i), &st);

@@ -25,7 +25,8 @@ namespace {
 
 // What the step needs of the sphere type, in the world frame.
 struct StepConsts : FieldConsts {
-  bool drag = false;            // with turb, the step's two template switches
+  bool drag = false;            // the drag effect
+  double drag_factor = 0;       // the same as a factor 1 or 0
   bool strang = false;          // the Strang scheme (not with the Basset history: integrators.h)
   double m = 0, ma = 0, J = 0;  // M's linear and angular diagonal; K's linear diagonal (0 without)
   IsotropicMass mass;           // M = diag(m, m, m, J, J, J) (integrate/kirchhoff.h)
@@ -44,6 +45,7 @@ StepConsts make_consts(const Model& model, const BodyType& type) {
   set_field_consts(model, type, &tc);
   const EffectSet& e = type.effects;
   tc.drag = e.has(Effect::Drag);
+  tc.drag_factor = tc.drag ? 1.0 : 0.0;
   tc.strang = model.integrator == Integrator::Strang && !tc.basset;
   tc.m = type.M(0, 0);
   tc.ma = e.has(Effect::AddedMass) ? type.K_fluid(0, 0) : 0.0;
@@ -100,14 +102,40 @@ struct Lanes : Samples<T> {
 
 // Sphere drag (effects/drag.h drag_kernel, centre of buoyancy at the centre of mass): force
 // and torque on relative velocity u and spin w, and the stiffness the implicit step needs; the
-// projected area is the same in every direction.
+// projected area is the same in every direction. Times the drag effect's factor (0 without it).
 template <typename T>
 LRIGID_LANE DragOut<T> sphere_drag(const StepConsts& tc, const T* u, const T* w) {
   const T a_perp = T(tc.a_perp), d_perp = T(tc.d_perp);
-  return drag_kernel(tc.law, u, w, [&](const T*, T* a, T* diameter) {
+  DragOut<T> d = drag_kernel(tc.law, u, w, [&](const T*, T* a, T* diameter) {
     *a = a_perp;
     *diameter = d_perp;
   });
+  const T dr = T(tc.drag_factor);
+#pragma GCC unroll 3
+  for (int a = 0; a < 3; ++a) {
+    d.f[a] *= dr;
+    d.tq[a] *= dr;
+    d.c_ang[a] *= dr;
+  }
+  d.c_lin *= dr;
+  return d;
+}
+
+// The forces stage's sum on a sphere lane, written once for every scheme (the batched
+// counterpart of the scalar step's EffectPlan): F the given force (weight, buoyancy, the Basset
+// history, the fluid's acceleration on the added mass), relative velocity vr, and the spin in
+// the frame of each kernel (the drag's torque in the frame of w; Magnus on wm, in vr's frame).
+// Returns the drag with its stiffness, which the splitting and strang steps take implicitly; fe
+// the explicit rest, F + Magnus (an effect off contributes its factor 0).
+template <typename T>
+LRIGID_LANE DragOut<T> sphere_force_sum(const StepConsts& tc, const T* F, const T* vr,
+                                        const T* w, const T* wm, T* fe) {
+  const DragOut<T> d = sphere_drag(tc, vr, w);
+  T fm[3];
+  magnus_kernel(T(tc.magnus), wm, vr, fm);
+#pragma GCC unroll 3
+  for (int a = 0; a < 3; ++a) fe[a] = F[a] + (tc.has_magnus ? fm[a] : T(0));
+  return d;
 }
 
 // The Strang scheme's force step over hs on a sphere lane's world velocity V and body-frame spin
@@ -115,7 +143,7 @@ LRIGID_LANE DragOut<T> sphere_drag(const StepConsts& tc, const T* u, const T* w)
 // its material derivative acc (world, the gu factor applied here): ROS2 (integrate/kirchhoff.h
 // ros2_impulse), as integrators.cpp strang_force_step (for an isotropic M the world and body
 // frames give the same step). Not with the Basset history (tc.strang).
-template <typename T, bool WithDrag, bool Extra>
+template <typename T>
 LRIGID_LANE void strang_force_lane(const StepConsts& tc, const T* q, const T* u_f, const T* acc,
                                    T hs, T* V, T* w) {
   T Fw[3], P[6];
@@ -128,22 +156,17 @@ LRIGID_LANE void strang_force_lane(const StepConsts& tc, const T* q, const T* u_
   }
   DragOut<T> J{};
   auto forces = [&](const T* dPi, bool first, T* f) LRIGID_LANE_LAMBDA {
-    T vr[3], ws[3], fm[3] = {0, 0, 0};
+    T vr[3], ws[3], wW[3], fe[3];
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
       vr[a] = (P[a] + dPi[a] + T(tc.ma) * u_f[a]) / T(tc.m) - u_f[a];
       ws[a] = (P[3 + a] + dPi[3 + a]) / T(tc.J);
     }
-    DragOut<T> d = {};
-    if constexpr (WithDrag) d = sphere_drag(tc, vr, ws);
-    if constexpr (Extra) {
-      T wW[3];
-      rotate_by(q, ws, wW);
-      magnus_kernel(T(tc.magnus), wW, vr, fm);
-    }
+    rotate_by(q, ws, wW);  // Magnus on the world spin
+    const DragOut<T> d = sphere_force_sum(tc, Fw, vr, ws, wW, fe);
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
-      f[a] = Fw[a] + fm[a] + d.f[a];
+      f[a] = fe[a] + d.f[a];
       f[3 + a] = d.tq[a];
     }
     if (first) J = d;
@@ -162,13 +185,15 @@ LRIGID_LANE void strang_force_lane(const StepConsts& tc, const T* q, const T* u_
 
 // Advances every lane of lanes by one step; lanes that are not kOk keep their state at the start of
 // the step. landed: the lane is on or below the ground after the step.
-template <typename T, bool Turb, bool WithDrag, bool Extra, bool Strang>
+template <typename T, bool Strang>
 LRIGID_MULTIVERSION void step_lanes(const StepConsts& tc, Lanes<T>* lanes, uint64_t step,
                                     int* outcome, int* landed) {
   const int nw = lanes->width;
   const T h = T(tc.h), hh = T(0.5 * tc.h), wm = T(tc.wm);
+  const bool turb = tc.turb, with_drag = tc.drag;
+  const T tu = T(turb ? 1 : 0);  // the seen fluctuation's factor in the fluid velocity
   alignas(64) T z1[3][kBatch], z2[3][kBatch];
-  if constexpr (Turb) lane_normals(tc, *lanes, step, z1, z2);
+  lane_normals(tc, *lanes, step, z1, z2);
   if constexpr (Strang) {
     // strang: first OU half step, force half step, the free flow (for isotropic M: V unchanged,
     // q <- q cay(h w)) with x by the trapezoidal rule, the field at the new positions, the
@@ -180,17 +205,13 @@ LRIGID_IVDEP
       T us[3] = {lanes->us[0][j], lanes->us[1][j], lanes->us[2][j]};
       T V[3] = {lanes->V[0][j], lanes->V[1][j], lanes->V[2][j]};
       T w[3] = {lanes->w[0][j], lanes->w[1][j], lanes->w[2][j]};
-      if constexpr (Turb) {
-        const T gs[3] = {lanes->gs[0][j], lanes->gs[1][j], lanes->gs[2][j]};
-        const T z[3] = {z1[0][j], z1[1][j], z1[2][j]};
-        ou_update(wm, lanes->decay[j], lanes->noise[j], lanes->sigma2[j], V, gs, z, hh, us);
-      }
+      lane_ou_half(turb, wm, hh, *lanes, z1, j, V, us);
       const T q0[4] = {lanes->q[0][j], lanes->q[1][j], lanes->q[2][j], lanes->q[3][j]};
       const T acc[3] = {lanes->acc[0][j], lanes->acc[1][j], lanes->acc[2][j]};
       T u_f[3];
 #pragma GCC unroll 3
-      for (int a = 0; a < 3; ++a) u_f[a] = T(tc.mf) * lanes->U[a][j] + (Turb ? us[a] : T(0));
-      strang_force_lane<T, WithDrag, Extra>(tc, q0, u_f, acc, hh, V, w);
+      for (int a = 0; a < 3; ++a) u_f[a] = T(tc.mf) * lanes->U[a][j] + tu * us[a];
+      strang_force_lane(tc, q0, u_f, acc, hh, V, w);
       const T a[3] = {hh * w[0], hh * w[1], hh * w[2]};
       T q[4];
       cayley_rotate(q0, a, q);
@@ -215,15 +236,15 @@ LRIGID_IVDEP
                 w[3] = {next.w[0][j], next.w[1][j], next.w[2][j]};
 #pragma GCC unroll 3
       for (int a = 0; a < 3; ++a)
-        u_f[a] = T(tc.mf) * lanes->U[a][j] + (Turb ? next.us[a][j] : T(0));
-      strang_force_lane<T, WithDrag, Extra>(tc, q, u_f, acc, hh, V, w);
+        u_f[a] = T(tc.mf) * lanes->U[a][j] + tu * next.us[a][j];
+      strang_force_lane(tc, q, u_f, acc, hh, V, w);
 #pragma GCC unroll 3
       for (int a = 0; a < 3; ++a) {
         next.vel[a][j] = V[a];
         next.w[a][j] = w[a];
       }
     }
-    end_step<T, Turb>(tc, z2, next.vel, &next, lanes, outcome, landed, inside0);
+    end_step<T>(tc, z2, next.vel, &next, lanes, outcome, landed, inside0);
     return;
   }
   // new state, committed at the end for the lanes whose step succeeded
@@ -244,19 +265,17 @@ LRIGID_IVDEP
   for (int j = 0; j < nw; ++j) {
     T us[3] = {lanes->us[0][j], lanes->us[1][j], lanes->us[2][j]};
     const T U[3] = {lanes->U[0][j], lanes->U[1][j], lanes->U[2][j]};
-    const T gs[3] = {lanes->gs[0][j], lanes->gs[1][j], lanes->gs[2][j]};
     // 1. first OU half step
-    if constexpr (Turb) {
-      const T z[3] = {z1[0][j], z1[1][j], z1[2][j]};
+    {
       const T V[3] = {lanes->V[0][j], lanes->V[1][j], lanes->V[2][j]};
-      ou_update(wm, lanes->decay[j], lanes->noise[j], lanes->sigma2[j], V, gs, z, hh, us);
+      lane_ou_half(turb, wm, hh, *lanes, z1, j, V, us);
     }
     // 2. the free Kirchhoff flow: for isotropic M the world velocity is unchanged and
     //    q <- q cay(h w) (integrate/dynamics.cpp kirchhoff_flow)
     T u_f[3], V[3], w[3];
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
-      u_f[a] = T(tc.mf) * U[a] + (Turb ? us[a] : T(0));
+      u_f[a] = T(tc.mf) * U[a] + tu * us[a];
       V[a] = lanes->V[a][j];
       w[a] = lanes->w[a][j];
     }
@@ -272,23 +291,17 @@ LRIGID_IVDEP
     T vr[3];
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) vr[a] = V[a] - u_f[a];
-    DragOut<T> drag = {};
-    if constexpr (WithDrag) drag = sphere_drag(tc, vr, w);
-    T Gj[3];
+    // Magnus on the world spin (the flow rotates q about w, so either orientation gives it);
+    // the Basset history force joins the weight, its current interval's b_B h a_fluid the rest
+    T Gj[3], Fj[3], wW[3], fe[3];
+    const T qj[4] = {qn[0][j], qn[1][j], qn[2][j], qn[3][j]};
+    rotate_by(qj, w, wW);
 #pragma GCC unroll 3
-    for (int a = 0; a < 3; ++a) Gj[a] = h * T(tc.F[a]);
-    if constexpr (Extra) {
-      // Magnus on the world spin (the flow rotates q about w, so either orientation gives it),
-      // the Basset history force and its current interval's b_B h a_fluid
-      const T qj[4] = {qn[0][j], qn[1][j], qn[2][j], qn[3][j]};
-      T wW[3], fm[3];
-      rotate_by(qj, w, wW);
-      magnus_kernel(T(tc.magnus), wW, vr, fm);
+    for (int a = 0; a < 3; ++a) Fj[a] = T(tc.F[a]) + lanes->fb[a][j];
+    const DragOut<T> drag = sphere_force_sum(tc, Fj, vr, w, wW, fe);
 #pragma GCC unroll 3
-      for (int a = 0; a < 3; ++a)
-        Gj[a] +=
-            h * (lanes->fb[a][j] + fm[a]) + T(tc.basset_mass) * h * T(tc.gu) * lanes->acc[a][j];
-    }
+    for (int a = 0; a < 3; ++a)
+      Gj[a] = h * fe[a] + T(tc.basset_mass) * h * T(tc.gu) * lanes->acc[a][j];
     // the implicit step's impulse change (integrate/kirchhoff.h implicit_impulse; the world and
     // body frames differ by a rotation, under which the isotropic M and the stiffness commute)
     T b[6], P[3], dPL_j[6], Vnew[3], wnew[3], u_end[3];
@@ -311,7 +324,7 @@ LRIGID_IVDEP
       e_new += dPj[a] * dPj[a] / T(tc.m) + dLj[a] * dLj[a] / T(tc.J);
       e_r += T(tc.m) * vr[a] * vr[a] + T(tc.J) * w[a] * w[a];
     }
-    const int s = WithDrag ? int(e_new > T(kStiffChange * kStiffChange) * e_r) : 0;
+    const int s = int(with_drag) & int(e_new > T(kStiffChange * kStiffChange) * e_r);
     stiff[j] = s;
     any_stiff |= s;
     norm_r[j] = e_r;
@@ -330,7 +343,7 @@ LRIGID_IVDEP
   }
   // stiff drag: Newton on R(dPi) = dPi - h (G_other + F_drag(xi(dPi))) - b_B (h a - dV), lanes
   // drop out as they converge
-  if (WithDrag && any_stiff) {
+  if (with_drag && any_stiff) {
     for (int j = 0; j < nw; ++j)
       lanes->newton += uint64_t(stiff[j] != 0) & uint64_t(lanes->live[j]);
     for (int it = 0; it < kDragMaxNewton; ++it) {
@@ -380,7 +393,7 @@ LRIGID_IVDEP
   for (int j = 0; j < nw; ++j)
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) xn[a][j] = lanes->x[a][j] + hh * (V0[a][j] + Vn[a][j]);
-  end_step<T, Turb>(tc, z2, Vn, &next, lanes, outcome, landed);
+  end_step<T>(tc, z2, Vn, &next, lanes, outcome, landed);
 }
 
 }  // namespace
@@ -394,22 +407,17 @@ BlockStats advance(const Model& model, const BodyType& type, State* state, const
                    int count, uint64_t first, uint64_t last) {
   const StepConsts tc = make_consts(model, type);
   const bool unsteady = tc.grid && model.field.frame_count() > 1;
-  auto step = [&](auto turb, auto drag, auto extra, Lanes<T>* lanes, uint64_t s, int* outcome,
-                  int* landed) {
-    constexpr bool A = decltype(turb)::value, B = decltype(drag)::value,
-                   C = decltype(extra)::value;
-    if (tc.scheme == Integrator::Euler)
-      return euler_lanes<T, A, B, C>(tc, lanes, s, outcome, landed);
+  auto step = [&](auto, Lanes<T>* lanes, uint64_t s, int* outcome, int* landed) {
+    if (tc.scheme == Integrator::Euler) return euler_lanes<T>(tc, lanes, s, outcome, landed);
     if (tc.scheme == Integrator::RK4)
-      return rk4_lanes<T, A, B, C>(tc, rk4_frames(model, unsteady, s), lanes, s, outcome,
-                                   landed);
+      return rk4_lanes<T>(tc, rk4_frames(model, unsteady, s), lanes, s, outcome, landed);
     if (tc.strang)
-      step_lanes<T, A, B, C, true>(tc, lanes, s, outcome, landed);
+      step_lanes<T, true>(tc, lanes, s, outcome, landed);
     else
-      step_lanes<T, A, B, C, false>(tc, lanes, s, outcome, landed);
+      step_lanes<T, false>(tc, lanes, s, outcome, landed);
   };
-  return drive_block<T, Lanes<T>>(model, type, tc, tc.turb, tc.drag, state, body, count, first,
-                                  last, step);
+  // (no template switch: the sphere step has one version per scheme and precision)
+  return drive_block<T, Lanes<T>>(model, type, tc, false, state, body, count, first, last, step);
 }
 
 }  // namespace

@@ -32,30 +32,28 @@ namespace {  // NOLINT(build/namespaces): internal to sphere_batch.cpp
 // A sphere lane's fluid velocity (world): the mean flow and the seen fluctuation us; its
 // material derivative (world, the gu factor applied: 0 without gradients); the weight and
 // buoyancy with the Basset history force (world)
-template <typename T, bool Turb, bool Extra>
+template <typename T>
 LRIGID_LANE void sphere_fluid(const StepConsts& tc, const Lanes<T>* lanes, int j, const T* us,
                               T* u_f, T* acc, T* Fw) {
 #pragma GCC unroll 3
   for (int a = 0; a < 3; ++a) {
-    u_f[a] = T(tc.mf) * lanes->U[a][j] + (Turb ? us[a] : T(0));
+    u_f[a] = T(tc.mf) * lanes->U[a][j] + (tc.turb ? us[a] : T(0));
     acc[a] = T(tc.gu) * lanes->acc[a][j];
-    Fw[a] = T(tc.F[a]) + (Extra ? lanes->fb[a][j] : T(0));
+    Fw[a] = T(tc.F[a]) + lanes->fb[a][j];  // (the history force: 0 without it)
   }
 }
 
-// The forces on a sphere in one frame (world or body): the given force F (weight, buoyancy, the
-// Basset history), the drag on relative velocity vr and spin w, Magnus; f the force, tq the
-// torque (the drag's), both in that frame (the sphere's drag and Magnus turn with the frame)
-template <typename T, bool WithDrag, bool Extra>
+// The forces on a sphere in one frame (world or body): sphere_force_sum with the spin w in that
+// frame for both kernels; f the force, tq the torque (the drag's), both in that frame (the
+// sphere's drag and Magnus turn with the frame)
+template <typename T>
 LRIGID_LANE void sphere_forces(const StepConsts& tc, const T* F, const T* vr, const T* w, T* f,
                                T* tq) {
-  DragOut<T> d{};
-  if constexpr (WithDrag) d = sphere_drag(tc, vr, w);
-  T fm[3] = {0, 0, 0};
-  if constexpr (Extra) magnus_kernel(T(tc.magnus), w, vr, fm);
+  T fe[3];
+  const DragOut<T> d = sphere_force_sum(tc, F, vr, w, w, fe);
 #pragma GCC unroll 3
   for (int a = 0; a < 3; ++a) {
-    f[a] = F[a] + fm[a] + d.f[a];
+    f[a] = fe[a] + d.f[a];
     tq[a] = d.tq[a];
   }
 }
@@ -64,14 +62,14 @@ LRIGID_LANE void sphere_forces(const StepConsts& tc, const T* F, const T* vr, co
 // and rotation from the start of the step, the Basset history's current interval implicit; then
 // the seen fluctuation by Euler-Maruyama. For an isotropic M the world impulse is
 // (m V - m_a u_f; R J w): V1 = V0 + (h F + m_a h a_f) / m, the spin carried to q exp(h w).
-template <typename T, bool Turb, bool WithDrag, bool Extra>
+template <typename T>
 LRIGID_MULTIVERSION void euler_lanes(const StepConsts& tc, Lanes<T>* lanes, uint64_t step,
                                      int* outcome, int* landed) {
   const int nw = lanes->width;
   const T h = T(tc.h);
   alignas(64) T z[3][kBatch];
   [[maybe_unused]] alignas(64) T unused[3][kBatch];
-  if constexpr (Turb) lane_normals<T, true>(tc, *lanes, step, z, unused);
+  lane_normals<T, true>(tc, *lanes, step, z, unused);
   NewState<T> next;
   LRIGID_IVDEP
   for (int j = 0; j < nw; ++j) {
@@ -80,11 +78,11 @@ LRIGID_MULTIVERSION void euler_lanes(const StepConsts& tc, Lanes<T>* lanes, uint
     const T V0[3] = {lanes->V[0][j], lanes->V[1][j], lanes->V[2][j]};
     const T w[3] = {lanes->w[0][j], lanes->w[1][j], lanes->w[2][j]};
     T u_f[3], acc[3], Fw[3], vr[3], wW[3], f[3], tq[3];
-    sphere_fluid<T, Turb, Extra>(tc, lanes, j, us, u_f, acc, Fw);
+    sphere_fluid(tc, lanes, j, us, u_f, acc, Fw);
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) vr[a] = V0[a] - u_f[a];
     rotate_by(q, w, wW);
-    sphere_forces<T, WithDrag, Extra>(tc, Fw, vr, wW, f, tq);
+    sphere_forces(tc, Fw, vr, wW, f, tq);
     // the impulse change h (F; T) (world), with the Basset history's current interval
     // 2 C sqrt(h) (du_f - dv) / h on the left-hand side (b h a_f on the right)
     T b[6], dPi[6];
@@ -111,14 +109,14 @@ LRIGID_MULTIVERSION void euler_lanes(const StepConsts& tc, Lanes<T>* lanes, uint
       next.w[a][j] = w1[a] / T(tc.J);
       next.x[a][j] = lanes->x[a][j] + h * V0[a];
     }
-    if constexpr (Turb) ou_euler_lane(tc, lanes, j, V0, z, us);
+    if (tc.turb) ou_euler_lane(tc, lanes, j, V0, z, us);
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) next.us[a][j] = us[a];
 #pragma GCC unroll 4
     for (int a = 0; a < 4; ++a) next.q[a][j] = q1[a];
     next.scalar[j] = 0;
   }
-  end_step<T, Turb, false>(tc, z, next.vel, &next, lanes, outcome, landed);
+  end_step<T, false>(tc, z, next.vel, &next, lanes, outcome, landed);
 }
 
 // rk4's stage I (0 to 3) on every lane, in the body frame as integrators.cpp rk4: the rates at
@@ -126,7 +124,7 @@ LRIGID_MULTIVERSION void euler_lanes(const StepConsts& tc, Lanes<T>* lanes, uint
 // and drag-along, the rigid gyroscopic terms), added to the sums, and the next stage's state
 // (c = 1/2, 1/2, 1); stage 0 also takes the start's body-frame velocity and updates the seen
 // fluctuation (into next->us) from the start's sample
-template <typename T, bool Turb, bool WithDrag, bool Extra, int I>
+template <typename T, int I>
 LRIGID_LANE void rk4_stage(const StepConsts& tc, const Lanes<T>* lanes, const T (*z)[kBatch],
                            Rk4Block<T>* k, NewState<T>* next) {
   const int nw = lanes->width;
@@ -159,13 +157,13 @@ LRIGID_LANE void rk4_stage(const StepConsts& tc, const Lanes<T>* lanes, const T 
       rotation(q, R);
     }
     T u_f[3], acc[3], Fw[3], ufb[3], ab[3], Fb[3], vr[3], f[3], tq[3];
-    sphere_fluid<T, Turb, Extra>(tc, lanes, j, us0, u_f, acc, Fw);
+    sphere_fluid(tc, lanes, j, us0, u_f, acc, Fw);
     mul_t(R, u_f, ufb);
     mul_t(R, acc, ab);
     mul_t(R, Fw, Fb);
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) vr[a] = v[a] - ufb[a];
-    sphere_forces<T, WithDrag, Extra>(tc, Fb, vr, w, f, tq);
+    sphere_forces(tc, Fb, vr, w, f, tq);
     // the added mass: K (a~; 0) - (w x P_f; w x L_f + v_r x P_f), a~ = R^T Du/Dt - w x u_f
     T wu[3], fa[3], am[6];
     cross3(w, ufb, wu);
@@ -199,7 +197,7 @@ LRIGID_LANE void rk4_stage(const StepConsts& tc, const Lanes<T>* lanes, const T 
       // the path velocity of the seen fluctuation's drift: the start's world velocity
       const T V0[3] = {lanes->V[0][j], lanes->V[1][j], lanes->V[2][j]};
       T us[3] = {us0[0], us0[1], us0[2]};
-      if constexpr (Turb) ou_euler_lane(tc, lanes, j, V0, z, us);
+      if (tc.turb) ou_euler_lane(tc, lanes, j, V0, z, us);
 #pragma GCC unroll 3
       for (int a = 0; a < 3; ++a) next->us[a][j] = us[a];
     }
@@ -211,18 +209,18 @@ LRIGID_LANE void rk4_stage(const StepConsts& tc, const Lanes<T>* lanes, const T 
 // t + c h); the Basset history's current interval as an implicit correction after the step
 // (for an isotropic M: V1 + (M + b P)^-1 b (V0 - V1), in the world frame); the seen fluctuation
 // by Euler-Maruyama from the start of the step.
-template <typename T, bool Turb, bool WithDrag, bool Extra>
+template <typename T>
 LRIGID_MULTIVERSION void rk4_lanes(const StepConsts& tc, const Rk4Frames& frames,
                                    Lanes<T>* lanes, uint64_t step, int* outcome, int* landed) {
   const int nw = lanes->width;
   const T h = T(tc.h);
   alignas(64) T z[3][kBatch];
   [[maybe_unused]] alignas(64) T unused[3][kBatch];
-  if constexpr (Turb) lane_normals<T, true>(tc, *lanes, step, z, unused);
+  lane_normals<T, true>(tc, *lanes, step, z, unused);
   Rk4Block<T> k;
   NewState<T> next;
   rk4_stages(tc, frames, lanes, &k, [&](auto stage) LRIGID_LANE_LAMBDA {
-    rk4_stage<T, Turb, WithDrag, Extra, decltype(stage)::value>(tc, lanes, z, &k, &next);
+    rk4_stage<T, decltype(stage)::value>(tc, lanes, z, &k, &next);
   });
   const T h6 = h / T(6);
   LRIGID_IVDEP
@@ -248,8 +246,8 @@ LRIGID_MULTIVERSION void rk4_lanes(const StepConsts& tc, const Rk4Frames& frames
     for (int a = 0; a < 3; ++a) V1[a] = lanes->V[a][j] + a0[a] + a1[a];
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
-      if constexpr (Extra)
-        V1[a] += T(tc.basset_inv) * (T(tc.basset_mass) * (lanes->V[a][j] - V1[a]));
+      // the Basset history's current interval (0 without it)
+      V1[a] += T(tc.basset_inv) * (T(tc.basset_mass) * (lanes->V[a][j] - V1[a]));
       next.x[a][j] = lanes->x[a][j] + h6 * k.Sx[a][j];
       next.vel[a][j] = V1[a];
       next.w[a][j] = lanes->w[a][j] + h6 * k.Sxi[3 + a][j];
@@ -258,7 +256,7 @@ LRIGID_MULTIVERSION void rk4_lanes(const StepConsts& tc, const Rk4Frames& frames
     for (int a = 0; a < 4; ++a) next.q[a][j] = q1[a];
     next.scalar[j] = k.ok[j] != T(0) ? 0 : 1;
   }
-  end_step<T, Turb, false>(tc, z, next.vel, &next, lanes, outcome, landed);
+  end_step<T, false>(tc, z, next.vel, &next, lanes, outcome, landed);
 }
 
 }  // namespace
