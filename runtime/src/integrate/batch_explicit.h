@@ -106,7 +106,10 @@ LRIGID_LANE void ou_euler_lane(const FieldConsts& fc, const Lanes* lanes, int j,
   ou_euler_kernel(lanes->alpha[j], lanes->beta[j], T(fc.h), &decay, &noise);
   const T gs[3] = {lanes->gs[0][j], lanes->gs[1][j], lanes->gs[2][j]};
   const T zj[3] = {z[0][j], z[1][j], z[2][j]};
-  ou_update(T(fc.wm), decay, noise, lanes->sigma2[j], V0, gs, zj, T(fc.h), us);
+  // without seen turbulence (tu = 0) the identity, exactly (as lane_ou_half)
+  const T tu = T(fc.tu);
+  ou_update(T(fc.wm) * tu, decay * tu + (T(1) - tu), noise * tu, lanes->sigma2[j], V0, gs, zj,
+            T(fc.h), us);
 }
 
 }  // namespace

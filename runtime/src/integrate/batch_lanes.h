@@ -75,21 +75,17 @@ struct FieldConsts {
   bool grid = false;
   // switches as factors 1 or 0, so the loops across bodies stay free of branches: mean flow,
   // Thomson's drift, grad U for the fluid acceleration (added mass in a mean flow)
-  double mf = 0, wm = 0, gu = 0;
+  double mf = 0, wm = 0, gu = 0, tu = 0;  // (tu: the seen fluctuation in the fluid velocity)
   double mean_flow_scale = 1, turbulence_scale = 1;
   double F[3] = {0, 0, 0};  // gravity and buoyancy, world frame, N
   // the effects with memory or spin, as runtime factors (0 without them): the Basset
   // history's current interval as a mass on the left-hand side (BassetKernel::implicit_mass, kg;
   // 0 without) and its history force Samples::fb; the Magnus factor C_M rho V (0 without), kg
-  bool basset = false, has_magnus = false;
+  bool basset = false;
   double basset_mass = 0, magnus = 0;
   // a centre of mass off the volume centroid (zero for a uniform body): r_cob, the centroid from the centre
   // of mass (body frame, m), where the fluid's forces and the buoyancy F_buoy (world, N) act
   double r_cob[3] = {0, 0, 0}, F_buoy[3] = {0, 0, 0};
-  bool offset = false;  // r_cob is not zero
-  // (the loops compute every term for every body and select by these flags: a term that is off
-  // is exactly zero, also where a non-finite state would make its product with 0 a NaN, so that
-  // a step fails with the same reason as the scalar step)
   // grid
   double origin[3] = {0, 0, 0}, spacing[3] = {1, 1, 1}, upper_index[3] = {0, 0, 0};
   int points[3] = {0, 0, 0};  // grid points per axis
@@ -112,6 +108,7 @@ inline void set_field_consts(const Model& model, const BodyType& type, FieldCons
   const EffectSet& e = type.effects;
   fc->h = model.dt;
   fc->turb = e.has(Effect::Turbulence);
+  fc->tu = fc->turb ? 1.0 : 0.0;
   fc->sample = type.plan.sample_field;
   fc->mf = e.has(Effect::MeanFlow) ? 1.0 : 0.0;
   fc->wm = model.well_mixed_correction ? 1.0 : 0.0;
@@ -130,8 +127,6 @@ inline void set_field_consts(const Model& model, const BodyType& type, FieldCons
   fc->basset = type.plan.basset;
   fc->basset_mass = fc->basset ? type.basset.implicit_mass : 0.0;
   fc->magnus = e.has(Effect::Magnus) ? type.plan.params->magnus : 0.0;
-  fc->has_magnus = fc->magnus != 0;
-  fc->offset = !type.r_cob.isZero(0.0);
   for (int a = 0; a < 3; ++a) {
     fc->r_cob[a] = type.r_cob[a];
     fc->F_buoy[a] = F_buoy[a];
@@ -419,7 +414,7 @@ LRIGID_MULTIVERSION void lane_normals(const FieldConsts& fc, const Samples<T>& l
                                       T (*z1)[kBatch], T (*z2)[kBatch]) {
   const int nw = lanes.width;
   if (!fc.turb) {
-    // no seen turbulence: no draw (the OU updates' results are not taken, lane_ou_half)
+    // no seen turbulence: no draw (the OU updates are the identity, lane_ou_half)
     for (int c = 0; c < 3; ++c)
       for (int j = 0; j < nw; ++j) z1[c][j] = z2[c][j] = T(0);
     return;
@@ -486,10 +481,12 @@ LRIGID_LANE int outcome_bits(const T* x, const T* q, const T* v, const T* w, con
 
 inline int decode_outcome(int bits) {
   if (bits >> 6 & 1) return kScalar;
-  if (!(bits >> 5 & 1)) return kOutside;
+  // a non-finite state fails before it is outside (a NaN position samples as outside the grid),
+  // as step_body checks it
   int bad = 0;  // the first non-finite part, in the order step_body names them
   while (bad < 5 && (bits >> bad & 1)) ++bad;
-  return bad < 5 ? int(kNonFinite) + bad : int(kOk);
+  if (bad < 5) return int(kNonFinite) + bad;
+  return !(bits >> 5 & 1) ? int(kOutside) : int(kOk);
 }
 
 // The body's lowest point is on or below the ground (stops.h touches_ground) for quaternion q
@@ -506,17 +503,16 @@ LRIGID_LANE int lane_landed(const FieldConsts& fc, const T* q, T z) {
 
 // The exact OU half step (effects/turbulence.h ou_update, Thomson's drift along the world
 // velocity V) of lane j's seen fluctuation us, with normals z (3 x kBatch) and the lanes'
-// coefficients at their samples; without seen turbulence (turb false) us is kept. Inlined into
-// the loops across lanes, where the runtime flag becomes a select.
+// coefficients at their samples. tu: the seen turbulence's factor, 1 or 0; with 0 the update is
+// the identity (decay 1, no noise, no drift), exactly. (A factor, not a select on a flag: GCC
+// does not vectorize a loop that selects on a bool.)
 template <typename T>
-LRIGID_LANE void lane_ou_half(bool turb, T wm, T hh, const Samples<T>& lanes,
-                              const T (*z)[kBatch], int j, const T* V, T* us) {
+LRIGID_LANE void lane_ou_half(T tu, T wm, T hh, const Samples<T>& lanes, const T (*z)[kBatch],
+                              int j, const T* V, T* us) {
   const T gs[3] = {lanes.gs[0][j], lanes.gs[1][j], lanes.gs[2][j]};
   const T zj[3] = {z[0][j], z[1][j], z[2][j]};
-  T u[3] = {us[0], us[1], us[2]};
-  ou_update(wm, lanes.decay[j], lanes.noise[j], lanes.sigma2[j], V, gs, zj, hh, u);
-#pragma GCC unroll 3
-  for (int a = 0; a < 3; ++a) us[a] = turb ? u[a] : us[a];
+  const T decay = lanes.decay[j] * tu + (T(1) - tu), noise = lanes.noise[j] * tu;
+  ou_update(wm * tu, decay, noise, lanes.sigma2[j], V, gs, zj, hh, us);
 }
 
 // A step's new state per lane, filled by a batched step before end_step: position,
@@ -555,6 +551,7 @@ LRIGID_LANE void end_step(const FieldConsts& fc, const T (*z2)[kBatch], const T 
     if (fc.sample) sample_lanes(fc, next->x, lanes, 0, nw);
   }
   const bool turb = fc.turb;
+  const T tu = T(fc.tu);
   if (turb && OUHalfStep) ou_coefficients(fc, lanes, 0, nw);
   const bool sample = fc.sample;
 LRIGID_IVDEP
@@ -562,7 +559,7 @@ LRIGID_IVDEP
     T us[3] = {next->us[0][j], next->us[1][j], next->us[2][j]};
     if constexpr (OUHalfStep) {
       const T Vj[3] = {V[0][j], V[1][j], V[2][j]};
-      lane_ou_half(turb, wm, hh, *lanes, z2, j, Vj, us);
+      lane_ou_half(tu, wm, hh, *lanes, z2, j, Vj, us);
     }
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) next->us[a][j] = us[a];
@@ -578,7 +575,7 @@ LRIGID_IVDEP
   for (int j = 0; j < nw; ++j) outcome[j] = decode_outcome(outcome[j]);
   if (fc.basset) {
     // what the Basset history takes in: the relative velocity at the end of the step
-    const T mf = T(fc.mf), tu = T(turb ? 1 : 0);
+    const T mf = T(fc.mf);
 LRIGID_IVDEP
     for (int j = 0; j < nw; ++j)
 #pragma GCC unroll 3

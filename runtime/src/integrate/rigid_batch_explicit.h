@@ -62,7 +62,7 @@ LRIGID_LANE void lane_wrench(const StepConsts<Mass>& tc, const T* R, const T* Fw
 template <typename T, class C>
 LRIGID_LANE void lane_fluid(const C& tc, const Lanes<T>* lanes, int j, const T* us, T* u_f, T* acc,
                             T* Fw) {
-  const T tu = T(tc.turb ? 1 : 0);
+  const T tu = T(tc.tu);
 #pragma GCC unroll 3
   for (int a = 0; a < 3; ++a) {
     u_f[a] = T(tc.mf) * lanes->U[a][j] + tu * us[a];
@@ -81,7 +81,7 @@ LRIGID_MULTIVERSION void euler_lanes(const StepConsts<Mass>& tc, Lanes<T>* lanes
   const T h = T(tc.h);
   alignas(64) T z[3][kBatch], Vn[3][kBatch];
   [[maybe_unused]] alignas(64) T unused[3][kBatch];
-  const bool turb = tc.turb, basset = tc.basset;
+  const T bf = T(tc.basset ? 1 : 0);
   lane_normals<T, true>(tc, *lanes, step, z, unused);
   NewState<T> next;
   LRIGID_IVDEP
@@ -102,8 +102,9 @@ LRIGID_MULTIVERSION void euler_lanes(const StepConsts<Mass>& tc, Lanes<T>* lanes
     impulse_of_velocity(tc.mass, tc.K, xi, ufb, Pi);
 #pragma GCC unroll 6
     for (int a = 0; a < 6; ++a) dPi[a] = h * rate[a];
-    if (basset) {
-      // the Basset history's current interval, 2 C sqrt(h) (du_f - dv) / h, implicitly
+    {
+      // the Basset history's current interval, 2 C sqrt(h) (du_f - dv) / h, implicitly (bf = 0
+      // without it: dPi kept, exactly)
       const T b = T(tc.basset_mass);
       T ha[3], hab[3], x[6];
 #pragma GCC unroll 3
@@ -114,7 +115,7 @@ LRIGID_MULTIVERSION void euler_lanes(const StepConsts<Mass>& tc, Lanes<T>* lanes
       const DragOut<T> none{};
       implicit_impulse(tc.mass, b, none, h, dPi, x);
 #pragma GCC unroll 6
-      for (int a = 0; a < 6; ++a) dPi[a] = x[a];
+      for (int a = 0; a < 6; ++a) dPi[a] = x[a] * bf + dPi[a] * (T(1) - bf);
     }
     // the world-frame impulse is carried to the new orientation q exp(h w)
     T P[3], L[3], Pw[3], Lw[3], ufn[3];
@@ -138,7 +139,7 @@ LRIGID_MULTIVERSION void euler_lanes(const StepConsts<Mass>& tc, Lanes<T>* lanes
     const T* v1 = xi1;
     const T* w1 = xi1 + 3;
     mul(R1, v1, V1);
-    if (turb) ou_euler_lane(tc, lanes, j, V0, z, us);
+    ou_euler_lane(tc, lanes, j, V0, z, us);
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
       next.x[a][j] = lanes->x[a][j] + h * V0[a];
@@ -207,7 +208,7 @@ LRIGID_LANE void rk4_stage(const StepConsts<Mass>& tc, const Lanes<T>* lanes, co
     rk4_sum_lane<I>(k, j, in, h, x0, v0, w0, kx, kth, kxi);
     if constexpr (I == 0) {
       T us[3] = {us0[0], us0[1], us0[2]};
-      if (tc.turb) ou_euler_lane(tc, lanes, j, kx, z, us);
+      ou_euler_lane(tc, lanes, j, kx, z, us);
 #pragma GCC unroll 3
       for (int a = 0; a < 3; ++a) next->us[a][j] = us[a];
     }
@@ -260,8 +261,6 @@ LRIGID_MULTIVERSION void rk4_lanes(const StepConsts<Mass>& tc, const Rk4Frames& 
 #pragma GCC unroll 3
       for (int a = 0; a < 3; ++a) d[a] = T(tc.basset_mass) * (v0[a] - v1[a]);
       fluid_impulse(tc.basset_inv, d, corr);
-#pragma GCC unroll 6
-      for (int a = 0; a < 6; ++a) corr[a] = tc.basset ? corr[a] : T(0);
 #pragma GCC unroll 3
       for (int a = 0; a < 3; ++a) {
         v1[a] += corr[a];

@@ -139,21 +139,15 @@ LRIGID_LANE DragOut<T> ellipsoid_forces(const C& tc, const T* u, const T* w) {
 // The centre of mass may be off the volume centroid (BodyType::r_cob): the fluid's
 // forces act at the centroid (effects/wrench.h centroid_velocity_kernel, add_offset_torque_kernel,
 // the scalar terms' kernels), on the type's r_cob in the lane's precision.
-// A uniform body (tc.offset false) takes u itself and no torque: selected, not u + w x 0.
 template <typename T, class C>
 LRIGID_LANE void centroid_velocity(const C& tc, const T* u, const T* w, T* uc) {
   const T r[3] = {T(tc.r_cob[0]), T(tc.r_cob[1]), T(tc.r_cob[2])};
   centroid_velocity_kernel(r, u, w, uc);
-#pragma GCC unroll 3
-  for (int a = 0; a < 3; ++a) uc[a] = tc.offset ? uc[a] : u[a];
 }
 template <typename T, class C>
 LRIGID_LANE void add_offset_torque(const C& tc, const T* f, T* tq) {
   const T r[3] = {T(tc.r_cob[0]), T(tc.r_cob[1]), T(tc.r_cob[2])};
-  T t[3] = {0, 0, 0};
-  add_offset_torque_kernel(r, f, t);
-#pragma GCC unroll 3
-  for (int a = 0; a < 3; ++a) tq[a] += tc.offset ? t[a] : T(0);
+  add_offset_torque_kernel(r, f, tq);
 }
 
 // A lane's drag (and, for plates, lift: effects/plate.h) on relative velocity u and spin w, at
@@ -179,8 +173,6 @@ LRIGID_LANE void lane_magnus(const C& tc, const T* u, const T* w, T* f) {
   T uc[3];
   centroid_velocity(tc, u, w, uc);
   magnus_kernel(T(tc.magnus), w, uc, f);
-#pragma GCC unroll 3
-  for (int a = 0; a < 3; ++a) f[a] = tc.has_magnus ? f[a] : T(0);
 }
 
 // The torque about the centre of mass of the explicit forces that act at the centroid
@@ -394,8 +386,7 @@ LRIGID_LANE void stage_flow_start(const StepConsts<Mass>& tc, const Lanes<T>* la
   const T h = T(tc.h), hh = T(0.5 * tc.h);
   (void)h, (void)hh;
   const T wm = T(tc.wm);
-  const bool turb = tc.turb;
-  const T tu = T(tc.turb ? 1 : 0);  // the seen fluctuation's factor in the fluid velocity
+  const T tu = T(tc.tu);  // the seen fluctuation's factor in the fluid velocity
   T(&Y0)[6][kBatch] = flow->Y0;
   T(&Y)[6][kBatch] = flow->Y;
   T(&tol2)[kBatch] = flow->tol2;
@@ -417,7 +408,7 @@ LRIGID_IVDEP
     rotation(q, R);
     mul(R, v, V);
     // 1. first OU half step
-    lane_ou_half(turb, wm, hh, *lanes, z1, j, V, us);
+    lane_ou_half(tu, wm, hh, *lanes, z1, j, V, us);
     T u_f[3], ufb[3];
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) u_f[a] = T(tc.mf) * lanes->U[a][j] + tu * us[a];
@@ -673,7 +664,7 @@ LRIGID_IVDEP
     T Gj[6], rhs[6], dPL_j[6];
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
-      Gj[a] = h * fe[a] + (tc.basset ? T(tc.basset_mass) * h * ab[a] : T(0));
+      Gj[a] = h * fe[a] + T(tc.basset_mass) * h * ab[a];
       Gj[3 + a] = h * fe[3 + a];
       rhs[a] = Gj[a] + h * drag.f[a];
       rhs[3 + a] = Gj[3 + a] + h * drag.tq[a];
@@ -844,7 +835,7 @@ LRIGID_LANE void stage_strang_end(const StepConsts<Mass>& tc, Lanes<T>* lanes, F
   const int nw = lanes->width;
   const T h = T(tc.h), hh = T(0.5 * tc.h);
   (void)h, (void)hh;
-  const T tu = T(tc.turb ? 1 : 0);
+  const T tu = T(tc.tu);
   T(&Y0)[6][kBatch] = flow->Y0;
   T(&Y)[6][kBatch] = flow->Y;
   T(&tol2)[kBatch] = flow->tol2;

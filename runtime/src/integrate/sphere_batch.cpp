@@ -134,7 +134,7 @@ LRIGID_LANE DragOut<T> sphere_force_sum(const StepConsts& tc, const T* F, const 
   T fm[3];
   magnus_kernel(T(tc.magnus), wm, vr, fm);
 #pragma GCC unroll 3
-  for (int a = 0; a < 3; ++a) fe[a] = F[a] + (tc.has_magnus ? fm[a] : T(0));
+  for (int a = 0; a < 3; ++a) fe[a] = F[a] + fm[a];
   return d;
 }
 
@@ -190,8 +190,8 @@ LRIGID_MULTIVERSION void step_lanes(const StepConsts& tc, Lanes<T>* lanes, uint6
                                     int* outcome, int* landed) {
   const int nw = lanes->width;
   const T h = T(tc.h), hh = T(0.5 * tc.h), wm = T(tc.wm);
-  const bool turb = tc.turb, with_drag = tc.drag;
-  const T tu = T(turb ? 1 : 0);  // the seen fluctuation's factor in the fluid velocity
+  const bool with_drag = tc.drag;
+  const T tu = T(tc.tu);  // the seen fluctuation's factor in the fluid velocity
   alignas(64) T z1[3][kBatch], z2[3][kBatch];
   lane_normals(tc, *lanes, step, z1, z2);
   if constexpr (Strang) {
@@ -205,7 +205,7 @@ LRIGID_IVDEP
       T us[3] = {lanes->us[0][j], lanes->us[1][j], lanes->us[2][j]};
       T V[3] = {lanes->V[0][j], lanes->V[1][j], lanes->V[2][j]};
       T w[3] = {lanes->w[0][j], lanes->w[1][j], lanes->w[2][j]};
-      lane_ou_half(turb, wm, hh, *lanes, z1, j, V, us);
+      lane_ou_half(tu, wm, hh, *lanes, z1, j, V, us);
       const T q0[4] = {lanes->q[0][j], lanes->q[1][j], lanes->q[2][j], lanes->q[3][j]};
       const T acc[3] = {lanes->acc[0][j], lanes->acc[1][j], lanes->acc[2][j]};
       T u_f[3];
@@ -268,7 +268,7 @@ LRIGID_IVDEP
     // 1. first OU half step
     {
       const T V[3] = {lanes->V[0][j], lanes->V[1][j], lanes->V[2][j]};
-      lane_ou_half(turb, wm, hh, *lanes, z1, j, V, us);
+      lane_ou_half(tu, wm, hh, *lanes, z1, j, V, us);
     }
     // 2. the free Kirchhoff flow: for isotropic M the world velocity is unchanged and
     //    q <- q cay(h w) (integrate/dynamics.cpp kirchhoff_flow)

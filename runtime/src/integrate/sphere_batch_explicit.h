@@ -37,7 +37,7 @@ LRIGID_LANE void sphere_fluid(const StepConsts& tc, const Lanes<T>* lanes, int j
                               T* u_f, T* acc, T* Fw) {
 #pragma GCC unroll 3
   for (int a = 0; a < 3; ++a) {
-    u_f[a] = T(tc.mf) * lanes->U[a][j] + (tc.turb ? us[a] : T(0));
+    u_f[a] = T(tc.mf) * lanes->U[a][j] + T(tc.tu) * us[a];
     acc[a] = T(tc.gu) * lanes->acc[a][j];
     Fw[a] = T(tc.F[a]) + lanes->fb[a][j];  // (the history force: 0 without it)
   }
@@ -109,7 +109,7 @@ LRIGID_MULTIVERSION void euler_lanes(const StepConsts& tc, Lanes<T>* lanes, uint
       next.w[a][j] = w1[a] / T(tc.J);
       next.x[a][j] = lanes->x[a][j] + h * V0[a];
     }
-    if (tc.turb) ou_euler_lane(tc, lanes, j, V0, z, us);
+    ou_euler_lane(tc, lanes, j, V0, z, us);
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) next.us[a][j] = us[a];
 #pragma GCC unroll 4
@@ -197,7 +197,7 @@ LRIGID_LANE void rk4_stage(const StepConsts& tc, const Lanes<T>* lanes, const T 
       // the path velocity of the seen fluctuation's drift: the start's world velocity
       const T V0[3] = {lanes->V[0][j], lanes->V[1][j], lanes->V[2][j]};
       T us[3] = {us0[0], us0[1], us0[2]};
-      if (tc.turb) ou_euler_lane(tc, lanes, j, V0, z, us);
+      ou_euler_lane(tc, lanes, j, V0, z, us);
 #pragma GCC unroll 3
       for (int a = 0; a < 3; ++a) next->us[a][j] = us[a];
     }

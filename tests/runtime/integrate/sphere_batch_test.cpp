@@ -398,15 +398,15 @@ TEST(SphereBatch, NonFiniteStateFailsWithTheScalarStepsReason) {
     r[b].state.w[3] = Vec3(std::nan(""), 0, 0);
     r[b].stats = simulate(m, &r[b].state, RunOptions{});
   }
-  // both fail the body at the same step; the scalar step (body-frame velocity, rotated with
-  // the orientation) meets the non-finite position first, the batched one (world-frame
-  // velocity) the orientation
+  // both fail the body at the same step with the same reason: the scalar step (body-frame
+  // velocity, rotated with the orientation) and the batched one (whose Magnus term, zero for
+  // beads, multiplies the non-finite spin) both reach a non-finite position, which fails the
+  // body before it could count as outside the grid
   for (int b = 0; b < 2; ++b) {
     EXPECT_EQ(r[b].state.status[3], BodyStatus::Failed);
     EXPECT_EQ(r[b].state.t_stop[3], 0.0);
+    EXPECT_EQ(r[b].state.reason[3], "non-finite position") << (b ? "batched" : "scalar");
   }
-  EXPECT_EQ(r[0].state.reason[3], "non-finite position");
-  EXPECT_EQ(r[1].state.reason[3], "non-finite orientation");
   // the other bodies of the block went on
   for (size_t i = 0; i < r[0].state.size(); ++i) {
     if (i == 3) continue;
