@@ -32,25 +32,11 @@
 #include <functional>
 #include <string>
 
+#include "model/body_state.h"
 #include "model/model.h"
 #include "model/state.h"
 
 namespace lrigid {
-
-struct BodyState {
-  Vec3 x;        // world, m
-  Quat q;        // body -> world
-  Vec3 v;        // body frame, m/s
-  Vec3 w;        // body frame, rad/s
-  Vec3 u_seen;   // world, m/s
-  double* history = nullptr;  // Basset history in State (BassetKernel::stride()), or null
-};
-
-// Body i of a State as a BodyState (its history pointer into the State), and back.
-BodyState load_body(State& st, size_t i);
-void store_body(const BodyState& b, size_t i, State* st);
-
-enum class StepOutcome { Ok, Exited, Failed };
 
 // The splitting step's implicit drag (the batched steps follow the same rule): one linearly
 // implicit step, iterated by Newton to the backward Euler solution when it changes the relative
@@ -80,8 +66,5 @@ StepOutcome step_body_split(const Model& model, const BodyType& type, uint32_t b
 // On Exited/Failed `s` is left as it was.
 StepOutcome deterministic_substep(const Model& model, const BodyType& type, double t, double h,
                                   BodyState* s);
-
-// q exp(theta): rotation by the body-frame rotation vector theta (rad)
-Quat rotate_body(const Quat& q, const Vec3& theta);
 
 }  // namespace lrigid
