@@ -52,7 +52,7 @@ StepOutcome step_body(const Model& model, const BodyType& type, uint32_t body, u
                       double t, BodyState* s, std::string* reason);
 
 // step_body with its deterministic part split at t + tau (0 < tau < model.dt): the part from t
-// to t + tau, at_split(t + tau, s) (an impact's impulses: integrate/contacts.h), the part from
+// to t + tau, at_split(t + tau, s) (an impact's impulses: integrate/impacts.h), the part from
 // there to the step's end. The turbulence update is step_body's (the same normals, at the same
 // ends of the step).
 using SplitAt = std::function<void(double t, BodyState* s)>;
@@ -62,7 +62,7 @@ StepOutcome step_body_split(const Model& model, const BodyType& type, uint32_t b
 
 // The deterministic part of the model's scheme over h (any h > 0, not only model.dt) from time
 // t: the step without its turbulence update (u_seen held) and without appending to the Basset
-// history. What a step split at an event inside it takes on each side (integrate/contacts.h).
+// history. What a step split at an event inside it takes on each side (integrate/impacts.h).
 // On Exited/Failed `s` is left as it was.
 StepOutcome deterministic_substep(const Model& model, const BodyType& type, double t, double h,
                                   BodyState* s);

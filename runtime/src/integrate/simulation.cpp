@@ -7,11 +7,13 @@
 #include <cmath>
 #include <string>
 
-#include "integrate/contacts.h"
+#include "contact/pass.h"
+#include "contact/sleep.h"
+#include "integrate/impacts.h"
 #include "integrate/integrators.h"
 #include "integrate/rigid_batch.h"
 #include "integrate/sphere_batch.h"
-#include "integrate/stops.h"
+#include "contact/events.h"
 
 namespace lrigid {
 
@@ -54,7 +56,7 @@ uint64_t advance_body(const Model& model, State& st, int64_t i, uint64_t first, 
   const bool contacts = model.contacts();
   const bool lands = model.has_ground && !model.ground_collides();
   WallClearance clearance;
-  // the state at the start of the step, for a touchdown located inside it (stops.h)
+  // the state at the start of the step, for a touchdown located inside it (contact/events.h)
   BodyState start;
   // a sleeping body that its gust watch wakes in this stretch is stepped from its wake on
   uint64_t wake = st.status[i] == BodyStatus::Sleeping ? st.watch[i].wake : first;
@@ -112,7 +114,7 @@ uint64_t advance_body(const Model& model, State& st, int64_t i, uint64_t first, 
 }
 
 // The bodies a stretch advances: those still moving in [n0, n) and those a gust watch wakes
-// before its end (integrate/contacts.h), the batched step's types in
+// before its end (integrate/impacts.h), the batched step's types in
 // blocks of kBatch bodies of one type, the others one by one. Rebuilt for every stretch, so
 // bodies that stopped leave the blocks.
 struct WorkList {
