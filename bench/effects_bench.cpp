@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "body/added_mass.h"
-#include "effects/compile_model.h"
+#include "compile/compile_model.h"
 #include "integrate/integrators.h"
 #include "model/state.h"
 

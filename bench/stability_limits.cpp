@@ -17,7 +17,7 @@
 #include <string>
 
 #include "body/added_mass.h"
-#include "effects/compile_model.h"
+#include "compile/compile_model.h"
 #include "effects/drag.h"
 #include "integrate/simulation.h"
 #include "model/model.h"

@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <string>
 
-#include "effects/compile_model.h"
+#include "compile/compile_model.h"
 #include "effects/registry.h"
 #include "integrate/integrators.h"
 #include "io/added_mass_cache.h"

@@ -22,7 +22,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "effects/compile_model.h"
+#include "compile/compile_model.h"
 #include "integrate/simulation.h"
 #include "io/added_mass_cache.h"
 #include "io/field_loader.h"

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <ctime>
 
-#include "effects/compile_model.h"
+#include "compile/compile_model.h"
 #include "effects/registry.h"
 #include "io/added_mass_cache.h"
 #include "util/error.h"

@@ -3,7 +3,7 @@
 (scenes/leaves_wind.json: 6 x 4 cm, 0.4 mm, 600 kg/m^3, the scene's "auto" effects) stepped by
 `lrigid bench` once as the box and once as tests/data/meshes/bent_leaf.obj (the same leaf curled
 4 mm and turned 20 degrees about z, 1696 triangles: its generalized mass is a full 6 x 6, which
-the batched step runs on the full-mass kernels of integrate/kirchhoff.h). Body-steps per CPU
+the batched step runs on the full-mass kernels of model/kirchhoff.h). Body-steps per CPU
 second, the two measured alternately --rounds times, best of each (other jobs only slow a run
 down), and their ratio. --scalar also steps the mesh on the scalar step (the scene with
 "batched": false, 1e6 body-steps timed) and prints the batched step's gain over it.

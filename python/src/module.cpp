@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "body/mass_properties.h"
-#include "effects/compile_model.h"
+#include "compile/compile_model.h"
 #include "integrate/simulation.h"
 #include "io/added_mass_cache.h"
 #include "io/explain.h"

@@ -17,7 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.h"
-#include "effects/compile_model.h"
+#include "compile/compile_model.h"
 #include "effects/registry.h"
 #include "integrate/simulation.h"
 #include "io/added_mass_cache.h"

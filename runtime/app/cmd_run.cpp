@@ -14,7 +14,7 @@
 #include "checkpoints.h"
 #include "checks.h"
 #include "commands.h"
-#include "effects/compile_model.h"
+#include "compile/compile_model.h"
 #include "ranks.h"
 #include "integrate/simulation.h"
 #include "io/added_mass_cache.h"
@@ -136,7 +136,7 @@ void run(const RunArgs& a, const Ranks& ranks) {
         moving += b == BodyStatus::Moving;
         landed += b == BodyStatus::Landed;
         exited += b == BodyStatus::Exited || b == BodyStatus::Failed;
-        // resting on a surface or asleep there (integrate/contacts.h)
+        // resting on a surface or asleep there (contact/sleep.h)
         resting += b == BodyStatus::Sleeping ||
                    (b == BodyStatus::Moving && i < s.contact.size() &&
                     s.contact[i] == ContactState::Resting);

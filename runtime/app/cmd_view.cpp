@@ -39,7 +39,7 @@
 
 #include "checks.h"
 #include "commands.h"
-#include "effects/compile_model.h"
+#include "compile/compile_model.h"
 #include "io/added_mass_cache.h"
 #include "io/field_loader.h"
 #include "io/result_writer.h"

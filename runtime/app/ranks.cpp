@@ -103,7 +103,7 @@ void Ranks::gather(State* state, bool reasons) const {
       s.u_seen[i] = Vec3(p[13], p[14], p[15]);
       s.t_stop[i] = p[16];
       s.status[i] = static_cast<BodyStatus>(static_cast<int>(p[17]));
-      // contacts (integrate/contacts.h): the state, events and first touchdown the outputs show
+      // contacts (contact/pass.h): the state, events and first touchdown the outputs show
       s.contact[i] = static_cast<ContactState>(static_cast<int>(p[18]));
       s.impacts[i] = static_cast<uint32_t>(p[19]);
       s.t_touch[i] = p[20];

@@ -13,7 +13,7 @@
 #include <cstdio>
 #include <vector>
 
-#include "effects/compile_model.h"
+#include "compile/compile_model.h"
 #include "integrate/simulation.h"
 #include "accuracy/cases.h"
 #include "support/fixture.h"

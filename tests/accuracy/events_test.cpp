@@ -1,4 +1,4 @@
-// Events located inside the step (issue 28, integrate/stops.h locate_touchdown): a body that
+// Events located inside the step (issue 28, contact/events.h locate_touchdown): a body that
 // reaches the ground within a step lands where and when its motion through the step touched it,
 // so that a landing does not cap a scheme's order at 1 (before, the body stopped at the end of
 // the step, up to one step's travel below the ground: rk4 measured slope 1.05 on uniform_box).
@@ -12,10 +12,10 @@
 #include <cstdio>
 #include <vector>
 
-#include "effects/compile_model.h"
+#include "compile/compile_model.h"
 #include "integrate/simulation.h"
 #include "accuracy/cases.h"
-#include "integrate/stops.h"
+#include "contact/events.h"
 #include "support/fixture.h"
 
 namespace lrigid {

@@ -4,7 +4,7 @@
 // end "exited" (never "failed") at a position inside the grid box.
 #include <gtest/gtest.h>
 
-#include "effects/compile_model.h"
+#include "compile/compile_model.h"
 #include "effects/registry.h"
 #include "stability/hard_case.h"
 

@@ -5,7 +5,7 @@
 // variance.
 #include <gtest/gtest.h>
 
-#include "effects/compile_model.h"
+#include "compile/compile_model.h"
 #include "effects/registry.h"
 #include "stability/hard_case.h"
 

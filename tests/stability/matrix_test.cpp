@@ -12,7 +12,7 @@
 #include <map>
 #include <tuple>
 
-#include "effects/compile_model.h"
+#include "compile/compile_model.h"
 #include "effects/registry.h"
 #include "stability/hard_case.h"
 

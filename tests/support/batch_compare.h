@@ -15,7 +15,7 @@
 #include <utility>
 #include <vector>
 
-#include "effects/compile_model.h"
+#include "compile/compile_model.h"
 #include "integrate/simulation.h"
 #include "support/fixture.h"
 
@@ -70,8 +70,8 @@ inline void release_in_wind_grid(Scene* s, uint64_t seed) {
   s->has_ground = true;
   s->ground_z = 0;
   // the seed's landing: these scenes compare the batched and the scalar flight to round-off,
-  // and contacts (bodies resting and sliding on the ground, integrate/contacts.h) amplify it;
-  // contacts_test.cpp compares the two steps with contacts on
+  // and contacts (bodies resting and sliding on the ground, contact/pass.h) amplify it;
+  // contact/contacts_test.cpp compares the two steps with contacts on
   s->ground_contact = ContactMode::Stop;
   s->bodies[0].spawn_in_box = true;
   s->bodies[0].box_lo = Vec3(-5, -3, 0.3);

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "body/added_mass.h"
-#include "effects/compile_model.h"
+#include "compile/compile_model.h"
 #include "model/model.h"
 #include "model/state.h"
 

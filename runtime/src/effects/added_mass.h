@@ -10,19 +10,19 @@
 #pragma once
 #include "effects/context.h"
 #include "effects/wrench.h"
-#include "integrate/kirchhoff.h"
+#include "model/kirchhoff.h"
 #include "model/model.h"
 
 namespace lrigid {
 
 // The kernel, written once (the scalar step's added_mass_wrench and added_mass_term, and the
-// batched loops call it): the wrench f (body frame) for the fluid tensor K (integrate/kirchhoff.h
+// batched loops call it): the wrench f (body frame) for the fluid tensor K (model/kirchhoff.h
 // mass_times: a DiagonalMass or FullMass holding K), v_rel the velocity of the centre of mass
 // relative to the fluid, w the angular velocity, fluid_acc a~ above (body frame, m/s^2). The
 // velocity form (rk4): K (a~; 0) - (w x P_f; w x L_f + v_r x P_f), (P_f; L_f) = K (v_r; w); the
 // impulse form (euler, splitting; the rest lives in the impulse, integrate/dynamics.h):
 // (0; -v_r x P_f). Both take back the Munk share K.S of a flat body with drag (BodyType::
-// munk_back, integrate/kirchhoff.h): + v_r x (S v_r) on the moment.
+// munk_back, model/kirchhoff.h): + v_r x (S v_r) on the moment.
 template <bool ImpulseForm, typename T, class Tensor>
 LRIGID_LANE void added_mass_kernel(const Tensor& K, const T* v_rel, const T* w, const T* fluid_acc,
                                    T* f) {

@@ -1,5 +1,5 @@
 // What a wrench term sees of one body at one instant (built once per evaluation by
-// integrate/dynamics.cpp and shared by all selected terms).
+// effects/evaluate.cpp and shared by all selected terms).
 #pragma once
 #include "effects/drag.h"
 #include "fluid/field.h"

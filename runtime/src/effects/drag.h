@@ -11,6 +11,7 @@
 #include <cmath>
 
 #include "effects/wrench.h"
+#include "model/drag_out.h"
 #include "model/model.h"
 #include "util/fast_math.h"
 #include "util/lane.h"
@@ -47,15 +48,6 @@ struct DragParams {
   double l12 = 0, l02 = 0, l01 = 0;
 };
 DragParams drag_params(const BodyType& type, double rho, double nu);
-
-// A drag (or plate) kernel's result: force and torque about the point where u is taken, and
-// the stiffness the implicit step needs (DragStiffness).
-template <typename T>
-struct DragOut {
-  T f[3], tq[3];
-  T c_lin, p, c_ang[3];  // c_ang per body axis
-  T u_hat[3];
-};
 
 // The projected area of the equivalent ellipsoid across the unit direction uh, m^2, and the
 // diameter of the disk of that area, m.

@@ -1,6 +1,6 @@
 // The per-body-type evaluation plan: the list of wrench terms of the selected effects (each the
 // registry's TermFor of its row) and the kernels' parameters, built once by compile_model.
-// integrate/dynamics.cpp sums exactly these terms, in both the velocity form (rk4) and the
+// effects/evaluate.h sums exactly these terms, in both the velocity form (rk4) and the
 // impulse form (euler, splitting); the batched loops read the same parameters; unselected
 // effects are never evaluated.
 #pragma once

@@ -19,7 +19,7 @@ enum class FieldNeed : uint8_t {
   Sample,  // U, k, eps (Langevin coefficients) at the position: one grid sample per step
 };
 
-// What the "auto" rules weigh, per body type, from analyze_effects (effects/compile_model.cpp):
+// What the "auto" rules weigh, per body type, from analyze_effects (compile/compile_model.cpp):
 // forces in N, speeds in m/s (docs/effects.md states the thresholds).
 struct AutoInputs {
   double weight = 0, buoyancy = 0;  // W = m g, B = rho_f V g

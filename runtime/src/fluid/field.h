@@ -127,7 +127,7 @@ class FluidField {
   // about x overlaps the plane z = floor_z below it (its wall distance z - floor_z, to 1e-4 m)?
   // Then the interpolated wall distance in that cube is exactly z - floor_z (trilinear
   // interpolation reproduces a linear function): no point of a body within it can reach a wall
-  // but that floor. One comparison per grid point, no interpolation (integrate/contacts.cpp
+  // but that floor. One comparison per grid point, no interpolation (contact/touching.cpp
   // skips the wall queries of a body lying on a ground that is the grid's floor; a cube reaching
   // below the grid's bottom takes its bottom layer). false outside the grid's box, on a uniform
   // field or a grid without the array.

@@ -11,6 +11,9 @@
 #include <string>
 #include <type_traits>
 
+#include "contact/events.h"
+#include "contact/pass.h"
+#include "contact/sleep.h"
 #include "effects/basset.h"
 #include "effects/drag.h"
 #include "effects/magnus.h"
@@ -18,12 +21,11 @@
 #include "effects/registry.h"
 #include "effects/turbulence.h"
 #include "fluid/trilinear.h"
-#include "integrate/contacts.h"
 #include "integrate/dynamics.h"
+#include "integrate/impacts.h"
 #include "integrate/integrators.h"
 #include "integrate/sphere_batch.h"
 #include "integrate/step_end.h"
-#include "integrate/stops.h"
 #include "model/model.h"
 #include "model/state.h"
 #include "util/fast_math.h"
@@ -94,9 +96,9 @@ struct FieldConsts {
   FluidSample uniform;  // art scales applied
   bool ground = false;
   double ground_z = 0, half[3] = {0, 0, 0};
-  bool round = false;  // a sphere or ellipsoid (stops.h ground_reach)
+  bool round = false;  // a sphere or ellipsoid (contact/events.h ground_reach)
   uint64_t seed = 0;
-  // contacts (integrate/contacts.h): the ground or the grid's solids collide; has_wall: the
+  // contacts (contact/pass.h): the ground or the grid's solids collide; has_wall: the
   // samples carry the wall distance (Samples::wall); reach: the body type's bounding radius, m
   bool contacts = false, walls_collide = false, has_wall = false;
   bool floor_clamp = false;  // FluidField::floor_clamp
@@ -200,7 +202,7 @@ struct Samples {
   alignas(64) T inside[kBatch];  // 1 in the fluid, 0 outside
   // the wall distance at the sample where all 8 corners are valid (m), -1 where some is not (a
   // wall within a cell), +infinity outside the grid's box or without the array: the batched
-  // steps' one comparison with the body's reach (integrate/contacts.h)
+  // steps' one comparison with the body's reach (contact/pass.h)
   alignas(64) T wall[kBatch];
   // the exact OU half step's coefficients at the sample (ou_exact): a steady field gives the
   // second half step of one step and the first of the next the same ones
@@ -216,7 +218,7 @@ struct Samples {
   FluidField::FrameBlend frames;
   uint32_t body[kBatch];
   bool live[kBatch];
-  // a touchdown located inside the step (stops.h locate_touchdown): the lanes whose landing or
+  // a touchdown located inside the step (contact/events.h locate_touchdown): the lanes whose landing or
   // first ground contact is still to come (track), and the start of the step of those whose
   // step reached the ground (end_step keeps it)
   bool track[kBatch];
@@ -489,7 +491,7 @@ inline int decode_outcome(int bits) {
   return !(bits >> 5 & 1) ? int(kOutside) : int(kOk);
 }
 
-// The body's lowest point is on or below the ground (stops.h touches_ground) for quaternion q
+// The body's lowest point is on or below the ground (contact/events.h touches_ground) for quaternion q
 // (w, x, y, z) at height z.
 template <typename T>
 LRIGID_LANE int lane_landed(const FieldConsts& fc, const T* q, T z) {

@@ -6,24 +6,14 @@
 #pragma once
 #include "effects/context.h"
 #include "effects/drag.h"
+#include "effects/evaluate.h"
 #include "fluid/field.h"
-#include "integrate/kirchhoff.h"
+#include "model/kirchhoff.h"
 #include "model/model.h"
 
 namespace lrigid {
 
-struct Kinematics {
-  Vec3 x;       // world, m
-  Mat3 R;       // body -> world
-  Vec3 v;       // body frame, m/s
-  Vec3 w;       // body frame, rad/s
-  Vec3 u_seen;  // seen fluctuation, world frame, m/s
-  const double* history = nullptr;  // Basset history (BassetKernel::stride() doubles) or null
-};
-
-enum class EvalResult { Ok, Outside };
-
-// The body type's M as the kernels of integrate/kirchhoff.h take it
+// The body type's M as the kernels of model/kirchhoff.h take it
 inline DiagonalMass diagonal_mass(const BodyType& t) {
   DiagonalMass m;
   for (int a = 0; a < 6; ++a) {
@@ -35,41 +25,6 @@ inline DiagonalMass diagonal_mass(const BodyType& t) {
 }
 inline FullMass full_mass(const BodyType& t) {
   return FullMass{t.M.data(), t.M_inv.data(), t.munk_back.data()};
-}
-
-// Does the body need the fluid field sampled at all?
-inline bool needs_field(const BodyType& t) { return t.plan.sample_field; }
-
-// Applies the scene's art-direction scales to a field sample: U (and its derivatives) by
-// model.mean_flow_scale, the turbulent velocity by model.turbulence_scale (sigma2 and its
-// gradient by its square, beta by it).
-inline void apply_art_scales(const Model& m, FluidSample* s) {
-  if (m.mean_flow_scale != 1.0) {
-    s->U *= m.mean_flow_scale;
-    s->grad_U *= m.mean_flow_scale;
-    s->dU_dt *= m.mean_flow_scale;
-  }
-  if (m.turbulence_scale != 1.0) {
-    const double t2 = m.turbulence_scale * m.turbulence_scale;
-    s->beta *= m.turbulence_scale;
-    s->sigma2 *= t2;
-    s->grad_sigma2 *= t2;
-  }
-}
-
-// model.field.sample followed by apply_art_scales
-inline bool sample_fluid(const Model& m, const Vec3& x, double t, bool gradients,
-                         FluidSample* out) {
-  if (!m.field.sample(x, t, gradients, out)) return false;
-  apply_art_scales(m, out);
-  return true;
-}
-
-// Sum of the wrenches of the selected effects (the plan's terms), body frame.
-inline Vec6 sum_effect_wrenches(const EffectContext& c) {
-  Vec6 f = Vec6::Zero();
-  for (WrenchTerm term : c.type->plan.terms) f += term(c);
-  return f;
 }
 
 // Acceleration xi' (body frame) and, when asked, the drag stiffness for implicit steps.
@@ -96,22 +51,6 @@ EvalResult impulse_rates(const Model& model, const BodyType& type, const Kinemat
 // xi = M^-1 (Pi + K (u_f_body; 0))
 Vec6 velocity_from_impulse(const BodyType& type, const Vec6& impulse, const Vec3& u_fluid_body,
                            bool fluid_inertia);
-
-// Sum of the effect wrenches alone in the velocity form (no rigid gyroscopic term): used by
-// tests to check each effect's exact contribution.
-EvalResult effect_wrench(const Model& model, const BodyType& type, const Kinematics& k, double t,
-                         Vec6* wrench, FluidSample* fluid, DragStiffness* stiffness = nullptr);
-
-// The context the wrench terms see (velocity form unless impulse_form); u_fluid: the fluid
-// velocity around the body, world frame. false when the body is outside the fluid.
-bool effect_context(const Model& model, const BodyType& type, const Kinematics& k, double t,
-                    bool impulse_form, FluidSample* fluid, EffectContext* c, Vec3* u_fluid);
-
-// effect_context on a fluid sample taken before (the sample is not repeated): the context
-// keeps a pointer to `fluid`.
-void context_from_sample(const Model& model, const BodyType& type, const Kinematics& k,
-                         bool impulse_form, const FluidSample* fluid, EffectContext* c,
-                         Vec3* u_fluid);
 
 // The free Kirchhoff flow (no forces) of the motion relative to a fluid moving uniformly with
 // u_fluid (world, m/s) over h (s): Y' = -(w x P; w x L + v x P) for Y = (P; L) = M xi_r,

@@ -6,31 +6,12 @@
 #include "effects/mean_flow.h"
 #include "effects/turbulence.h"
 #include "integrate/dynamics.h"
-#include "integrate/kirchhoff.h"
+#include "model/kirchhoff.h"
 #include "util/fast_math.h"
 #include "util/lane.h"
 #include "util/rng.h"
 
 namespace lrigid {
-
-BodyState load_body(State& st, size_t i) {
-  return BodyState{st.x[i], st.q[i], st.v[i], st.w[i], st.u_seen[i], st.history_of(i)};
-}
-
-void store_body(const BodyState& b, size_t i, State* st) {
-  st->x[i] = b.x;
-  st->q[i] = b.q;
-  st->v[i] = b.v;
-  st->w[i] = b.w;
-  st->u_seen[i] = b.u_seen;
-}
-
-Quat rotate_body(const Quat& q, const Vec3& theta) {
-  const double q0[4] = {q.w(), q.x(), q.y(), q.z()};
-  double qn[4];
-  exp_rotate<ScalarMath>(q0, theta.data(), qn);
-  return Quat(qn[0], qn[1], qn[2], qn[3]);
-}
 
 namespace {
 
@@ -80,7 +61,7 @@ Vec6 rotate6(const Mat3& R, const Vec6& a) {
   return r;
 }
 
-// x = M (M + h J + b P)^-1 rhs: the implicit force step's impulse change (integrate/kirchhoff.h
+// x = M (M + h J + b P)^-1 rhs: the implicit force step's impulse change (model/kirchhoff.h
 // implicit_impulse, the batched steps' kernel), J the drag stiffness ds (none: null), b the Basset
 // history's current interval as a mass (0 without)
 Vec6 implicit_impulse_change(const BodyType& type, double b, const DragStiffness* ds, double h,
@@ -215,7 +196,7 @@ StepOutcome split_deterministic_step(const Model& model, const BodyType& type, d
 }
 
 // The Strang scheme's force step over h at the body's position and orientation (both held), on
-// the fluid sample taken there: ROS2 on the impulse (integrate/kirchhoff.h ros2_impulse), the
+// the fluid sample taken there: ROS2 on the impulse (model/kirchhoff.h ros2_impulse), the
 // stiffness J the drag's. The added-mass term is all in the Kirchhoff flow but for the fluid's
 // own acceleration, a constant force K (R^T Du/Dt; 0) here; the forces see the fluid velocity at
 // the body's (held) position.

@@ -32,25 +32,11 @@
 #include <functional>
 #include <string>
 
+#include "model/body_state.h"
 #include "model/model.h"
 #include "model/state.h"
 
 namespace lrigid {
-
-struct BodyState {
-  Vec3 x;        // world, m
-  Quat q;        // body -> world
-  Vec3 v;        // body frame, m/s
-  Vec3 w;        // body frame, rad/s
-  Vec3 u_seen;   // world, m/s
-  double* history = nullptr;  // Basset history in State (BassetKernel::stride()), or null
-};
-
-// Body i of a State as a BodyState (its history pointer into the State), and back.
-BodyState load_body(State& st, size_t i);
-void store_body(const BodyState& b, size_t i, State* st);
-
-enum class StepOutcome { Ok, Exited, Failed };
 
 // The splitting step's implicit drag (the batched steps follow the same rule): one linearly
 // implicit step, iterated by Newton to the backward Euler solution when it changes the relative
@@ -66,7 +52,7 @@ StepOutcome step_body(const Model& model, const BodyType& type, uint32_t body, u
                       double t, BodyState* s, std::string* reason);
 
 // step_body with its deterministic part split at t + tau (0 < tau < model.dt): the part from t
-// to t + tau, at_split(t + tau, s) (an impact's impulses: integrate/contacts.h), the part from
+// to t + tau, at_split(t + tau, s) (an impact's impulses: integrate/impacts.h), the part from
 // there to the step's end. The turbulence update is step_body's (the same normals, at the same
 // ends of the step).
 using SplitAt = std::function<void(double t, BodyState* s)>;
@@ -76,12 +62,9 @@ StepOutcome step_body_split(const Model& model, const BodyType& type, uint32_t b
 
 // The deterministic part of the model's scheme over h (any h > 0, not only model.dt) from time
 // t: the step without its turbulence update (u_seen held) and without appending to the Basset
-// history. What a step split at an event inside it takes on each side (integrate/contacts.h).
+// history. What a step split at an event inside it takes on each side (integrate/impacts.h).
 // On Exited/Failed `s` is left as it was.
 StepOutcome deterministic_substep(const Model& model, const BodyType& type, double t, double h,
                                   BodyState* s);
-
-// q exp(theta): rotation by the body-frame rotation vector theta (rad)
-Quat rotate_body(const Quat& q, const Vec3& theta);
 
 }  // namespace lrigid

@@ -4,7 +4,7 @@
 // pods; and meshes, an artist's curled leaf: a full symmetric 6 x 6 M with linear-angular
 // coupling), advanced kBatch at a time in structure-of-arrays blocks like the sphere step
 // (integrate/sphere_batch.h, docs/batched-step.md). The loops are compiled once for each kind of M
-// (integrate/kirchhoff.h DiagonalMass, FullMass): the kernels of a diagonal M stay element-wise, a
+// (model/kirchhoff.h DiagonalMass, FullMass): the kernels of a diagonal M stay element-wise, a
 // full one pays its 6 x 6 products and LU.
 //
 // The splitting step: the scalar step's physics, term for term, on the same random numbers: exact
@@ -42,7 +42,7 @@ bool rigid_batch_eligible(const Model& model, const BodyType& type, std::string*
 BlockStats advance_rigid_block(const Model& model, const BodyType& type, State* state,
                                const uint32_t* body, int count, uint64_t first, uint64_t last);
 
-// advance_rigid_block for each precision and kind of M (integrate/kirchhoff.h DiagonalMass,
+// advance_rigid_block for each precision and kind of M (model/kirchhoff.h DiagonalMass,
 // FullMass), in the files rigid_batch_{diag,full}_{double,float}.cpp
 namespace rigid_batch_detail {
 BlockStats advance_diag_double(const Model& model, const BodyType& type, State* state,

@@ -8,8 +8,8 @@
 // ellipsoid drag (body_forces), Magnus, the Basset history, the added mass's wrench
 // (effects/added_mass.h, impulse form for euler, velocity form for rk4), the Kirchhoff gyroscopic
 // terms (effects/wrench.h), the exponential map and dexp^-1 (util/lane.h), the implicit solve
-// (integrate/kirchhoff.h), the OU update (effects/turbulence.h). Like the splitting loops, they
-// are compiled for each kind of M (integrate/kirchhoff.h DiagonalMass, FullMass: meshes): the
+// (model/kirchhoff.h), the OU update (effects/turbulence.h). Like the splitting loops, they
+// are compiled for each kind of M (model/kirchhoff.h DiagonalMass, FullMass: meshes): the
 // impulse and velocity conversions (impulse_of_velocity, velocity_of_impulse), M^-1
 // (mass_inv_times) and the products with M_body and K (mass_times) are the kernels' for either.
 // Neither scheme iterates: no lane is handed to the scalar step but an rk4 lane whose stage leaves
@@ -31,7 +31,7 @@ namespace {  // NOLINT(build/namespaces): internal to rigid_batch_step.h
 // buoyancy (plus the Basset history force) Fw (world) and the fluid's material derivative acc
 // (world, the gu factor applied). ImpulseForm: euler's (the added mass's -v_r x P_f alone), else
 // rk4's velocity form (the added mass's Kirchhoff terms and the drag-along K a~). As
-// integrate/dynamics.cpp context_from_sample and the plan's terms.
+// effects/evaluate.cpp context_from_sample and the plan's terms.
 template <typename T, bool Plate, bool ImpulseForm, class Mass>
 LRIGID_LANE void lane_wrench(const StepConsts<Mass>& tc, const T* R, const T* Fw, const T* ufb,
                              const T* acc, const T* v, const T* w, T* f) {

@@ -17,20 +17,20 @@
 #include "effects/wrench.h"
 #include "integrate/batch_lanes.h"
 #include "integrate/dynamics.h"
-#include "integrate/kirchhoff.h"
+#include "model/kirchhoff.h"
 #include "integrate/rigid_batch.h"
 
 namespace lrigid {
 namespace {  // NOLINT(build/namespaces): internal to rigid_batch_*.cpp
 
-// What the step needs of the body type. Mass: M as the kernels of integrate/kirchhoff.h see it,
+// What the step needs of the body type. Mass: M as the kernels of model/kirchhoff.h see it,
 // DiagonalMass (boxes, disks, ellipsoids) or FullMass (meshes: the step's loops are compiled
 // once for each).
 template <class Mass>
 struct StepConsts : FieldConsts {
   bool plate = false;       // flat: plate drag and lift (with turb, the step's template switches)
   bool strang = false;      // the Strang scheme (not with the Basset history: integrators.h)
-  Mass mass;                // M (integrate/kirchhoff.h)
+  Mass mass;                // M (model/kirchhoff.h)
   typename FluidImpulseOf<Mass>::type K;  // K's first three columns (0 without added mass)
   double drag = 0;          // the drag effect as a factor 1 or 0 (bodies that are not flat)
   // the drag of bodies that are not flat (effects/drag.h) and the plate model (effects/plate.h)
@@ -215,7 +215,7 @@ LRIGID_LANE DragOut<T> lane_forces(const StepConsts<Mass>& tc, const T* R, const
 
 // The Strang scheme's force step over hs on a lane's body-frame velocities v, w (in place), at
 // orientation R (body -> world) and the fluid velocity u_f (world) with its material derivative
-// acc (world, the gu factor applied here): ROS2 (integrate/kirchhoff.h ros2_impulse), as
+// acc (world, the gu factor applied here): ROS2 (model/kirchhoff.h ros2_impulse), as
 // integrators.cpp strang_force_step. Not with the Basset history (tc.strang).
 template <typename T, bool Plate, class Mass>
 LRIGID_LANE void strang_force_lane(const StepConsts<Mass>& tc, const T* R, const T* u_f,
@@ -322,7 +322,7 @@ LRIGID_LANE void lane_flow_end(const StepConsts<Mass>& tc, const T (*q0)[kBatch]
 }
 
 // The force step's norms, d^T M^-1 d of an impulse change d and xi^T M xi of a velocity xi
-// (integrate/kirchhoff.h energy_norm2, velocity_norm2), for a diagonal M summed in linear and
+// (model/kirchhoff.h energy_norm2, velocity_norm2), for a diagonal M summed in linear and
 // angular pairs as the diagonal step did before full masses came: its stiffness and convergence
 // tests keep their decisions, and its results their rounding
 template <typename T, class Mass>

@@ -7,12 +7,11 @@
 #include <cmath>
 #include <string>
 
-#include "integrate/contacts.h"
+#include "contact/sleep.h"
 #include "integrate/integrators.h"
 #include "integrate/rigid_batch.h"
 #include "integrate/sphere_batch.h"
 #include "integrate/step_end.h"
-#include "integrate/stops.h"
 
 namespace lrigid {
 
@@ -85,7 +84,7 @@ uint64_t advance_body(const Model& model, State& st, int64_t i, uint64_t first, 
 }
 
 // The bodies a stretch advances: those still moving in [n0, n) and those a gust watch wakes
-// before its end (integrate/contacts.h), the batched step's types in
+// before its end (integrate/impacts.h), the batched step's types in
 // blocks of kBatch bodies of one type, the others one by one. Rebuilt for every stretch, so
 // bodies that stopped leave the blocks.
 struct WorkList {

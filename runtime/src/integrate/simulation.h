@@ -20,7 +20,7 @@ struct RunStats {
   uint64_t steps = 0;          // time steps
   double wall_seconds = 0;     // integration only (no output)
   size_t landed = 0, exited = 0, failed = 0;
-  // at the end: bodies resting on a surface or asleep there (integrate/contacts.h)
+  // at the end: bodies resting on a surface or asleep there (contact/sleep.h)
   size_t resting = 0;
 };
 

@@ -6,7 +6,7 @@
 #include "effects/drag.h"
 #include "integrate/batch_lanes.h"
 #include "integrate/dynamics.h"
-#include "integrate/kirchhoff.h"
+#include "model/kirchhoff.h"
 
 namespace lrigid {
 
@@ -29,7 +29,7 @@ struct StepConsts : FieldConsts {
   double drag_factor = 0;       // the same as a factor 1 or 0
   bool strang = false;          // the Strang scheme (not with the Basset history: integrators.h)
   double m = 0, ma = 0, J = 0;  // M's linear and angular diagonal; K's linear diagonal (0 without)
-  IsotropicMass mass;           // M = diag(m, m, m, J, J, J) (integrate/kirchhoff.h)
+  IsotropicMass mass;           // M = diag(m, m, m, J, J, J) (model/kirchhoff.h)
   // sphere drag (effects/drag.h drag_kernel, r_cob = 0): the law and the sphere's area
   DragParams law;
   double a_perp = 0, d_perp = 0;
@@ -140,7 +140,7 @@ LRIGID_LANE DragOut<T> sphere_force_sum(const StepConsts& tc, const T* F, const 
 
 // The Strang scheme's force step over hs on a sphere lane's world velocity V and body-frame spin
 // w (in place), at orientation q (Magnus: the world spin) and the fluid velocity u_f (world) with
-// its material derivative acc (world, the gu factor applied here): ROS2 (integrate/kirchhoff.h
+// its material derivative acc (world, the gu factor applied here): ROS2 (model/kirchhoff.h
 // ros2_impulse), as integrators.cpp strang_force_step (for an isotropic M the world and body
 // frames give the same step). Not with the Basset history (tc.strang).
 template <typename T>
@@ -302,7 +302,7 @@ LRIGID_IVDEP
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a)
       Gj[a] = h * fe[a] + T(tc.basset_mass) * h * T(tc.gu) * lanes->acc[a][j];
-    // the implicit step's impulse change (integrate/kirchhoff.h implicit_impulse; the world and
+    // the implicit step's impulse change (model/kirchhoff.h implicit_impulse; the world and
     // body frames differ by a rotation, under which the isotropic M and the stiffness commute)
     T b[6], P[3], dPL_j[6], Vnew[3], wnew[3], u_end[3];
 #pragma GCC unroll 3

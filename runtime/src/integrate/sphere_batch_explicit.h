@@ -7,7 +7,7 @@
 // step), with the same kernels: gravity and buoyancy, the sphere drag (effects/drag.h), Magnus,
 // the Basset history, the added mass's wrench (effects/added_mass.h, velocity form for rk4), the
 // rigid body's gyroscopic terms (effects/wrench.h), the exponential map and dexp^-1
-// (util/lane.h), the implicit solve (integrate/kirchhoff.h), the OU update
+// (util/lane.h), the implicit solve (model/kirchhoff.h), the OU update
 // (effects/turbulence.h). The moments that vanish for an isotropic M (w x J w, v x m_b v and
 // the added mass's v_r x m_a v_r) are left out: on the scalar step they are a torque of rounding
 // noise, which turns a small sphere released without spin (J ~ r^5) by ~1e-9 rad/s. The frames:

@@ -2,7 +2,11 @@
 
 #include <cmath>
 
-#include "integrate/stops.h"
+#include "contact/events.h"
+#include "contact/pass.h"
+#include "contact/sleep.h"
+#include "integrate/impacts.h"
+#include "integrate/integrators.h"
 
 namespace lrigid {
 

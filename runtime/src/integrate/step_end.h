@@ -5,17 +5,17 @@
 //
 //   retry_into_ground  a step that left the fluid heading into a colliding ground (often the
 //                      grid's floor): the impact located inside the step, or the speculative
-//                      contact and the step taken again (integrate/contacts.h)
+//                      contact and the step taken again (integrate/impacts.h, contact/pass.h)
 //   finish_step        a step that failed or exited stops the body (stops.h stop_body); one that
 //                      succeeded takes the contact pass (impacts inside the step, impulses,
-//                      resting, sleep: contacts.h contact_after_step) and the first touchdown's
+//                      resting, sleep: impacts.h contact_after_step) and the first touchdown's
 //                      location, or lands on a "stop" ground at its located touchdown
 #pragma once
 #include <cstdint>
 #include <string>
 
-#include "integrate/contacts.h"
-#include "integrate/integrators.h"
+#include "contact/touching.h"
+#include "model/body_state.h"
 #include "model/model.h"
 #include "model/state.h"
 

@@ -133,7 +133,7 @@ void write_checkpoint(const std::string& path, const CheckpointId& id, int rank,
     for (const std::string& r : st.reason) b.str(r);
     b.vec(st.history);
     b.vec(st.history_offset);
-    // contacts (integrate/contacts.h)
+    // contacts (contact/sleep.h)
     b.vec(st.contact);
     b.vec(st.rest_steps);
     b.vec(st.impacts);

@@ -4,7 +4,7 @@
 #include <string>
 #include <utility>
 
-#include "effects/compile_model.h"
+#include "compile/compile_model.h"
 #include "effects/registry.h"
 #include "integrate/simulation.h"
 #include "integrate/sphere_batch.h"

@@ -319,7 +319,7 @@ void ResultWriter::finish(const State& st, const RunStats& stats, const nlohmann
     write_file_atomically(staged("landings.csv"), [&](std::ostream& o) {
       o << "body,type,t,x,y,z\n" << std::setprecision(9);
       // each body's first touchdown: where it landed (ground.contact "stop") or first touched
-      // the ground (integrate/contacts.h), so the landing statistics keep their meaning
+      // the ground (contact/pass.h), so the landing statistics keep their meaning
       for (size_t i = 0; i < st.size(); ++i) {
         if (st.status[i] == BodyStatus::Landed)
           o << i << ',' << model_.types[st.type[i]].name << ',' << st.t_stop[i] << ','

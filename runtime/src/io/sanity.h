@@ -16,7 +16,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "effects/compile_model.h"
+#include "compile/compile_model.h"
 #include "model/model.h"
 #include "model/scene.h"
 

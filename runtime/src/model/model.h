@@ -1,6 +1,6 @@
 // The constant model a run steps with (the mjModel of this project): body types with their
 // generalized mass matrices and drag parameters, the fluid field and the options. Built once by
-// compile_model() (effects/compile_model.h); never changed by the step. The body frame of every body type has its origin
+// compile_model() (compile/compile_model.h); never changed by the step. The body frame of every body type has its origin
 // at the centre of mass and the axes of the shape.
 #pragma once
 #include <functional>
@@ -18,7 +18,7 @@ namespace lrigid {
 // step loops over these only, so an effect that is not selected costs nothing.
 struct EffectContext;  // effects/context.h
 struct EffectParams;   // effects/plan.h: the kernels' Params of the body type
-struct ContactParams;  // effects/contact.h: restitution, friction, the shape's contact points
+struct ContactParams;  // contact/points.h: restitution, friction, the shape's contact points
 using WrenchTerm = Vec6 (*)(const EffectContext&);
 struct EffectPlan {
   std::vector<WrenchTerm> terms;   // evaluation order of all_effects()
@@ -62,7 +62,7 @@ struct BodyType {
   Mat6 K_fluid = Mat6::Zero();   // fluid Kirchhoff tensor about the COM
   // The share of its Munk couple a flat body's separated flow takes back (kg; zero unless
   // flat with added mass and drag): the couple is -v x (K_tt - munk_back) v
-  // (effects/compile_model.cpp, docs/physics/lift.md "The Munk couple of a finite plate")
+  // (compile/compile_model.cpp, docs/physics/lift.md "The Munk couple of a finite plate")
   Mat3 munk_back = Mat3::Zero();
   Mat6 M = Mat6::Zero();         // what the step inverts: M_body (+ K_fluid with added_mass)
   Mat6 M_inv = Mat6::Zero();
@@ -103,7 +103,7 @@ struct BodyType {
   Vec3 stokes_torque = Vec3::Zero();  // Stokes torque T_i = -mu r_i w_i of the ellipsoid, m^3
   BassetKernel basset;
   EffectPlan plan;
-  // contact (docs/contacts.md): the material and the shape's contact points (effects/contact.h),
+  // contact (docs/contacts.md): the material and the shape's contact points (contact/points.h),
   // built once by compile_model; and the distance from the centre of mass to the farthest point
   // of the shape's bounding box, m: a body whose centre is farther than this from the ground
   // and from the walls cannot touch them (the one comparison bodies far from surfaces pay)
@@ -138,7 +138,7 @@ struct Model {
   ContactMode ground_contact = ContactMode::Stop;
   ContactMode walls_contact = ContactMode::Stop;
   OutsideMode outside = OutsideMode::Stop;
-  // resting (integrate/contacts.h): an impact slower than rest_speed does not bounce (m/s); a
+  // resting (contact/pass.h): an impact slower than rest_speed does not bounce (m/s); a
   // body whose contact points all move slower than rest_speed rests, and one that rested for
   // sleep_time (s) sleeps: it is not stepped until the flow around it changes
   double rest_speed = 0.05;
@@ -162,7 +162,7 @@ struct Model {
 };
 
 // The fluid Kirchhoff tensor of a shape (body/added_mass.h), analytic or by BEM, as the app
-// provides it (cached); compile_model (effects/compile_model.h) asks it once per body type.
+// provides it (cached); compile_model (compile/compile_model.h) asks it once per body type.
 using AddedMassProvider = std::function<AddedMass(const Shape&, double fluid_density, int panels)>;
 
 }  // namespace lrigid

@@ -1,5 +1,5 @@
 // A scene as the user described it (parsed and validated by io/scene_json). Plain data, SI units.
-// compile_model() (effects/compile_model.h) turns it into the constant Model the step runs on.
+// compile_model() (compile/compile_model.h) turns it into the constant Model the step runs on.
 #pragma once
 #include <cstdint>
 #include <string>
@@ -22,7 +22,7 @@ enum class Precision { Double, Float };
 
 // How bodies meet the ground, the grid's solids and the grid's outer boundary (scene keys
 // ground.contact, walls.contact, outside; docs/scene-format.md, docs/contacts.md), applied by
-// integrate/contacts.h after each step.
+// contact/pass.h after each step.
 enum class ContactMode { Collide, Stop };
 enum class OutsideMode { Remove, Stop };
 const char* contact_mode_name(ContactMode m);

@@ -10,15 +10,15 @@
 namespace lrigid {
 
 // Moving: stepped (flying, sliding or resting: ContactState); Sleeping: resting where the flow
-// cannot move it, not stepped until it changes (integrate/contacts.h); Landed: stopped at the
+// cannot move it, not stepped until it changes (contact/sleep.h); Landed: stopped at the
 // ground (ground.contact "stop"); Exited: left the grid (hidden from then on with "outside":
 // "remove") or stopped at a solid (walls.contact "stop"); Failed: a non-finite state.
 enum class BodyStatus : uint8_t { Moving = 0, Landed = 1, Exited = 2, Failed = 3, Sleeping = 4 };
 const char* body_status_name(BodyStatus s);
-// How a moving body meets the surfaces after its last step (integrate/contacts.h).
+// How a moving body meets the surfaces after its last step (contact/pass.h).
 enum class ContactState : uint8_t { Flying = 0, Sliding = 1, Resting = 2 };
 
-// A sleeping body's gust watch (integrate/contacts.h, docs/contacts.md "Resting, sleeping,
+// A sleeping body's gust watch (contact/sleep.h, docs/contacts.md "Resting, sleeping,
 // waking"): the turbulent velocity u' it would see, kept evolving by its Ornstein-Uhlenbeck
 // process while the body sleeps, and the gust along the mean flow that would move it. The body
 // wakes at the first step where u' reaches the gust. The watch follows u' along the mean flow
@@ -47,7 +47,7 @@ struct State {
   std::vector<BodyStatus> status;  // (nbody)
   std::vector<double> t_stop;   // (nbody) time the body stopped (landed, exited, failed), s
   std::vector<std::string> reason;  // (nbody) why a body failed (empty otherwise)
-  // contacts (integrate/contacts.h)
+  // contacts (contact/pass.h)
   std::vector<ContactState> contact;  // (nbody) after the body's last step
   std::vector<uint32_t> rest_steps;   // (nbody) steps it has rested in a row
   std::vector<uint32_t> impacts;      // (nbody) contact events: impacts after flying, faster

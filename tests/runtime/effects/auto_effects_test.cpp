@@ -2,7 +2,7 @@
 // docs/effects.md).
 #include <gtest/gtest.h>
 
-#include "effects/compile_model.h"
+#include "compile/compile_model.h"
 #include "effects/registry.h"
 #include "support/fixture.h"
 

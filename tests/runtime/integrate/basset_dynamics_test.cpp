@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "effects/basset.h"
-#include "effects/compile_model.h"
+#include "compile/compile_model.h"
 #include "integrate/simulation.h"
 #include "support/fixture.h"
 

@@ -4,7 +4,7 @@
 
 #include <cstring>
 
-#include "effects/compile_model.h"
+#include "compile/compile_model.h"
 #include "integrate/simulation.h"
 #include "support/fixture.h"
 

@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "effects/basset.h"
-#include "effects/compile_model.h"
+#include "compile/compile_model.h"
 #include "effects/plan.h"
 #include "integrate/dynamics.h"
 #include "model/state.h"

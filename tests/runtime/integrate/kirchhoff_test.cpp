@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "effects/compile_model.h"
+#include "compile/compile_model.h"
 #include "integrate/simulation.h"
 #include "support/fixture.h"
 

@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <vector>
 
-#include "effects/compile_model.h"
+#include "compile/compile_model.h"
 #include "integrate/simulation.h"
 #include "support/fixture.h"
 

@@ -13,7 +13,7 @@
 
 #include <Eigen/Eigenvalues>
 
-#include "effects/compile_model.h"
+#include "compile/compile_model.h"
 #include "integrate/simulation.h"
 #include "io/scene_json.h"
 #include "support/fixture.h"

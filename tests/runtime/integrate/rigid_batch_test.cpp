@@ -251,7 +251,7 @@ TEST(RigidBatch, Rk4InAGustingSeriesMatchesTheScalarStep) {
 // An artist's leaf from a mesh (batch_test::bent_leaf, curled and turned; 464 panels here, the
 // mesh's own triangles): its generalized mass M is a full symmetric 6 x 6, and the loops run the
 // free Kirchhoff flow, the implicit force step and the Strang force steps on the full-mass kernels
-// of integrate/kirchhoff.h, as the scalar step does (issue 28: such leaves ran on the scalar step
+// of model/kirchhoff.h, as the scalar step does (issue 28: such leaves ran on the scalar step
 // only).
 Scene mesh_leaf_scene(int n) {
   Scene s = rigid_scene(batch_test::bent_leaf(13, 9), 600, n);

@@ -1,7 +1,7 @@
 // The batched sphere step (integrate/sphere_batch.h) against the scalar step it replaces: the
 // same scene run with model.batched on and off gives the same statuses, stop times and reasons,
 // and states that differ by rounding only (double), or by what single precision costs (float).
-#include "effects/compile_model.h"
+#include "compile/compile_model.h"
 #include "integrate/sphere_batch.h"
 
 #include <gtest/gtest.h>

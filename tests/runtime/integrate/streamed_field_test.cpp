@@ -6,7 +6,7 @@
 #include <cmath>
 #include <cstring>
 
-#include "effects/compile_model.h"
+#include "compile/compile_model.h"
 #include "integrate/simulation.h"
 #include "support/fixture.h"
 

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <ostream>
 
-#include "effects/compile_model.h"
+#include "compile/compile_model.h"
 #include "effects/drag.h"
 #include "integrate/simulation.h"
 #include "support/fixture.h"

@@ -17,7 +17,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "effects/compile_model.h"
+#include "compile/compile_model.h"
 #include "integrate/simulation.h"
 #include "integrate/sphere_batch.h"
 #include "io/scene_json.h"

@@ -1,5 +1,5 @@
 // Checkpoints (io/checkpoint.h) keep what a resumed run needs to go on bitwise: here the
-// sleeping bodies' gust watches (integrate/contacts.h), which decide the step a sleeper wakes at.
+// sleeping bodies' gust watches (contact/sleep.h), which decide the step a sleeper wakes at.
 #include "io/checkpoint.h"
 
 #include <gtest/gtest.h>

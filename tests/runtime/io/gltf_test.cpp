@@ -11,7 +11,7 @@
 #include <map>
 #include <sstream>
 
-#include "effects/compile_model.h"
+#include "compile/compile_model.h"
 #include "integrate/simulation.h"
 #include "io/gltf_writer.h"
 #include "io/result_writer.h"

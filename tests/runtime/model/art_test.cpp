@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "effects/compile_model.h"
+#include "compile/compile_model.h"
 #include "integrate/dynamics.h"
 #include "support/fixture.h"
 

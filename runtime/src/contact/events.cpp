@@ -1,4 +1,4 @@
-#include "integrate/stops.h"
+#include "contact/events.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,7 +1,9 @@
 // Compiling a scene into the constant model and its initial state: each body type's mass
 // properties, generalized mass, the effects "auto" keeps (the registry's rules, weighed on the
-// scene's representative flow), its Basset kernel and its plan of wrench terms. It needs the
-// physics (effects/), so it lives above the model (model/ <- effects/ <- integrate/).
+// scene's representative flow), its Basset kernel, its plan of wrench terms and its contact
+// points. It needs the effects (effects/: the registry, the effects' parameters) and the contact
+// points (contact/), so it lives above both, beside the steps that run the model (layers:
+// model/ <- effects/ <- contact/ <- compile/, integrate/; tests/runtime/layers_test.py).
 #pragma once
 #include <string>
 #include <utility>

@@ -1,10 +1,10 @@
-// The free Kirchhoff flow's and the implicit force step's kernels (integrate/kirchhoff.h), called
+// The free Kirchhoff flow's and the implicit force step's kernels (model/kirchhoff.h), called
 // as the scalar step calls them (T = double, the body type's diagonal or full M) and as the
 // batched loops call them (DiagonalMass, double and float), on the same inputs: the two mass
 // forms agree to round-off, float agrees to float's round-off, and each kernel agrees with its
 // equation written directly in Eigen (effects/wrench.h kirchhoff_gyro, finite differences of G,
 // the dense solve of (M + h J + b P) x = M b).
-#include "integrate/kirchhoff.h"
+#include "model/kirchhoff.h"
 
 #include <gtest/gtest.h>
 

@@ -1,18 +1,21 @@
-// Bodies meeting the ground and the grid's solids in the steps (integrate/contacts.h), against
-// closed forms: a sphere bouncing on the ground (apex ratio e^2), a box on an inclined plane
-// (sliding with g (sin th - mu cos th), staying when mu > tan th), a sphere on an inclined wall
-// of a grid (reflection about the wall's normal), and the grid's edge (remove / stop).
+// Bodies meeting the ground and the grid's solids in the steps (contact/pass.h, sleep.h,
+// integrate/impacts.h), against closed forms: a sphere bouncing on the ground (apex ratio e^2), a
+// box on an inclined plane (sliding with g (sin th - mu cos th), staying when mu > tan th), a
+// sphere on an inclined wall of a grid (reflection about the wall's normal), and the grid's edge
+// (remove / stop).
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
 #include <vector>
 
-#include "effects/compile_model.h"
-#include "effects/contact.h"
-#include "integrate/contacts.h"
+#include "compile/compile_model.h"
+#include "contact/events.h"
+#include "contact/pass.h"
+#include "contact/sleep.h"
+#include "contact/solver.h"
+#include "integrate/impacts.h"
 #include "integrate/simulation.h"
-#include "integrate/stops.h"
 #include "support/batch_compare.h"
 #include "support/fixture.h"
 
@@ -101,7 +104,7 @@ State run_to_end(const Scene& s) {
 }
 
 TEST_P(SphereBounce, TheImpactIsTakenWhereItHappensInsideTheStep) {
-  // (contacts.h impact_inside_step) with gravity alone the step (strang) and the touchdown's
+  // (integrate/impacts.h impact_inside_step) with gravity alone the step (strang) and the touchdown's
   // Hermite root are exact for a parabola, so a bounce taken where it happens leaves the
   // trajectory exact even at a coarse step; the impulse at the step's end and a position
   // correction were off by about a step's travel (cm at dt = 10 ms)

@@ -1,4 +1,4 @@
-#include "effects/contact.h"
+#include "contact/points.h"
 
 extern "C" {
 #include <libqhull_r/qhull_ra.h>

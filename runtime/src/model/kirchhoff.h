@@ -11,7 +11,7 @@
 #pragma once
 #include <cmath>
 
-#include "effects/drag.h"
+#include "model/drag_out.h"
 #include "util/lane.h"
 #include "util/small_lu.h"
 

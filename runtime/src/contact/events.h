@@ -1,11 +1,13 @@
-// When a body stops moving: the rules the scalar loop (simulation.cpp) and the batched steps
-// (batch_lanes.h) share.
+// The end-of-step events of one body: where it first touches the ground inside a step (touchdown,
+// and any surface: locate_event), a landing, and a body that stops (stop_body: landed, exited,
+// failed). The rules the scalar loop (integrate/simulation.cpp) and the batched steps
+// (integrate/batch_lanes.h) share.
 #pragma once
 #include <cmath>
 #include <functional>
 #include <string>
 
-#include "integrate/integrators.h"
+#include "model/body_state.h"
 #include "model/model.h"
 
 namespace lrigid {
@@ -45,7 +47,7 @@ double locate_touchdown(const Model& m, const BodyType& type, const BodyState& a
 // gap(x, q) (m; > 0 apart, <= 0 touching; gap at a > 0) reaches 0 along that interpolant.
 // Returns it from the start of the step, in (0, h]; *at as above. Used by locate_touchdown (the
 // ground) and by the contact pass for an impact on the ground or a wall inside a step
-// (integrate/contacts.h).
+// (integrate/impacts.h).
 double locate_event(const Model& m, const BodyType& type, const BodyState& a, const BodyState& b,
                     double h, const std::function<double(const Vec3&, const Quat&)>& gap,
                     BodyState* at);

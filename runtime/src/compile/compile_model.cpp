@@ -1,6 +1,6 @@
-#include "effects/compile_model.h"
+#include "compile/compile_model.h"
 
-#include "effects/contact.h"
+#include "contact/points.h"
 
 #include <algorithm>
 #include <cmath>
@@ -279,7 +279,7 @@ BodyType make_body_type(const Scene& scene, const BodySpec& b, const Shape& shap
     fail_input(scene.file, key, "generalized mass matrix is not positive definite");
   }
   t.M_inv = ldlt.solve(Mat6::Identity());
-  t.M_inv = 0.5 * (t.M_inv + t.M_inv.transpose());  // exactly symmetric (integrate/kirchhoff.h)
+  t.M_inv = 0.5 * (t.M_inv + t.M_inv.transpose());  // exactly symmetric (model/kirchhoff.h)
   t.M_block_diagonal =
       t.M.topRightCorner<3, 3>().isZero(0.0) && t.M.bottomLeftCorner<3, 3>().isZero(0.0);
   t.M_diagonal = Mat6(t.M.diagonal().asDiagonal()) == t.M;
