@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "io/atomic_file.h"
+#include "io/results_dir.h"
 #include "signals.h"
 #include "util/error.h"
 
@@ -88,8 +89,19 @@ void Checkpoints::refuse_to_overwrite() const {
 }
 
 void Checkpoints::load(State* state, RunStats* stats, ResultWriter* writer) const {
-  const json j = read_latest((fs::path(dir_) / "latest.json").string());
-  const uint64_t step = j.at("step").get<uint64_t>();
+  const std::string latest = (fs::path(dir_) / "latest.json").string();
+  const json j = read_latest(latest);
+  uint64_t step = 0;
+  try {
+    step = j.at("step").get<uint64_t>();
+  } catch (const json::exception& e) {
+    fail_input(latest, "step", std::string("malformed: ") + e.what());
+  }
+  std::error_code ec;
+  if (!fs::exists(rank_file(dir_, ranks_.rank(), step), ec))
+    fail_input(rank_file(dir_, ranks_.rank(), step), "",
+               "missing: " + latest + " names step " + std::to_string(step) +
+                   ", whose checkpoint file is not there; nothing was changed");
   read_checkpoint(rank_file(dir_, ranks_.rank(), step), id_, ranks_.rank(), state, stats,
                   [&](BinaryIn& in) {
                     if (writer) writer->restore(in);
@@ -137,9 +149,11 @@ void Checkpoints::maybe_save(const State& state, const RunStats& stats, ResultWr
   last_ = std::chrono::steady_clock::now();
 }
 
-void Checkpoints::remove() const {
+bool Checkpoints::exists() const {
   std::error_code ec;
-  fs::remove_all(dir_, ec);
+  return fs::exists(fs::path(dir_) / "latest.json", ec);
 }
+
+void Checkpoints::remove() const { remove_checkpoint_files(dir_); }
 
 }  // namespace lrigid::app

@@ -30,8 +30,10 @@ class Checkpoints {
   // at an output, on every rank: saves when `every` s of wall time have passed since the last
   // checkpoint (or the start). Collective. Throws ExitCode::Output (the last one stays intact).
   void maybe_save(const State& state, const RunStats& stats, ResultWriter* writer);
-  // after the finish: the checkpoints are no longer needed (rank 0)
+  // after the finish: the checkpoints are no longer needed (rank 0); removes only the
+  // checkpoint's own files (the finish's commit has normally done it already)
   void remove() const;
+  bool exists() const;  // latest.json is there
 
  private:
   std::string dir_;  // <out>/checkpoint

@@ -22,6 +22,7 @@
 #include "io/grid_reader.h"
 #include "io/progress.h"
 #include "io/result_writer.h"
+#include "io/results_dir.h"
 #include "io/sanity.h"
 #include "io/scene_json.h"
 #include "io/tolerance_table.h"
@@ -45,6 +46,8 @@ struct RunArgs {
   std::string stream = "auto";     // --stream-field: auto, on, off
   std::string resume;              // --resume DIR: continue the interrupted run in DIR
   double checkpoint_every = -1;    // --checkpoint-every S (< 0: the scene's)
+  bool force = false;              // --force: replace files at the results' names that lrigid
+                                   // did not write (io/results_dir.h)
 };
 
 // what a checkpoint must match: the scene file's bytes and what overrides them
@@ -100,84 +103,109 @@ void run(const RunArgs& a, const Ranks& ranks) {
   CheckpointId id;
   if (checkpoints) id = {build_fingerprint(), scene_fingerprint(a.scene, scene), ranks.size(), a.scene};
   Checkpoints cps(scene.output.dir, id, ranks, scene.output.checkpoint_every);
+  // a finish that a kill or a power loss interrupted after it was decided: completed first
+  // (io/results_dir.h), then --resume finds the run finished
+  if (ranks.root()) complete_interrupted_finish(scene.output.dir);
   std::string resume_tag;
   if (!a.resume.empty()) resume_tag = cps.resume_tag();
   else if (checkpoints) cps.refuse_to_overwrite();
   // with several MPI ranks, rank 0 alone writes, after gathering every rank's bodies
   std::unique_ptr<ResultWriter> writer;
   if (ranks.root())
-    writer = std::make_unique<ResultWriter>(scene.output.dir, model, scene.output, resume_tag);
-  RunStats live;
-  if (!a.resume.empty()) {
-    cps.load(&state, &live, writer.get());
-    if (!a.quiet && ranks.root())
-      std::fprintf(stderr, "lrigid: resuming %s at t = %.6g s (step %llu)\n",
-                   scene.output.dir.c_str(), state.t, (unsigned long long)state.step);
-  }
-
-  RunOptions opt;
-  opt.every = scene.output.every;
-  opt.live_stats = &live;
-  opt.output_at_start = a.resume.empty();
-  opt.threads = a.threads;
-  ranks.share(state.size(), &opt.body_begin, &opt.body_end);
-  if (ranks.size() > 1) opt.on_sync = [&](State& s, bool last) { ranks.gather(&s, last); };
-  opt.on_output = [&](const State& s) {
-    if (writer) writer->write_frame(s);
-    cps.maybe_save(s, live, writer.get());  // collective: every rank calls it
+    writer = std::make_unique<ResultWriter>(scene.output.dir, model, scene.output, resume_tag,
+                                            a.force);
+  if (writer && checkpoints) writer->set_checkpoint_dir("checkpoint");
+  // what a failure from here on leaves, said after the error (lrigid::Error only: exit codes 3-5)
+  auto say_what_is_left = [&] {
+    if (!ranks.root()) return;  // part of the error: printed with --quiet too
+    if (cps.exists())
+      std::fprintf(stderr,
+                   "lrigid: the run is resumable from its last checkpoint: lrigid run %s "
+                   "--resume %s\n",
+                   a.scene.c_str(), scene.output.dir.c_str());
+    else
+      std::fprintf(stderr,
+                   "lrigid: no result was written and there is no checkpoint to resume from; "
+                   "earlier results in %s, if any, are unchanged\n",
+                   scene.output.dir.c_str());
   };
-  const bool quiet = a.quiet || !ranks.root();
-  Progress progress("lrigid", quiet ? Progress::Mode::Quiet : Progress::Mode::Auto);
-  if (!quiet)
-    opt.on_progress = [&](const State& s, double f) {
-      size_t moving = 0, landed = 0, exited = 0, resting = 0;
-      for (size_t i = 0; i < s.size(); ++i) {
-        const BodyStatus b = s.status[i];
-        moving += b == BodyStatus::Moving;
-        landed += b == BodyStatus::Landed;
-        exited += b == BodyStatus::Exited || b == BodyStatus::Failed;
-        // resting on a surface or asleep there (contact/sleep.h)
-        resting += b == BodyStatus::Sleeping ||
-                   (b == BodyStatus::Moving && i < s.contact.size() &&
-                    s.contact[i] == ContactState::Resting);
-      }
-      char buf[200];
-      std::snprintf(buf, sizeof buf,
-                    "t = %.3f / %.3f s, moving %zu, resting %zu, landed %zu, stopped %zu", s.t,
-                    model.duration, moving, resting, landed, exited);
-      progress.update(f, buf);
+  try {
+    RunStats live;
+    if (!a.resume.empty()) {
+      cps.load(&state, &live, writer.get());
+      if (!a.quiet && ranks.root())
+        std::fprintf(stderr, "lrigid: resuming %s at t = %.6g s (step %llu)\n",
+                     scene.output.dir.c_str(), state.t, (unsigned long long)state.step);
+    }
+
+    RunOptions opt;
+    opt.every = scene.output.every;
+    opt.live_stats = &live;
+    opt.output_at_start = a.resume.empty();
+    opt.threads = a.threads;
+    ranks.share(state.size(), &opt.body_begin, &opt.body_end);
+    if (ranks.size() > 1) opt.on_sync = [&](State& s, bool last) { ranks.gather(&s, last); };
+    opt.on_output = [&](const State& s) {
+      if (writer) writer->write_frame(s);
+      cps.maybe_save(s, live, writer.get());  // collective: every rank calls it
     };
-  RunStats stats = simulate(model, &state, opt);
-  progress.finish();
-  stats.body_steps = ranks.sum(stats.body_steps);
-  stats.wall_seconds = ranks.max(stats.wall_seconds);
-  if (!writer) return;
-  nlohmann::json extra;
-  extra["threads"] = a.threads;
-  extra["warnings"] = findings_json(findings);
-  extra["fluid_density"] = scene.fluid_density;  // kg/m^3; lrigid render draws water as a tank
-  if (ranks.size() > 1) extra["ranks"] = ranks.size();
-  if (!scene.uniform_field) {
-    extra["field"] = scene.field_path;  // for render and ParaView
-    extra["field_load_seconds"] = load_seconds;
-  }
-  if (model.field.is_streamed()) {
-    const StreamStats ss = model.field.stream_stats();
-    extra["field_stream"] = {{"frames_read", ss.loads},
-                             {"max_resident_frames", ss.max_resident},
-                             {"read_seconds", ss.load_seconds}};
-  }
-  writer->finish(state, stats, extra);
-  cps.remove();
-  if (!a.quiet) {
-    std::fprintf(stderr,
-                 "lrigid: %zu bodies, %llu body-steps in %.3f s (%.3g body-steps/s); landed %zu, "
-                 "exited %zu, failed %zu; resting or asleep on a surface %zu\n"
-                 "lrigid: results in %s\n",
-                 state.size(), static_cast<unsigned long long>(stats.body_steps),
-                 stats.wall_seconds,
-                 stats.wall_seconds > 0 ? stats.body_steps / stats.wall_seconds : 0.0, stats.landed,
-                 stats.exited, stats.failed, stats.resting, writer->dir().c_str());
+    const bool quiet = a.quiet || !ranks.root();
+    Progress progress("lrigid", quiet ? Progress::Mode::Quiet : Progress::Mode::Auto);
+    if (!quiet)
+      opt.on_progress = [&](const State& s, double f) {
+        size_t moving = 0, landed = 0, exited = 0, resting = 0;
+        for (size_t i = 0; i < s.size(); ++i) {
+          const BodyStatus b = s.status[i];
+          moving += b == BodyStatus::Moving;
+          landed += b == BodyStatus::Landed;
+          exited += b == BodyStatus::Exited || b == BodyStatus::Failed;
+          // resting on a surface or asleep there (contact/sleep.h)
+          resting += b == BodyStatus::Sleeping ||
+                     (b == BodyStatus::Moving && i < s.contact.size() &&
+                      s.contact[i] == ContactState::Resting);
+        }
+        char buf[200];
+        std::snprintf(buf, sizeof buf,
+                      "t = %.3f / %.3f s, moving %zu, resting %zu, landed %zu, stopped %zu", s.t,
+                      model.duration, moving, resting, landed, exited);
+        progress.update(f, buf);
+      };
+    RunStats stats = simulate(model, &state, opt);
+    progress.finish();
+    stats.body_steps = ranks.sum(stats.body_steps);
+    stats.wall_seconds = ranks.max(stats.wall_seconds);
+    if (!writer) return;
+    nlohmann::json extra;
+    extra["threads"] = a.threads;
+    extra["warnings"] = findings_json(findings);
+    extra["fluid_density"] = scene.fluid_density;  // kg/m^3; lrigid render draws water as a tank
+    if (ranks.size() > 1) extra["ranks"] = ranks.size();
+    if (!scene.uniform_field) {
+      extra["field"] = scene.field_path;  // for render and ParaView
+      extra["field_load_seconds"] = load_seconds;
+    }
+    if (model.field.is_streamed()) {
+      const StreamStats ss = model.field.stream_stats();
+      extra["field_stream"] = {{"frames_read", ss.loads},
+                               {"max_resident_frames", ss.max_resident},
+                               {"read_seconds", ss.load_seconds}};
+    }
+    writer->finish(state, stats, extra);
+    cps.remove();
+    if (!a.quiet) {
+      std::fprintf(stderr,
+                   "lrigid: %zu bodies, %llu body-steps in %.3f s (%.3g body-steps/s); landed %zu, "
+                   "exited %zu, failed %zu; resting or asleep on a surface %zu\n"
+                   "lrigid: results in %s\n",
+                   state.size(), static_cast<unsigned long long>(stats.body_steps),
+                   stats.wall_seconds,
+                   stats.wall_seconds > 0 ? stats.body_steps / stats.wall_seconds : 0.0, stats.landed,
+                   stats.exited, stats.failed, stats.resting, writer->dir().c_str());
+    }
+  } catch (const Error& e) {
+    // a --resume refused by its checks changed nothing: the message says so itself
+    if (a.resume.empty() || e.code() != ExitCode::BadInput) say_what_is_left();
+    throw;
   }
 }
 
@@ -214,6 +242,11 @@ void add_run_command(CLI::App& app) {
                   "Continue the interrupted run whose output directory is DIR from its last "
                   "checkpoint (same scene, options and build); results are identical to an "
                   "uninterrupted run");
+  cmd->add_flag("--force", args->force,
+                "Replace files at the results' names (trajectories.csv, summary.json, ...) that "
+                "lrigid did not write; without it such a file stops the run before it starts "
+                "(exit 4). A folder holding files lrigid did not write is never replaced "
+                "(docs/outputs.md)");
   cmd->add_option("--checkpoint-every", args->checkpoint_every,
                   "Seconds of wall time between checkpoints (overrides "
                   "output.checkpoint_every; 0: none)")

@@ -18,6 +18,8 @@
 #include <cstdint>
 #include <initializer_list>
 
+#include "io/results_dir.h"
+
 namespace lrigid::app {
 
 namespace {
@@ -92,7 +94,8 @@ void clean_directory(const char* dir) {
 }
 
 void on_signal(int sig) {
-  const int fds = g_keep ? -1 : open("/proc/self/fd", O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  // (a finish's commit under way: its journal names the temporaries, io/results_dir.h)
+  const int fds = g_keep || g_results_commit_under_way ? -1 : open("/proc/self/fd", O_RDONLY | O_DIRECTORY | O_CLOEXEC);
   if (fds >= 0) {
     for_each_entry(fds, [fds](const char* name, unsigned char) {
       char path[4096];

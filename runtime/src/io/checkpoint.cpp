@@ -6,31 +6,23 @@
 #include <cinttypes>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
+#include <sstream>
 
 #include "io/atomic_file.h"
+#include "io/durable.h"
 #include "util/error.h"
 
 namespace lrigid {
 
 namespace {
 
-constexpr char kMagic[8] = {'L', 'R', 'I', 'G', 'C', 'K', 'P', '2'};
+// format 3 (issue 54) ends in a checksum of everything before it; format 2 had none
+constexpr char kMagic[8] = {'L', 'R', 'I', 'G', 'C', 'K', 'P', '3'};
+constexpr char kMagicUnchecked[8] = {'L', 'R', 'I', 'G', 'C', 'K', 'P', '2'};
 
-struct Fnv {
-  uint64_t h = 1469598103934665603ull;
-  void add(const char* p, size_t n) {
-    for (size_t i = 0; i < n; ++i) {
-      h ^= static_cast<unsigned char>(p[i]);
-      h *= 1099511628211ull;
-    }
-  }
-  std::string hex() const {
-    char buf[20];
-    std::snprintf(buf, sizeof buf, "%016" PRIx64, h);
-    return buf;
-  }
-};
+using Fnv = Fnv64;
 
 }  // namespace
 
@@ -112,7 +104,9 @@ std::string build_fingerprint() {
 void write_checkpoint(const std::string& path, const CheckpointId& id, int rank,
                       const State& st, const RunStats& stats,
                       const std::function<void(BinaryOut&)>& extra) {
-  write_file_atomically(path, [&](std::ostream& o) {
+  // built in memory, then written with its checksum (FNV-1a 64 of every byte before it)
+  std::ostringstream o(std::ios::binary);
+  {
     BinaryOut b(o);
     o.write(kMagic, sizeof kMagic);
     b.str(id.build);
@@ -143,19 +137,58 @@ void write_checkpoint(const std::string& path, const CheckpointId& id, int rank,
     b.vec(st.watch);
     b.pod(stats);
     extra(b);
-    o.flush();
+  }
+  const std::string bytes = std::move(o).str();
+  Fnv sum;
+  sum.add(bytes.data(), bytes.size());
+  write_file_atomically(path, [&](std::ostream& out) {
+    out.write(bytes.data(), std::streamsize(bytes.size()));
+    out.write(reinterpret_cast<const char*>(&sum.h), sizeof sum.h);
   });
 }
 
 void read_checkpoint(const std::string& path, const CheckpointId& id, int rank, State* st,
                      RunStats* stats, const std::function<void(BinaryIn&)>& extra) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) fail_input(path, "", "checkpoint cannot be read");
+  std::string bytes;
+  {
+    std::ifstream f(path, std::ios::binary);
+    if (!f) {
+      std::error_code ec;
+      fail_input(path, "",
+                 std::filesystem::exists(path, ec)
+                     ? "checkpoint cannot be read"
+                     : "checkpoint missing (the step that checkpoint/latest.json names has no "
+                       "file for this rank)");
+    }
+    std::stringstream ss;
+    ss << f.rdbuf();
+    bytes = std::move(ss).str();
+  }
+  if (bytes.size() >= sizeof kMagic &&
+      std::memcmp(bytes.data(), kMagicUnchecked, sizeof kMagicUnchecked) == 0)
+    fail_input(path, "",
+               "a checkpoint of format 2 (lrigid before issue 54), which has no checksum, so it "
+               "cannot be verified; it is refused rather than trusted: resume it with the lrigid "
+               "that wrote it, or start the run afresh");
+  if (bytes.size() < sizeof kMagic + sizeof(uint64_t) ||
+      std::memcmp(bytes.data(), kMagic, sizeof kMagic) != 0)
+    fail_input(path, "", "not an lrigid checkpoint (or one of another format version)");
+  {
+    uint64_t want = 0;
+    const size_t body = bytes.size() - sizeof want;
+    std::memcpy(&want, bytes.data() + body, sizeof want);
+    Fnv sum;
+    sum.add(bytes.data(), body);
+    if (sum.h != want)
+      fail_input(path, "",
+                 "checksum mismatch (" + sum.hex() + ", written " + Fnv{want}.hex() +
+                     "): the checkpoint is corrupt or cut short; nothing was changed");
+    bytes.resize(body);
+  }
+  std::istringstream in(std::move(bytes), std::ios::binary);
   BinaryIn b(in, path);
   char magic[sizeof kMagic];
   b.pod(&magic);
-  if (std::memcmp(magic, kMagic, sizeof kMagic) != 0)
-    fail_input(path, "", "not an lrigid checkpoint (or one of another format version)");
   std::string build, scene;
   int32_t ranks = 0, r = 0;
   b.str(&build);
@@ -211,6 +244,8 @@ void read_checkpoint(const std::string& path, const CheckpointId& id, int rank, 
     fail_input(path, "", "holds another number of bodies");
   b.pod(stats);
   extra(b);
+  if (in.peek() != std::char_traits<char>::eof())
+    fail_input(path, "", "corrupt checkpoint (bytes left after its end)");
 }
 
 }  // namespace lrigid

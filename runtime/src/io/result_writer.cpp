@@ -16,6 +16,7 @@
 #include "body/tessellate.h"
 #include "effects/registry.h"
 #include "io/atomic_file.h"
+#include "io/results_dir.h"
 #include "integrate/simulation.h"
 #include "io/checkpoint.h"
 #include "io/mesh_io.h"
@@ -66,7 +67,8 @@ void make_dir(const std::string& d) {
 }
 
 // a ParaView collection of `frames`, each file named `prefix` + its name; a partial one (the
-// frames so far of a run that goes on, or was interrupted) says so in a comment
+// frames so far of a run that goes on, or was interrupted) says so in a comment, and is not
+// fsync'ed (a view of the run, rewritten at every checkpoint and on resume)
 void write_pvd(const fs::path& path, const std::string& prefix,
                const std::vector<std::pair<double, std::string>>& frames, bool partial = false) {
   write_file_atomically(path.string(), [&](std::ostream& o) {
@@ -80,20 +82,27 @@ void write_pvd(const fs::path& path, const std::string& prefix,
       o << "    <DataSet timestep=\"" << f.first << "\" group=\"\" part=\"0\" file=\"" << prefix
         << f.second << "\"/>\n";
     o << "  </Collection>\n</VTKFile>\n";
-  });
+  }, !partial);
 }
 
 }  // namespace
 
 ResultWriter::ResultWriter(const std::string& dir, const Model& model, const OutputSpec& spec,
-                           const std::string& resume_tag)
-    : dir_(dir), model_(model), spec_(spec), tag_(".tmp" + std::to_string(::getpid())) {
+                           const std::string& resume_tag, bool force)
+    : dir_(dir), model_(model), spec_(spec), tag_(".tmp" + std::to_string(::getpid())),
+      force_(force) {
   ensure_writable_directory(dir_);
+  // the names this run writes must be free or lrigid's own (io/results_dir.h): refused now,
+  // before the run, not after it
+  check_may_write(dir_, planned(), force_);
   // a resumed run goes on with the interrupted one's temporaries, under their names (renaming
   // them would leave the checkpoint pointing at nothing if this run were killed before its
   // first checkpoint)
   if (!resume_tag.empty()) {
     tag_ = resume_tag;
+    // the output so far belongs to the checkpoint: whatever happens, this writer removes none
+    // of it (a resume that fails its checks leaves everything for the next attempt)
+    keep_ = true;
     remove_stale_temporaries();
   }
   auto take_over = [&](const std::string& name) {
@@ -138,6 +147,21 @@ ResultWriter::ResultWriter(const std::string& dir, const Model& model, const Out
   }
 }
 
+std::vector<ResultItem> ResultWriter::planned() const {
+  std::vector<ResultItem> v;
+  if (model_.has_ground) v.push_back({"landings.csv", false, ""});
+  if (spec_.csv) v.push_back({"trajectories.csv", false, ""});
+  if (spec_.pvd) {
+    v.push_back({"bodies", true, ""});
+    v.push_back({"bodies.pvd", false, ""});
+    v.push_back({"shapes", true, ""});
+    v.push_back({"shapes.pvd", false, ""});
+  }
+  if (spec_.glb) v.push_back({"animation.glb", false, ""});
+  v.push_back({"summary.json", false, ""});
+  return v;
+}
+
 void ResultWriter::remove_stale_temporaries() const {
   // A run killed while finishing leaves the final files it had begun under the interrupted run's
   // tag (landings.csv.tmp42, animation.glb.tmp42.tmp42, ...). This run writes them all again, so
@@ -180,21 +204,52 @@ ResultWriter::~ResultWriter() {
 
 void ResultWriter::save(BinaryOut& out) {
   if (vtp_) vtp_->wait(), write_partial_pvds();  // the checkpoint counts the last frame
+  // the output so far durable and checksummed before the checkpoint that counts it: a power
+  // loss then leaves a checkpoint whose files are all there, and a resume that finds them
+  // otherwise refuses
   uint64_t csv_bytes = 0;
   if (csv_) {
-    if (std::fflush(csv_) != 0 || std::ferror(csv_))
+    if (std::fflush(csv_) != 0 || std::ferror(csv_) || ::fsync(fileno(csv_)) != 0)
       throw Error(ExitCode::Output, where(csv_tmp_, "", "write failed (disk full?)"));
     const long pos = std::ftell(csv_);
     if (pos < 0) throw Error(ExitCode::Output, where(csv_tmp_, "", "cannot tell its length"));
     csv_bytes = uint64_t(pos);
+    if (!checksum_range(csv_tmp_, csv_summed_, csv_bytes, &csv_sum_))
+      throw Error(ExitCode::Output, where(csv_tmp_, "", "cannot be read back"));
+    csv_summed_ = csv_bytes;
   }
+  if (spec_.pvd) {
+    for (size_t i = frame_sums_.size(); i < frames_.size(); ++i) {
+      FrameSum fs_{};
+      const std::string b = (fs::path(vtp_tmp_dir_) / frame_name("bodies", i)).string();
+      const std::string sh = (fs::path(shapes_tmp_dir_) / frame_name("shapes", i)).string();
+      std::error_code ec;
+      fs_.bodies_bytes = fs::file_size(b, ec);
+      fs_.shapes_bytes = fs::file_size(sh, ec);
+      Fnv64 fb, fsh;
+      if (!checksum_range(b, 0, fs_.bodies_bytes, &fb))
+        throw Error(ExitCode::Output, where(b, "", "cannot be read back"));
+      if (!checksum_range(sh, 0, fs_.shapes_bytes, &fsh))
+        throw Error(ExitCode::Output, where(sh, "", "cannot be read back"));
+      fs_.bodies_sum = fb.h;
+      fs_.shapes_sum = fsh.h;
+      sync_path(b);
+      sync_path(sh);
+      frame_sums_.push_back(fs_);
+    }
+    sync_path(vtp_tmp_dir_);
+    sync_path(shapes_tmp_dir_);
+  }
+  sync_path(dir_);
   out.str(tag_);
   out.pod(csv_bytes);
+  out.pod(csv_sum_.h);
   out.pod(uint64_t(frames_.size()));
   for (const auto& f : frames_) {
     out.pod(f.first);
     out.str(f.second);
   }
+  out.vec(frame_sums_);
   out.vec(gltf_.body_type);
   out.vec(gltf_.times);
   out.vec(gltf_.x);
@@ -205,8 +260,9 @@ void ResultWriter::save(BinaryOut& out) {
 void ResultWriter::restore(BinaryIn& in) {
   std::string old_tag;
   in.str(&old_tag);
-  uint64_t csv_bytes = 0, nframes = 0;
+  uint64_t csv_bytes = 0, csv_sum = 0, nframes = 0;
   in.pod(&csv_bytes);
+  in.pod(&csv_sum);
   in.pod(&nframes);
   if (nframes > (uint64_t(1) << 32)) fail_input(in.file(), "", "corrupt checkpoint (frames)");
   frames_.resize(nframes);
@@ -214,11 +270,52 @@ void ResultWriter::restore(BinaryIn& in) {
     in.pod(&f.first);
     in.str(&f.second);
   }
+  in.vec(&frame_sums_);
+  if (spec_.pvd && frame_sums_.size() != frames_.size())
+    fail_input(in.file(), "", "corrupt checkpoint (frame checksums)");
   in.vec(&gltf_.body_type);
   in.vec(&gltf_.times);
   in.vec(&gltf_.x);
   in.vec(&gltf_.q);
   in.vec(&gltf_.hidden);
+  // the output so far as the checkpoint counted it, before anything is changed
+  const std::string again =
+      ": the output so far differs from what the checkpoint counted (cut short, changed or "
+      "lost), so the run cannot go on from it; nothing was removed. Put the file back as it "
+      "was, or start the run afresh (remove " + dir_ + "/checkpoint first)";
+  if (csv_) {
+    Fnv64 f;
+    std::error_code ec;
+    const uintmax_t have = fs::file_size(csv_tmp_, ec);
+    if (ec || have < csv_bytes)
+      fail_input(csv_tmp_, "",
+                 std::to_string(ec ? 0 : have) + " bytes where the checkpoint counts " +
+                     std::to_string(csv_bytes) + again);
+    if (!checksum_range(csv_tmp_, 0, csv_bytes, &f) || f.h != csv_sum)
+      fail_input(csv_tmp_, "", "checksum of its first " + std::to_string(csv_bytes) +
+                                   " bytes " + f.hex() + ", the checkpoint's " +
+                                   Fnv64{csv_sum}.hex() + again);
+    csv_sum_ = f;
+    csv_summed_ = csv_bytes;
+  }
+  for (size_t i = 0; spec_.pvd && i < frames_.size(); ++i) {
+    const FrameSum& want = frame_sums_[i];
+    const std::pair<std::string, std::pair<uint64_t, uint64_t>> files[] = {
+        {(fs::path(vtp_tmp_dir_) / frame_name("bodies", i)).string(),
+         {want.bodies_bytes, want.bodies_sum}},
+        {(fs::path(shapes_tmp_dir_) / frame_name("shapes", i)).string(),
+         {want.shapes_bytes, want.shapes_sum}}};
+    for (const auto& [path, sum] : files) {
+      std::error_code ec;
+      const uintmax_t have = fs::file_size(path, ec);
+      if (ec) fail_input(path, "", "missing" + again);
+      Fnv64 f;
+      if (have != sum.first || !checksum_range(path, 0, have, &f) || f.h != sum.second)
+        fail_input(path, "", std::to_string(have) + " bytes with checksum " + f.hex() +
+                                 ", the checkpoint's " + std::to_string(sum.first) +
+                                 " bytes with " + Fnv64{sum.second}.hex() + again);
+    }
+  }
   if (csv_) {
     // lines written after the checkpoint are written again
     if (std::fflush(csv_) != 0 || ::ftruncate(fileno(csv_), off_t(csv_bytes)) != 0 ||
@@ -242,7 +339,7 @@ void ResultWriter::cleanup() {
   if (!csv_tmp_.empty()) fs::remove(csv_tmp_, ec);
   if (!vtp_tmp_dir_.empty()) fs::remove_all(vtp_tmp_dir_, ec);
   if (!shapes_tmp_dir_.empty()) fs::remove_all(shapes_tmp_dir_, ec);
-  for (const StagedPath& p : staged_) fs::remove_all(p.tmp, ec);
+  for (const ResultItem& p : staged_) fs::remove_all(fs::path(dir_) / p.tmp, ec);
   staged_.clear();
 }
 
@@ -312,7 +409,7 @@ void ResultWriter::finish(const State& st, const RunStats& stats, const nlohmann
   const fs::path d(dir_);
   auto staged = [&](const std::string& name, bool is_dir = false) {
     const std::string tmp = (d / (name + tag_)).string();
-    staged_.push_back({tmp, (d / name).string(), is_dir});
+    staged_.push_back({name, is_dir, name + tag_});
     return tmp;
   };
   if (model_.has_ground) {
@@ -334,17 +431,17 @@ void ResultWriter::finish(const State& st, const RunStats& stats, const nlohmann
     const bool bad = std::fflush(csv_) != 0 || std::ferror(csv_) || std::fclose(csv_) != 0;
     csv_ = nullptr;
     if (bad) throw Error(ExitCode::Output, where(csv_tmp_, "", "write failed (disk full?)"));
-    staged_.push_back({csv_tmp_, (d / "trajectories.csv").string(), false});
+    staged_.push_back({"trajectories.csv", false, "trajectories.csv" + tag_});
     csv_tmp_.clear();
   }
   if (spec_.pvd) {
     std::error_code ec;
     fs::remove(fs::path(vtp_tmp_dir_) / kPartialBodies, ec);
     fs::remove(fs::path(shapes_tmp_dir_) / kPartialShapes, ec);
-    staged_.push_back({vtp_tmp_dir_, (d / "bodies").string(), true});
+    staged_.push_back({"bodies", true, "bodies" + tag_});
     vtp_tmp_dir_.clear();
     write_pvd(staged("bodies.pvd"), "bodies/", frames_);
-    staged_.push_back({shapes_tmp_dir_, (d / "shapes").string(), true});
+    staged_.push_back({"shapes", true, "shapes" + tag_});
     shapes_tmp_dir_.clear();
     auto shape_frames = frames_;
     for (size_t i = 0; i < shape_frames.size(); ++i)
@@ -437,7 +534,8 @@ void ResultWriter::finish(const State& st, const RunStats& stats, const nlohmann
   s["ground_z"] = model_.has_ground ? json(model_.ground_z) : json(nullptr);
   s.update(extra);
   write_file_atomically(staged("summary.json"), [&](std::ostream& o) { o << s.dump(2) << '\n'; });
-  commit_staged(staged_);  // summary.json is the last one
+  // summary.json is the last one
+  commit_results(dir_, staged_, force_, checkpoint_dir_);
   staged_.clear();
   finished_ = true;
 }
@@ -472,6 +570,8 @@ Shape shape_from_summary(const nlohmann::json& j, const std::string& file, const
 }  // namespace
 
 Results read_results(const std::string& dir, int target_faces) {
+  // a finish that a kill interrupted while moving the results into place is completed first
+  complete_interrupted_finish(dir);
   Results r;
   const std::string sum_path = (fs::path(dir) / "summary.json").string();
   {

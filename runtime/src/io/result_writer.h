@@ -7,10 +7,12 @@
 //   landings.csv       body,type,t,x,y,z of bodies that reached the ground (scenes with ground)
 //   summary.json       counts, timing, effects, stopped bodies and why
 // Nothing appears under its final name until the run completed: files are written under
-// temporary names, and finish() renames them into place only once every one of them is
-// complete, summary.json last (io/atomic_file.h, commit_staged); if a rename fails, what was
-// renamed is put back, so either all results appear or none. A writer destroyed before
-// finish() removes its temporaries.
+// temporary names, and finish() commits them (io/results_dir.h: fsync, a journal, the earlier
+// results aside with summary.json first, the new ones into place with summary.json last, the
+// manifest), so either all results appear or none, and only names lrigid wrote are replaced
+// (the constructor refuses, before the run, a name taken by something else unless `force`).
+// A writer destroyed before finish() removes its temporaries, unless a checkpoint refers to
+// them (and always when it resumes an interrupted run: a failed resume deletes nothing).
 #pragma once
 #include <chrono>
 #include <cstdio>
@@ -20,7 +22,9 @@
 
 #include "integrate/simulation.h"
 #include "io/atomic_file.h"
+#include "io/durable.h"
 #include "io/gltf_writer.h"
+#include "io/results_dir.h"
 #include "io/vtp_frames.h"
 #include "model/state.h"
 #include "nlohmann/json.hpp"
@@ -58,7 +62,7 @@ class ResultWriter {
   // writer goes on with that run's temporaries instead of starting new ones; restore() then
   // brings them back to the checkpoint.
   ResultWriter(const std::string& dir, const Model& model, const OutputSpec& spec,
-               const std::string& resume_tag = "");
+               const std::string& resume_tag = "", bool force = false);
   ~ResultWriter();
   ResultWriter(const ResultWriter&) = delete;
   ResultWriter& operator=(const ResultWriter&) = delete;
@@ -71,10 +75,15 @@ class ResultWriter {
   // the suffix of this writer's temporary names (".tmp<pid>")
   const std::string& tag() const { return tag_; }
 
-  // Checkpoints (io/checkpoint.h): what was written so far (the trajectories' length, the
-  // frames, the animation kept in memory). save() flushes the trajectories first.
+  // Checkpoints (io/checkpoint.h): what was written so far (the trajectories' length and
+  // checksum, the frames with each file's size and checksum, the animation kept in memory).
+  // save() first makes the output so far durable (fsync). restore() checks the output so far
+  // against the checksums before it changes anything: a file cut short, or changed, is
+  // lrigid::Error(ExitCode::BadInput) naming it, and nothing is removed.
   void save(BinaryOut& out);
   void restore(BinaryIn& in);
+  // the run's checkpoint folder (a name in dir()), removed as part of the finish's commit
+  void set_checkpoint_dir(const std::string& name) { checkpoint_dir_ = name; }
   // once a checkpoint refers to them, the temporaries are kept when the run fails
   void keep_temporaries() { keep_ = true; }
 
@@ -82,6 +91,7 @@ class ResultWriter {
   void cleanup();
   void write_partial_pvds() const;
   void remove_stale_temporaries() const;
+  std::vector<ResultItem> planned() const;
 
   std::string dir_;
   const Model& model_;
@@ -96,7 +106,16 @@ class ResultWriter {
   std::chrono::steady_clock::time_point partial_written_;  // the partial .pvd's last rewrite
   GltfAnimation gltf_;                  // frames kept for animation.glb
   std::vector<std::pair<double, std::string>> frames_;
-  std::vector<StagedPath> staged_;      // complete temporaries waiting for commit_staged
+  std::vector<ResultItem> staged_;      // complete temporaries waiting for commit_results
+  // checkpoints: the trajectories checksummed (and fsync'ed) so far, and each frame's files
+  Fnv64 csv_sum_;
+  uint64_t csv_summed_ = 0;
+  struct FrameSum {
+    uint64_t bodies_bytes, bodies_sum, shapes_bytes, shapes_sum;
+  };
+  std::vector<FrameSum> frame_sums_;
+  std::string checkpoint_dir_;
+  bool force_ = false;
   bool finished_ = false;
   bool keep_ = false;
 };

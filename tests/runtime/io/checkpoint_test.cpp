@@ -5,7 +5,12 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
+
+#include "util/error.h"
 
 namespace lrigid {
 namespace {
@@ -88,6 +93,91 @@ TEST(Checkpoint, KeepsTheSleepersGustWatches) {
   read_checkpoint(path, id, 0, &plain, &stats, none_in);
   EXPECT_TRUE(plain.watch.empty());
   std::remove(path.c_str());
+}
+
+std::string slurp(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+void put(const std::string& path, const std::string& bytes) {
+  std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes;
+}
+
+// read_checkpoint's error message, or "" when it reads the file
+std::string read_error(const std::string& path) {
+  const CheckpointId id{"build", "scene", 1, "scene.json"};
+  State back = bodies(3, true);
+  RunStats stats;
+  try {
+    read_checkpoint(path, id, 0, &back, &stats, [](BinaryIn& in) {
+      std::string extra;
+      in.str(&extra);
+    });
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), ExitCode::BadInput) << e.what();
+    return e.what();
+  }
+  return "";
+}
+
+// Issue 54: a checkpoint ends in a checksum of everything before it. One flipped bit anywhere
+// (the header, the bodies' state, the writer's part, the checksum itself) and any cut is
+// refused with exit 3; before, a bit flipped in the bodies' data resumed with other results.
+TEST(Checkpoint, AnyFlippedBitOrCutIsRefused) {
+  const std::string path = ::testing::TempDir() + "/flip.ckpt";
+  const CheckpointId id{"build", "scene", 1, "scene.json"};
+  State st = bodies(3, true);
+  st.x[1] = Vec3(0.25, -1.5, 3.0);
+  st.v[2] = Vec3(1, 2, 3);
+  write_checkpoint(path, id, 0, st, RunStats{}, [](BinaryOut& out) { out.str("the writer"); });
+  ASSERT_EQ(read_error(path), "");
+  const std::string good = slurp(path);
+  ASSERT_GT(good.size(), 200u);
+  size_t refused = 0, tried = 0;
+  for (size_t at = 0; at < good.size(); at += 7) {
+    std::string bad = good;
+    bad[at] ^= char(1 << (at % 8));
+    put(path, bad);
+    const std::string err = read_error(path);
+    ++tried;
+    if (!err.empty()) ++refused;
+    else ADD_FAILURE() << "a bit flipped at byte " << at << " of " << good.size() << " was read";
+  }
+  EXPECT_EQ(refused, tried);
+  for (const size_t cut : {size_t(1), size_t(8), good.size() / 2, good.size() - 9}) {
+    put(path, good.substr(0, good.size() - cut));
+    EXPECT_NE(read_error(path), "") << "cut by " << cut << " bytes";
+  }
+  put(path, good + "x");
+  EXPECT_NE(read_error(path), "") << "a byte appended";
+  // the body data: the message says checksum
+  std::string bad = good;
+  bad[good.size() / 2] ^= 0x10;
+  put(path, bad);
+  EXPECT_NE(read_error(path).find("checksum mismatch"), std::string::npos) << read_error(path);
+  std::remove(path.c_str());
+}
+
+// A checkpoint of the format before checksums (LRIGCKP2) is refused, saying why: it cannot be
+// verified (docs/cli.md, "Checkpoints and --resume")
+TEST(Checkpoint, AnUncheckedOlderFormatIsRefusedSayingWhy) {
+  const std::string path = ::testing::TempDir() + "/old.ckpt";
+  put(path, std::string("LRIGCKP2") + std::string(200, '\0'));
+  const std::string err = read_error(path);
+  EXPECT_NE(err.find("format 2"), std::string::npos) << err;
+  EXPECT_NE(err.find("no checksum"), std::string::npos) << err;
+  std::remove(path.c_str());
+}
+
+// A checkpoint file that is not there says so (before: "cannot be read")
+TEST(Checkpoint, AMissingFileSaysMissing) {
+  const std::string path = ::testing::TempDir() + "/nowhere/rank0.step40.bin";
+  const std::string err = read_error(path);
+  EXPECT_NE(err.find("missing"), std::string::npos) << err;
+  EXPECT_EQ(err.find("cannot be read"), std::string::npos) << err;
 }
 
 }  // namespace

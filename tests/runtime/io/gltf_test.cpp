@@ -302,6 +302,10 @@ TEST(Gltf, ResumeClearsTheInterruptedRunsUnfinishedFiles) {
     std::ofstream(dir + "/" + name + (std::string(name) == "trajectories.csv" ? tag : ""))
         << "x\n";
   std::ofstream(dir + "/animation.glb.tmp42.tmp42") << "half\n";
+  // the animation.glb there is an earlier run's result (its manifest says so): the run may
+  // replace it at its finish, so it does not refuse to start (io/results_dir.h)
+  std::ofstream(dir + "/lrigid-manifest.json")
+      << R"({"files": ["animation.glb"], "folders": {}})" << "\n";
   fs::create_directories(dir + "/bodies" + tag);
   fs::create_directories(dir + "/shapes" + tag);
   std::ofstream(dir + "/bodies" + tag + "/bodies_0000.vtp") << "frame\n";
