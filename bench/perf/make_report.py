@@ -322,7 +322,7 @@ def main():
             w(line)
         w("")
 
-    # the outputs' cost (issue 29): hand-written next to this script from
+    # the outputs' cost: hand-written next to this script from
     # bench/perf/output_cost.sh's measurements, copied as it is
     cost = os.path.join(os.path.dirname(os.path.abspath(__file__)), "output_cost.md")
     if os.path.exists(cost):
@@ -330,13 +330,22 @@ def main():
             w(line)
         w("")
 
-    # the cost of contacts (issue 23): written by bench/contacts/run.py, copied as it is
+    # the cost of contacts: written by bench/contacts/run.py, copied as it is
     contacts = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "contacts",
                             "contacts_cost.md")
     if os.path.exists(contacts):
         for line in open(contacts).read().rstrip("\n").split("\n"):
             w(line)
         w("")
+
+    # the durability of the results (written next to this script from bench/perf/fsync_cost.sh)
+    # and the build's time (from bench/perf/build_time.sh and compare_builds.py), copied as they are
+    for name in ("fsync_cost.md", "build_time.md"):
+        extra = os.path.join(os.path.dirname(os.path.abspath(__file__)), name)
+        if os.path.exists(extra):
+            for line in open(extra).read().rstrip("\n").split("\n"):
+                w(line)
+            w("")
 
     # peers and targets
     w("## Peers and targets")

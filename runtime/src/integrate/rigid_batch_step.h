@@ -387,17 +387,6 @@ LRIGID_LANE void stage_flow_start(const StepConsts<Mass>& tc, const Lanes<T>* la
   (void)h, (void)hh;
   const T wm = T(tc.wm);
   const T tu = T(tc.tu);  // the seen fluctuation's factor in the fluid velocity
-  T(&Y0)[6][kBatch] = flow->Y0;
-  T(&Y)[6][kBatch] = flow->Y;
-  T(&tol2)[kBatch] = flow->tol2;
-  T(&last)[kBatch] = flow->last;
-  T(&uf)[3][kBatch] = flow->uf;
-  T(&V0)[3][kBatch] = flow->V0;
-  int(&active)[kBatch] = flow->active;
-  T(&usn)[3][kBatch] = next->us;
-  int(&scalar)[kBatch] = next->scalar;
-  (void)Y0, (void)Y, (void)tol2, (void)last, (void)uf, (void)V0, (void)active, (void)usn,
-      (void)scalar;
 LRIGID_IVDEP
   for (int j = 0; j < nw; ++j) {
     T us[3] = {lanes->us[0][j], lanes->us[1][j], lanes->us[2][j]};
@@ -436,18 +425,18 @@ LRIGID_IVDEP
     const T norm0 = energy_norm2(tc.mass, y0);
 #pragma GCC unroll 6
     for (int a = 0; a < 6; ++a) {
-      Y0[a][j] = y0[a];
-      Y[a][j] = y[a];
+      flow->Y0[a][j] = y0[a];
+      flow->Y[a][j] = y[a];
     }
-    tol2[j] = T(kLaneKirchhoffTol<T> * kLaneKirchhoffTol<T>) * norm0;
-    last[j] = T(0);
-    active[j] = 1;
-    scalar[j] = 0;
+    flow->tol2[j] = T(kLaneKirchhoffTol<T> * kLaneKirchhoffTol<T>) * norm0;
+    flow->last[j] = T(0);
+    flow->active[j] = 1;
+    next->scalar[j] = 0;
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
-      uf[a][j] = u_f[a];
-      V0[a][j] = V[a];
-      usn[a][j] = us[a];
+      flow->uf[a][j] = u_f[a];
+      flow->V0[a][j] = V[a];
+      next->us[a][j] = us[a];
     }
   }
 }
@@ -462,17 +451,6 @@ LRIGID_LANE void stage_kirchhoff_flow(const StepConsts<Mass>& tc, Lanes<T>* lane
   const int nw = lanes->width;
   const T h = T(tc.h), hh = T(0.5 * tc.h);
   (void)h, (void)hh;
-  T(&Y0)[6][kBatch] = flow->Y0;
-  T(&Y)[6][kBatch] = flow->Y;
-  T(&tol2)[kBatch] = flow->tol2;
-  T(&last)[kBatch] = flow->last;
-  T(&uf)[3][kBatch] = flow->uf;
-  T(&V0)[3][kBatch] = flow->V0;
-  int(&active)[kBatch] = flow->active;
-  T(&usn)[3][kBatch] = next->us;
-  int(&scalar)[kBatch] = next->scalar;
-  (void)Y0, (void)Y, (void)tol2, (void)last, (void)uf, (void)V0, (void)active, (void)usn,
-      (void)scalar;
   // the fixed-point iteration Y <- Y0 - h gyro((Y0 + Y)/2); lanes drop out as they converge;
   // a lane that contracts slowly or diverges goes to the scalar step (its Newton iteration)
   for (int it = 0; it < kKirchhoffMaxFixedPoint; ++it) {
@@ -482,23 +460,23 @@ LRIGID_IVDEP
       T y0[6], y[6], y_next[6];
 #pragma GCC unroll 6
       for (int a = 0; a < 6; ++a) {
-        y0[a] = Y0[a][j];
-        y[a] = Y[a][j];
+        y0[a] = flow->Y0[a][j];
+        y[a] = flow->Y[a][j];
       }
       const T step2 = kirchhoff_fixed_point(tc.mass, h, y0, y, y_next);
       int fin = 1;
 #pragma GCC unroll 6
       for (int a = 0; a < 6; ++a) fin &= int(std::isfinite(y_next[a]));
-      const int act = active[j];
+      const int act = flow->active[j];
       const int keep = act & fin;
 #pragma GCC unroll 6
-      for (int a = 0; a < 6; ++a) Y[a][j] = keep ? y_next[a] : Y[a][j];
-      const int conv = int(step2 <= tol2[j]);
-      const int slow = int(it > 0) & int(step2 > T(kKirchhoffSlowContraction) * last[j]);
-      scalar[j] |= act & ((1 - fin) | ((1 - conv) & slow));
+      for (int a = 0; a < 6; ++a) flow->Y[a][j] = keep ? y_next[a] : flow->Y[a][j];
+      const int conv = int(step2 <= flow->tol2[j]);
+      const int slow = int(it > 0) & int(step2 > T(kKirchhoffSlowContraction) * flow->last[j]);
+      next->scalar[j] |= act & ((1 - fin) | ((1 - conv) & slow));
       const int more = keep & (1 - conv) & (1 - slow);
-      last[j] = act ? step2 : last[j];
-      active[j] = more;
+      flow->last[j] = act ? step2 : flow->last[j];
+      flow->active[j] = more;
       any |= more;
     }
     if (!any) break;
@@ -514,7 +492,7 @@ LRIGID_IVDEP
     int newton[kBatch], refactor[kBatch];
     int any_newton = 0;
     for (int j = 0; j < nw; ++j) {
-      newton[j] = scalar[j] | active[j];
+      newton[j] = next->scalar[j] | flow->active[j];
       any_newton |= newton[j];
     }
     // most blocks have no lane here: they skip the start and the counting (one pass over the
@@ -530,14 +508,14 @@ LRIGID_IVDEP
         int fin = 1;
 #pragma GCC unroll 6
         for (int a = 0; a < 6; ++a) {
-          y0[a] = Y0[a][j];
-          dy[a] = Y[a][j] - y0[a];
-          fin &= int(std::isfinite(Y[a][j]));
+          y0[a] = flow->Y0[a][j];
+          dy[a] = flow->Y[a][j] - y0[a];
+          fin &= int(std::isfinite(flow->Y[a][j]));
         }
         const T dist = energy_norm2(tc.mass, dy), norm0 = energy_norm2(tc.mass, y0);
         const int reset = nt & ((1 - fin) | int(dist > T(4) * norm0));
 #pragma GCC unroll 6
-        for (int a = 0; a < 6; ++a) Y[a][j] = reset ? Y0[a][j] : Y[a][j];
+        for (int a = 0; a < 6; ++a) flow->Y[a][j] = reset ? flow->Y0[a][j] : flow->Y[a][j];
       }
       for (int j = 0; j < nw; ++j)
         lanes->newton += uint64_t(newton[j] != 0) & uint64_t(lanes->live[j]);
@@ -554,7 +532,7 @@ LRIGID_IVDEP
         for (int j = 0; j < nw; ++j) {
           T ym[6], A[36];
 #pragma GCC unroll 6
-          for (int a = 0; a < 6; ++a) ym[a] = T(0.5) * (Y0[a][j] + Y[a][j]);
+          for (int a = 0; a < 6; ++a) ym[a] = T(0.5) * (flow->Y0[a][j] + flow->Y[a][j]);
           kirchhoff_newton_matrix(tc.mass, ym, hh, A);
           const int ok = lu_factor<6>(A);
           const int ref = newton[j] & refactor[j];
@@ -571,8 +549,8 @@ LRIGID_IVDEP
         T y0[6], y[6], r[6], A[36];
 #pragma GCC unroll 6
         for (int a = 0; a < 6; ++a) {
-          y0[a] = Y0[a][j];
-          y[a] = Y[a][j];
+          y0[a] = flow->Y0[a][j];
+          y[a] = flow->Y[a][j];
         }
         kirchhoff_residual(tc.mass, h, y0, y, r);
 #pragma GCC unroll 36
@@ -587,11 +565,11 @@ LRIGID_IVDEP
         }
         const int good = act & fin;
 #pragma GCC unroll 6
-        for (int a = 0; a < 6; ++a) Y[a][j] = good ? y[a] : Y[a][j];
-        const int conv = good & int(step2 <= tol2[j]);
+        for (int a = 0; a < 6; ++a) flow->Y[a][j] = good ? y[a] : flow->Y[a][j];
+        const int conv = good & int(step2 <= flow->tol2[j]);
         // converged: the loops take the lane again; failed: it stays with the scalar step
-        scalar[j] = conv ? 0 : scalar[j];
-        active[j] = conv ? 0 : active[j];
+        next->scalar[j] = conv ? 0 : next->scalar[j];
+        flow->active[j] = conv ? 0 : flow->active[j];
         const int more = good & (1 - conv);
         refactor[j] =
             int(it > 0) & int(step2 > T(kKirchhoffRefactor * kKirchhoffRefactor) * last_step[j]);
@@ -615,22 +593,6 @@ LRIGID_LANE void stage_forces_implicit(const StepConsts<Mass>& tc, Lanes<T>* lan
   const int nw = lanes->width;
   const T h = T(tc.h), hh = T(0.5 * tc.h);
   (void)h, (void)hh;
-  T(&Y0)[6][kBatch] = flow->Y0;
-  T(&Y)[6][kBatch] = flow->Y;
-  T(&tol2)[kBatch] = flow->tol2;
-  T(&last)[kBatch] = flow->last;
-  T(&uf)[3][kBatch] = flow->uf;
-  T(&V0)[3][kBatch] = flow->V0;
-  int(&active)[kBatch] = flow->active;
-  T(&usn)[3][kBatch] = next->us;
-  int(&scalar)[kBatch] = next->scalar;
-  (void)Y0, (void)Y, (void)tol2, (void)last, (void)uf, (void)V0, (void)active, (void)usn,
-      (void)scalar;
-  T(&xn)[3][kBatch] = next->x;
-  T(&qn)[4][kBatch] = next->q;
-  T(&vn)[3][kBatch] = next->vel;
-  T(&wn)[3][kBatch] = next->w;
-  (void)xn, (void)qn, (void)vn, (void)wn;
   // what Newton needs: the impulse P (linear, relative to the fluid's added-mass impulse) and lanes
   // before the forces, their changes dP and dL, h times the forces other than drag G (and their
   // torque about an offset centre of mass: zero for a uniform body), the fluid velocity (body
@@ -644,7 +606,7 @@ LRIGID_IVDEP
   for (int j = 0; j < nw; ++j) {
     // q <- q cay(h w_mid)
     T q[4], R[9], ufb[3], v[3], w[3], vr[3];
-    lane_flow_end(tc, lanes->q, Y0, Y, uf, j, q, R, ufb, v, w);
+    lane_flow_end(tc, lanes->q, flow->Y0, flow->Y, flow->uf, j, q, R, ufb, v, w);
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) vr[a] = v[a] - ufb[a];
     // the Basset history force (world; zero without the history) joins the weight; the current
@@ -659,7 +621,7 @@ LRIGID_IVDEP
     mul_t(R, F, Fb);
     const DragOut<T> drag = lane_forces<T, Plate>(tc, R, Fb, vr, w, fe);
 #pragma GCC unroll 3
-    for (int a = 0; a < 3; ++a) u_end[a] = uf[a][j] + h * T(tc.gu) * lanes->acc[a][j];
+    for (int a = 0; a < 3; ++a) u_end[a] = flow->uf[a][j] + h * T(tc.gu) * lanes->acc[a][j];
     mul_t(R, u_end, ufb_end);
     T Gj[6], rhs[6], dPL_j[6];
 #pragma GCC unroll 3
@@ -686,8 +648,8 @@ LRIGID_IVDEP
     const T e_new = lane_energy_norm2(tc.mass, dPL_j), e_r = lane_velocity_norm2(tc.mass, xr);
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
-      vn[a][j] = xin[a];
-      wn[a][j] = xin[3 + a];
+      next->vel[a][j] = xin[a];
+      next->w[a][j] = xin[3 + a];
       G[a][j] = Gj[a];
       G[3 + a][j] = Gj[3 + a];
       ufe[a][j] = ufb_end[a];
@@ -696,13 +658,13 @@ LRIGID_IVDEP
     // drag that changes the relative velocity by more than kStiffChange: Newton, as the scalar
     // step (lanes the scalar step takes anyway need none)
     const int st = int(tc.drag != 0) & int(e_new > T(kStiffChange * kStiffChange) * e_r) &
-                   (1 - (scalar[j] | active[j]));
+                   (1 - (next->scalar[j] | flow->active[j]));
     stiff[j] = st;
     any_stiff |= st;
     norm_r[j] = e_r;
-    scalar[j] |= active[j];
+    next->scalar[j] |= flow->active[j];
 #pragma GCC unroll 4
-    for (int a = 0; a < 4; ++a) qn[a][j] = q[a];
+    for (int a = 0; a < 4; ++a) next->q[a][j] = q[a];
   }
   // stiff drag: Newton on R(dPi) = dPi - h (G_other + F_drag(xi(dPi))) - b_B (h a - dv), lanes
   // drop out as they converge (integrators.cpp split_deterministic_step). One Newton update of
@@ -712,8 +674,8 @@ LRIGID_IVDEP
     T vr[3], w[3], lift[3];
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
-      vr[a] = vn[a][j] - ufs[a][j];
-      w[a] = wn[a][j];
+      vr[a] = next->vel[a][j] - ufs[a][j];
+      w[a] = next->w[a][j];
     }
     const DragOut<T> drag = body_forces<T, Plate>(tc, vr, w, lift);
     // the Newton step -M (M + h J + b_B P)^-1 res, J the drag's stiffness here
@@ -743,8 +705,8 @@ LRIGID_IVDEP
     for (int a = 0; a < 3; ++a) {
       dPL[a][j] = act ? dPi[a] : dPL[a][j];
       dPL[3 + a][j] = act ? dPi[3 + a] : dPL[3 + a][j];
-      vn[a][j] = act ? xin[a] : vn[a][j];
-      wn[a][j] = act ? xin[3 + a] : wn[a][j];
+      next->vel[a][j] = act ? xin[a] : next->vel[a][j];
+      next->w[a][j] = act ? xin[3 + a] : next->w[a][j];
     }
     const int more = act & int(conv > T(kDragTol * kDragTol) * norm_r[j]);
     stiff[j] = more;
@@ -793,33 +755,17 @@ LRIGID_LANE void stage_positions(const StepConsts<Mass>& tc, const Lanes<T>* lan
   const int nw = lanes->width;
   const T h = T(tc.h), hh = T(0.5 * tc.h);
   (void)h, (void)hh;
-  T(&Y0)[6][kBatch] = flow->Y0;
-  T(&Y)[6][kBatch] = flow->Y;
-  T(&tol2)[kBatch] = flow->tol2;
-  T(&last)[kBatch] = flow->last;
-  T(&uf)[3][kBatch] = flow->uf;
-  T(&V0)[3][kBatch] = flow->V0;
-  int(&active)[kBatch] = flow->active;
-  T(&usn)[3][kBatch] = next->us;
-  int(&scalar)[kBatch] = next->scalar;
-  (void)Y0, (void)Y, (void)tol2, (void)last, (void)uf, (void)V0, (void)active, (void)usn,
-      (void)scalar;
-  T(&xn)[3][kBatch] = next->x;
-  T(&qn)[4][kBatch] = next->q;
-  T(&vn)[3][kBatch] = next->vel;
-  T(&wn)[3][kBatch] = next->w;
-  (void)xn, (void)qn, (void)vn, (void)wn;
   // 4. x by the trapezoidal rule on the world velocity
 LRIGID_IVDEP
   for (int j = 0; j < nw; ++j) {
-    const T q[4] = {qn[0][j], qn[1][j], qn[2][j], qn[3][j]};
-    const T v[3] = {vn[0][j], vn[1][j], vn[2][j]};
+    const T q[4] = {next->q[0][j], next->q[1][j], next->q[2][j], next->q[3][j]};
+    const T v[3] = {next->vel[0][j], next->vel[1][j], next->vel[2][j]};
     T R[9], Vend[3];
     rotation(q, R);
     mul(R, v, Vend);
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
-      xn[a][j] = lanes->x[a][j] + hh * (V0[a][j] + Vend[a]);
+      next->x[a][j] = lanes->x[a][j] + hh * (flow->V0[a][j] + Vend[a]);
       Vn[a][j] = Vend[a];
     }
   }
@@ -836,56 +782,40 @@ LRIGID_LANE void stage_strang_end(const StepConsts<Mass>& tc, Lanes<T>* lanes, F
   const T h = T(tc.h), hh = T(0.5 * tc.h);
   (void)h, (void)hh;
   const T tu = T(tc.tu);
-  T(&Y0)[6][kBatch] = flow->Y0;
-  T(&Y)[6][kBatch] = flow->Y;
-  T(&tol2)[kBatch] = flow->tol2;
-  T(&last)[kBatch] = flow->last;
-  T(&uf)[3][kBatch] = flow->uf;
-  T(&V0)[3][kBatch] = flow->V0;
-  int(&active)[kBatch] = flow->active;
-  T(&usn)[3][kBatch] = next->us;
-  int(&scalar)[kBatch] = next->scalar;
-  (void)Y0, (void)Y, (void)tol2, (void)last, (void)uf, (void)V0, (void)active, (void)usn,
-      (void)scalar;
-  T(&xn)[3][kBatch] = next->x;
-  T(&qn)[4][kBatch] = next->q;
-  T(&vn)[3][kBatch] = next->vel;
-  T(&wn)[3][kBatch] = next->w;
-  (void)xn, (void)qn, (void)vn, (void)wn;
   // strang: x by the trapezoidal rule over the flow, the field at the new positions, the
   // second force half step there, and the second OU half step (end_step, on that sample)
 LRIGID_IVDEP
   for (int j = 0; j < nw; ++j) {
     T q[4], R[9], ufb[3], v[3], w[3], Vend[3];
-    lane_flow_end(tc, lanes->q, Y0, Y, uf, j, q, R, ufb, v, w);
+    lane_flow_end(tc, lanes->q, flow->Y0, flow->Y, flow->uf, j, q, R, ufb, v, w);
     mul(R, v, Vend);
-    scalar[j] |= active[j];
+    next->scalar[j] |= flow->active[j];
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
-      xn[a][j] = lanes->x[a][j] + hh * (V0[a][j] + Vend[a]);
-      vn[a][j] = v[a];
-      wn[a][j] = w[a];
+      next->x[a][j] = lanes->x[a][j] + hh * (flow->V0[a][j] + Vend[a]);
+      next->vel[a][j] = v[a];
+      next->w[a][j] = w[a];
     }
 #pragma GCC unroll 4
-    for (int a = 0; a < 4; ++a) qn[a][j] = q[a];
+    for (int a = 0; a < 4; ++a) next->q[a][j] = q[a];
   }
   for (int j = 0; j < nw; ++j) inside0[j] = tc.sample ? lanes->inside[j] : T(1);
   if (tc.sample) sample_lanes(tc, next->x, lanes, 0, nw);
 LRIGID_IVDEP
   for (int j = 0; j < nw; ++j) {
-    const T q[4] = {qn[0][j], qn[1][j], qn[2][j], qn[3][j]};
+    const T q[4] = {next->q[0][j], next->q[1][j], next->q[2][j], next->q[3][j]};
     const T acc[3] = {lanes->acc[0][j], lanes->acc[1][j], lanes->acc[2][j]};
-    T R[9], u_f[3], v[3] = {vn[0][j], vn[1][j], vn[2][j]}, w[3] = {wn[0][j], wn[1][j], wn[2][j]};
+    T R[9], u_f[3], v[3] = {next->vel[0][j], next->vel[1][j], next->vel[2][j]}, w[3] = {next->w[0][j], next->w[1][j], next->w[2][j]};
     rotation(q, R);
 #pragma GCC unroll 3
-    for (int a = 0; a < 3; ++a) u_f[a] = T(tc.mf) * lanes->U[a][j] + tu * usn[a][j];
+    for (int a = 0; a < 3; ++a) u_f[a] = T(tc.mf) * lanes->U[a][j] + tu * next->us[a][j];
     strang_force_lane<T, Plate>(tc, R, u_f, acc, hh, v, w);
     T Vend[3];
     mul(R, v, Vend);
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
-      vn[a][j] = v[a];
-      wn[a][j] = w[a];
+      next->vel[a][j] = v[a];
+      next->w[a][j] = w[a];
       Vn[a][j] = Vend[a];
     }
   }
