@@ -391,7 +391,7 @@ def write_doc(path, m, rows, acc, peers, mujoco, quick, leaves=None):
         "mass is off its volume centroid (`mass_offset`: a keel, a weighted stem; a sphere too,"
         " whose loops then are the plates') takes the plates' step: the fluid's forces act at "
         "the centroid, moving at v + ω × r_cob, and they and the buoyancy turn the body about "
-        "its centre of mass (the loops' `Extra` switch, with Magnus and Basset; "
+        "its centre of mass (runtime factors in the loops, zero for a uniform body, as for Magnus and Basset; "
         "`RigidBatch.BodiesWithTheirCentreOfMassOffTheCentroidMatchTheScalarStep`: leaves, seed"
         " pods, a leaf without added mass and a sphere, each scheme: positions within 10⁻¹³ m "
         "and spins within 10⁻⁹ rad/s of the scalar step after 0.2 s). The loops run the scalar "
