@@ -60,6 +60,14 @@ Owned legacy_owned(const fs::path& d) {
   return o;
 }
 
+Owned owned_from_json(const json& j) {
+  Owned o;
+  for (const auto& f : j.at("files")) o.files.insert(f.get<std::string>());
+  for (const auto& [folder, files] : j.at("folders").items())
+    for (const auto& f : files) o.folders[folder].insert(f.get<std::string>());
+  return o;
+}
+
 Owned read_owned(const fs::path& d) {
   const fs::path m = d / kManifestName;
   std::error_code ec;
@@ -67,11 +75,8 @@ Owned read_owned(const fs::path& d) {
   std::ifstream in(m);
   if (!in) throw Error(ExitCode::Output, where(m.string(), "", "cannot be read"));
   const json j = json::parse(in, nullptr, false);
-  Owned o;
   try {
-    for (const auto& f : j.at("files")) o.files.insert(f.get<std::string>());
-    for (const auto& [folder, files] : j.at("folders").items())
-      for (const auto& f : files) o.folders[folder].insert(f.get<std::string>());
+    return owned_from_json(j);
   } catch (const json::exception& e) {
     throw Error(ExitCode::Output,
                 where(m.string(), "",
@@ -79,7 +84,6 @@ Owned read_owned(const fs::path& d) {
                           "): lrigid cannot tell which files here it wrote; remove it only if "
                           "nothing in this folder is yours, or write elsewhere with -o"));
   }
-  return o;
 }
 
 json manifest_json(const Owned& o) {
@@ -91,13 +95,6 @@ json manifest_json(const Owned& o) {
           {"folders", folders}};
 }
 
-Owned owned_from_json(const json& j) {
-  Owned o;
-  for (const auto& f : j.at("files")) o.files.insert(f.get<std::string>());
-  for (const auto& [folder, files] : j.at("folders").items())
-    for (const auto& f : files) o.folders[folder].insert(f.get<std::string>());
-  return o;
-}
 
 bool exists_nofollow(const fs::path& p) {
   std::error_code ec;
