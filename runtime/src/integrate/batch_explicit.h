@@ -104,12 +104,8 @@ LRIGID_LANE void ou_euler_lane(const FieldConsts& fc, const Lanes* lanes, int j,
                                const T (*z)[kBatch], T* us) {
   T decay, noise;
   ou_euler_kernel(lanes->alpha[j], lanes->beta[j], T(fc.h), &decay, &noise);
-  const T gs[3] = {lanes->gs[0][j], lanes->gs[1][j], lanes->gs[2][j]};
-  const T zj[3] = {z[0][j], z[1][j], z[2][j]};
-  // without seen turbulence (tu = 0) the identity, exactly (as lane_ou_half)
-  const T tu = T(fc.tu);
-  ou_update(T(fc.wm) * tu, decay * tu + (T(1) - tu), noise * tu, lanes->sigma2[j], V0, gs, zj,
-            T(fc.h), us);
+  // without seen turbulence (tu = 0) the identity, exactly
+  lane_ou_update(T(fc.tu), T(fc.wm), decay, noise, T(fc.h), *lanes, z, j, V0, us);
 }
 
 }  // namespace

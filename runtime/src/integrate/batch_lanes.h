@@ -505,16 +505,21 @@ LRIGID_LANE int lane_landed(const FieldConsts& fc, const T* q, T z) {
 
 // The exact OU half step (effects/turbulence.h ou_update, Thomson's drift along the world
 // velocity V) of lane j's seen fluctuation us, with normals z (3 x kBatch) and the lanes'
-// coefficients at their samples. tu: the seen turbulence's factor, 1 or 0; with 0 the update is
+// coefficients at their samples (lane_ou_update: with any decay and noise, as euler's and rk4's
+// Euler-Maruyama update takes). tu: the seen turbulence's factor, 1 or 0; with 0 the update is
 // the identity (decay 1, no noise, no drift), exactly. (A factor, not a select on a flag: GCC
 // does not vectorize a loop that selects on a bool.)
 template <typename T>
-LRIGID_LANE void lane_ou_half(T tu, T wm, T hh, const Samples<T>& lanes, const T (*z)[kBatch],
-                              int j, const T* V, T* us) {
+LRIGID_LANE void lane_ou_update(T tu, T wm, T decay, T noise, T h, const Samples<T>& lanes,
+                                const T (*z)[kBatch], int j, const T* V, T* us) {
   const T gs[3] = {lanes.gs[0][j], lanes.gs[1][j], lanes.gs[2][j]};
   const T zj[3] = {z[0][j], z[1][j], z[2][j]};
-  const T decay = lanes.decay[j] * tu + (T(1) - tu), noise = lanes.noise[j] * tu;
-  ou_update(wm * tu, decay, noise, lanes.sigma2[j], V, gs, zj, hh, us);
+  ou_update(wm * tu, decay * tu + (T(1) - tu), noise * tu, lanes.sigma2[j], V, gs, zj, h, us);
+}
+template <typename T>
+LRIGID_LANE void lane_ou_half(T tu, T wm, T hh, const Samples<T>& lanes, const T (*z)[kBatch],
+                              int j, const T* V, T* us) {
+  lane_ou_update(tu, wm, lanes.decay[j], lanes.noise[j], hh, lanes, z, j, V, us);
 }
 
 // A step's new state per lane, filled by a batched step before end_step: position,
@@ -659,6 +664,11 @@ BlockStats drive_block(const Model& model, const BodyType& type, const FieldCons
   resample(0, kBatch);
   alignas(64) int outcome[kBatch];
   alignas(64) int landed[kBatch];
+  // one comparison per surface: lane j may touch a colliding ground (its bounding box reaches
+  // it: land) or a wall (the sample's wall distance within the body's reach)
+  auto near_surface = [&](int j, bool land) {
+    return (land & fc.ground_collide) | (fc.walls_collide & (double(lanes->wall[j]) <= fc.reach));
+  };
   for (uint64_t s = first; s < last; ++s) {
     bool any = false, sleepers = false;
     int hi = 0;  // past the last live lane
@@ -704,10 +714,7 @@ BlockStats drive_block(const Model& model, const BodyType& type, const FieldCons
       if (!lanes->live[j]) continue;
       const size_t i = lanes->body[j];
       bool land = landed[j] != 0;
-      // one comparison per surface: near a colliding ground (the bounding box reaches it) or a
-      // wall
-      bool near = (land & fc.ground_collide) |
-                  (fc.walls_collide & (double(lanes->wall[j]) <= fc.reach));
+      bool near = near_surface(j, land);
       if (outcome[j] == kOk && step_end_is_quiet(model, StepOutcome::Ok, near, land)) {
         // most lanes: a step in free flight, nothing to do at its end
         ++stats.body_steps;
@@ -752,8 +759,7 @@ BlockStats drive_block(const Model& model, const BodyType& type, const FieldCons
           lanes->load(j, b);
           resample(j, j + 1);
           land = model.has_ground && touches_ground(model, type, b);
-          near = (land & fc.ground_collide) |
-                 (fc.walls_collide & (double(lanes->wall[j]) <= fc.reach));
+          near = near_surface(j, land);
         }
       }
       if (out == StepOutcome::Ok) ++stats.body_steps;
