@@ -162,7 +162,7 @@ inline void set_field_consts(const Model& model, const BodyType& type, FieldCons
 }
 
 // What rules out the batched steps for every body type: the integrator (euler and rk4 only where
-// explicit_schemes; both steps now run them, sphere_batch_explicit.h and rigid_batch_explicit.h,
+// explicit_schemes; both steps run them, sphere_batch_explicit.h and rigid_batch_explicit.h,
 // so both pass true), the turbulence model, the noise, the field. Empty when none does.
 inline std::string batch_exclusion(const Model& model, const BodyType& type,
                                    bool explicit_schemes) {
@@ -613,9 +613,9 @@ LRIGID_IVDEP
   }
 }
 
-// Calls f with std::bool_constant<a>.
+// Calls f with std::bool_constant<a> (inlined: a multiversioned loop keeps its version).
 template <class F>
-void with_switch(bool a, F f) {
+LRIGID_LANE void with_switch(bool a, F f) {
   if (a)
     f(std::true_type{});
   else

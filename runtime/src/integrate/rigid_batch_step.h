@@ -2,10 +2,10 @@
 // the lanes, the force kernels, the splitting and strang loops (step_lanes), the euler and rk4
 // loops (rigid_batch_explicit.h) and advance<T, Mass>, which drives a block through them.
 // Internal to the four files that instantiate it, one for each precision and kind of M
-// (rigid_batch_{diag,full}_{double,float}.cpp). Each holds 2 x 8 copies of the loops (the scheme
-// families times the three template switches), each compiled three times (LRIGID_MULTIVERSION):
-// in one file they took 5.4 min of GCC -O3 on one core (README.md, Tests: build time); the
-// four compile side by side.
+// (rigid_batch_{diag,full}_{double,float}.cpp), which compile side by side. Each holds the
+// splitting and strang loops once (the plate force stage is chosen inside them by with_switch)
+// and the euler and rk4 loops once per plate switch: 6 instantiations per file, each compiled for
+// every target of LRIGID_MULTIVERSION. bench/perf/build_time.sh measures what that costs.
 #pragma once
 #include <algorithm>
 #include <cmath>
@@ -283,7 +283,7 @@ LRIGID_LANE void flow_end(const StepConsts<Mass>& tc, const T* q0, const T* y0, 
 #pragma GCC unroll 6
   for (int k = 0; k < 6; ++k) ym[k] = T(0.5) * (y0[k] + y[k]);
   if constexpr (std::is_same_v<Mass, DiagonalMass>) {
-    // (h/2 M^-1 first: the rounding of the diagonal step before full masses came)
+    // (h/2 M^-1 first: the diagonal path's rounding, which its tests compare against)
 #pragma GCC unroll 3
     for (int k = 0; k < 3; ++k) a[k] = hh * T(tc.mass.Mi[3 + k]) * ym[3 + k];
   } else {
@@ -323,8 +323,8 @@ LRIGID_LANE void lane_flow_end(const StepConsts<Mass>& tc, const T (*q0)[kBatch]
 
 // The force step's norms, d^T M^-1 d of an impulse change d and xi^T M xi of a velocity xi
 // (model/kirchhoff.h energy_norm2, velocity_norm2), for a diagonal M summed in linear and
-// angular pairs as the diagonal step did before full masses came: its stiffness and convergence
-// tests keep their decisions, and its results their rounding
+// angular pairs: the diagonal path's stiffness and convergence tests take their decisions, and
+// its results their rounding, from these sums
 template <typename T, class Mass>
 LRIGID_LANE T lane_energy_norm2(const Mass& m, const T* d) {
   if constexpr (std::is_same_v<Mass, DiagonalMass>) {
@@ -375,51 +375,90 @@ struct FlowBlock {
 // stage reads and writes of the block (lanes: the state at the start of the step and the samples;
 // flow: FlowBlock; next: NewState).
 
-// Stage 1, the turbulence and the start of the flow: lanes (state, sample), z1 => next.us (the
-// seen fluctuation after the first exact OU half step), next.scalar = 0, flow (uf, V0, Y0, the
-// predictor Y, tol2). Strang: also the first force half step (ROS2 over h/2) at the start's
-// orientation, and the flow relative to the fluid velocity at the midpoint.
-template <typename T, bool Plate, bool Strang, class Mass>
-LRIGID_LANE void stage_flow_start(const StepConsts<Mass>& tc, const Lanes<T>* lanes,
-                                  const T (*z1)[kBatch], FlowBlock<T>* flow, NewState<T>* next) {
+// Stage 1, the turbulence: lanes (state, sample), z1 => next.us (the seen fluctuation after the
+// first exact OU half step along the start's world velocity), flow.uf (the fluid velocity,
+// world: the mean flow and that fluctuation), next.scalar = 0.
+template <typename T, class Mass>
+LRIGID_LANE void stage_turbulence_start(const StepConsts<Mass>& tc, const Lanes<T>* lanes,
+                                        const T (*z1)[kBatch], FlowBlock<T>* flow,
+                                        NewState<T>* next) {
   const int nw = lanes->width;
-  const T h = T(tc.h), hh = T(0.5 * tc.h);
-  (void)h, (void)hh;
-  const T wm = T(tc.wm);
-  const T tu = T(tc.tu);  // the seen fluctuation's factor in the fluid velocity
+  const T hh = T(0.5 * tc.h), wm = T(tc.wm), tu = T(tc.tu);
 LRIGID_IVDEP
   for (int j = 0; j < nw; ++j) {
     T us[3] = {lanes->us[0][j], lanes->us[1][j], lanes->us[2][j]};
     const T q[4] = {lanes->q[0][j], lanes->q[1][j], lanes->q[2][j], lanes->q[3][j]};
-    T v[3] = {lanes->v[0][j], lanes->v[1][j], lanes->v[2][j]};
-    T w[3] = {lanes->w[0][j], lanes->w[1][j], lanes->w[2][j]};
+    const T v[3] = {lanes->v[0][j], lanes->v[1][j], lanes->v[2][j]};
     T R[9], V[3];
     rotation(q, R);
     mul(R, v, V);
-    // 1. first OU half step
     lane_ou_half(tu, wm, hh, *lanes, z1, j, V, us);
-    T u_f[3], ufb[3];
 #pragma GCC unroll 3
-    for (int a = 0; a < 3; ++a) u_f[a] = T(tc.mf) * lanes->U[a][j] + tu * us[a];
-    mul_t(R, u_f, ufb);
-    if constexpr (Strang) {
-      // strang: the first force half step at the start's position and orientation
-      const T acc[3] = {lanes->acc[0][j], lanes->acc[1][j], lanes->acc[2][j]};
-      strang_force_lane<T, Plate>(tc, R, u_f, acc, hh, v, w);
-      mul(R, v, V);
-      // the flow moves relative to the fluid velocity at the midpoint (integrators.cpp
-      // strang_deterministic_step): U + grad U (h/2 V)
-#pragma GCC unroll 3
-      for (int p = 0; p < 3; ++p)
-        u_f[p] += T(tc.gu) * hh *
-                  (lanes->gU[p * 3][j] * V[0] + lanes->gU[p * 3 + 1][j] * V[1] +
-                   lanes->gU[p * 3 + 2][j] * V[2]);
-      mul_t(R, u_f, ufb);
+    for (int a = 0; a < 3; ++a) {
+      flow->uf[a][j] = T(tc.mf) * lanes->U[a][j] + tu * us[a];
+      next->us[a][j] = us[a];
     }
-    // 2. the free Kirchhoff flow of the motion relative to the fluid, implicit midpoint from the
-    //    explicit midpoint predictor (dynamics.cpp kirchhoff_midpoint)
+    next->scalar[j] = 0;
+  }
+}
+
+// Strang's force half step (ROS2 over h/2, strang_force_lane) on every lane, at orientation q and
+// body-frame velocities v, w (the start's, or the end of the flow's), in the fluid velocity
+// mf U + tu us of the lanes' current sample and next.us => next.vel, next.w and the world
+// velocity Vn. The body's shape (Plate) chooses the force kernels: the recipes
+// call it through by_shape, outside the loop.
+template <typename T, bool Plate, class Mass>
+LRIGID_LANE void stage_strang_forces(const StepConsts<Mass>& tc, const Lanes<T>* lanes,
+                                     const T (*q)[kBatch], const T (*v)[kBatch],
+                                     const T (*w)[kBatch], NewState<T>* next, T (*Vn)[kBatch]) {
+  const int nw = lanes->width;
+  const T hh = T(0.5 * tc.h), tu = T(tc.tu);
+LRIGID_IVDEP
+  for (int j = 0; j < nw; ++j) {
+    const T qj[4] = {q[0][j], q[1][j], q[2][j], q[3][j]};
+    const T acc[3] = {lanes->acc[0][j], lanes->acc[1][j], lanes->acc[2][j]};
+    T R[9], u_f[3], vj[3] = {v[0][j], v[1][j], v[2][j]}, wj[3] = {w[0][j], w[1][j], w[2][j]};
+    rotation(qj, R);
+#pragma GCC unroll 3
+    for (int a = 0; a < 3; ++a) u_f[a] = T(tc.mf) * lanes->U[a][j] + tu * next->us[a][j];
+    strang_force_lane<T, Plate>(tc, R, u_f, acc, hh, vj, wj);
+    T Vend[3];
+    mul(R, vj, Vend);
+#pragma GCC unroll 3
+    for (int a = 0; a < 3; ++a) {
+      next->vel[a][j] = vj[a];
+      next->w[a][j] = wj[a];
+      Vn[a][j] = Vend[a];
+    }
+  }
+}
+
+// The start of the free Kirchhoff flow: at the start's orientation, body-frame velocities v, w
+// (splitting: the start's; strang: after the first force half step) and the fluid velocity
+// flow.uf => flow (V0, the world velocity; uf, corrected by mid h/2 grad U V0, the fluid velocity
+// at the flow's midpoint for strang, mid = 1; Y0 and the explicit midpoint predictor Y of the
+// motion relative to the fluid, tol2, active).
+template <typename T, class Mass>
+LRIGID_LANE void stage_flow_begin(const StepConsts<Mass>& tc, const Lanes<T>* lanes,
+                                  const T (*v)[kBatch], const T (*w)[kBatch], T mid,
+                                  FlowBlock<T>* flow) {
+  const int nw = lanes->width;
+  const T h = T(tc.h), hh = T(0.5 * tc.h), gm = mid * T(tc.gu) * hh;
+LRIGID_IVDEP
+  for (int j = 0; j < nw; ++j) {
+    const T q[4] = {lanes->q[0][j], lanes->q[1][j], lanes->q[2][j], lanes->q[3][j]};
+    const T vj[3] = {v[0][j], v[1][j], v[2][j]}, wj[3] = {w[0][j], w[1][j], w[2][j]};
+    T R[9], V[3], u_f[3], ufb[3];
+    rotation(q, R);
+    mul(R, vj, V);
+#pragma GCC unroll 3
+    for (int p = 0; p < 3; ++p)
+      u_f[p] = flow->uf[p][j] + gm * (lanes->gU[p * 3][j] * V[0] + lanes->gU[p * 3 + 1][j] * V[1] +
+                                      lanes->gU[p * 3 + 2][j] * V[2]);
+    mul_t(R, u_f, ufb);
+    // the implicit midpoint rule's start (dynamics.cpp kirchhoff_midpoint)
     T y0[6], y[6];
-    const T xr[6] = {v[0] - ufb[0], v[1] - ufb[1], v[2] - ufb[2], w[0], w[1], w[2]};
+    const T xr[6] = {vj[0] - ufb[0], vj[1] - ufb[1], vj[2] - ufb[2], wj[0], wj[1], wj[2]};
     mass_times(tc.mass, xr, y0);
     kirchhoff_predictor(tc.mass, h, y0, y);
     const T norm0 = energy_norm2(tc.mass, y0);
@@ -431,12 +470,10 @@ LRIGID_IVDEP
     flow->tol2[j] = T(kLaneKirchhoffTol<T> * kLaneKirchhoffTol<T>) * norm0;
     flow->last[j] = T(0);
     flow->active[j] = 1;
-    next->scalar[j] = 0;
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
       flow->uf[a][j] = u_f[a];
       flow->V0[a][j] = V[a];
-      next->us[a][j] = us[a];
     }
   }
 }
@@ -771,19 +808,14 @@ LRIGID_IVDEP
   }
 }
 
-// Stages 3-4 of strang, the end of the flow and the second force half step: flow => next.q,
-// next.x by the trapezoidal rule over the flow; the field sampled at next.x (inside0: each lane's
-// inside flag before); the second force half step there => next.vel, next.w and Vn, the world
-// velocity at the end.
-template <typename T, bool Plate, class Mass>
-LRIGID_LANE void stage_strang_end(const StepConsts<Mass>& tc, Lanes<T>* lanes, FlowBlock<T>* flow,
-                                  NewState<T>* next, T (*Vn)[kBatch], T* inside0) {
+// Stage 3 of strang, the end of the flow: flow => next.q, next.vel, next.w, next.x by the
+// trapezoidal rule over the flow; the field sampled at next.x (inside0: each lane's inside flag
+// before). The second force half step (stage_strang_forces) follows on that sample.
+template <typename T, class Mass>
+LRIGID_LANE void stage_strang_flow_end(const StepConsts<Mass>& tc, Lanes<T>* lanes,
+                                       FlowBlock<T>* flow, NewState<T>* next, T* inside0) {
   const int nw = lanes->width;
-  const T h = T(tc.h), hh = T(0.5 * tc.h);
-  (void)h, (void)hh;
-  const T tu = T(tc.tu);
-  // strang: x by the trapezoidal rule over the flow, the field at the new positions, the
-  // second force half step there, and the second OU half step (end_step, on that sample)
+  const T hh = T(0.5 * tc.h);
 LRIGID_IVDEP
   for (int j = 0; j < nw; ++j) {
     T q[4], R[9], ufb[3], v[3], w[3], Vend[3];
@@ -801,40 +833,26 @@ LRIGID_IVDEP
   }
   for (int j = 0; j < nw; ++j) inside0[j] = tc.sample ? lanes->inside[j] : T(1);
   if (tc.sample) sample_lanes(tc, next->x, lanes, 0, nw);
-LRIGID_IVDEP
-  for (int j = 0; j < nw; ++j) {
-    const T q[4] = {next->q[0][j], next->q[1][j], next->q[2][j], next->q[3][j]};
-    const T acc[3] = {lanes->acc[0][j], lanes->acc[1][j], lanes->acc[2][j]};
-    T R[9], u_f[3], v[3] = {next->vel[0][j], next->vel[1][j], next->vel[2][j]}, w[3] = {next->w[0][j], next->w[1][j], next->w[2][j]};
-    rotation(q, R);
-#pragma GCC unroll 3
-    for (int a = 0; a < 3; ++a) u_f[a] = T(tc.mf) * lanes->U[a][j] + tu * next->us[a][j];
-    strang_force_lane<T, Plate>(tc, R, u_f, acc, hh, v, w);
-    T Vend[3];
-    mul(R, v, Vend);
-#pragma GCC unroll 3
-    for (int a = 0; a < 3; ++a) {
-      next->vel[a][j] = v[a];
-      next->w[a][j] = w[a];
-      Vn[a][j] = Vend[a];
-    }
-  }
 }
 
 // The splitting step (integrators.h): the first OU half step, the free Kirchhoff flow, the
 // forces with the drag implicit, the positions, the second OU half step at the new positions
 // (end_step). Lanes that are not kOk keep their state at the start of the step; landed: the lane
-// is on or below the ground after the step.
-template <typename T, bool Plate, class Mass>
+// is on or below the ground after the step. The body's shape chooses the force stage's kernels
+// (with_switch, outside the loops).
+template <typename T, class Mass>
 LRIGID_MULTIVERSION void splitting_lanes(const StepConsts<Mass>& tc, Lanes<T>* lanes,
                                          uint64_t step, int* outcome, int* landed) {
   alignas(64) T z1[3][kBatch], z2[3][kBatch], Vn[3][kBatch];
   lane_normals(tc, *lanes, step, z1, z2);
   FlowBlock<T> flow;
   NewState<T> next;  // committed by end_step for the lanes whose step succeeded
-  stage_flow_start<T, Plate, false>(tc, lanes, z1, &flow, &next);
+  stage_turbulence_start(tc, lanes, z1, &flow, &next);
+  stage_flow_begin(tc, lanes, lanes->v, lanes->w, T(0), &flow);
   stage_kirchhoff_flow(tc, lanes, &flow, &next);
-  stage_forces_implicit<T, Plate>(tc, lanes, &flow, &next);
+  with_switch(tc.plate, [&](auto plate) LRIGID_LANE_LAMBDA {
+    stage_forces_implicit<T, decltype(plate)::value>(tc, lanes, &flow, &next);
+  });
   stage_positions(tc, lanes, &flow, &next, Vn);
   end_step<T>(tc, z2, Vn, &next, lanes, outcome, landed);
 }
@@ -842,16 +860,25 @@ LRIGID_MULTIVERSION void splitting_lanes(const StepConsts<Mass>& tc, Lanes<T>* l
 // The strang step (integrators.h): the first OU half step and force half step, the free
 // Kirchhoff flow, the positions, the second force half step and OU half step at the new
 // positions.
-template <typename T, bool Plate, class Mass>
+template <typename T, class Mass>
 LRIGID_MULTIVERSION void strang_lanes(const StepConsts<Mass>& tc, Lanes<T>* lanes, uint64_t step,
                                       int* outcome, int* landed) {
   alignas(64) T z1[3][kBatch], z2[3][kBatch], Vn[3][kBatch], inside0[kBatch];
   lane_normals(tc, *lanes, step, z1, z2);
   FlowBlock<T> flow;
   NewState<T> next;
-  stage_flow_start<T, Plate, true>(tc, lanes, z1, &flow, &next);
+  stage_turbulence_start(tc, lanes, z1, &flow, &next);
+  with_switch(tc.plate, [&](auto plate) LRIGID_LANE_LAMBDA {
+    stage_strang_forces<T, decltype(plate)::value>(tc, lanes, lanes->q, lanes->v, lanes->w,
+                                                   &next, Vn);
+  });
+  stage_flow_begin(tc, lanes, next.vel, next.w, T(1), &flow);
   stage_kirchhoff_flow(tc, lanes, &flow, &next);
-  stage_strang_end<T, Plate>(tc, lanes, &flow, &next, Vn, inside0);
+  stage_strang_flow_end(tc, lanes, &flow, &next, inside0);
+  with_switch(tc.plate, [&](auto plate) LRIGID_LANE_LAMBDA {
+    stage_strang_forces<T, decltype(plate)::value>(tc, lanes, next.q, next.vel, next.w, &next,
+                                                   Vn);
+  });
   end_step<T>(tc, z2, Vn, &next, lanes, outcome, landed, inside0);
 }
 
@@ -872,9 +899,9 @@ BlockStats advance(const Model& model, const BodyType& type, State* state, const
     if (tc.scheme == Integrator::RK4)
       return rk4_lanes<T, P>(tc, rk4_frames(model, unsteady, s), lanes, s, outcome, landed);
     if (tc.strang)
-      strang_lanes<T, P>(tc, lanes, s, outcome, landed);
+      strang_lanes<T>(tc, lanes, s, outcome, landed);
     else
-      splitting_lanes<T, P>(tc, lanes, s, outcome, landed);
+      splitting_lanes<T>(tc, lanes, s, outcome, landed);
   };
   return drive_block<T, Lanes<T>>(model, type, tc, tc.plate, state, body, count, first, last,
                                   step);
