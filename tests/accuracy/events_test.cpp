@@ -1,7 +1,7 @@
-// Events located inside the step (issue 28, contact/events.h locate_touchdown): a body that
-// reaches the ground within a step lands where and when its motion through the step touched it,
-// so that a landing does not cap a scheme's order at 1 (before, the body stopped at the end of
-// the step, up to one step's travel below the ground: rk4 measured slope 1.05 on uniform_box).
+// Events located inside the step (contact/events.h locate_touchdown): a body that reaches the
+// ground within a step lands where and when its motion through the step touched it, so that a
+// landing does not cap a scheme's order at 1 (a body stopped at the end of the step lies up to
+// one step's travel below the ground: rk4's measured slope is then 1.05 on uniform_box).
 //   the located root itself against a closed-form free fall;
 //   the measured orders of the landing point and time: euler, splitting 1; strang 2; rk4 4;
 //   the batched steps land where the scalar step does; a colliding ground records the same
