@@ -34,19 +34,11 @@ const std::vector<Model>& models() {
 }
 
 TEST(Drag, BlockAgreesWithScalarStepInDouble) {
-  for (const Model& m : models()) {
-    ASSERT_TRUE(m.types[0].r_cob.isZero(0.0));
-    for (uint32_t seed : {1u, 2u, 3u})
-      effects_test::expect_block_matches_scalar<double>(m.types[0],
-                                                        effects_test::random_block(seed), 1e-13);
-  }
+  effects_test::expect_blocks_match_scalar<double>(models(), {1u, 2u, 3u}, 1e-13);
 }
 
 TEST(Drag, BlockAgreesWithScalarStepInFloat) {
-  for (const Model& m : models())
-    for (uint32_t seed : {4u, 5u})
-      effects_test::expect_block_matches_scalar<float>(m.types[0], effects_test::random_block(seed),
-                                                       2e-4);
+  effects_test::expect_blocks_match_scalar<float>(models(), {4u, 5u}, 2e-4);
 }
 
 TEST(Drag, SchillerNaumannLimits) {

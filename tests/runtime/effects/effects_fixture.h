@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <initializer_list>
 #include <random>
 #include <vector>
 
@@ -121,6 +122,17 @@ void expect_block_matches_scalar(const BodyType& type, const Block& in, double t
     EXPECT_TRUE(close(double(o.p[j]), st.p, tol, 1e-300)) << type.name << " lane " << j;
     for (int a = 0; a < 3; ++a)
       EXPECT_TRUE(close(double(o.c_ang[a][j]), st.c_ang[a], tol, 0)) << type.name << " lane " << j;
+  }
+}
+
+// expect_block_matches_scalar for the body type of each model on the blocks of `seeds` (the
+// kernels take r_cob = 0: the centroid is the centre of mass)
+template <typename T>
+void expect_blocks_match_scalar(const std::vector<Model>& models,
+                                std::initializer_list<uint32_t> seeds, double tol) {
+  for (const Model& m : models) {
+    ASSERT_TRUE(m.types[0].r_cob.isZero(0.0));
+    for (uint32_t seed : seeds) expect_block_matches_scalar<T>(m.types[0], random_block(seed), tol);
   }
 }
 
