@@ -1,4 +1,4 @@
-// Reduced accuracy study (issue 8, docs/accuracy.md): measured convergence orders of the
+// Reduced accuracy study (docs/accuracy.md): measured convergence orders of the
 // integrators against the orders docs/physics/integrators.md states.
 //   deterministic: euler 1, rk4 4, splitting 1 (its deterministic part is a linearly implicit
 //   Euler step);

@@ -1,8 +1,8 @@
-// Events located inside the step (issue 28, contact/events.h locate_touchdown): a body that
-// reaches the ground within a step lands where and when its motion through the step touched it,
-// so that a landing does not cap a scheme's order at 1 (before, the body stopped at the end of
-// the step, up to one step's travel below the ground: rk4 measured slope 1.05 on uniform_box).
-//   the located root itself against a closed-form free fall;
+// Events located inside the step (contact/events.h locate_touchdown): a body that reaches the
+// ground within a step lands where and when its motion through the step touched it, so that a
+// landing does not cap a scheme's order at 1 (a body stopped at the end of the step lies up to
+// one step's travel below the ground: rk4's measured slope is then 1.05 on uniform_box). The
+// located root itself against a closed-form free fall: runtime/contact/events_test.cpp.
 //   the measured orders of the landing point and time: euler, splitting 1; strang 2; rk4 4;
 //   the batched steps land where the scalar step does; a colliding ground records the same
 //   first touchdown (landings.csv) as a stopping one.
@@ -109,81 +109,6 @@ Scene landing_ellipsoids() {
   s.ground_contact = ContactMode::Stop;
   s.duration = 0.6;
   return s;
-}
-
-TEST(Touchdown, FindsAFreeFallsRootInsideTheStep) {
-  // a box tilted about x falls freely (no fluid forces): the motion through the step is a
-  // parabola, which the cubic interpolant holds exactly, so the located time is the root of
-  // z0 + vz t - g t^2/2 = reach to rounding
-  Scene s = test::sphere_scene(0.01, 1000, 1.2, 1.5e-5);
-  s.bodies[0].shape = Shape::box(0.06, 0.04, 0.002);
-  s.has_ground = true;
-  s.ground_contact = ContactMode::Stop;
-  s.dt = 0.01;
-  const Model m = test::compile(s);
-  const BodyType& type = m.types[0];
-  const double g = 9.81, vz = -0.3;
-  BodyState a;
-  a.x = Vec3(0.1, 0.2, 0.05);
-  a.q = Quat(Eigen::AngleAxisd(0.3, Vec3::UnitX()));
-  a.v = a.q.conjugate() * Vec3(0.2, 0, vz);
-  a.w.setZero();
-  a.u_seen.setZero();
-  BodyState b = a;
-  b.x = a.x + s.dt * Vec3(0.2, 0, vz) - 0.5 * g * s.dt * s.dt * Vec3::UnitZ();
-  b.v = a.q.conjugate() * Vec3(0.2, 0, vz - g * s.dt);
-  const double reach = std::sin(0.3) * 0.02 + std::cos(0.3) * 0.001;
-  // the touchdown needs a step that reaches the ground: start just above it
-  const double z0 = reach + 0.002;
-  b.x.z() += z0 - a.x.z();
-  a.x.z() = z0;
-  ASSERT_TRUE(touches_ground(m, type, b));
-  ASSERT_FALSE(touches_ground(m, type, a));
-  BodyState at;
-  const double tau = locate_touchdown(m, type, a, b, &at);
-  // z0 + vz t - g t^2 / 2 = reach
-  const double exact = (vz + std::sqrt(vz * vz + 2 * g * (z0 - reach))) / g;
-  EXPECT_NEAR(tau, exact, 1e-12);
-  EXPECT_NEAR(at.x.z(), reach, 1e-12);
-  EXPECT_NEAR(at.x.x(), a.x.x() + 0.2 * exact, 1e-12);
-  // a body that already touched at the start lands at the end of the step, as before
-  EXPECT_EQ(locate_touchdown(m, type, b, b, &at), s.dt);
-}
-
-TEST(Touchdown, ASpinningSphereTouchesAtItsRadius) {
-  // a sphere's lowest point is one radius down whatever its orientation (the bounding box of a
-  // sphere turned 45 degrees reaches 1.41 radii: it landed early before)
-  Scene s = test::sphere_scene(0.01, 1000, 1.2, 1.5e-5);
-  s.has_ground = true;
-  const Model m = test::compile(s);
-  BodyState b;
-  b.x = Vec3(0, 0, 0.0101);
-  b.q = Quat(Eigen::AngleAxisd(M_PI / 4, Vec3(1, 1, 0).normalized()));
-  b.v.setZero(), b.w.setZero(), b.u_seen.setZero();
-  EXPECT_FALSE(touches_ground(m, m.types[0], b));
-  b.x.z() = 0.0099;
-  EXPECT_TRUE(touches_ground(m, m.types[0], b));
-}
-
-TEST(Touchdown, ABodyWithAKeelTouchesWhereItsShapeDoes) {
-  // a 2 cm cube whose centre of mass is 5 mm below its centroid (mass_offset, a keel): upright its
-  // lowest point is 5 mm below the centre of mass, upside down 15 mm (the shape's half extents are
-  // about the centroid; it landed at 10 mm both ways before)
-  Scene s = test::sphere_scene(0.01, 1000, 1.2, 1.5e-5);
-  s.bodies[0].shape = Shape::box(0.02, 0.02, 0.02);
-  s.bodies[0].mass_offset = Vec3(0, 0, -0.005);
-  s.has_ground = true;
-  const Model m = test::compile(s);
-  BodyState b;
-  b.v.setZero(), b.w.setZero(), b.u_seen.setZero();
-  for (const double turn : {0.0, M_PI}) {
-    b.q = Quat(Eigen::AngleAxisd(turn, Vec3::UnitX()));
-    const double reach = turn == 0.0 ? 0.005 : 0.015;
-    b.x = Vec3(0, 0, reach + 1e-4);
-    EXPECT_FALSE(touches_ground(m, m.types[0], b)) << turn;
-    b.x.z() = reach - 1e-4;
-    EXPECT_TRUE(touches_ground(m, m.types[0], b)) << turn;
-  }
 }
 
 TEST(Touchdown, LandingsKeepEachSchemesOrderOnSinkingSpheres) {

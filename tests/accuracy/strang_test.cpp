@@ -1,4 +1,4 @@
-// The Strang scheme (integrator "strang", issue 28, docs/physics/integrators.md): its measured
+// The Strang scheme (integrator "strang", docs/physics/integrators.md): its measured
 // orders on smooth cases (turbulence off, no ground, no kinks in the forces along the path),
 // against rk4 at a tiny step, and the weak order of its noise part.
 //   deterministic: order 2 (splitting: 1) on a sinking sphere, a tumbling ellipsoid with added
@@ -85,7 +85,7 @@ double slope(const Scene& s, const FluidField& f, Integrator integ, const std::v
 }
 
 // a leaf (6 x 4 x 0.04 cm box, 600 kg/m^3) in a uniform 2 m/s wind, tilted, with plate drag,
-// lift and added mass: the case where splitting's error constant is large (issue 28). Short
+// lift and added mass: the case where splitting's error constant is large. Short
 // enough that it neither tumbles through an edgewise flow nor turns its relative velocity
 // through zero (the plate law's non-smooth points).
 Scene leaf_in_wind() {
@@ -128,10 +128,10 @@ TEST(Strang, SecondOrderOnALeafWithLiftInAUniformWind) {
 // strip of half chord 1 cm and side ratio 1000 in water at APW's mass ratio 1.1 and Reynolds
 // number 10^3, released from rest at 10° pitch, over its first swing (3 a/U). Its damping about
 // the plate's normal (the Stokes torque of a 20 m long body spinning flat) is about 10^5 times
-// its pitch damping: with one angular stiffness for all three axes (the largest, before
-// 2026-12-03) the implicit force step damped the pitch by that: strang at 0.2 ms pitched 41°
-// where rk4 pitches 22°, and its end point was 1.25, 1.14, 0.96, 0.72 mm off rk4's at 0.4, 0.2,
-// 0.1, 0.05 ms (a slope of 0.25); with one stiffness per axis it is second order.
+// its pitch damping: with one angular stiffness for all three axes (the largest) the implicit
+// force step would damp the pitch by that: strang at 0.2 ms pitched 41° where rk4 pitches 22°,
+// and its end point was 1.25, 1.14, 0.96, 0.72 mm off rk4's at 0.4, 0.2, 0.1, 0.05 ms (a slope
+// of 0.25); with one stiffness per axis it is second order.
 Scene long_strip() {
   const double a = 0.01, rho_s = 11000, rho_f = 1000, mass_ratio = 1.1;
   const double b = mass_ratio * a * rho_f / rho_s;

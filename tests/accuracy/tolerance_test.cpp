@@ -49,7 +49,7 @@ TEST(Tolerance, UnreachableToleranceNamesTheSmallestMeasuredError) {
   } catch (const Error& e) {
     EXPECT_EQ(e.code(), ExitCode::BadInput);
     EXPECT_NE(std::string(e.what()).find("0.0003"), std::string::npos) << e.what();
-    // issue 29: the flag's value first, what is reachable, and what to do
+    // the flag's value first, what is reachable, and what to do
     const std::string w = e.what();
     EXPECT_EQ(w.rfind("--tolerance 1e-05 is not reachable for 'uniform-air' scenes", 0), 0u) << w;
     EXPECT_NE(w.find("the reachable tolerances are 0.0003 and above"), std::string::npos) << w;

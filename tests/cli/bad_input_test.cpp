@@ -1,4 +1,4 @@
-// Bad input at the command line (issue 9): build/bin/lrigid is run on broken scenes, grids,
+// Bad input at the command line: build/bin/lrigid is run on broken scenes, grids,
 // meshes and output directories in a fresh temporary directory. Each case asserts the
 // documented exit code (docs/stability.md: 2 usage, 3 bad input, 4 output, 5 resource), that
 // the message names the file, the key and the value, and that the output directory holds
@@ -71,7 +71,7 @@ std::string replace(std::string s, const std::string& from, const std::string& t
   return s.replace(p, from.size(), to);
 }
 
-// limits the child runs under (issue 27): set by the test, not by the machine
+// limits the child runs under: set by the test, not by the machine
 struct Limits {
   rlim_t file_size = RLIM_INFINITY;     // RLIMIT_FSIZE, bytes (ulimit -f)
   rlim_t address_space = RLIM_INFINITY;  // RLIMIT_AS, bytes (ulimit -v)
@@ -218,7 +218,7 @@ TEST_F(Cli, UnknownKeys) {
 }
 
 TEST_F(Cli, TyposInRequiredKeysAreNamed) {
-  // issue 27: the key the user wrote is named, before any required key is found missing
+  // the key the user wrote is named, before any required key is found missing
   expect_error(run_scene(replace(base_scene(), "\"density\": 30", "\"densty\": 30")), 3,
                {"scene.json: bodies[0]: unknown key \"densty\" (did you mean \"density\"?)"});
   expect_error(run_scene(replace(base_scene(), "\"kinematic_viscosity\"", "\"kinematic_viscocity\"")),
@@ -407,8 +407,8 @@ TEST_F(Cli, SeriesEntryWithAnOverlongFileName) {
 
 TEST_F(Cli, GridPieceOutsideItsExtentIsOneClearLine) {
   // found by fuzz_grid (F3, docs/stability.md): a <Piece> extent outside the WholeExtent.
-  // VTK's reader fails on it and used to print its own ERR lines before lrigid's message,
-  // which then only said the dimensions were 0 x 0 x 0
+  // VTK's reader fails on it; its own ERR lines must not come before lrigid's message, which
+  // must say more than that the dimensions are 0 x 0 x 0
   std::string g =
       vti("0.1 0.1 0.1 0.1 0.1 0.1 0.1 0.1", "0.05 0.05 0.05 0.05 0.05 0.05 0.05 0.05");
   g = replace(g, "<Piece Extent=\"0 1 0 1 0 1\">", "<Piece Extent=\"0 1 0 7 0 1\">");
@@ -477,7 +477,7 @@ TEST_F(Cli, MoreBodiesThanMemorySaysHowMuch) {
   EXPECT_EQ(ok.code, 0) << ok.err;
 }
 
-// ---- a finish that fails late (issue 27) ----
+// ---- a finish that fails late ----
 
 // a scene that writes every kind of result: csv, pvd (bodies and shapes), glb, landings
 std::string all_outputs_scene() {
@@ -570,7 +570,7 @@ TEST_F(LateFailure, AFileSizeLimitLeavesNoResult) {
         largest_frame = std::max<uintmax_t>(largest_frame, e.file_size());
     }
   sizes.emplace_back("largest .vtp frame", largest_frame);
-  ASSERT_EQ(sizes.size(), 8u);  // with lrigid-manifest.json (issue 54)
+  ASSERT_EQ(sizes.size(), 8u);  // with lrigid-manifest.json
   for (const auto& [name, size] : sizes) {
     SCOPED_TRACE(name + " of " + std::to_string(size) + " bytes");
     fs::remove_all(dir_ / "out");

@@ -1,4 +1,4 @@
-// lrigid bench (issue 11): on the uniform-field scene it measures every requested point, counts
+// lrigid bench: on the uniform-field scene it measures every requested point, counts
 // the body-steps it timed (bodies x steps) and reports the State bytes per body; bad arguments
 // are usage errors.
 #include <gtest/gtest.h>
@@ -50,7 +50,7 @@ std::string output(const std::string& cwd, const std::string& args) {
   return r;
 }
 
-// issue 29: by default the scene's own effects, said before the numbers with the columns, the
+// by default the scene's own effects, said before the numbers with the columns, the
 // same effects lrigid explain says the scene simulates
 TEST(CliBench, UsesTheScenesOwnEffectsAndSaysWhichAndWhatTheColumnsAre) {
   const std::string tmp = std::filesystem::temp_directory_path().string();
@@ -80,7 +80,7 @@ TEST(CliBench, UsesTheScenesOwnEffectsAndSaysWhichAndWhatTheColumnsAre) {
             std::string::npos);
 }
 
-// issue 29: the default scene is the repository's, whatever the working directory
+// the default scene is the repository's, whatever the working directory
 TEST(CliBench, DefaultSceneResolvesFromTheRepositoryNotTheWorkingDirectory) {
   const std::string tmp = std::filesystem::temp_directory_path().string();
   const std::string b = output(tmp, "bench --n 10 --integrators euler --threads 1 "

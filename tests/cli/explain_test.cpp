@@ -1,4 +1,4 @@
-// lrigid explain (issue 7): on the scenes in scenes/ it prints, per body type, the dimensionless
+// lrigid explain: on the scenes in scenes/ it prints, per body type, the dimensionless
 // numbers, the effects "auto" keeps and why it skips the others, and a cost estimate that follows
 // bench/effects_bench (a sphere's closed-form step is cheaper than a flat body's). A scene it
 // cannot read is an error that names the file.
@@ -93,7 +93,7 @@ TEST(CliExplain, SpunBallGetsMagnus) {
     EXPECT_EQ(t[i].chooses.find("magnus"), std::string::npos) << "petal " << i;
 }
 
-// issue 29: each body type starts with one plain sentence, and the sentence agrees with the
+// each body type starts with one plain sentence, and the sentence agrees with the
 // numbers printed under it: the settling speed, falls or rises, the turbulence response
 TEST(CliExplain, EachBodyTypeStartsWithAPlainSentenceThatMatchesItsNumbers) {
   char tmpl[] = "/tmp/lrigid_explain_XXXXXX";
@@ -150,9 +150,9 @@ TEST(CliExplain, EachBodyTypeStartsWithAPlainSentenceThatMatchesItsNumbers) {
   EXPECT_NE(leaves.out.find("its flat shape makes it flutter and tumble."), std::string::npos);
 }
 
-// issue 28: an artist's leaf from an OBJ (curled and turned: a full 6 x 6 generalized mass)
-// takes the batched step, as the box leaf does, with every scheme; it used to say "not batched:
-// the generalized mass is not diagonal", then with euler and rk4 "no batched kernels yet"
+// an artist's leaf from an OBJ (curled and turned: a full 6 x 6 generalized mass) takes the
+// batched step, as the box leaf does, with every scheme: explain says neither "not batched: the
+// generalized mass is not diagonal" nor "no batched kernels yet"
 TEST(CliExplain, MeshLeafTakesTheBatchedStep) {
   for (const std::string scheme : {"splitting", "strang", "euler", "rk4"}) {
     char tmpl[] = "/tmp/lrigid_explain_XXXXXX";
@@ -180,8 +180,7 @@ TEST(CliExplain, MeshLeafTakesTheBatchedStep) {
   }
 }
 
-// issue 28: spheres take the batched step on every scheme, euler and rk4 too (they took the
-// scalar step), and the estimate follows the schemes' measured costs: euler a little cheaper than
+// spheres take the batched step on every scheme, euler and rk4 too, and the estimate follows the schemes' measured costs: euler a little cheaper than
 // splitting, rk4 (four force evaluations, three more samples) about 2.3 times it
 TEST(CliExplain, SpheresTakeTheBatchedStepOnEveryScheme) {
   char tmpl[] = "/tmp/lrigid_explain_XXXXXX";

@@ -1,5 +1,5 @@
-// Messages that say what to do (issue 29): a negative --seed or --checkpoint-every prints a
-// readable bound (CLI11's own check printed the largest double in full, 309 digits), and
+// Messages that say what to do: a negative --seed or --checkpoint-every prints a readable
+// bound (CLI11's own check would print the largest double in full, 309 digits), and
 // `added-mass --help` states the panel counts that lrigid added-mass actually uses.
 #include <gtest/gtest.h>
 #include <regex>

@@ -1,4 +1,4 @@
-// Sanity warnings at the command line (issue 29, io/sanity.h): lrigid run prints them on stderr
+// Sanity warnings at the command line (io/sanity.h): lrigid run prints them on stderr
 // before the run with the scene key and the fix, records them in summary.json, --strict makes
 // them errors (exit 3, no results), every body outside the grid is an error, and lrigid explain
 // prints them too. Tiny scenes (a few spheres, 0.1 s).

@@ -1,4 +1,4 @@
-// lrigid run --stream-field (issue 11): a .pvd series streamed from disk gives byte for byte the
+// lrigid run --stream-field: a .pvd series streamed from disk gives byte for byte the
 // trajectories of the same series held in memory. The streamed run takes frame 0 from the read
 // that opened the series (it is not read twice), so this also checks that hand-over.
 #include <gtest/gtest.h>
@@ -80,7 +80,7 @@ TEST(CliStreamField, StreamedSeriesGivesTheInMemoryTrajectories) {
   const std::string summary = slurp(d / "str" / "summary.json");
   EXPECT_NE(summary.find("\"frames_read\": 4"), std::string::npos) << summary;
 
-  // issue 27: a streamed run stopped mid-way (a file-size limit of 30 KiB on its trajectories,
+  // a streamed run stopped mid-way (a file-size limit of 30 KiB on its trajectories,
   // exit 4) resumes from its last checkpoint, the stream picking up at the checkpoint's time,
   // and ends with the same trajectories
   const std::string cut = "(ulimit -f 30; exec " + kLrigid + " run " + scene + " -o " +

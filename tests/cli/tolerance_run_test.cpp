@@ -1,4 +1,4 @@
-// lrigid run --tolerance end to end on the shipped table (issue 27): the binary finds
+// lrigid run --tolerance end to end on the shipped table: the binary finds
 // docs/accuracy/tolerance_table.json by itself (no --tolerance-table), says what it chose, and
 // the run's summary.json records the integrator and dt that the table's cheapest entry
 // reaching the tolerance has, worked out here from the table independently of lrigid.
@@ -113,7 +113,7 @@ TEST_F(ToleranceRun, ATighterToleranceThanMeasuredIsRefused) {
   EXPECT_EQ(r.code, 3) << r.err;
   EXPECT_NE(r.err.find("tolerance_table.json"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(dir_ / "out" / "summary.json"));
-  // issue 29: the flag's value is named first (not the table's path, which looked broken), with
+  // the flag's value is named first (not the table's path, which would look broken), with
   // the tolerances that are reachable for this kind of scene, worked out here from the table
   EXPECT_EQ(r.err.rfind("lrigid: error: --tolerance 1e-09 is not reachable for 'uniform-air' "
                         "scenes",

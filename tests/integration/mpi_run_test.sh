@@ -1,5 +1,5 @@
 #!/bin/bash
-# mpirun -np 2 lrigid run writes the same result as one process (issue 11, docs/scaling.md):
+# mpirun -np 2 lrigid run writes the same result as one process (docs/scaling.md):
 # every output file byte for byte, summary.json except its timing fields and "ranks".
 # usage: mpi_run_test.sh SOURCE_DIR LRIGID
 set -euo pipefail

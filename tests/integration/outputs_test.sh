@@ -1,5 +1,5 @@
 #!/bin/bash
-# The output folder and resume (issue 54, docs/outputs.md): a run replaces or removes only what
+# The output folder and resume (docs/outputs.md): a run replaces or removes only what
 # lrigid wrote there (its manifest) and refuses, before it starts, a name taken by something
 # else; a kill at any rename of the finish leaves the earlier result or a finish that the next
 # lrigid completes, never a mixture; a resume checks the checkpoint and the output so far
@@ -41,7 +41,7 @@ JSON
 
 # ---- 1. the output folder is the user's ----
 # a folder of the user's where the run writes its frames: refused before the run, even with
-# --force, and nothing of it touched (before issue 54 the finish deleted mine.obj)
+# --force, and nothing of it touched (mine.obj is still there)
 mkdir -p out/shapes; echo x > out/shapes/mine.obj
 expect_fail 4 "out/shapes" "$lrigid" run small.json -o out --quiet
 expect_fail 4 "out/shapes" "$lrigid" run small.json -o out --quiet --force
@@ -152,7 +152,7 @@ check_refused() {  # check_refused DIR TEXT FILE GOOD
     cmp -s "$dir/$f" "ref/$f" || fail "resumed $f differs from the uninterrupted run's"; done
   echo "outputs_test: $file: refused saying '$text', resumed once put back"
 }
-# the trajectories so far cut short (before issue 54: exit 0, NUL bytes in the result)
+# the trajectories so far cut short: the resume must not exit 0 with NUL bytes in the result
 interrupted r1
 t=$(ls r1/trajectories.csv.tmp*); cp "$t" good; truncate -s $(( $(stat -c %s "$t") / 2 )) "$t"
 check_refused r1 "where the checkpoint counts" "$t" good

@@ -1,5 +1,5 @@
 #!/bin/bash
-# Checkpoints and --resume (issue 27, docs/cli.md): a run killed with SIGKILL at random points
+# Checkpoints and --resume (docs/cli.md): a run killed with SIGKILL at random points
 # several times and resumed each time writes results identical byte for byte to an
 # uninterrupted run (summary.json: all but its timing fields), with threads and with 2 MPI
 # ranks; a disk that fills up mid-run (a file-size limit) gives exit 4, leaves the last

@@ -34,7 +34,7 @@ def test_dict_holds_what_the_command_prints(lrigid_bin, scene):
         assert "simulated: %s" % (", ".join(t["simulated"]) or "(none)") in block
         assert "estimated cost: %.0f ns per body-step" % t["cost_ns"] in block
         assert ("step: batched" in block) == t["step"]["batched"]
-        # issue 29: the plain sentence comes first, the same in the dict
+        # the plain sentence comes first, the same in the dict
         assert block.split("\n")[1] == "  In plain words: " + t["plain_words"]
     assert "estimated total: %s body-steps" % (g % d["total"]["body_steps"]) in text
 

@@ -1,4 +1,4 @@
-// lrigid render explains its picture (issue 29, label render): a legend of the body types in
+// lrigid render explains its picture (label render): a legend of the body types in
 // their colours, a caption that fits a narrow image, and the domain: the grid's outline and, in
 // water, the tank (walls, floor, water surface). A run on a small synthetic tank grid written
 // here (the shipped tank scene needs the slow tankJet case), drawn offscreen under xvfb-run.

@@ -78,7 +78,7 @@ TEST_F(Render, PreviewHasSizeContentAndBodies) {
     const double y = 0.3 * r + 0.6 * g + 0.1 * b;
     sum += y, sum2 += y * y;
     // the body types' colours (shaded): cards orange, beads green (no body type is blue, the
-    // colour of the k slices: issue 29); the background is grey-blue
+    // colour of the k slices); the background is grey-blue
     orange += r > g + 40 && g > b + 20;
     green += g > r + 40 && g > b + 40;
   }

@@ -81,7 +81,7 @@ size_t differing(const Image& a, const Image& b, int y0, int y1) {
 }
 
 // pixels in a body type's colour (shaded): cards orange, beads green (the background is
-// grey-blue; no body type is blue since issue 29)
+// grey-blue; no body type is blue, the colour of the k slices)
 void count_bodies(const Image& im, size_t* orange, size_t* green) {
   *orange = *green = 0;
   for (int y = 0; y < im.h; ++y)

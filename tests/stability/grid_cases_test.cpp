@@ -1,4 +1,4 @@
-// Grid hard cases (issue 9): a flow that carries bodies through a slab where k = 0 and
+// Grid hard cases: a flow that carries bodies through a slab where k = 0 and
 // epsilon = 0, a slab where k = 0 but epsilon > 0 (eps/k infinite), past a block of invalid
 // grid points, and out of the grid. Every body must stay finite and bounded while inside and
 // end "exited" (never "failed") at a position inside the grid box.

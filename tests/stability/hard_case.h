@@ -1,4 +1,4 @@
-// Shared machinery of the stability suite (issue 9): run a model step by step and check, at
+// Shared machinery of the stability suite: run a model step by step and check, at
 // every step, that the state is finite, |q| stays 1 to round-off, and the body's speed and
 // kinetic energy stay under a bound derived from the case's physics (see Bound below).
 #pragma once

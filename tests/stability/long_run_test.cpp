@@ -1,4 +1,4 @@
-// Long runs (issue 9): 10^6 splitting steps of one body, every step checked as in the matrix.
+// Long runs: 10^6 splitting steps of one body, every step checked as in the matrix.
 // With 10^5 and more Lagrangian time scales the statistics are sharp, so they are checked
 // tightly: the seen turbulent velocity has the field's variance 2k/3 within 3 %, and a
 // neutrally buoyant sphere, which filters the turbulence it sees, moves with at most that

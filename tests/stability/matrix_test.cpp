@@ -1,4 +1,4 @@
-// Stability matrix (issue 9; strang, issue 28): the splitting and strang schemes at every
+// Stability matrix: the splitting and strang schemes at every
 // combination of
 //   density ratio rho_b/rho_f in {0.001, 0.01, 0.1, 1, 10, 1000} (bubble to steel, in air),
 //   aspect ratio 1, 10, 100, 1000 (sphere to a sheet of paper; oblate ellipsoids, 10 cm wide),

@@ -81,7 +81,7 @@ TEST(Foam2gridCli, HelpDocumentsEveryFlagWithUnits) {
   const Result bogus = f2g_run("--bogus");
   EXPECT_EQ(bogus.rc, 2);
   EXPECT_NE(bogus.out.find("--bogus"), std::string::npos) << bogus.out;
-  // a typo names the flag it was meant to be (issue 27)
+  // a typo names the flag it was meant to be
   const Result typo = f2g_run("case -o x.vti --spacng 0.1 --interpolaton=linear");
   EXPECT_EQ(typo.rc, 2);
   EXPECT_NE(typo.out.find("unknown flag \"--spacng\" (did you mean \"--spacing\"?)"),

@@ -69,7 +69,7 @@ TEST(Kirchhoff, ForceFreeMotionConservesEnergyAndMomenta) {
 // The splitting scheme integrates the gyroscopic and Munk terms with the implicit midpoint rule
 // and the Cayley rotation (integrate/dynamics.h, kirchhoff_flow), which keeps every quadratic
 // invariant exactly: at a step 50 times coarser than above, on a light thin plate whose
-// edgewise generalized mass is 1e-3 of its broadside one (the case that used to blow up), in a
+// edgewise generalized mass is 1e-3 of its broadside one (the case most prone to blow up), in a
 // uniform mean flow, the energy of the motion relative to the fluid, |P|, P.L and the world
 // impulse R P stay constant to round-off and Newton tolerance.
 TEST(Kirchhoff, SplittingKeepsTheInvariantsOfAThinLightPlateExactly) {

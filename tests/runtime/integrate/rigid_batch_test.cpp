@@ -109,7 +109,7 @@ TEST(RigidBatch, EllipsoidsAndDisksMatchTheScalarStep) {
     const auto [scalar, batched, d] = scalar_and_batched(s, field);
     EXPECT_EQ(scalar.stats.body_steps, batched.stats.body_steps);
     // the disks tumble (their pitch-rate terms take the finite span, effects/plate.h), which
-    // grows the rounding as in the leaves' test above (measured 1.2e-8 rad/s in w, 2026-12-04);
+    // grows the rounding as in the leaves' test above (measured 1.2e-8 rad/s in w);
     // the pods stay below 1e-9
     expect_close(d, m.types[0].flat ? 1e-7 : 1e-9);
     // they flew for a while (50 steps on average) and some landed
@@ -251,8 +251,7 @@ TEST(RigidBatch, Rk4InAGustingSeriesMatchesTheScalarStep) {
 // An artist's leaf from a mesh (batch_test::bent_leaf, curled and turned; 464 panels here, the
 // mesh's own triangles): its generalized mass M is a full symmetric 6 x 6, and the loops run the
 // free Kirchhoff flow, the implicit force step and the Strang force steps on the full-mass kernels
-// of model/kirchhoff.h, as the scalar step does (issue 28: such leaves ran on the scalar step
-// only).
+// of model/kirchhoff.h, as the scalar step does.
 Scene mesh_leaf_scene(int n) {
   Scene s = rigid_scene(batch_test::bent_leaf(13, 9), 600, n);
   s.bodies[0].panels = 400;  // never coarsened: the mesh's 464 triangles
@@ -320,8 +319,8 @@ TEST(RigidBatch, MeshLeavesEulerAndRk4MatchTheScalarStep) {
   // the impulse conversions with a full M and K's six rows (euler), M^-1 of the rates and M_body's
   // gyroscopic terms (rk4), the added-mass wrench of a full K (both), then with the Basset
   // history (euler: the implicit solve of a full M + b P; rk4: the correction through
-  // (M + b P)^-1's first three columns, which turns the spin too) and Magnus. They used to take
-  // the scalar step ("no batched kernels yet").
+  // (M + b P)^-1's first three columns, which turns the spin too) and Magnus, on the batched
+  // step, not handed to the scalar one.
   const FluidField field = wind_grid(1.5e-5);
   for (const Integrator scheme : {Integrator::Euler, Integrator::RK4}) {
     for (const bool extra : {false, true}) {
@@ -450,7 +449,7 @@ TEST(RigidBatch, FreeFlowOfAFullMassKeepsItsInvariants) {
 TEST(RigidBatch, StiffDragTakesTheNewtonPathLikeTheScalarStep) {
   // light cards and paper disks at a coarse step (20 ms): the drag is stiff, and the loops
   // iterate Newton themselves (with the Basset history's implicit mass in the second run). Over
-  // the first 0.5 s: with the aspect-ratio plate drag (issue 30, lower broadside C_D) the cards
+  // the first 0.5 s: with the aspect-ratio plate drag (its lower broadside C_D) the cards
   // later spin up into free flows that Newton is slow on (handed to the scalar step, 24 % of the
   // steps over 1 s) and their chaotic motion amplifies rounding past 1e-9.
   for (const Shape& shape : {Shape::box(0.06, 0.04, 4e-4), Shape::ellipsoid(0.03, 0.02, 6e-4)}) {
@@ -464,7 +463,7 @@ TEST(RigidBatch, StiffDragTakesTheNewtonPathLikeTheScalarStep) {
       const auto [scalar, batched, d] = scalar_and_batched(s, field);
       EXPECT_EQ(scalar.stats.body_steps, batched.stats.body_steps);
       expect_close(d, 1e-9);
-      // the loops solve the stiff steps by Newton themselves (they used to hand them all to the
+      // the loops solve the stiff steps by Newton themselves (not handing them all to the
       // scalar step); the hardest free flows still go there (Newton slow to converge)
       EXPECT_GT(batched.stats.newton_steps, batched.stats.body_steps / 2);
       EXPECT_LT(batched.stats.scalar_handoffs, batched.stats.body_steps / 5);

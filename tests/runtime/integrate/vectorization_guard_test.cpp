@@ -102,7 +102,7 @@ TEST(VectorizationGuard, EulerAndRk4OnTheBatchedStep) {
   // the explicit schemes on the batched step (rigid_batch_explicit.h), in one run beside the
   // splitting scheme's batched step and their own scalar steps: each at least four times its
   // scalar step, and euler (one force evaluation, no iteration) at least as fast as a third of
-  // splitting (issue 28: it was 6 times slower, on the scalar step)
+  // splitting
   const Integrator schemes[3] = {Integrator::Splitting, Integrator::Euler, Integrator::RK4};
   const char* names[3] = {"splitting", "euler", "rk4"};
   double best_batched[3] = {0, 0, 0}, best_scalar[3] = {0, 0, 0};
@@ -146,8 +146,7 @@ Model beads_model(Integrator scheme, Scene* scene) {
 
 TEST(VectorizationGuard, EulerAndRk4OnTheBatchedSphereStep) {
   // the explicit schemes on the batched sphere step (sphere_batch_explicit.h), each against its
-  // own scalar step in one run: at least four times it (issue 28: spheres ran euler and rk4 on
-  // the scalar step only)
+  // own scalar step in one run: at least four times it
   const Integrator schemes[2] = {Integrator::Euler, Integrator::RK4};
   const char* names[2] = {"euler", "rk4"};
   for (int k = 0; k < 2; ++k) {

@@ -1,4 +1,4 @@
-// Sanity warnings (io/sanity.h, issue 29): each check fires on the mistake it is meant for, its
+// Sanity warnings (io/sanity.h): each check fires on the mistake it is meant for, its
 // message names the scene key, the value and the fix, and a sane scene gives none. Small
 // scenes with spheres and ellipsoids (analytic added mass: no BEM), a 5x5x5 grid on disk.
 #include <gtest/gtest.h>

@@ -120,7 +120,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"unknown top key", [](json& j) { j["colour"] = "red"; }, "unknown key \"colour\""},
         BadCase{"unknown nested key", [](json& j) { j["bodies"][0]["shape"]["radious"] = 1; },
                 "bodies[0].shape: unknown key \"radious\" (did you mean \"radius\"?)"},
-        // issue 27: a typo in a required key is named (before the key is found missing)
+        // a typo in a required key is named (before the key is found missing)
         BadCase{"typo in a required key",
                 [](json& j) {
                   auto& b = j["bodies"][0];
@@ -367,7 +367,7 @@ TEST(SceneJson, MissingFileSaysSo) {
   }
 }
 
-// issue 28: strang is the default scheme. The scene file requires "scheme", so the default is
+// strang is the default scheme. The scene file requires "scheme", so the default is
 // what a Scene or Model built in code starts with and what every shipped scene (scenes/*.json,
 // which Allrun, the tests, benches and validation studies copy) names.
 TEST(SceneJson, ShippedScenesAndDefaultsRunStrang) {
@@ -392,7 +392,7 @@ TEST(SceneJson, ShippedScenesAndDefaultsRunStrang) {
 }
 
 
-// ---- issue 27: a typo in any key of a scene is named, with the key it was meant to be ----
+// ---- a typo in any key of a scene is named, with the key it was meant to be ----
 
 // Every key path below `j` (objects only; list elements by index), e.g. {"bodies", 0, "shape"}.
 void key_paths(const json& j, json::json_pointer at, std::vector<json::json_pointer>* out) {

@@ -1,4 +1,4 @@
-// The ParaView series' frames (io/vtp_frames.h, issue 29): a box's series surface is its exact
+// The ParaView series' frames (io/vtp_frames.h): a box's series surface is its exact
 // closed surface, outward (12 triangles); frames read back with VTK's reader hold the state;
 // a frame's file depends only on the state written, not on how many frames the writer wrote
 // before (VTK caches array ranges in kept arrays: the first frame of a process differed from the
