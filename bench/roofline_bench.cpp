@@ -1,4 +1,4 @@
-// The machine's limits for the roofline estimate of docs/performance.md (issue 11):
+// The machine's limits for the roofline estimate of docs/performance.md:
 //   Triad      a[i] = b[i] + s c[i] over arrays far larger than the caches (STREAM's triad):
 //              bytes_per_second counts 24 bytes per element (read b, c; write a; no
 //              write-allocate counted, as STREAM does).

@@ -1,4 +1,4 @@
-// Kernels of the step on the wind scene's field (issue 11): the normal generator, one field
+// Kernels of the step on the wind scene's field: the normal generator, one field
 // sample, and step_body per integrator with every effect selected. Single thread.
 //   build/bin/step_bench --benchmark_min_time=0.5 [--benchmark_format=json]
 // Needs results/grids/windCourtyard.vti (./Allrun); the field kernels are skipped without it.

@@ -1,4 +1,4 @@
-// The cost of the outputs against the simulation (issue 29; docs/performance.md, "Output cost"):
+// The cost of the outputs against the simulation (docs/performance.md, "Output cost"):
 // runs a scene (default: scenes/leaves_wind.json, the scene ./Allrun runs) and, at every output
 // frame, writes it with each writer in turn, timing each one on its own:
 //   csv     trajectories.csv rows (io/result_writer.h, "csv" only)

@@ -1,4 +1,4 @@
-// accuracy_study: the error-versus-cost study of issue 8 (docs/accuracy.md).
+// accuracy_study: the error-versus-cost study of the schemes (docs/accuracy.md).
 //
 //   accuracy_study [--quick] [--out DIR] [--scenes a,b] [--sweeps det,stoch,effects]
 //                  [--threads N] [--grids NAME:SCENE:FILE1,FILE2,...] [--field SCENE=FILE]

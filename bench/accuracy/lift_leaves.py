@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Where the first-order schemes lose: the lift of flat bodies (issue 28's 20-leaf case).
+"""Where the first-order schemes lose: the lift of flat bodies (a 20-leaf case).
 
 20 leaves (6 x 4 x 0.04 cm boxes, 600 kg/m^3) released with random orientations above the
 courtyard in the wind grid, turbulence off, 1 s; the median over the leaves of the final position's
@@ -10,8 +10,8 @@ wind grid (./Allrun: results/grids/windCourtyard.vti).
         [--write docs/physics/integrators.md] [--uniform U] [--schemes strang,rk4]
 
 --write puts the table between the lift-leaves markers of that file, with the machine and date.
-Issue 28's target: strang at dt = 1e-3 s within 10x of rk4's error at the same step (splitting
-was about 2000x).
+What the table shows: strang at dt = 1e-3 s stays within 10x of rk4's error at the same step,
+where splitting is about 2000x off.
 """
 import argparse
 import csv
@@ -97,7 +97,7 @@ def main():
         sys.exit("lift_leaves: --schemes must include rk4 (the ratios are to rk4's error)")
     if a.uniform is not None:
         if a.write:
-            sys.exit("lift_leaves: --write takes the grid case only (issue 28's)")
+            sys.exit("lift_leaves: --write takes the grid case only (the table's)")
         grid = [a.uniform, 0.0, 0.0]
     else:
         grid = os.path.abspath(a.grid)

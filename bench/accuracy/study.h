@@ -1,4 +1,4 @@
-// The error-versus-cost study (issue 8, docs/accuracy.md): runs a scene with one integrator,
+// The error-versus-cost study (docs/accuracy.md): runs a scene with one integrator,
 // time step, Brownian-path resolution, effect set and field, and compares two runs' body
 // positions with the metrics of the study. Shared by bench/accuracy/accuracy_study.cpp and the
 // reduced study in tests/accuracy/.

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Cost of contacts (issue 23, item 7) on the leaves scene, in instructions (callgrind).
+"""Cost of contacts on the leaves scene, in instructions (callgrind).
 
 The same scene is run twice: with contacts (scenes/leaves_wind.json as it is: ground and walls
 "collide") and without (ground.contact "stop", walls.contact "stop": the seed's behaviour, a

@@ -1,5 +1,5 @@
 #!/bin/bash
-# Issue 28's targets for the explicit schemes on the batched step, measured in one run: lrigid's
+# The explicit schemes on the batched step against a peer, measured in one run: lrigid's
 # splitting, euler and rk4 on the leaves scene (batched, and on the scalar step: a copy of the
 # scene with "batched": false), and MuJoCo 2.2's RK4 and Euler on the same falling plate
 # (mujoco_harness --body leaf: the scene's leaf, a free box 6 x 4 x 0.04 cm of 600 kg/m^3, MuJoCo's

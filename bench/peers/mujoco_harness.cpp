@@ -1,10 +1,10 @@
-// MuJoCo peer for bench/peers/run_peers.sh (issue 11): free ellipsoids in air with MuJoCo's
+// MuJoCo peer for bench/peers/run_peers.sh: free ellipsoids in air with MuJoCo's
 // ellipsoid fluid model (fluidshape="ellipsoid"), contacts off, stepped with RK4 and with Euler.
 // Two layouts: one body per model (many mjData of a one-body model: MuJoCo's best case) and all
 // bodies in one model. Prints one JSON object of body-steps per second of CPU time (one core).
 //   mujoco_harness [--n N] [--dt DT] [--steps S] [--one-model-max M] [--body pod|leaf|bead]
 // --body: the wind scene's seed pod (default; scenes/leaves_wind.json), its leaf (a falling plate,
-// the box 6 x 4 x 0.04 cm of 600 kg/m^3: issue 28's rk4 comparison) or the 500 um glass bead
+// the box 6 x 4 x 0.04 cm of 600 kg/m^3: explicit_schemes.sh's comparison) or the 500 um glass bead
 // of scenes/beads_wind.json (a sphere; the OpenFOAM peer's parcel, for bench/perf/batch_bench.py).
 // One model of many bodies costs MuJoCo O(bodies^2) per step (mj_applyFT builds a dense 3 x nv
 // Jacobian for each body's fluid force), so that layout is measured with min(N, M) bodies

@@ -1,5 +1,5 @@
 #!/bin/bash
-# Peers side by side (issue 11): OpenFOAM's parcel tracking and MuJoCo's fluid model, on this
+# Peers side by side: OpenFOAM's parcel tracking and MuJoCo's fluid model, on this
 # machine, in this run. Writes OUTDIR/peers.json (read by the performance docs generator):
 #   {"openfoam": {"dispersion_off": parcel-steps/s, "dispersion_on": ...},
 #    "mujoco": {"rk4": body-steps/s, "euler": ...}, "n", "dt", "machine", "date", "load", ...}
@@ -204,7 +204,7 @@ import json, sys
 d = json.load(sys.stdin)["one_body_per_model"]
 print(d["rk4"], d["euler"])')
   MJ_NOTE="\"mujoco_detail\": $MJ,"
-  # the leaves scene's falling plate (issue 28: rk4 against MuJoCo's RK4 on the same plates)
+  # the leaves scene's falling plate (lrigid's rk4 against MuJoCo's RK4 on the same plates)
   MJL=$("$H" --n "$N" --dt "$DT" --steps "$STEPS" --body leaf)
   read -r MJL_RK4 MJL_EULER < <(echo "$MJL" | /usr/bin/python3 -c '
 import json, sys

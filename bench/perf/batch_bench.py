@@ -178,7 +178,7 @@ def main():
     leaf_rows = throughput(leaves, "leaves", 250)
     # the full effect set: all nine effects on every type (Basset history and Magnus too, and
     # added mass and buoyancy for the seed pods, which the scene's "auto" leaves out): N = 10^4
-    # on one thread and the 300,000 bodies on two, double and float
+    # on one thread and 300,000 bodies on two, double and float
     leaf_all = {"effects": ALL_EFFECTS, "runs": []}
     for key, names, prec, n, t in (
             ("all", None, "double", 10000, 1), ("all", None, "float", 10000, 1),

@@ -1,8 +1,8 @@
 #!/usr/bin/python3
 """Two builds of lrigid side by side: body-steps per CPU-second of every scene in scenes/ (the
 scene's own effects, N bodies, one thread), for each integrator, measured alternately in one run
-so that a noisy machine slows both alike. For a change that must not cost speed (issue 22: every
-scene within 3 % of before):
+so that a noisy machine slows both alike. For a change that must not cost speed (every scene
+within 3 % of OLD):
 
     bench/perf/compare_builds.py OLD_LRIGID NEW_LRIGID [--n 10000] [--rounds 3]
         [--integrators splitting,euler,rk4] [--scenes a.json,b.json] [--json OUT]
@@ -14,7 +14,7 @@ runs are side by side in time: robust to the load changing during the comparison
 virtual machine the memory-bound sampling varies by +-15 % run to run; read both columns. Scenes
 whose field file is missing (results/grids/ from ./Allrun, ./Allrun -all) are skipped and listed.
 
-Builds from before the contacts (issue 23) do not know the keys `walls`, `outside`,
+Builds without contacts do not know the keys `walls`, `outside`,
 `ground.contact` and `bodies[].contact`: --old-without-contacts gives OLD a copy of each scene
 without them (OLD then stops bodies at the ground, as it always did). --contacts stop gives NEW
 the scene with ground and walls in "stop" mode, so that a comparison of the physics steps is not

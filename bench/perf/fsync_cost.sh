@@ -1,5 +1,5 @@
 #!/bin/bash
-# What fsync costs a run (issue 54, docs/performance.md "Durability: what fsync costs"):
+# What fsync costs a run (docs/performance.md "Durability: what fsync costs"):
 # a uniform-flow scene of BODIES spheres (default 1000), 2 s, an output every 0.01 s (201
 # frames, csv + pvd), run twice: without checkpoints (fsync only at the finish) and with a
 # checkpoint at every output (--checkpoint-every 1e-9: the worst case; the default is one every

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Writes docs/performance.md from the measurements bench/perf/run_perf.sh collected (issue 11).
+"""Writes docs/performance.md from the measurements bench/perf/run_perf.sh collected.
 
   make_report.py DIR [--peers FILE]... [--converter FILE] [--stream FILE] [--scaling FILE]
                  [--out docs/performance.md] [--scaling-doc docs/scaling.md] [--note TEXT]

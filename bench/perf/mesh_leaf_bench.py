@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""What a leaf from a mesh costs against the box leaf (issue 28): the leaves scene's leaf entry
+"""What a leaf from a mesh costs against the box leaf: the leaves scene's leaf entry
 (scenes/leaves_wind.json: 6 x 4 cm, 0.4 mm, 600 kg/m^3, the scene's "auto" effects) stepped by
 `lrigid bench` once as the box and once as tests/data/meshes/bent_leaf.obj (the same leaf curled
 4 mm and turned 20 degrees about z, 1696 triangles: its generalized mass is a full 6 x 6, which

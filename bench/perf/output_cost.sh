@@ -1,5 +1,5 @@
 #!/bin/bash
-# The outputs' cost against the simulation on the default scene (issue 29; docs/performance.md,
+# The outputs' cost against the simulation on the default scene (docs/performance.md,
 # "Output cost"). Two measurements:
 #  1. build/bin/writers_bench: each writer (csv, bodies .vtp, shapes .vtp, glb) timed on its own
 #     at every output frame of scenes/leaves_wind.json, next to the simulation's time between

@@ -1,7 +1,7 @@
 #!/bin/bash
 # Measures the runtime's throughput, this machine's limits, the peers, the converter, streaming
 # and ranks x threads scaling, and writes docs/performance.md and the generated tables of
-# docs/scaling.md (issue 11). Run from anywhere after a Release build, niced on a shared machine:
+# docs/scaling.md. Run from anywhere after a Release build, niced on a shared machine:
 #   nice -n 19 bench/perf/run_perf.sh [--quick] [--no-flops] [--peers FILE]... [--no-peers]
 #       [--wind-case DIR] [--no-converter] [--no-stream] [--no-scaling] [--no-batch]
 #       [--tank-series FILE.pvd]

@@ -1,5 +1,5 @@
 #!/bin/bash
-# Ranks x threads scaling of `lrigid run` (issue 11, item 5): `mpirun -np R lrigid run SCENE
+# Ranks x threads scaling of `lrigid run`: `mpirun -np R lrigid run SCENE
 # --threads T` on the wind scene scaled to N bodies, for every R x T <= the number of cores (more
 # would oversubscribe the cores and measure the scheduler, not the code). Writes OUT/scaling.json
 # (read by bench/perf/make_report.py for docs/scaling.md): per (R, T) the integration wall (the

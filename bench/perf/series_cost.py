@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """What a time-dependent field (a .pvd series) costs the batched step, against the same scene on
-one of its frames (issue 28: at most 1.3x). Run after ./Allrun -all (results/grids/tankJet.pvd):
+one of its frames (the target: at most 1.3x). Run after ./Allrun -all (results/grids/tankJet.pvd):
 
     bench/perf/series_cost.py [--lrigid build/bin/lrigid] [--rounds 3] [--n 4000]
         [--body-steps 2e6] [--write]

@@ -1,5 +1,5 @@
 #!/bin/bash
-# What streaming a transient field costs and saves (issue 11, item 6): `lrigid run
+# What streaming a transient field costs and saves: `lrigid run
 # --stream-field on` and `off` on the tank scene's .pvd series (scenes/debris_tank.json), each
 # under /usr/bin/time -v. Writes OUT/stream.json (read by bench/perf/make_report.py):
 #   per mode: process wall and CPU (user+sys) s, peak RSS, the integration wall, the time spent

@@ -1,4 +1,4 @@
-// Checks of numeric flags whose messages read well (issue 29). CLI::NonNegativeNumber is a range
+// Checks of numeric flags whose messages read well. CLI::NonNegativeNumber is a range
 // up to the largest double and prints that bound in full (309 digits: "Value -1 not in range
 // 0.000000 to 179769313486231570814527423731704356798070567525844996598917476803157...").
 #pragma once

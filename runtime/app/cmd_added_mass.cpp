@@ -1,5 +1,5 @@
 // lrigid added-mass: volume, mass properties per unit density and the fluid Kirchhoff tensor
-// of one body shape (issue 5). BEM results come from / go to the disk cache.
+// of one body shape. BEM results come from / go to the disk cache.
 #include <cstdio>
 #include <iomanip>
 #include <iostream>

@@ -1,4 +1,4 @@
-// Cleanup on SIGINT/SIGTERM/SIGHUP (issue 9). An interrupted run never leaves a final-looking
+// Cleanup on SIGINT/SIGTERM/SIGHUP. An interrupted run never leaves a final-looking
 // file, because results appear under their final names only at the end; this handler also
 // removes the temporary ones ("<name>.tmp<pid>", files and directories) so nothing is left.
 // The handler uses only async-signal-safe calls (open, getdents64, readlinkat, unlinkat,

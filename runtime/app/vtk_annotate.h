@@ -1,4 +1,4 @@
-// What makes a picture of `lrigid render` read at a glance (issue 29): a legend of the body
+// What makes a picture of `lrigid render` read at a glance: a legend of the body
 // types in their colours, a caption that fits the image, and the domain the bodies are in (the
 // grid's outline; for water, the tank's walls and its surface). VTK; used by cmd_render.cpp.
 #pragma once

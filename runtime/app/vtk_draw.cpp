@@ -63,7 +63,7 @@ void require_display(const std::string& command) {
 }
 
 void type_colour(size_t i, unsigned char rgb[3]) {
-  // no blue: the slices of k and |U| are blue (issue 29)
+  // no blue: the slices of k and |U| are blue
   static const unsigned char kPalette[][3] = {{230, 140, 50}, {70, 170, 70}, {200, 50, 90},
                                               {150, 90, 200}, {235, 200, 40}, {120, 80, 40}};
   for (int k = 0; k < 3; ++k) rgb[k] = kPalette[i % 6][k];

@@ -21,7 +21,7 @@ What the sources support, and what is checked (docs/physics/lift.md, "Where the 
   every account agrees: flutter with no net rotation at I*_s ≤ 0.15, steady tumbling at
   I*_s ≥ 2; anything is allowed between.
 * APW 2005b's quasi-steady ODE (apw_ode.py) bifurcates from flutter at a mass ratio
-  I*_ODE = m/(π ρ_f a²) (= (4/π) I*_s for a rectangle) of about 1.45–1.6 by the issue's reading of
+  I*_ODE = m/(π ρ_f a²) (= (4/π) I*_s for a rectangle) of about 1.45–1.6 by one reading of
   the paper (not re-read here); this project's transcription (apw_ode.py) leaves flutter between
   1.2 and 1.3. Check: the 3D model's 2D limit — an elliptic strip of side ratio 1000, whose
   coefficients are APW's — at APW's Reynolds number U 2a/ν = 10³ first leaves flutter at a
@@ -286,7 +286,7 @@ def main():
             "flutter–tumble band there): " % nu_hi + "; ".join(
                 "I*_s = %g %s (pitch %.0f°)" % (i, res[(i, nu_hi)][0], res[(i, nu_hi)][3])
                 for i in ISTARS if 0.15 < i < 2))
-    # where the side-ratio-5 strip does tumble (issue 30's third session: 3 and 4 are chaotic
+    # where the side-ratio-5 strip does tumble (3 and 4 are chaotic
     # from releases at 10° and 45°, 6 tumbles from both)
     heavier = []
     for istar in HEAVIER:
@@ -326,9 +326,8 @@ def main():
         return out
     lim = limit_regimes(LIMIT_RE, "")
     first = next((mr for mr, r in zip(LIMIT_I, lim) if r not in ("flutter", "steady")), math.nan)
-    # the same strips at 7 times APW's Reynolds number (the set-up before issue 30's second
-    # session: nu = 1e-6), where the model's mu1 is about (1/7)^(1/2) of APW's, beside the ODE
-    # with that mu1 (notes)
+    # the same strips at 7 times APW's Reynolds number (nu = 1e-6), where the model's mu1 is
+    # about (1/7)^(1/2) of APW's, beside the ODE with that mu1 (notes)
     if not args.quick:
         hi = limit_regimes(7 * LIMIT_RE, "_re7000")
         c7 = apw_ode.APW._replace(mu1=apw_ode.APW.mu1 * math.sqrt(1 / 7))

@@ -3,23 +3,22 @@
 measured drops of Howison, Hughes & Iida (Nature Machine Intelligence 2020), and the broadside
 terminal velocity of square plates and disks against the textbook drag coefficients.
 
-Paper: 70 g/m² (thickness 0.0694 mm, 1008 kg/m³, as in Howison et al.'s analysis scripts).
-Shapes: squares (box 2R × 2R × h) and circles (thin oblate ellipsoid of radius R whose mass per
-area is the paper's; its moment of inertia about a diameter is 4/5 of the flat disk's) of
-"radius" R (a square's half side, as in the data) at the centres of the data's bins 1.5–2.5,
-2.5–3.5, 3.5–4.5 and 4.5–5 cm. Air 1.2 kg/m³, ν = 1.5e-5 m²/s (20 °C). Released from rest,
-80 per radius bin (40 until 2026-12-05: the 3 cm squares' lateral then passed at this seed and
-failed at three of four others; at 80 it fails at every seed scanned), horizontal and vertical
-in the proportion of the bin's measured drops (squares
+Paper: 70 g/m² (thickness 0.0694 mm, 1008 kg/m³, as in Howison et al.'s analysis scripts). Shapes:
+squares (box 2R × 2R × h) and circles (thin oblate ellipsoid of radius R whose mass per area is the
+paper's; its moment of inertia about a diameter is 4/5 of the flat disk's) of "radius" R (a
+square's half side, as in the data) at the centres of the data's bins 1.5–2.5, 2.5–3.5, 3.5–4.5 and
+4.5–5 cm. Air 1.2 kg/m³, ν = 1.5e-5 m²/s (20 °C). Released from rest, 80 per radius bin (at 40 the
+3 cm squares' lateral passed at this seed and failed at three of four others; at 80 it fails at
+every seed scanned), horizontal and vertical in the proportion of the bin's measured drops (squares
 12:14, 12:15, 16:10, 10:3; circles 21:36, 19:29, 16:23, 10:16) from the bin's median measured
-release height (1.01–1.10 m; the first tracked sample's height, reference.json), each tilted by
-a random 0–5° about a random horizontal axis and turning at a random rate of 0–1 rad/s about a
-random axis (RELEASE_SPIN; the release is never exactly symmetric). Until 2026-12-04's
-fifth session: 10 per release and radius, half and half, from 1.0 m; the measured mix puts more
-vertical releases (no steady start segment) into the circles' bins and more horizontal ones into
-the large squares'. The recorded drops do not start from rest (a note prints how fast they move
-at the first sample); the model's do. Effects "auto" (gravity, buoyancy, added mass, plate
-drag and lift), strang (the shipped scheme, vcommon.SCHEME), dt = 5e-4 s, states every 0.01 s.
+release height (1.01–1.10 m; the first tracked sample's height, reference.json), each tilted by a
+random 0–5° about a random horizontal axis and turning at a random rate of 0–1 rad/s about a random
+axis (RELEASE_SPIN; the release is never exactly symmetric). The measured mix, rather than half and
+half, puts more vertical releases (no steady start segment) into the circles' bins and more
+horizontal ones into the large squares'. The recorded drops do not start from rest (a note prints
+how fast they move at the first sample); the model's do. Effects "auto" (gravity, buoyancy, added
+mass, plate drag and lift), strang (the shipped scheme, vcommon.SCHEME), dt = 5e-4 s, states every
+0.01 s.
 
 Each simulated trajectory is cut into segments the way the experiments' were
 (Classification/classifyBehaviour.m of github.com/th533/Falling-Paper): samples below 5 cm are

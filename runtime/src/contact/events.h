@@ -33,7 +33,7 @@ inline bool is_round(const BodyType& type) {
 bool touches_ground(const Model& m, const BodyType& type, const BodyState& s);
 
 // Where within a step from `a` to `b` (model.dt apart, b touching the ground) the body first
-// touches it (issue 28, events located inside the step): the first root of the lowest point's
+// touches it (an event located inside the step): the first root of the lowest point's
 // height above the ground along the step's motion, a cubic Hermite interpolant through both ends'
 // positions and world velocities and through both ends' orientations and their rates (q' = q w/2,
 // the quaternion normalised), third order like rk4's own dense output, so that a landing does not

@@ -378,9 +378,9 @@ constexpr int kContactMaxPoints = 64;
 // the largest accumulated normal impulse. For a body lying on a surface that impulse is about
 // its weight times the step (m g dt), so what is left unresolved changes a point's velocity by
 // at most about 1e-6 g dt (2e-8 m/s at dt = 2 ms): a creep below 2e-7 m in 10 s, under the
-// 1e-6 m the incline check allows; the next step's pass takes it up again. (It was 1e-9: the
-// same results to the validation's precision, 1.5 % more instructions per body-step on the
-// wind scene, docs/contacts.md.)
+// 1e-6 m the incline check allows; the next step's pass takes it up again. A tighter 1e-9 gives
+// the same results to the validation's precision for 1.5 % more instructions per body-step on
+// the wind scene (docs/contacts.md).
 constexpr double kContactTolerance = 1e-6;
 // contact_resolve's points lie on one plane (contact_rest) when their normals differ from the
 // first's by less than this in 1 - cos (an angle below 1.4 mrad: the ground exactly, a flat roof

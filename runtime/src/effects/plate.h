@@ -75,12 +75,12 @@ PlateCoeffs plate_coefficients(const BodyType& type);
 //   K_R = 2/3 l0^2 (2 s1 + s2);
 // A rectangle about an axis along a side gives l S, 2 c^3 L / 3 and c^4 L / 2 (L: span along
 // the axis): APW's strip exactly.
-// Ellipses (and a mesh's equivalent ellipse) keep the mid-chord form used before: one strip of
+// Ellipses (and a mesh's equivalent ellipse) take the mid-chord form: one strip of
 // the chord through the centre l0 = 2 / |(d1 / c1, d2 / c2)| and span S / l0, i.e. K_R = l0 S,
 // J2 = l0^2 S / 12, J3 = l0^3 S / 32. Their own strip sums (half width across the axis
 // h = |(c1 d1, c2 d2)|: K_R = 8 l0 S / (3 pi), J2 = S h^2 / 4, J3 = 8 S h^3 / (15 pi); a disk:
-// 0.85, 0.75, 0.68 times the mid-chord values) were measured and not adopted: with them the
-// elliptic strips of scenes/plate_tumble.json no longer tumble (docs/physics/lift.md).
+// 0.85, 0.75, 0.68 times the mid-chord values) are not used: with them the elliptic strips of
+// scenes/plate_tumble.json do not tumble (docs/physics/lift.md).
 template <typename T>
 struct PlateStrips {
   T KR, J2, J3;  // m^3, m^4, m^5

@@ -1,4 +1,4 @@
-// The quasi-steady centre of pressure of a flat body (issue 30, docs/physics/lift.md, "The centre
+// The quasi-steady centre of pressure of a flat body (docs/physics/lift.md, "The centre
 // of pressure"): where the plate's normal force would have to act to give the pitching moment the
 // model gives a plate translating steadily through fluid at rest at angle of attack alpha. No new
 // equation: the forces are the plate kernel's (effects/plate.h: drag and translational lift, both

@@ -24,7 +24,7 @@ bool contact_after_step(const Model& model, const BodyType& type, size_t i, doub
                         BodyState* b, State* st, WallClearance* clearance = nullptr,
                         const BodyState* start = nullptr);
 
-// An impact inside the step (issue 28, events located inside the step): the step from a (at
+// An impact inside the step (an event located inside the step): the step from a (at
 // time t) to b (its end, through the surface, before any contact) is taken again in two parts.
 // locate_event finds the first time tau where a contact point reaches the ground or a wall (the
 // smallest of their signed distances along the step's Hermite interpolant); the scheme's

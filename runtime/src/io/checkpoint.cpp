@@ -18,7 +18,7 @@ namespace lrigid {
 
 namespace {
 
-// format 3 (issue 54) ends in a checksum of everything before it; format 2 had none
+// format 3 ends in a checksum of everything before it; format 2 (an older lrigid's) has none
 constexpr char kMagic[8] = {'L', 'R', 'I', 'G', 'C', 'K', 'P', '3'};
 constexpr char kMagicUnchecked[8] = {'L', 'R', 'I', 'G', 'C', 'K', 'P', '2'};
 
@@ -167,7 +167,7 @@ void read_checkpoint(const std::string& path, const CheckpointId& id, int rank, 
   if (bytes.size() >= sizeof kMagic &&
       std::memcmp(bytes.data(), kMagicUnchecked, sizeof kMagicUnchecked) == 0)
     fail_input(path, "",
-               "a checkpoint of format 2 (lrigid before issue 54), which has no checksum, so it "
+               "a checkpoint of format 2 (an older lrigid's), which has no checksum, so it "
                "cannot be verified; it is refused rather than trusted: resume it with the lrigid "
                "that wrote it, or start the run afresh");
   if (bytes.size() < sizeof kMagic + sizeof(uint64_t) ||

@@ -1,4 +1,4 @@
-// One plain sentence per body type for `lrigid explain` (issue 29), for readers who do not
+// One plain sentence per body type for `lrigid explain`, for readers who do not
 // speak in Stokes numbers: how much turbulence moves it, how fast it falls or rises, what its
 // shape does, whether the flow carries it farther than it falls. Built from explain's data
 // (io/explain.h) only; the thresholds are stated in docs/effects.md ("In plain words").

@@ -29,7 +29,7 @@ struct Owned {
   bool any() const { return !files.empty() || !folders.empty(); }
 };
 
-// results folders written before the manifest (lrigid before issue 54): summary.json from lrigid
+// results folders without a manifest (written by an older lrigid): summary.json from lrigid
 // (it has "version" and "outputs"), the result files by their names and the frames by their
 // pattern <folder>_NNNNNN.vtp
 Owned legacy_owned(const fs::path& d) {

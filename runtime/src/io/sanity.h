@@ -1,4 +1,4 @@
-// Sanity checks of a scene before it runs (issue 29; docs/scene-format.md, "Sanity warnings"):
+// Sanity checks of a scene before it runs (docs/scene-format.md, "Sanity warnings"):
 // what is valid input but most likely a mistake, above all in units (sizes in centimetres
 // written as metres, a spawn box in another frame than the grid). Each finding names the scene
 // key, its value, what looks wrong and what to check.

@@ -1,4 +1,4 @@
-// The frames of the ParaView series (docs/outputs.md), written cheaply (issue 29): a frame of
+// The frames of the ParaView series (docs/outputs.md), written cheaply: a frame of
 // the default scene must cost no more than simulating the steps between two frames
 // (docs/performance.md, "Output cost").
 //   BodiesFrames: bodies_NNNNNN.vtp, one point per body with orientation, velocity,
@@ -52,7 +52,7 @@ class ShapesFrames {
   std::unique_ptr<Impl> p_;
 };
 
-// Both series on a thread of their own, one frame at a time (issue 29): write() copies what a
+// Both series on a thread of their own, one frame at a time: write() copies what a
 // frame needs (t, positions, orientations, velocities, seen turbulence, types, status) and
 // returns while the frame is written, so the simulation goes on meanwhile; the next write()
 // and wait() first wait for the frame before and rethrow its error. Destroying it waits too.

@@ -152,7 +152,7 @@ struct Model {
   // Thomson's well-mixed drift for the seen model; off only to show what it prevents
   bool well_mixed_correction = true;
   // Brownian path resolution: each step's noise is the sum of this many finer increments, so a
-  // run with dt = r h sees the same path as a run with dt = h and 1 (accuracy study, issue 8)
+  // run with dt = r h sees the same path as a run with dt = h and 1 (docs/accuracy.md)
   uint32_t noise_substeps = 1;
   double mean_flow_scale = 1;    // art direction: U seen by the bodies is scaled by this
   double turbulence_scale = 1;   // art direction: u' seen by the bodies is scaled by this

@@ -12,7 +12,7 @@
 namespace lrigid {
 
 enum class Integrator { Euler, RK4, Splitting, Strang };
-// The scheme of the shipped scenes and of a Scene or Model built in code (issue 28): strang
+// The scheme of the shipped scenes and of a Scene or Model built in code: strang
 // reaches each error of docs/accuracy.md's study for less CPU time than splitting, on every
 // scene kind measured; splitting (first order) stays fully supported.
 constexpr Integrator kDefaultIntegrator = Integrator::Strang;

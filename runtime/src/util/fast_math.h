@@ -119,7 +119,7 @@ inline double one_minus_exp_neg(double y) {
 // batched lanes take LaneMath, the straight-line polynomials above: a loop over them vectorizes.
 // The scalar step takes ScalarMath, the C library's: on one number at a time a 14-term Horner
 // chain is a long run of dependent multiplies and adds, slower than libm's table-driven
-// functions (beads_wind on the scalar step: 7-10 % of its CPU time, issue 22). The two agree to
+// functions (on beads_wind the scalar step spends 7-10 % of its CPU time in them). The two agree to
 // a few ulp (tests/runtime/util/rng_test.cpp).
 struct LaneMath {
   static double exp(double x) { return exp_fast(x); }

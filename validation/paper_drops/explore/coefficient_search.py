@@ -1,6 +1,6 @@
 #!/usr/bin/python3
-"""Scratch exploration for issue 30 (not a validation study, not run by run_all): how close can
-the 3D plate model's coefficients, fitted to Howison et al.'s paper squares, bring the drops of
+"""Scratch exploration (not a validation study, not run by run_all): how close can the 3D
+plate model's coefficients, fitted to Howison et al.'s paper squares, bring the drops of
 validation/paper_drops, and do the circles (not fitted) follow?
 
 Needs an lrigid built with plate_knobs.patch (README.md beside this file): it scales every
@@ -130,13 +130,12 @@ def main():
     p.add_argument("--ambient", nargs=2, type=float, metavar=("UPRIME", "L"),
                    help="check: drop in air stirred at rms velocity UPRIME (m/s), scale L (m)")
     p.add_argument("--half", action="store_true",
-                   help="half of each bin's drops horizontal (run.py before 2026-12-04's fifth "
-                   "session) instead of the recorded mix")
+                   help="half of each bin's drops horizontal instead of the recorded mix")
     p.add_argument("--height", type=float,
-                   help="release height (m) instead of each bin's recorded one (before: 1.0)")
+                   help="release height (m) instead of each bin's recorded one")
     p.add_argument("--spin", type=float,
-                   help="release spin bound in rad/s (default run.py's RELEASE_SPIN; before "
-                   "2026-12-05 the drops had none: --spin 0)")
+                   help="release spin bound in rad/s (default run.py's RELEASE_SPIN; "
+                   "none: --spin 0)")
     a = p.parse_args()
     rng = np.random.default_rng(a.seed)
     with tempfile.TemporaryDirectory() as work:

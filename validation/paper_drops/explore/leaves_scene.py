@@ -1,6 +1,6 @@
 #!/usr/bin/python3
-"""The leaves scene with two lrigid builds side by side (issue 30, item 5: "the leaves scene rerun
-with the new model"): per body kind, the median descent speed over each body's first 3 s, and
+"""The leaves scene with two lrigid builds side by side (a change of the plate model against
+the build before it): per body kind, the median descent speed over each body's first 3 s, and
 what summary.json counts at the end; then the scene's A6 paper sheets dropped in still air
 (20 drops from 5 m, the median speed over the first 4 m), to tell the wind's part from the
 model's. Needs the wind grid (./Allrun: results/grids/windCourtyard.vti).

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Scratch exploration for issue 30 (not run by run_all): is a paper plate's broadside descent
+"""Scratch exploration (not run by run_all): is a paper plate's broadside descent
 unstable, and where does the growth end? One plate of validation/paper_drops (70 g/m²) released
 broadside with a tiny tilt, 100 m up, for 20 s; prints its tilt from the horizontal over time.
 

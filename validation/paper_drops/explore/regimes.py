@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Scratch exploration for issue 30 (not run by run_all): the regimes of validation/falling_plates'
+"""Scratch exploration (not run by run_all): the regimes of validation/falling_plates'
 strips (side ratio 5, Re ~ 10^3, released at 10° and 45°) and Field et al.'s disks for an lrigid
 built with plate_knobs.patch (README.md beside this file), each with its own LR_* factors.
 

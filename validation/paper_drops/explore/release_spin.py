@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Scratch exploration for issue 30 (not a validation study, not run by run_all): how large a
+"""Scratch exploration (not a validation study, not run by run_all): how large a
 random spin at release the paper drops need, fitted on the squares alone.
 
 A plate symmetric about its normal, released from rest tilted about one axis in still air, never
