@@ -210,6 +210,34 @@ TEST_F(Cli, TruncatedJson) {
   expect_error(run_scene(s), 3, {"scene.json", "malformed JSON", "line"});
 }
 
+TEST_F(Cli, DuplicatedKeysRefused) {
+  // nlohmann keeps the last of two equal keys; the scene must not change without a word
+  expect_error(run_scene(replace(base_scene(), "\"seed\": 3,", "\"seed\": 3, \"seed\": 4,")), 3,
+               {"scene.json", "seed", "duplicated key"});
+  expect_error(
+      run_scene(replace(base_scene(), "\"density\": 30,", "\"density\": 30, \"density\": 31,")),
+      3, {"scene.json", "bodies.density", "duplicated key"});
+}
+
+TEST_F(Cli, DeepNestingRefusedWithoutCrash) {
+  // 200,000 nested arrays where a number belongs: dumping them for the message overflowed the stack
+  const int d = 200000;
+  const std::string deep = std::string(d, '[') + std::string(d, ']');
+  expect_error(run_scene(replace(base_scene(), "\"seed\": 3,", "\"seed\": " + deep + ",")), 3,
+               {"scene.json", "seed", "nested deeper than 64"});
+}
+
+TEST_F(Cli, DirectoryAsSceneNamedAsSuch) {
+  fs::create_directory(dir_ / "adir");
+  expect_error(run({"run", "adir"}), 3, {"adir", "is a directory"});
+}
+
+TEST_F(Cli, EmptyOutputNameIsAUsageError) {
+  // -o "" used to fall back on the scene's output.dir and write there
+  put(dir_ / "scene.json", base_scene());
+  expect_error(run({"run", "scene.json", "-o", "", "--quiet"}), 2, {"output", "empty"});
+}
+
 TEST_F(Cli, UnknownKeys) {
   expect_error(run_scene(replace(base_scene(), "\"seed\": 3,", "\"seed\": 3, \"colour\": 1,")), 3,
                {"scene.json", "colour", "unknown key"});

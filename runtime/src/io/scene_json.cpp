@@ -7,6 +7,8 @@
 #include <initializer_list>
 #include <set>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "body/mass_properties.h"
 #include "effects/registry.h"
@@ -318,10 +320,51 @@ BodySpec read_body(Obj o) {
 
 namespace {
 
+// The deepest nesting of objects and arrays a scene may have; a scene needs about 5.
+constexpr int kMaxJsonDepth = 64;
+
+// Parses scene text refusing what nlohmann would accept without a word: nesting deeper than
+// kMaxJsonDepth (a deep document would exhaust the stack when dumped for a message) and a key
+// repeated in one object (where the last one would silently win).
+json parse_strict(const std::string& text, const std::string& path) {
+  std::vector<std::vector<std::string>> keys;  // keys seen so far in each open object
+  std::string where;                           // the key path of the innermost open object
+  std::vector<size_t> where_len;
+  std::string last_key;
+  auto cb = [&](int depth, json::parse_event_t event, json& parsed) {
+    using E = json::parse_event_t;
+    if ((event == E::object_start || event == E::array_start) && depth >= kMaxJsonDepth)
+      fail_input(path, where, "JSON nested deeper than " + std::to_string(kMaxJsonDepth) +
+                                  " levels (accepted: 1 to " + std::to_string(kMaxJsonDepth) + ")");
+    if (event == E::object_start || event == E::array_start) {
+      if (event == E::object_start) keys.emplace_back();
+      where_len.push_back(where.size());
+      if (!last_key.empty()) where += (where.empty() ? "" : ".") + last_key;
+      last_key.clear();
+    } else if ((event == E::object_end || event == E::array_end) && !where_len.empty()) {
+      if (event == E::object_end && !keys.empty()) keys.pop_back();
+      where.resize(where_len.back());
+      where_len.pop_back();
+      last_key.clear();
+    } else if (event == E::key && !keys.empty()) {
+      const std::string k = parsed.get<std::string>();
+      auto& seen = keys.back();
+      for (const auto& s : seen)
+        if (s == k)
+          fail_input(path, where.empty() ? k : where + "." + k,
+                     "duplicated key: \"" + k + "\" appears twice in one object");
+      seen.push_back(k);
+      last_key = k;
+    }
+    return true;
+  };
+  return json::parse(text, cb);
+}
+
 Scene parse_scene_unchecked(const std::string& text, const std::string& path) {
   json j;
   try {
-    j = json::parse(text);
+    j = parse_strict(text, path);
   } catch (const json::parse_error& e) {
     // nlohmann reports a byte offset: turn it into line and column
     size_t line = 1, col = 1;
@@ -509,7 +552,7 @@ Scene parse_scene(const std::string& text, const std::string& path) {
 
 Shape parse_shape(const std::string& text, const std::string& path, int* panels) {
   try {
-    const json j = json::parse(text);
+    const json j = parse_strict(text, path);
     BodySpec b;
     Shape s = read_shape(Obj(j, "shape", path, kShapeKeys), &b);
     *panels = b.panels;
@@ -520,8 +563,9 @@ Shape parse_shape(const std::string& text, const std::string& path, int* panels)
 }
 
 Scene read_scene(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
   std::error_code ec;
+  if (fs::is_directory(path, ec)) fail_input(path, "", "is a directory, not a scene file");
+  std::ifstream in(path, std::ios::binary);
   if (!in) fail_input(path, "", fs::exists(path, ec) ? "cannot be read" : "file not found");
   std::stringstream ss;
   ss << in.rdbuf();
