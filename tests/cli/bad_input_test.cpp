@@ -238,6 +238,21 @@ TEST_F(Cli, EmptyOutputNameIsAUsageError) {
   expect_error(run({"run", "scene.json", "-o", "", "--quiet"}), 2, {"output", "empty"});
 }
 
+TEST_F(Cli, HugeOutputEveryRefused) {
+  // every / dt beyond 2^64 steps died of SIGFPE converting the output stride
+  const std::string s = replace(base_scene(), "\"every\": 0.01", "\"every\": 1e300");
+  expect_error(run_scene(s), 3, {"scene.json", "output.every", "1e+300", "at most 4e9 steps"});
+}
+
+TEST_F(Cli, HugePanelsRefusedBeforeTessellation) {
+  // 2e9 panels tessellated a box at 80 MB/s before the solver's limit was checked
+  const std::string s =
+      replace(base_scene(), "\"shape\": { \"type\": \"sphere\", \"radius\": 0.003 }",
+              "\"shape\": { \"type\": \"box\", \"size\": [0.01, 0.01, 0.002], "
+              "\"panels\": 2000000000 }");
+  expect_error(run_scene(s), 3, {"scene.json", "shape.panels", "2000000000", "[0, 10000]"});
+}
+
 TEST_F(Cli, UnknownKeys) {
   expect_error(run_scene(replace(base_scene(), "\"seed\": 3,", "\"seed\": 3, \"colour\": 1,")), 3,
                {"scene.json", "colour", "unknown key"});

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "body/bem.h"
 #include "body/mass_properties.h"
 #include "effects/registry.h"
 #include "io/mesh_io.h"
@@ -159,8 +160,12 @@ Shape read_shape(Obj o, BodySpec* b) {
     o.fail("type", "must be sphere, ellipsoid, box or mesh, got \"" + type + "\"");
   }
   if (const json* p = o.find("panels")) {
-    if (!p->is_number_integer() || p->get<int>() < 0) o.fail("panels", "must be an integer >= 0");
-    b->panels = p->get<int>();
+    // checked before any tessellation: a box of 2e9 panels would be built before the solver's
+    // own limit is reached
+    if (!p->is_number_integer() || p->get<long long>() < 0 || p->get<long long>() > kMaxBemPanels)
+      o.fail("panels", "must be an integer in [0, " + std::to_string(kMaxBemPanels) +
+                           "] (0: the default), got " + Obj::dump(*p));
+    b->panels = static_cast<int>(p->get<long long>());
   }
   o.finish();
   return s;
@@ -514,6 +519,10 @@ Scene parse_scene_unchecked(const std::string& text, const std::string& path) {
     Obj o = top.object("output", {"dir", "every", "formats", "checkpoint_every"});
     if (o.has("dir")) s.output.dir = o.string("dir");  // relative to the working directory
     s.output.every = o.positive_or("every", s.output.every);
+    // the output stride is every / dt steps, an integer: beyond 4e9 steps it overflows
+    if (o.has("every") && s.output.every / s.dt > 4e9)
+      o.fail("every", "must be at most 4e9 steps of integrator.dt (" + std::to_string(4e9 * s.dt) +
+                          " s), got " + Obj::dump(o.get("every")));
     if (o.has("checkpoint_every")) {
       s.output.checkpoint_every = o.number("checkpoint_every");
       if (!(s.output.checkpoint_every >= 0))
