@@ -253,6 +253,14 @@ TEST_F(Cli, HugePanelsRefusedBeforeTessellation) {
   expect_error(run_scene(s), 3, {"scene.json", "shape.panels", "2000000000", "[0, 10000]"});
 }
 
+TEST_F(Cli, NameThatWouldBreakCsvRefused) {
+  // a comma or a quote in a type's name shifted the columns of trajectories.csv
+  expect_error(run_scene(replace(base_scene(), "\"name\": \"bead\"", "\"name\": \"be,ad\"")), 3,
+               {"scene.json", "bodies[0].name", "be,ad", "CSV field"});
+  expect_error(run_scene(replace(base_scene(), "\"name\": \"bead\"", "\"name\": \"be\\\"ad\"")),
+               3, {"scene.json", "bodies[0].name", "double quotes"});
+}
+
 TEST_F(Cli, UnknownKeys) {
   expect_error(run_scene(replace(base_scene(), "\"seed\": 3,", "\"seed\": 3, \"colour\": 1,")), 3,
                {"scene.json", "colour", "unknown key"});

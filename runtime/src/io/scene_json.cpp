@@ -246,6 +246,13 @@ void read_scene_contacts(Obj& top, Scene* s) {
 BodySpec read_body(Obj o) {
   BodySpec b;
   b.name = o.string("name");
+  // the name is a field of trajectories.csv and landings.csv: nothing that would split or
+  // quote a row
+  for (const char c : b.name)
+    if (c == ',' || c == '"' || static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
+      o.fail("name", "must not contain commas, double quotes or control characters (it is a "
+                     "CSV field), got " + Obj::dump(o.get("name")));
+  if (b.name.empty()) o.fail("name", "must not be empty");
   b.shape = read_shape(o.object("shape", kShapeKeys), &b);
   b.density = o.positive("density");
   b.mass_offset = o.vec3_or("mass_offset", Vec3::Zero());
