@@ -261,6 +261,13 @@ TEST_F(Cli, NameThatWouldBreakCsvRefused) {
                3, {"scene.json", "bodies[0].name", "double quotes"});
 }
 
+TEST_F(Cli, ExtremeArtFactorRefused) {
+  // a mean flow scaled by 1e300 made every force NaN: the bodies failed and the run exited 0
+  expect_error(
+      run_scene(replace(base_scene(), "\"seed\": 3,", "\"seed\": 3, \"art\": {\"mean_flow_scale\": 1e300},")),
+      3, {"scene.json", "art.mean_flow_scale", "1e+300", "[0, 1000]"});
+}
+
 TEST_F(Cli, UnknownKeys) {
   expect_error(run_scene(replace(base_scene(), "\"seed\": 3,", "\"seed\": 3, \"colour\": 1,")), 3,
                {"scene.json", "colour", "unknown key"});

@@ -517,7 +517,9 @@ Scene parse_scene_unchecked(const std::string& text, const std::string& path) {
     for (const char* key : {"mean_flow_scale", "turbulence_scale"}) {
       if (!a.has(key)) continue;
       const double v = a.number(key);
-      if (!(v >= 0)) a.fail(key, "must be >= 0, got " + Obj::dump(a.get(key)));
+      // beyond 1000 the speeds' squares leave the range of a double and forces become NaN
+      if (!(v >= 0 && v <= 1000))
+        a.fail(key, "must be in [0, 1000], got " + Obj::dump(a.get(key)));
       (std::string(key) == "mean_flow_scale" ? s.mean_flow_scale : s.turbulence_scale) = v;
     }
     a.finish();
