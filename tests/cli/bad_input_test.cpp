@@ -268,6 +268,21 @@ TEST_F(Cli, ExtremeArtFactorRefused) {
       3, {"scene.json", "art.mean_flow_scale", "1e+300", "[0, 1000]"});
 }
 
+TEST_F(Cli, ShapeLengthsOutOfRangeRefused) {
+  const std::string sphere = "\"shape\": { \"type\": \"sphere\", \"radius\": 0.003 }";
+  // a box of 1e160 m hung in the boundary elements
+  expect_error(run_scene(replace(base_scene(), sphere,
+                                 "\"shape\": { \"type\": \"box\", \"size\": [1e160, 1, 1] }")),
+               3, {"scene.json", "shape.size", "1e+160", "[1e-9, 1e6] m"});
+  // tiny radii ended in exit 1 "carlson_rd: invalid arguments"
+  expect_error(run_scene(replace(base_scene(), sphere,
+                                 "\"shape\": { \"type\": \"ellipsoid\", \"semi_axes\": [1e-200, 1e-200, 2e-200] }")),
+               3, {"scene.json", "shape.semi_axes", "[1e-9, 1e6] m"});
+  expect_error(run_scene(replace(base_scene(), sphere,
+                                 "\"shape\": { \"type\": \"sphere\", \"radius\": 1e-200 }")),
+               3, {"scene.json", "shape.radius", "1e-200", "[1e-9, 1e6] m"});
+}
+
 TEST_F(Cli, UnknownKeys) {
   expect_error(run_scene(replace(base_scene(), "\"seed\": 3,", "\"seed\": 3, \"colour\": 1,")), 3,
                {"scene.json", "colour", "unknown key"});

@@ -131,19 +131,33 @@ std::string resolve(const std::string& rel, const std::string& scene_file) {
 // the keys of a shape object (a body's "shape", and Python's lrigid.added_mass)
 constexpr Keys kShapeKeys = {"type", "radius", "semi_axes", "size", "file", "scale", "panels"};
 
+// Lengths a shape may have, m: outside them the added mass integrals underflow (a radius of
+// 1e-200 m) or the boundary elements never converge (a box of 1e160 m).
+constexpr double kMinLength = 1e-9, kMaxLength = 1e6;
+const char* const kLengthRange = "in [1e-9, 1e6] m";
+
 Shape read_shape(Obj o, BodySpec* b) {
   const std::string type = o.string("type");
   Shape s;
+  auto lengths = [&](const char* key, const Vec3& l) {
+    if (!(l.minCoeff() >= kMinLength && l.maxCoeff() <= kMaxLength))
+      o.fail(key, std::string("must all be ") + kLengthRange + ", got " + Obj::dump(o.get(key)));
+  };
   if (type == "sphere") {
-    s = Shape::sphere(o.positive("radius"));
+    const double r = o.positive("radius");
+    if (!(r >= kMinLength && r <= kMaxLength))
+      o.fail("radius", std::string("must be ") + kLengthRange + ", got " + Obj::dump(o.get("radius")));
+    s = Shape::sphere(r);
   } else if (type == "ellipsoid") {
     const Vec3 a = o.vec3("semi_axes");
     if (!(a.minCoeff() > 0))
       o.fail("semi_axes", "must all be > 0, got " + Obj::dump(o.get("semi_axes")));
+    lengths("semi_axes", a);
     s = Shape::ellipsoid(a.x(), a.y(), a.z());
   } else if (type == "box") {
     const Vec3 l = o.vec3("size");
     if (!(l.minCoeff() > 0)) o.fail("size", "must all be > 0, got " + Obj::dump(o.get("size")));
+    lengths("size", l);
     s = Shape::box(l.x(), l.y(), l.z());
   } else if (type == "mesh") {
     const std::string file = resolve(o.string("file"), o.file());
