@@ -215,7 +215,11 @@ void add_run_command(CLI::App& app) {
   auto args = std::make_shared<RunArgs>();
   auto* cmd = app.add_subcommand("run", "Integrate the bodies of a scene (docs/scene-format.md)");
   cmd->add_option("scene", args->scene, "Scene file (JSON, schema v1)")->required();
-  cmd->add_option("-o,--output", args->out, "Output directory (overrides output.dir)");
+  cmd->add_option("-o,--output", args->out, "Output directory (overrides output.dir)")
+      ->check([](const std::string& v) {
+        return v.empty() ? std::string("an empty name; give a directory (\".\" for here)")
+                         : std::string();
+      });
   cmd->add_option("--seed", args->seed, "Random seed (overrides the scene's seed), 0 or more")
       ->check(non_negative("a whole number, 0 or more (the random seed)"));
   cmd->add_option("--threads", args->threads, "Threads (default: all cores); results do not "

@@ -15,6 +15,10 @@
 #include <fstream>
 #include <regex>
 #include <sstream>
+#include <string>
+#include <vector>
+#include <cstdlib>
+#include <unistd.h>
 
 #include "util/error.h"
 
@@ -44,12 +48,77 @@ void keep_first_vtk_error(vtkObject*, unsigned long event, void* client, void* c
   *first = m.empty() ? "unspecified error" : m;
 }
 
+// The numbers of one header attribute, each read whole: "0.1 0.x 0.1" is refused where VTK
+// would read 0 for the letter and shear the grid.
+std::vector<double> header_numbers(const std::string& path, const std::string& tag,
+                                   const std::string& key, size_t count) {
+  const std::regex attr("\\b" + key + "=\"([^\"]*)\"");
+  std::smatch m;
+  if (!std::regex_search(tag, m, attr))
+    fail_input(path, key, "missing from the header's <" + tag.substr(1, tag.find(' ') - 1) + ">");
+  std::istringstream in(m[1].str());
+  std::vector<double> v;
+  std::string word;
+  while (in >> word) {
+    char* end = nullptr;
+    const double x = std::strtod(word.c_str(), &end);
+    if (end == word.c_str() || *end != '\0' || !std::isfinite(x))
+      fail_input(path, key, "expected " + std::to_string(count) + " finite numbers, got \"" +
+                                m[1].str() + "\"");
+    v.push_back(x);
+  }
+  if (v.size() != count)
+    fail_input(path, key, "expected " + std::to_string(count) + " numbers, got \"" + m[1].str() +
+                              "\"");
+  return v;
+}
+
+// Checks the XML header before VTK reads the file: numbers well formed, the piece's extent the
+// whole extent, and a point count that fits in memory (a typo in the extent could ask for 1e15).
+void check_vti_header(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string head(1 << 16, '\0');
+  in.read(&head[0], static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<size_t>(in.gcount()));
+  const size_t i = head.find("<ImageData");
+  const size_t j = head.find("<Piece");
+  if (i == std::string::npos || j == std::string::npos) return;  // VTK's reader will say
+  const std::string image = head.substr(i, head.find('>', i) - i);
+  const std::string piece = head.substr(j, head.find('>', j) - j);
+  const auto whole = header_numbers(path, image, "WholeExtent", 6);
+  header_numbers(path, image, "Origin", 3);
+  const auto spacing = header_numbers(path, image, "Spacing", 3);
+  const auto extent = header_numbers(path, piece, "Extent", 6);
+  for (int a = 0; a < 3; ++a)
+    if (!(spacing[a] > 0)) fail_input(path, "Spacing", "must be > 0 on every axis");
+  if (extent != whole)
+    fail_input(path, "Extent", "the piece's extent differs from WholeExtent (one piece expected)");
+  long double points = 1;
+  for (int a = 0; a < 3; ++a) {
+    if (whole[2 * a] != std::floor(whole[2 * a]) || whole[2 * a + 1] != std::floor(whole[2 * a + 1]))
+      fail_input(path, "WholeExtent", "must be integers");
+    points *= static_cast<long double>(whole[2 * a + 1] - whole[2 * a] + 1);
+  }
+  // U, k, epsilon, valid, wall distance as doubles here, and VTK's copy as floats
+  const long double bytes = points * (7 * 8 + 7 * 4);
+  const long double ram = static_cast<long double>(sysconf(_SC_PHYS_PAGES)) *
+                          static_cast<long double>(sysconf(_SC_PAGESIZE));
+  if (ram > 0 && bytes > ram) {
+    std::ostringstream m;
+    m << "WholeExtent needs " << static_cast<double>(points) << " points, about "
+      << static_cast<double>(bytes / 1e9) << " GB, more than this machine's "
+      << static_cast<double>(ram / 1e9) << " GB";
+    throw Error(ExitCode::Resource, path + ": " + m.str());
+  }
+}
+
 void read_vti(const std::string& path, GridGeometry* geom, RawGridFrame* frame, double* nu) {
   std::error_code ec;  // the non-throwing overload: an over-long or odd name is a bad input too
   if (!fs::is_regular_file(path, ec)) fail_input(path, "", "grid file not found");
   vtkNew<vtkXMLImageDataReader> reader;
   if (!reader->CanReadFile(path.c_str()))
     fail_input(path, "", "not a VTK XML ImageData (.vti) file");
+  check_vti_header(path);
   reader->SetFileName(path.c_str());
   std::string vtk_error;
   vtkNew<vtkCallbackCommand> on_message;

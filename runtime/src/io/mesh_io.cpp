@@ -214,9 +214,20 @@ TriangleMesh read_stl(const std::string& path) {
 TriangleMesh read_mesh(const std::string& path) {
   const std::string ext = lower(std::filesystem::path(path).extension().string());
   if (!std::filesystem::exists(path)) bad(path, "file does not exist");
-  if (ext == ".obj") return read_obj(path);
-  if (ext == ".stl") return read_stl(path);
-  bad(path, "unknown mesh format '" + ext + "' (expected .obj or .stl)");
+  if (ext != ".obj" && ext != ".stl")
+    bad(path, "unknown mesh format '" + ext + "' (expected .obj or .stl)");
+  TriangleMesh mesh = ext == ".obj" ? read_obj(path) : read_stl(path);
+  // beyond 1e15 the squares of edges and areas overflow and every later check says the wrong thing
+  constexpr double kMaxCoordinate = 1e15;
+  for (size_t i = 0; i < mesh.vertices.size(); ++i)
+    if (!(mesh.vertices[i].cwiseAbs().maxCoeff() <= kMaxCoordinate)) {
+      std::ostringstream m;
+      m << "vertex " << i << " (" << mesh.vertices[i].x() << ", "
+        << mesh.vertices[i].y() << ", " << mesh.vertices[i].z()
+        << "): coordinates must be in [-1e15, 1e15]";
+      bad(path, m.str());
+    }
+  return mesh;
 }
 
 void write_stl_ascii(const std::string& path, const TriangleMesh& mesh, const std::string& name) {

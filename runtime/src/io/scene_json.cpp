@@ -7,7 +7,10 @@
 #include <initializer_list>
 #include <set>
 #include <sstream>
+#include <string>
+#include <vector>
 
+#include "body/bem.h"
 #include "body/mass_properties.h"
 #include "effects/registry.h"
 #include "io/mesh_io.h"
@@ -128,19 +131,33 @@ std::string resolve(const std::string& rel, const std::string& scene_file) {
 // the keys of a shape object (a body's "shape", and Python's lrigid.added_mass)
 constexpr Keys kShapeKeys = {"type", "radius", "semi_axes", "size", "file", "scale", "panels"};
 
+// Lengths a shape may have, m: outside them the added mass integrals underflow (a radius of
+// 1e-200 m) or the boundary elements never converge (a box of 1e160 m).
+constexpr double kMinLength = 1e-9, kMaxLength = 1e6;
+const char* const kLengthRange = "in [1e-9, 1e6] m";
+
 Shape read_shape(Obj o, BodySpec* b) {
   const std::string type = o.string("type");
   Shape s;
+  auto lengths = [&](const char* key, const Vec3& l) {
+    if (!(l.minCoeff() >= kMinLength && l.maxCoeff() <= kMaxLength))
+      o.fail(key, std::string("must all be ") + kLengthRange + ", got " + Obj::dump(o.get(key)));
+  };
   if (type == "sphere") {
-    s = Shape::sphere(o.positive("radius"));
+    const double r = o.positive("radius");
+    if (!(r >= kMinLength && r <= kMaxLength))
+      o.fail("radius", std::string("must be ") + kLengthRange + ", got " + Obj::dump(o.get("radius")));
+    s = Shape::sphere(r);
   } else if (type == "ellipsoid") {
     const Vec3 a = o.vec3("semi_axes");
     if (!(a.minCoeff() > 0))
       o.fail("semi_axes", "must all be > 0, got " + Obj::dump(o.get("semi_axes")));
+    lengths("semi_axes", a);
     s = Shape::ellipsoid(a.x(), a.y(), a.z());
   } else if (type == "box") {
     const Vec3 l = o.vec3("size");
     if (!(l.minCoeff() > 0)) o.fail("size", "must all be > 0, got " + Obj::dump(o.get("size")));
+    lengths("size", l);
     s = Shape::box(l.x(), l.y(), l.z());
   } else if (type == "mesh") {
     const std::string file = resolve(o.string("file"), o.file());
@@ -157,8 +174,12 @@ Shape read_shape(Obj o, BodySpec* b) {
     o.fail("type", "must be sphere, ellipsoid, box or mesh, got \"" + type + "\"");
   }
   if (const json* p = o.find("panels")) {
-    if (!p->is_number_integer() || p->get<int>() < 0) o.fail("panels", "must be an integer >= 0");
-    b->panels = p->get<int>();
+    // checked before any tessellation: a box of 2e9 panels would be built before the solver's
+    // own limit is reached
+    if (!p->is_number_integer() || p->get<long long>() < 0 || p->get<long long>() > kMaxBemPanels)
+      o.fail("panels", "must be an integer in [0, " + std::to_string(kMaxBemPanels) +
+                           "] (0: the default), got " + Obj::dump(*p));
+    b->panels = static_cast<int>(p->get<long long>());
   }
   o.finish();
   return s;
@@ -239,6 +260,13 @@ void read_scene_contacts(Obj& top, Scene* s) {
 BodySpec read_body(Obj o) {
   BodySpec b;
   b.name = o.string("name");
+  // the name is a field of trajectories.csv and landings.csv: nothing that would split or
+  // quote a row
+  for (const char c : b.name)
+    if (c == ',' || c == '"' || static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
+      o.fail("name", "must not contain commas, double quotes or control characters (it is a "
+                     "CSV field), got " + Obj::dump(o.get("name")));
+  if (b.name.empty()) o.fail("name", "must not be empty");
   b.shape = read_shape(o.object("shape", kShapeKeys), &b);
   b.density = o.positive("density");
   b.mass_offset = o.vec3_or("mass_offset", Vec3::Zero());
@@ -318,10 +346,51 @@ BodySpec read_body(Obj o) {
 
 namespace {
 
+// The deepest nesting of objects and arrays a scene may have; a scene needs about 5.
+constexpr int kMaxJsonDepth = 64;
+
+// Parses scene text refusing what nlohmann would accept without a word: nesting deeper than
+// kMaxJsonDepth (a deep document would exhaust the stack when dumped for a message) and a key
+// repeated in one object (where the last one would silently win).
+json parse_strict(const std::string& text, const std::string& path) {
+  std::vector<std::vector<std::string>> keys;  // keys seen so far in each open object
+  std::string where;                           // the key path of the innermost open object
+  std::vector<size_t> where_len;
+  std::string last_key;
+  auto cb = [&](int depth, json::parse_event_t event, json& parsed) {
+    using E = json::parse_event_t;
+    if ((event == E::object_start || event == E::array_start) && depth >= kMaxJsonDepth)
+      fail_input(path, where, "JSON nested deeper than " + std::to_string(kMaxJsonDepth) +
+                                  " levels (accepted: 1 to " + std::to_string(kMaxJsonDepth) + ")");
+    if (event == E::object_start || event == E::array_start) {
+      if (event == E::object_start) keys.emplace_back();
+      where_len.push_back(where.size());
+      if (!last_key.empty()) where += (where.empty() ? "" : ".") + last_key;
+      last_key.clear();
+    } else if ((event == E::object_end || event == E::array_end) && !where_len.empty()) {
+      if (event == E::object_end && !keys.empty()) keys.pop_back();
+      where.resize(where_len.back());
+      where_len.pop_back();
+      last_key.clear();
+    } else if (event == E::key && !keys.empty()) {
+      const std::string k = parsed.get<std::string>();
+      auto& seen = keys.back();
+      for (const auto& s : seen)
+        if (s == k)
+          fail_input(path, where.empty() ? k : where + "." + k,
+                     "duplicated key: \"" + k + "\" appears twice in one object");
+      seen.push_back(k);
+      last_key = k;
+    }
+    return true;
+  };
+  return json::parse(text, cb);
+}
+
 Scene parse_scene_unchecked(const std::string& text, const std::string& path) {
   json j;
   try {
-    j = json::parse(text);
+    j = parse_strict(text, path);
   } catch (const json::parse_error& e) {
     // nlohmann reports a byte offset: turn it into line and column
     size_t line = 1, col = 1;
@@ -462,7 +531,9 @@ Scene parse_scene_unchecked(const std::string& text, const std::string& path) {
     for (const char* key : {"mean_flow_scale", "turbulence_scale"}) {
       if (!a.has(key)) continue;
       const double v = a.number(key);
-      if (!(v >= 0)) a.fail(key, "must be >= 0, got " + Obj::dump(a.get(key)));
+      // beyond 1000 the speeds' squares leave the range of a double and forces become NaN
+      if (!(v >= 0 && v <= 1000))
+        a.fail(key, "must be in [0, 1000], got " + Obj::dump(a.get(key)));
       (std::string(key) == "mean_flow_scale" ? s.mean_flow_scale : s.turbulence_scale) = v;
     }
     a.finish();
@@ -471,6 +542,10 @@ Scene parse_scene_unchecked(const std::string& text, const std::string& path) {
     Obj o = top.object("output", {"dir", "every", "formats", "checkpoint_every"});
     if (o.has("dir")) s.output.dir = o.string("dir");  // relative to the working directory
     s.output.every = o.positive_or("every", s.output.every);
+    // the output stride is every / dt steps, an integer: beyond 4e9 steps it overflows
+    if (o.has("every") && s.output.every / s.dt > 4e9)
+      o.fail("every", "must be at most 4e9 steps of integrator.dt (" + std::to_string(4e9 * s.dt) +
+                          " s), got " + Obj::dump(o.get("every")));
     if (o.has("checkpoint_every")) {
       s.output.checkpoint_every = o.number("checkpoint_every");
       if (!(s.output.checkpoint_every >= 0))
@@ -509,7 +584,7 @@ Scene parse_scene(const std::string& text, const std::string& path) {
 
 Shape parse_shape(const std::string& text, const std::string& path, int* panels) {
   try {
-    const json j = json::parse(text);
+    const json j = parse_strict(text, path);
     BodySpec b;
     Shape s = read_shape(Obj(j, "shape", path, kShapeKeys), &b);
     *panels = b.panels;
@@ -520,8 +595,9 @@ Shape parse_shape(const std::string& text, const std::string& path, int* panels)
 }
 
 Scene read_scene(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
   std::error_code ec;
+  if (fs::is_directory(path, ec)) fail_input(path, "", "is a directory, not a scene file");
+  std::ifstream in(path, std::ios::binary);
   if (!in) fail_input(path, "", fs::exists(path, ec) ? "cannot be read" : "file not found");
   std::stringstream ss;
   ss << in.rdbuf();

@@ -190,4 +190,59 @@ TEST(FieldLoader, SaysOnceWhenTheGridHasNoWallDistance) {
 }
 
 }  // namespace
+namespace {
+// the grid written by write_grid with `from` in its header replaced by `to`
+std::string with_header_edit(const std::string& d, const std::string& name, const std::string& from,
+                             const std::string& to) {
+  const std::string path = d + "/" + name;
+  write_grid(path, 0);
+  std::ifstream in(path, std::ios::binary);
+  std::string s((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  in.close();
+  const size_t at = s.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  if (at != std::string::npos) s.replace(at, from.size(), to);
+  std::ofstream(path, std::ios::binary) << s;
+  return path;
+}
+}  // namespace
+
+TEST(GridReader, RefusesEditedHeaders) {
+  const std::string d = tmpdir();
+  // VTK read the letter as 0 and sheared the grid; a shortened extent rescaled the data
+  std::string p = with_header_edit(d, "letter.vti", "Spacing=\"0.5 0.5 1\"", "Spacing=\"0.5 0.x 1\"");
+  EXPECT_NE(error_of(p).find("letter.vti: Spacing: expected 3 finite numbers, got \"0.5 0.x 1\""),
+            std::string::npos)
+      << error_of(p);
+  p = with_header_edit(d, "short.vti", "WholeExtent=\"0 3 0 2 0 1\"", "WholeExtent=\"0 3 0 2 0\"");
+  EXPECT_NE(error_of(p).find("short.vti: WholeExtent: expected 6 numbers"), std::string::npos)
+      << error_of(p);
+  p = with_header_edit(d, "piece.vti", "WholeExtent=\"0 3 0 2 0 1\"", "WholeExtent=\"0 2 0 2 0 1\"");
+  EXPECT_NE(error_of(p).find("piece.vti: Extent: the piece's extent differs"), std::string::npos)
+      << error_of(p);
+}
+
+TEST(GridReader, AHugeExtentIsAResourceLimitNotBadAlloc) {
+  const std::string d = tmpdir();
+  const std::string p = with_header_edit(d, "huge.vti", "WholeExtent=\"0 3 0 2 0 1\"",
+                                         "WholeExtent=\"0 99999 0 99999 0 99999\"");
+  // the piece keeps its small extent, so make it agree: only the point count is at fault
+  std::ifstream in(p, std::ios::binary);
+  std::string s((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  in.close();
+  const size_t at = s.find("Extent=\"0 3 0 2 0 1\"");
+  ASSERT_NE(at, std::string::npos);
+  s.replace(at, 20, "Extent=\"0 99999 0 99999 0 99999\"");
+  std::ofstream(p, std::ios::binary) << s;
+  try {
+    read_grid(p);
+    ADD_FAILURE() << "read";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), ExitCode::Resource) << e.what();
+    EXPECT_NE(std::string(e.what()).find("huge.vti: WholeExtent needs 1e+15 points"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 }  // namespace lrigid

@@ -78,6 +78,17 @@ TEST(MeshIo, InvalidMeshesAreRefusedSayingWhy) {
   }
 }
 
+TEST(MeshIo, HugeCoordinatesNamedAsSuch) {
+  // 1e200 squared overflowed and the mesh checks said "face 0 has zero area"
+  ExitCode code = ExitCode::Ok;
+  const std::string e = load_error("huge_coordinates.obj", &code);
+  EXPECT_EQ(code, ExitCode::BadInput) << e;
+  EXPECT_NE(e.find("huge_coordinates.obj: vertex 1 (1e+200, 0, 0): coordinates must be in "
+                   "[-1e15, 1e15]"),
+            std::string::npos)
+      << e;
+}
+
 TEST(MeshIo, SyntaxErrorsNameFileAndLine) {
   const std::string num = load_error("bad_number.obj");
   EXPECT_NE(num.find("bad_number.obj: line 3"), std::string::npos) << num;

@@ -334,7 +334,7 @@ TEST(SceneJson, ArtDirectionAndVariation) {
 TEST(SceneJson, BadArtDirectionNamesTheKey) {
   json j = valid_scene();
   j["art"] = {{"turbulence_scale", -1}};
-  EXPECT_NE(error_of(j).find("art.turbulence_scale: must be >= 0, got -1"), std::string::npos)
+  EXPECT_NE(error_of(j).find("art.turbulence_scale: must be in [0, 1000], got -1"), std::string::npos)
       << error_of(j);
   j = valid_scene();
   j["art"] = {{"wind", 2}};
