@@ -123,7 +123,7 @@ std::string read_error(const std::string& path) {
   return "";
 }
 
-// Issue 54: a checkpoint ends in a checksum of everything before it. One flipped bit anywhere
+// A checkpoint ends in a checksum of everything before it. One flipped bit anywhere
 // (the header, the bodies' state, the writer's part, the checksum itself) and any cut is
 // refused with exit 3; before, a bit flipped in the bodies' data resumed with other results.
 TEST(Checkpoint, AnyFlippedBitOrCutIsRefused) {
