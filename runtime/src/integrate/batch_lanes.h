@@ -36,10 +36,13 @@ namespace lrigid {
 namespace {  // NOLINT(build/namespaces): internal to the two batched-step files
 
 // The loops across bodies are compiled for AVX-512, AVX2 and the baseline, and the best the CPU
-// has is chosen when the program loads (GCC's function multiversioning; 3.6 against 14.8 M
-// body-steps/s per core for the baseline and AVX-512 on this machine). Rounding can differ
-// between the versions (fused multiply-adds), never between threads. Clang 14 does not multiversion
-// templates: its builds (the fuzz targets) run the baseline.
+// has is chosen when the program loads (GCC's function multiversioning; docs/performance.md
+// gives the speed of each). A loop vectorizes only if every operation in it has a vector form in
+// that instruction set: AVX2 has none for conversions between double and 64-bit integers or for
+// 64-bit arithmetic shifts, so the loops' helpers (util/fast_math.h) do without them, and
+// clones_vectorized_test checks the AVX2 and AVX-512 versions in the machine code. Rounding can
+// differ between the versions (fused multiply-adds), never between threads. Clang 14 does not
+// multiversion templates: its builds (the fuzz targets) run the baseline.
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
 #define LRIGID_MULTIVERSION \
   __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))

@@ -1,8 +1,10 @@
 // Elementary functions for the normal generator (util/rng.h) and the batched steps
 // (integrate/batch_lanes.h) as straight-line polynomials:
-// no table, no library call, no branch, so a loop over them vectorizes, and the results do not
-// depend on the C library. Accurate to a few ulp over the ranges they are used on (tested in
-// tests/runtime/util/rng_test.cpp against std::log, std::sin, std::cos).
+// no table, no library call, no branch, and only integer operations that AVX2 has (no conversion
+// between double and int64, no 64-bit arithmetic shift), so a loop over them vectorizes in every
+// version of the batched loops, and the results do not depend on the C library. Accurate to a few
+// ulp over the ranges they are used on (tested in tests/runtime/util/rng_test.cpp against
+// std::log, std::exp, std::sin, std::cos).
 #pragma once
 #include <cmath>
 #include <cstdint>
@@ -26,17 +28,22 @@ inline double log_fast(double x) {
   uint64_t bits;
   std::memcpy(&bits, &x, sizeof bits);
   // shift the mantissa range to [sqrt(1/2), sqrt(2)) by biasing before extracting the exponent
-  const uint64_t shifted = bits - 0x3fe6a09e667f3bcdULL;  // bits of sqrt(1/2)
-  const int64_t e = static_cast<int64_t>(shifted) >> 52;
-  const uint64_t mbits = bits - (static_cast<uint64_t>(e) << 52);
+  // (e + 1023 by a logical shift, and e as a double through the bits of 2^52 + e + 1023: integer
+  // operations that AVX2 has, where an int64 shift or conversion would keep the loops scalar)
+  const uint64_t biased = (bits - 0x3fe6a09e667f3bcdULL + 0x3ff0000000000000ULL) >> 52;
+  const uint64_t mbits = bits - ((biased - 1023) << 52);
   double m;
   std::memcpy(&m, &mbits, sizeof m);
+  const uint64_t ebits = biased | 0x4330000000000000ULL;  // 2^52 + e + 1023
+  double eb;
+  std::memcpy(&eb, &ebits, sizeof eb);
+  const double e = eb - (0x1p52 + 1023.0);
   const double s = (m - 1.0) / (m + 1.0);
   const double s2 = s * s;
   constexpr double kAtanh[] = {1.0 / 21, 1.0 / 19, 1.0 / 17, 1.0 / 15, 1.0 / 13, 1.0 / 11,
                                1.0 / 9,  1.0 / 7,  1.0 / 5,  1.0 / 3};
   const double p = horner(s2, kAtanh) * s2;
-  return static_cast<double>(e) * kLn2 + (2.0 * s + 2.0 * s * p);
+  return e * kLn2 + (2.0 * s + 2.0 * s * p);
 }
 
 // cos and sin of x + quadrant pi/2 for x in [-pi/4, pi/4]: Taylor polynomials to x^15 (sin) and
@@ -73,7 +80,11 @@ inline void sincos_fast(double x, double* c, double* s) {
   constexpr double kShift = 0x1.8p52;  // adding it rounds to an integer held in the low bits
   const double kd = (x * 0.63661977236758134308 + kShift) - kShift;
   const double r = (x - kd * 1.57079632673412561417) - kd * 6.07710050650619224932e-11;
-  const uint32_t quadrant = static_cast<uint32_t>(static_cast<int64_t>(kd) & 3);
+  // k mod 4 from the low bits of kd + kShift (= 1.5 2^52 + k), not an int64 conversion
+  const double kb = kd + kShift;
+  uint64_t kbits;
+  std::memcpy(&kbits, &kb, sizeof kbits);
+  const uint32_t quadrant = static_cast<uint32_t>(kbits & 3);
   sincos_quadrant(r, quadrant, c, s);
 }
 
@@ -90,8 +101,12 @@ inline double exp_fast(double x) {
                              1.0 / 24.0,         1.0 / 6.0,         0.5,
                              1.0,                1.0};  // 1/13! ... 1/1!, 1/0!
   const double p = horner(r, kExp);
-  const int64_t k = static_cast<int64_t>(kd);
-  const uint64_t scale_bits = static_cast<uint64_t>(k + 1023) << 52;
+  // 2^k: k + 1023 (in [13, 2033]) from the low bits of kd + kShift (= 1.5 2^52 + k) shifted into
+  // the exponent field (the bits above it leave the word), not an int64 conversion
+  const double kb = kd + kShift;
+  uint64_t kbits;
+  std::memcpy(&kbits, &kb, sizeof kbits);
+  const uint64_t scale_bits = (kbits + 1023) << 52;
   double scale;
   std::memcpy(&scale, &scale_bits, sizeof scale);
   return p * scale;

@@ -3,6 +3,7 @@
 // points against Phi, independence of neighbouring slots, of bodies and of steps).
 #include <gtest/gtest.h>
 
+#include <cfloat>
 #include <cmath>
 #include <vector>
 
@@ -26,6 +27,23 @@ TEST(FastMath, LogMatchesLibraryOverTheBoxMullerRange) {
   }
   EXPECT_LT(worst, 4e-16);
   EXPECT_EQ(log_fast(1.0), 0.0);
+}
+
+TEST(FastMath, LogOverEveryExponentAndAtTheMantissaSplit) {
+  // every binary exponent of the normal numbers, each on both sides of the point sqrt(1/2) 2^k
+  // where the exponent taken out changes, and at 1 and just below 2
+  double worst = 0;
+  for (int k = -1022; k <= 1023; ++k) {
+    const double split = std::ldexp(M_SQRT1_2, k);
+    for (double x : {std::nextafter(split, 0.0), split, std::nextafter(split, HUGE_VAL),
+                     std::ldexp(1.0, k), std::ldexp(1.999999, k)}) {
+      if (!std::isnormal(x)) continue;
+      worst = std::max(worst,
+                       std::abs(log_fast(x) - std::log(x)) / std::max(1.0, std::abs(std::log(x))));
+    }
+  }
+  EXPECT_LT(worst, 4e-16);
+  EXPECT_DOUBLE_EQ(log_fast(DBL_MIN), std::log(DBL_MIN));
 }
 
 TEST(FastMath, ExpAndOneMinusExpMatchLibrary) {
