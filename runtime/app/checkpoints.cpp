@@ -117,6 +117,8 @@ void Checkpoints::load(State* state, RunStats* stats, ResultWriter* writer) cons
                   });
   if (state->step != step)
     fail_input(rank_file(dir_, ranks_.rank(), step), "", "holds another step than latest.json");
+  // everything checked: the resume changes the folder from here on
+  if (writer) writer->go_on();
   if (writer) writer->keep_temporaries();
   keep_temporaries_on_signal();
 }
