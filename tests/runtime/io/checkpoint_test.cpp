@@ -127,7 +127,7 @@ std::string read_error(const std::string& path) {
 
 // A checkpoint ends in a checksum of everything before it. One flipped bit anywhere
 // (the header, the bodies' state, the writer's part, the checksum itself) and any cut is
-// refused with exit 3; before, a bit flipped in the bodies' data resumed with other results.
+// refused with exit 3, the bodies' data included (it would resume into other results).
 TEST(Checkpoint, AnyFlippedBitOrCutIsRefused) {
   const std::string path = ::testing::TempDir() + "/flip.ckpt";
   const CheckpointId id{"build", "scene", 1, "scene.json"};
@@ -202,7 +202,7 @@ TEST(Checkpoint, AnUncheckedOlderFormatIsRefusedSayingWhy) {
   std::remove(path.c_str());
 }
 
-// A checkpoint file that is not there says so (before: "cannot be read")
+// A checkpoint file that is not there says "missing", not "cannot be read"
 TEST(Checkpoint, AMissingFileSaysMissing) {
   const std::string path = ::testing::TempDir() + "/nowhere/rank0.step40.bin";
   const std::string err = read_error(path);
