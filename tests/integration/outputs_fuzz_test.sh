@@ -149,8 +149,12 @@ while read -r call k site; do
   # the call killed: the site's (the run does the same as traced), or, where another thread
   # reached its own K-th call first or a partial series was rewritten on the clock, another
   path=${site#* }; path=${path%% *}
-  grep -m1 ' = ?$' kill.txt | sed "s|$work/k||g; s/[0-9]\+/N/g" | grep -qF "$path" ||
-    elsewhere=$((elsewhere + 1))
+  [ "$path" != / ] || path='<>'  # the folder itself, by its descriptor
+  hit=$(grep -m1 ' = ?$' kill.txt | sed "s|$work/k||g; s/[0-9]\+/N/g; s/  */ /g") || true
+  case $hit in
+    *"$path"*) at= ;;
+    *) elsewhere=$((elsewhere + 1)) at=" (landed at: ${hit:-a call of another thread})" ;;
+  esac
   user_files_kept k || fail "$what: the user's files were touched"
   # right after the kill: a complete result of either run, or none and the journal
   if [ -e k/summary.json ]; then
@@ -170,13 +174,13 @@ while read -r call k site; do
     fi
     grep -q "complet" err.txt || fail "$what: the completion is not said on stderr"
     is_clean_result k B || fail "$what: the completed finish is not the new run's result"
-    completed=$((completed + 1))
+    completed=$((completed + 1)) outcome="decided finish completed"
   elif [ -e k/checkpoint/latest.json ]; then
     before=$(snapshot k)
     rc=0; run b.json --resume k 2> err.txt || rc=$?
     if [ "$rc" = 0 ]; then
       is_clean_result k B || fail "$what: the resumed result differs from the uninterrupted one"
-      resumed=$((resumed + 1))
+      resumed=$((resumed + 1)) outcome="resumed"
     else
       [ "$rc" = 3 ] || fail "$what: --resume exited $rc"
       [ "$(snapshot k)" = "$before" ] || fail "$what: a refused --resume changed the folder"
@@ -184,18 +188,19 @@ while read -r call k site; do
       rm -rf k/checkpoint
       run b.json -o k 2> err.txt || fail "$what: a fresh run after the refused resume"
       is_result k B || fail "$what: the fresh run's result differs"
-      refused=$((refused + 1))
+      refused=$((refused + 1)) outcome="resume refused, fresh run"
     fi
   elif is_result k A; then
     # killed before its first checkpoint: the earlier result is intact, and a new run works
     run b.json -o k 2> err.txt || fail "$what: a new run over the earlier result"
     is_result k B || fail "$what: the new run's result differs"
-    earlier=$((earlier + 1))
+    earlier=$((earlier + 1)) outcome="earlier result kept, new run"
   else
     is_clean_result k B || fail "$what: neither run's clean result"
-    finished=$((finished + 1))
+    finished=$((finished + 1)) outcome="finished"
   fi
   user_files_kept k || fail "$what: the user's files were touched"
+  echo "outputs_fuzz_test: $what: $outcome$at"
 done < <(head -n "$npoints" points.txt)
 if [ "$part" != corrupt ]; then
   echo "outputs_fuzz_test: $npoints kills ($elsewhere not at their site): $resumed resumed," \
