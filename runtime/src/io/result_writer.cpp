@@ -260,6 +260,11 @@ void ResultWriter::save(BinaryOut& out) {
 void ResultWriter::restore(BinaryIn& in) {
   std::string old_tag;
   in.str(&old_tag);
+  // the temporaries the checkpoint counts are the ones latest.json names
+  if (old_tag != tag_)
+    fail_input(in.file(), "",
+               "counts the temporaries *" + old_tag + ", latest.json names *" + tag_ +
+                   ": the two are not of one run");
   uint64_t csv_bytes = 0, csv_sum = 0, nframes = 0;
   in.pod(&csv_bytes);
   in.pod(&csv_sum);
