@@ -341,6 +341,7 @@ ckp scene.text flip sum; refused "scene changed" $name "another scene"
 ckp ranks plus1 sum; refused "ranks + 1" $name "MPI rank"
 ckp rank plus1 sum; refused "rank + 1" $name "holds rank"
 ckp step plus1 sum; refused "step + 1" $name "another step"
+ckp writer.tag.text flip sum; refused "the temporaries' tag" $name "not of one run"
 ckp writer.csv_bytes plus1 sum; refused "the trajectories' length + 1" trajectories.csv.tmp
 ckp writer.csv_sum flip sum; refused "the trajectories' checksum" trajectories.csv.tmp
 ckp writer.frame_sums.data flip sum; refused "a frame's checksum" .vtp
