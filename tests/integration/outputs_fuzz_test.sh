@@ -145,6 +145,15 @@ while read -r call k site; do
   strace -f -y -o kill.txt -e trace="$call" -e inject="$call:signal=KILL:when=$k" \
     "$lrigid" run b.json -o "$work/k" --quiet --threads 1 --checkpoint-every 1e-9 \
     > /dev/null 2> err.txt || rc=$?
+  if [ "$rc" = 0 ]; then
+    # fewer calls than traced (the traced run rewrote its partial series on the clock more
+    # often): it finished before the K-th, with the new result
+    is_clean_result k B && user_files_kept k ||
+      fail "$what: not reached, and the run's result differs"
+    finished=$((finished + 1))
+    echo "outputs_fuzz_test: $what: not reached, the run finished"
+    continue
+  fi
   [ "$rc" = 137 ] || fail "$what: the run exited $rc, not killed"
   # the call killed: the site's (the run does the same as traced), or, where another thread
   # reached its own K-th call first or a partial series was rewritten on the clock, another
@@ -205,7 +214,7 @@ done < <(head -n "$npoints" points.txt)
 if [ "$part" != corrupt ]; then
   echo "outputs_fuzz_test: $npoints kills ($elsewhere not at their site): $resumed resumed," \
        "$refused resume refused, $completed decided finishes completed, $earlier before any" \
-       "checkpoint, $finished after the finish"
+       "checkpoint, $finished finished (killed after the finish or not reached)"
   echo "outputs_fuzz_test: a kill at every write site: PASS ($(( $(date +%s) - start )) s)"
 fi
 [ "$part" != kill ] || { echo "outputs_fuzz_test: PASS"; exit 0; }
