@@ -225,7 +225,7 @@ cat > ckp.py <<'PY'
 # corruptions of them
 import struct, sys
 
-def fnv(b):
+def fnv(b):  # FNV-1a 64 as io/durable.h computes it (its offset basis)
     h = 1469598103934665603
     for c in b:
         h = ((h ^ c) * 0x100000001b3) & 0xffffffffffffffff
@@ -270,7 +270,7 @@ def layout(b):
     if at != len(b):
         sys.exit('test bug: the checkpoint layout ends at %d of %d bytes' % (at, len(b)))
     if fnv(b[:-8]) != struct.unpack_from('<Q', b, len(b) - 8)[0]:
-        sys.exit('test bug: the checksum is not FNV-1a 64 of the bytes before it')
+        sys.exit('test bug: the checksum is not io/durable.h\'s FNV-1a 64 of the bytes before it')
     return f
 
 cmd, path = sys.argv[1], sys.argv[2]
