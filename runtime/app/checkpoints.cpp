@@ -73,7 +73,16 @@ std::string Checkpoints::resume_tag() const {
                  "the run was started with " + std::to_string(ranks) +
                      " MPI rank(s): resume it with " +
                      (ranks > 1 ? "mpirun -np " + std::to_string(ranks) : "one process"));
-    return j.at("tag").get<std::string>();
+    // the suffix of the interrupted run's temporaries, ".tmp" and its process id: a resume
+    // goes on with (and tidies) the files of that name only, so anything else is refused
+    const std::string tag = j.at("tag").get<std::string>();
+    if (tag.size() <= 4 || tag.compare(0, 4, ".tmp") != 0 ||
+        tag.find_first_not_of("0123456789", 4) != std::string::npos)
+      fail_input(latest, "tag",
+                 "malformed: \"" + tag +
+                     "\" is not the suffix of a run's temporaries (.tmp and a number); "
+                     "nothing was changed");
+    return tag;
   } catch (const json::exception& e) {
     fail_input(latest, "", std::string("malformed: ") + e.what());
   }
@@ -108,6 +117,8 @@ void Checkpoints::load(State* state, RunStats* stats, ResultWriter* writer) cons
                   });
   if (state->step != step)
     fail_input(rank_file(dir_, ranks_.rank(), step), "", "holds another step than latest.json");
+  // everything checked: the resume changes the folder from here on
+  if (writer) writer->go_on();
   if (writer) writer->keep_temporaries();
   keep_temporaries_on_signal();
 }

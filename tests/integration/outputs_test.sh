@@ -66,8 +66,8 @@ sed 's/"formats": \["csv", "pvd", "glb"\]/"formats": ["csv", "pvd"]/; s/"seed": 
 echo y > out/bodies/mine.txt
 expect_fail 4 "out/bodies/mine.txt" "$lrigid" run small.json -o out --quiet
 [ "$(cat out/bodies/mine.txt)" = y ] || fail "out/bodies/mine.txt changed"
-# a scene whose mesh lies in shapes/ with output.dir ".": refused, the mesh kept (before issue
-# 54 the finish deleted it)
+# a scene whose mesh lies in shapes/ with output.dir ".": refused before the run, the mesh
+# intact
 mkdir -p meshscene/shapes
 cp "$src/tests/data/meshes/tetra.obj" meshscene/shapes/leaf.obj
 sed 's|"shape": { "type": "sphere", "radius": 0.003 }|"shape": { "type": "mesh", "file": "shapes/leaf.obj", "scale": 0.01 }|; s|"dir": "out"|"dir": "."|' \
@@ -166,7 +166,8 @@ interrupted r3
 f=$(ls r3/bodies.tmp*/bodies_000001.vtp); cp "$f" good
 printf '\x01' | dd of="$f" bs=1 seek=$(( $(stat -c %s "$f") - 40 )) conv=notrunc status=none
 check_refused r3 "bodies_000001.vtp" "$f" good
-# one flipped bit in the checkpoint's body data (before: exit 0 and other results)
+# one flipped bit in the checkpoint's body data: refused by its checksum, not resumed into
+# other results
 interrupted r4
 c=$(ls r4/checkpoint/rank0.step*.bin); cp "$c" good
 /usr/bin/python3 - "$c" <<'PY'
@@ -176,11 +177,11 @@ b[len(b) // 2] ^= 0x10
 open(p, "wb").write(b)
 PY
 check_refused r4 "checksum mismatch" "$c" good
-# the checkpoint cut short (before: exit 3, and the partial results deleted)
+# the checkpoint cut short: refused, and the output so far kept
 interrupted r5
 c=$(ls r5/checkpoint/rank0.step*.bin); cp "$c" good; truncate -s -9 "$c"
 check_refused r5 "checkpoint" "$c" good
-# latest.json naming a step whose file is missing (before: "cannot be read")
+# latest.json naming a step whose file is missing: refused saying "missing"
 interrupted r6
 c=$(ls r6/checkpoint/rank0.step*.bin); cp "$c" good; rm "$c"
 check_refused r6 "missing" "$c" good

@@ -26,10 +26,27 @@ using Fnv = Fnv64;
 
 }  // namespace
 
+BinaryIn::BinaryIn(std::istream& in, std::string file) : in_(in), file_(std::move(file)) {
+  const std::streampos here = in_.tellg();
+  if (here < 0) return;
+  in_.seekg(0, std::ios::end);
+  end_ = in_.tellg();
+  in_.seekg(here);
+  if (!in_) {  // not seekable after all: read without the bound
+    in_.clear();
+    in_.seekg(here);
+    end_ = -1;
+  }
+}
+
 uint64_t BinaryIn::length(size_t item) {
   uint64_t n = 0;
   pod(&n);
-  if (n > (uint64_t(1) << 40) / (item ? item : 1))
+  // an array cannot be longer than what is left of the file (a length written wrong would
+  // otherwise allocate up to the bound below, or more than the machine has)
+  const std::streamoff at = end_ >= 0 ? std::streamoff(in_.tellg()) : -1;
+  const uint64_t left = at >= 0 && end_ >= at ? uint64_t(end_ - at) : uint64_t(1) << 40;
+  if (n > (uint64_t(1) << 40) / (item ? item : 1) || n > left / (item ? item : 1))
     fail_input(file_, "", "corrupt checkpoint (an array of " + std::to_string(n) + " items)");
   return n;
 }

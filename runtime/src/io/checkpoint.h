@@ -38,10 +38,12 @@ class BinaryOut {
   std::ostream& o_;
 };
 
-// Reads what BinaryOut wrote; a short or implausible file is ExitCode::BadInput naming it.
+// Reads what BinaryOut wrote; a short or implausible file is ExitCode::BadInput naming it. A
+// length longer than the bytes left in a seekable stream is refused before anything is
+// allocated for it.
 class BinaryIn {
  public:
-  BinaryIn(std::istream& in, std::string file) : in_(in), file_(std::move(file)) {}
+  BinaryIn(std::istream& in, std::string file);
   template <typename T>
   void pod(T* v) {
     read(reinterpret_cast<char*>(v), sizeof(T));
@@ -62,6 +64,7 @@ class BinaryIn {
   void read(char* p, size_t n);
   std::istream& in_;
   std::string file_;
+  std::streamoff end_ = -1;  // the stream's length where it can be told
 };
 
 // What a checkpoint belongs to: checked before anything else is read.

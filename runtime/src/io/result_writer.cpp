@@ -101,9 +101,9 @@ ResultWriter::ResultWriter(const std::string& dir, const Model& model, const Out
   if (!resume_tag.empty()) {
     tag_ = resume_tag;
     // the output so far belongs to the checkpoint: whatever happens, this writer removes none
-    // of it (a resume that fails its checks leaves everything for the next attempt)
+    // of it (a resume that fails its checks leaves everything for the next attempt; the
+    // interrupted finish's leftovers go in restore, once the checks have passed)
     keep_ = true;
-    remove_stale_temporaries();
   }
   auto take_over = [&](const std::string& name) {
     const fs::path p = fs::path(dir_) / (name + tag_);
@@ -260,6 +260,11 @@ void ResultWriter::save(BinaryOut& out) {
 void ResultWriter::restore(BinaryIn& in) {
   std::string old_tag;
   in.str(&old_tag);
+  // the temporaries the checkpoint counts are the ones latest.json names
+  if (old_tag != tag_)
+    fail_input(in.file(), "",
+               "counts the temporaries *" + old_tag + ", latest.json names *" + tag_ +
+                   ": the two are not of one run");
   uint64_t csv_bytes = 0, csv_sum = 0, nframes = 0;
   in.pod(&csv_bytes);
   in.pod(&csv_sum);
@@ -316,9 +321,13 @@ void ResultWriter::restore(BinaryIn& in) {
                                  " bytes with " + Fnv64{sum.second}.hex() + again);
     }
   }
+}
+
+void ResultWriter::go_on() {
+  remove_stale_temporaries();
   if (csv_) {
     // lines written after the checkpoint are written again
-    if (std::fflush(csv_) != 0 || ::ftruncate(fileno(csv_), off_t(csv_bytes)) != 0 ||
+    if (std::fflush(csv_) != 0 || ::ftruncate(fileno(csv_), off_t(csv_summed_)) != 0 ||
         std::fseek(csv_, 0, SEEK_END) != 0)
       throw Error(ExitCode::Output, where(csv_tmp_, "", "cannot cut back to the checkpoint"));
   }

@@ -77,11 +77,15 @@ class ResultWriter {
 
   // Checkpoints (io/checkpoint.h): what was written so far (the trajectories' length and
   // checksum, the frames with each file's size and checksum, the animation kept in memory).
-  // save() first makes the output so far durable (fsync). restore() checks the output so far
-  // against the checksums before it changes anything: a file cut short, or changed, is
-  // lrigid::Error(ExitCode::BadInput) naming it, and nothing is removed.
+  // save() first makes the output so far durable (fsync). restore() reads the writer's part
+  // and checks the output so far against its checksums, changing nothing: a file cut short,
+  // or changed, is lrigid::Error(ExitCode::BadInput) naming it. go_on(), once the whole
+  // checkpoint has passed its checks, brings the output back to it: the trajectories cut to
+  // their checkpointed length, the partial series rewritten, the interrupted finish's
+  // leftovers removed.
   void save(BinaryOut& out);
   void restore(BinaryIn& in);
+  void go_on();
   // the run's checkpoint folder (a name in dir()), removed as part of the finish's commit
   void set_checkpoint_dir(const std::string& name) { checkpoint_dir_ = name; }
   // once a checkpoint refers to them, the temporaries are kept when the run fails

@@ -5,11 +5,13 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
 
+#include "io/durable.h"
 #include "util/error.h"
 
 namespace lrigid {
@@ -125,7 +127,7 @@ std::string read_error(const std::string& path) {
 
 // A checkpoint ends in a checksum of everything before it. One flipped bit anywhere
 // (the header, the bodies' state, the writer's part, the checksum itself) and any cut is
-// refused with exit 3; before, a bit flipped in the bodies' data resumed with other results.
+// refused with exit 3, the bodies' data included (it would resume into other results).
 TEST(Checkpoint, AnyFlippedBitOrCutIsRefused) {
   const std::string path = ::testing::TempDir() + "/flip.ckpt";
   const CheckpointId id{"build", "scene", 1, "scene.json"};
@@ -161,6 +163,34 @@ TEST(Checkpoint, AnyFlippedBitOrCutIsRefused) {
   std::remove(path.c_str());
 }
 
+// A length written wrong under a checksum that matches (what no flipped bit gives, but a
+// checksum proves nothing about a writer's mistakes): refused with exit 3, before anything the
+// size of the length is allocated, whichever array it is
+TEST(Checkpoint, ALengthBeyondTheFileIsRefusedWithoutAllocatingIt) {
+  const std::string path = ::testing::TempDir() + "/length.ckpt";
+  const CheckpointId id{"build", "scene", 1, "scene.json"};
+  write_checkpoint(path, id, 0, bodies(3, true), RunStats{},
+                   [](BinaryOut& out) { out.str("the writer"); });
+  const std::string good = slurp(path);
+  // the arrays' lengths: the build's (after the magic), the positions' (after the header)
+  const size_t build_length = 8;
+  const size_t x_length = 8 + 8 + id.build.size() + 8 + id.scene.size() + 4 + 4 + 8 + 8;
+  for (const size_t at : {build_length, x_length}) {
+    for (const uint64_t n : {uint64_t(1) << 36, uint64_t(good.size())}) {
+      std::string bad = good;
+      std::memcpy(&bad[at], &n, sizeof n);
+      Fnv64 sum;
+      sum.add(bad.data(), bad.size() - 8);
+      std::memcpy(&bad[bad.size() - 8], &sum.h, 8);
+      put(path, bad);
+      const std::string err = read_error(path);
+      EXPECT_NE(err.find("corrupt checkpoint (an array of " + std::to_string(n)), std::string::npos)
+          << "length " << n << " at byte " << at << ": " << err;
+    }
+  }
+  std::remove(path.c_str());
+}
+
 // A checkpoint of the format before checksums (LRIGCKP2) is refused, saying why: it cannot be
 // verified (docs/cli.md, "Checkpoints and --resume")
 TEST(Checkpoint, AnUncheckedOlderFormatIsRefusedSayingWhy) {
@@ -172,7 +202,7 @@ TEST(Checkpoint, AnUncheckedOlderFormatIsRefusedSayingWhy) {
   std::remove(path.c_str());
 }
 
-// A checkpoint file that is not there says so (before: "cannot be read")
+// A checkpoint file that is not there says "missing", not "cannot be read"
 TEST(Checkpoint, AMissingFileSaysMissing) {
   const std::string path = ::testing::TempDir() + "/nowhere/rank0.step40.bin";
   const std::string err = read_error(path);

@@ -291,7 +291,9 @@ TEST(Gltf, RunTooLongToKeepInMemoryIsRefusedUpFront) {
 
 // A run killed while writing its animation leaves animation.glb.tmpPID.tmpPID (the staged name's
 // own temporary); the resumed run must clear what the interrupted one began of its final files
-// and keep its output so far, or the results folder differs from an uninterrupted run's.
+// and keep its output so far, or the results folder differs from an uninterrupted run's. It
+// clears them only once the checkpoint has passed its checks (go_on): a writer made for a
+// resume that is then refused removes nothing.
 TEST(Gltf, ResumeClearsTheInterruptedRunsUnfinishedFiles) {
   const std::string dir = ::testing::TempDir() + "gltf_resume_" + std::to_string(::getpid());
   fs::remove_all(dir);
@@ -311,13 +313,23 @@ TEST(Gltf, ResumeClearsTheInterruptedRunsUnfinishedFiles) {
   std::ofstream(dir + "/bodies" + tag + "/bodies_0000.vtp") << "frame\n";
   const Scene scene = tumbling_scene(dir);
   const Model model = test::compile(scene);
+  auto listing = [&] {
+    std::vector<std::string> v;
+    for (const auto& e : fs::recursive_directory_iterator(dir))
+      v.push_back(fs::relative(e.path(), dir).string());
+    std::sort(v.begin(), v.end());
+    return v;
+  };
+  const std::vector<std::string> before = listing();
   {
     ResultWriter w(dir, model, scene.output, tag);
   }
-  std::vector<std::string> left;
-  for (const auto& e : fs::recursive_directory_iterator(dir))
-    left.push_back(fs::relative(e.path(), dir).string());
-  std::sort(left.begin(), left.end());
+  EXPECT_EQ(listing(), before) << "a resume refused before go_on() changed the folder";
+  {
+    ResultWriter w(dir, model, scene.output, tag);
+    w.go_on();
+  }
+  const std::vector<std::string> left = listing();
   // what is not the interrupted run's stays (another run's animation.glb, notes.tmp421)
   for (const char* gone : {"animation.glb.tmp42", "animation.glb.tmp42.tmp42",
                            "landings.csv.tmp42", "bodies.pvd.tmp42"})
