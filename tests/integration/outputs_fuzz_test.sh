@@ -225,8 +225,8 @@ cat > ckp.py <<'PY'
 # corruptions of them
 import struct, sys
 
-def fnv(b):  # FNV-1a 64 as io/durable.h computes it (its offset basis)
-    h = 1469598103934665603
+def fnv(b):  # FNV-1a 64 (io/durable.h)
+    h = 14695981039346656037
     for c in b:
         h = ((h ^ c) * 0x100000001b3) & 0xffffffffffffffff
     return h

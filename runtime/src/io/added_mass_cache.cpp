@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "io/atomic_file.h"
+#include "io/durable.h"
 #include "util/error.h"
 
 namespace lrigid {
@@ -21,24 +22,18 @@ namespace {
 // 2: box tensors are diagonal (their symmetry; format 1 kept the panel solution's round-off)
 constexpr int kCacheFormat = 2;
 
-// 64-bit FNV-1a over raw bytes
+// 64-bit FNV-1a over the raw bytes of values (io/durable.h)
 class Hasher {
  public:
-  void bytes(const void* p, size_t n) {
-    const auto* c = static_cast<const unsigned char*>(p);
-    for (size_t i = 0; i < n; ++i) {
-      h_ ^= c[i];
-      h_ *= 0x100000001b3ull;
-    }
-  }
   template <typename T>
   void value(const T& v) {
-    bytes(&v, sizeof v);
+    f_.add(&v, sizeof v);
   }
-  uint64_t get() const { return h_; }
+  void bytes(const void* p, size_t n) { f_.add(p, n); }
+  uint64_t get() const { return f_.h; }
 
  private:
-  uint64_t h_ = 0xcbf29ce484222325ull;
+  Fnv64 f_;
 };
 
 uint64_t geometry_hash(const Shape& shape) {

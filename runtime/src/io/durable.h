@@ -9,7 +9,7 @@ namespace lrigid {
 
 // FNV-1a 64, fed in pieces: the same value as over the concatenated bytes
 struct Fnv64 {
-  uint64_t h = 1469598103934665603ull;
+  uint64_t h = 0xcbf29ce484222325ull;  // the offset basis, 14695981039346656037
   void add(const void* data, size_t n) {
     const auto* p = static_cast<const unsigned char*>(data);
     for (size_t i = 0; i < n; ++i) {

@@ -41,6 +41,23 @@ State bodies(size_t n, bool watches) {
 
 // The running build's fingerprint is the build-id the linker wrote into it, as readelf reads it
 // from the file
+TEST(Checkpoint, TheChecksumIsFnv1a64) {
+  // the published test vectors of FNV-1a 64 (offset basis 14695981039346656037), fed whole and
+  // in pieces
+  auto fnv = [](const std::string& s) {
+    Fnv64 f;
+    f.add(s.data(), s.size());
+    return f.h;
+  };
+  EXPECT_EQ(fnv(""), 0xcbf29ce484222325ull);
+  EXPECT_EQ(fnv("a"), 0xaf63dc4c8601ec8cull);
+  EXPECT_EQ(fnv("foobar"), 0x85944171f73967e8ull);
+  Fnv64 pieces;
+  pieces.add("foo", 3);
+  pieces.add("bar", 3);
+  EXPECT_EQ(pieces.h, fnv("foobar"));
+}
+
 TEST(Checkpoint, TheBuildFingerprintIsTheLinkersBuildId) {
   std::string readelf;
   FILE* p = popen("readelf -n /proc/$PPID/exe 2>/dev/null", "r");
