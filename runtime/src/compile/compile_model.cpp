@@ -253,7 +253,17 @@ BodyType make_body_type(const Scene& scene, const BodySpec& b, const Shape& shap
   if (t.flat) ellipsoid_stokes_resistance(t.ell, &t.stokes_force, &t.stokes_torque);
 
   // the fluid tensor is computed for every body type: "auto" needs its size
-  const AddedMass am = added_mass(shape, scene.fluid_density, b.panels);
+  AddedMass am;
+  try {
+    am = added_mass(shape, scene.fluid_density, b.panels);
+  } catch (const Error& e) {
+    // the boundary elements find no (positive) solution only for a surface they cannot solve:
+    // a fault of the input, named with the mesh file
+    if (e.code() != ExitCode::Runtime) throw;
+    const bool mesh = shape.type == ShapeType::Mesh;
+    fail_input(scene.file, key + (mesh ? ".shape.file" : ".shape"),
+               (mesh ? shape.source + ": " : std::string()) + e.what());
+  }
   t.K_fluid = shift_tensor(am.tensor, t.centroid - t.com);
   // exactly symmetric, as M: the kernels read it in either order (effects/added_mass.h)
   t.K_fluid = 0.5 * (t.K_fluid + t.K_fluid.transpose()).eval();

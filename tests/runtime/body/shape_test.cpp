@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <memory>
 
@@ -239,6 +240,37 @@ TEST(MeshCheck, DetectsEachDefect) {
   const MeshCheck bc = check_mesh(bow);
   EXPECT_EQ(bc.defect, MeshDefect::NonManifold) << bc.message;
   EXPECT_NE(bc.message.find("vertex 0"), std::string::npos) << bc.message;
+
+  // two closed tetrahedra overlapping: every edge and vertex fine, positive volume, but the
+  // surfaces cross (a surface whose inside is ambiguous for the volume and the boundary elements)
+  TriangleMesh two = tetra();
+  for (const Vec3& v : tetra().vertices) two.vertices.push_back(v + Vec3(0.2, 0.2, 0.2));
+  for (const auto& f : tetra().faces) two.faces.push_back({f[0] + 4, f[1] + 4, f[2] + 4});
+  const MeshCheck tc = check_mesh(two);
+  EXPECT_EQ(tc.defect, MeshDefect::SelfIntersecting) << tc.message;
+  EXPECT_NE(tc.message.find("intersects itself"), std::string::npos) << tc.message;
+  // the same two apart are a valid body of two parts
+  TriangleMesh apart = two;
+  for (size_t i = 4; i < apart.vertices.size(); ++i) apart.vertices[i] += Vec3(3, 0, 0);
+  EXPECT_TRUE(check_mesh(apart).ok()) << check_mesh(apart).message;
+  // one surface: a unit cube (corner index 4 ix + 2 iy + iz) with corner (1, 1, 1) pushed
+  // through its bottom face
+  TriangleMesh cube;
+  for (int ix = 0; ix < 2; ++ix)
+    for (int iy = 0; iy < 2; ++iy)
+      for (int iz = 0; iz < 2; ++iz) cube.vertices.emplace_back(ix, iy, iz);
+  for (const std::array<int, 4>& q : {std::array<int, 4>{0, 1, 3, 2}, {4, 6, 7, 5}, {0, 4, 5, 1},
+                                      {2, 3, 7, 6}, {0, 2, 6, 4}, {1, 5, 7, 3}}) {
+    cube.faces.push_back({q[0], q[1], q[2]});
+    cube.faces.push_back({q[0], q[2], q[3]});
+  }
+  ASSERT_TRUE(check_mesh(cube).ok()) << check_mesh(cube).message;
+  cube.vertices[7] = Vec3(0.4, 0.7, -0.5);
+  const MeshCheck cc = check_mesh(cube);
+  EXPECT_EQ(cc.defect, MeshDefect::SelfIntersecting) << cc.message;
+  // meshes that only come close stay valid: a thin curled leaf, tessellated shapes
+  EXPECT_TRUE(check_mesh(test::polygon_prism(64, 0.03, 1e-5)).ok());
+  EXPECT_TRUE(check_mesh(tessellate(Shape::ellipsoid(0.03, 0.02, 1e-4), 1500)).ok());
 
   // from_mesh refuses, naming the source
   try {
