@@ -248,7 +248,7 @@ void add_bench_command(CLI::App& app) {
                   "\"auto\" or a comma list; the effects used are printed first");
   cmd->add_option("--body-steps", args->body_steps,
                   "Body-steps timed per point (at least --min-steps steps)")
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::Range(1.0, 2e9));
   cmd->add_option("--min-steps", args->min_steps, "Fewest timed steps")
       ->check(CLI::Range(1, 1 << 20));
   cmd->add_option("--warmup", args->warmup, "Untimed steps first")->check(CLI::Range(0, 1 << 20));

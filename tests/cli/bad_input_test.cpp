@@ -283,6 +283,17 @@ TEST_F(Cli, ShapeLengthsOutOfRangeRefused) {
                3, {"scene.json", "shape.radius", "1e-200", "[1e-9, 1e6] m"});
 }
 
+TEST_F(Cli, NotANumberFlagsRefused) {
+  // CLI11's positive-number check lets NaN through: --tolerance nan ran
+  put(dir_ / "scene.json", base_scene());
+  expect_error(run({"run", "scene.json", "--tolerance", "nan"}), 2, {"--tolerance", "not a number"});
+  expect_error(run({"run", "scene.json", "--tolerance", "0"}), 2, {"--tolerance", "relative error"});
+  const Result r = run({"run", "scene.json", "--tolerance", "0"});
+  EXPECT_LT(r.err.size(), 300u) << "the largest double printed in full: " << r.err;
+  expect_error(run({"run", "scene.json", "--checkpoint-every", "nan"}), 2,
+               {"--checkpoint-every", "not a number"});
+}
+
 TEST_F(Cli, UnknownKeys) {
   expect_error(run_scene(replace(base_scene(), "\"seed\": 3,", "\"seed\": 3, \"colour\": 1,")), 3,
                {"scene.json", "colour", "unknown key"});

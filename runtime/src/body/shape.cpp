@@ -1,6 +1,7 @@
 #include "body/shape.h"
 
 #include <cmath>
+#include <sstream>
 #include <utility>
 
 #include "body/mesh_check.h"
@@ -24,11 +25,18 @@ const char* shape_type_name(ShapeType t) {
 
 namespace {
 
-// sizes must be finite and > 0 (NaN fails the comparison too)
+// The lengths a shape may have (radius, semi-axes, edges), m: outside them the added-mass
+// integrals underflow (a radius of 1e-200 m) or the boundary elements never finish (a box of
+// 1e160 m). The scene's parser checks the same range first, naming the key.
+constexpr double kMinShapeLength = 1e-9, kMaxShapeLength = 1e6;
+
+// sizes must be finite and within [kMinShapeLength, kMaxShapeLength] (NaN fails the comparison)
 void require_positive(const char* shape, const char* what, double v) {
-  if (!(v > 0.0) || !std::isfinite(v))
-    throw Error(ExitCode::BadInput, std::string(shape) + ": " + what +
-                                        " must be a finite length > 0 m, got " + std::to_string(v));
+  if (!(v >= kMinShapeLength && v <= kMaxShapeLength)) {
+    std::ostringstream m;
+    m << shape << ": " << what << " must be a length in [1e-9, 1e6] m, got " << v;
+    throw Error(ExitCode::BadInput, m.str());
+  }
 }
 
 }  // namespace

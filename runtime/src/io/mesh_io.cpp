@@ -214,6 +214,7 @@ TriangleMesh read_stl(const std::string& path) {
 TriangleMesh read_mesh(const std::string& path) {
   const std::string ext = lower(std::filesystem::path(path).extension().string());
   if (!std::filesystem::exists(path)) bad(path, "file does not exist");
+  if (std::filesystem::is_directory(path)) bad(path, "is a directory, not a mesh file");
   if (ext != ".obj" && ext != ".stl")
     bad(path, "unknown mesh format '" + ext + "' (expected .obj or .stl)");
   TriangleMesh mesh = ext == ".obj" ? read_obj(path) : read_stl(path);

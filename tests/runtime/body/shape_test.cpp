@@ -7,6 +7,8 @@
 #include <array>
 #include <cmath>
 #include <memory>
+#include <vector>
+#include <functional>
 
 #include "body/mass_properties.h"
 #include "body/mesh_check.h"
@@ -50,6 +52,25 @@ TEST(Shape, RejectsNonPositiveSizes) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("ly"), std::string::npos) << e.what();
   }
+}
+
+TEST(Shape, RejectsLengthsOutOfRange) {
+  // a radius of 1e-200 m underflowed the added-mass integrals (carlson_rd: invalid arguments);
+  // a box of 1e160 m kept the boundary elements busy without end
+  for (const auto& make : std::vector<std::function<void()>>{
+           [] { Shape::sphere(1e-200); }, [] { Shape::sphere(1e300); },
+           [] { Shape::ellipsoid(1e-200, 1e-200, 2e-200); }, [] { Shape::box(1e160, 1, 1); }}) {
+    try {
+      make();
+      ADD_FAILURE() << "accepted";
+    } catch (const Error& e) {
+      EXPECT_EQ(e.code(), ExitCode::BadInput);
+      EXPECT_NE(std::string(e.what()).find("[1e-9, 1e6] m"), std::string::npos) << e.what();
+    }
+  }
+  // the ends of the range are lengths
+  EXPECT_EQ(Shape::sphere(1e-9).half_extents.x(), 1e-9);
+  EXPECT_EQ(Shape::box(1e6, 1, 1).half_extents.x(), 5e5);
 }
 
 TEST(MassProperties, ClosedForms) {
