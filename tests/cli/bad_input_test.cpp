@@ -529,6 +529,16 @@ TEST_F(Cli, OpenInvertedAndZeroVolumeMeshes) {
   EXPECT_EQ(ok.code, 0) << ok.err;
 }
 
+TEST_F(Cli, SelfIntersectingMeshRefused) {
+  // two overlapping tetrahedra: closed, consistently oriented, positive volume, and their faces
+  // cross; the run went on with a wrong added mass (exit 0)
+  put(dir_ / "two.obj",
+      "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv 0.2 0.2 0.2\nv 1.2 0.2 0.2\nv 0.2 1.2 0.2\n"
+      "v 0.2 0.2 1.2\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\nf 5 7 6\nf 5 6 8\nf 5 8 7\nf 6 7 8\n");
+  expect_error(run_scene(mesh_scene("two.obj")), 3,
+               {"scene.json", "bodies[0].shape.file", "two.obj", "intersects itself", "faces"});
+}
+
 // ---- output and resources ----
 
 TEST_F(Cli, OutputDirectoryThatCannotBeWritten) {
