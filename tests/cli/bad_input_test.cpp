@@ -480,6 +480,21 @@ TEST_F(Cli, EmptyGrids) {
   expect_error(run_scene(grid_scene("empty.pvd")), 3, {"empty.pvd", "empty"});
 }
 
+TEST_F(Cli, SeriesTimeThatIsNotFinite) {
+  // std::stod reads "nan": the message said "times must be distinct, 1 repeats"
+  put(dir_ / "g.vti",
+      vti("0.1 0.1 0.1 0.1 0.1 0.1 0.1 0.1", "0.05 0.05 0.05 0.05 0.05 0.05 0.05 0.05"));
+  for (const char* t : {"nan", "inf"}) {
+    SCOPED_TRACE(t);
+    put(dir_ / "s.pvd", std::string("<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\">\n"
+                                    "<Collection>\n<DataSet timestep=\"") + t +
+                            "\" file=\"g.vti\"/>\n<DataSet timestep=\"1\" file=\"g.vti\"/>\n"
+                            "</Collection>\n</VTKFile>\n");
+    expect_error(run_scene(grid_scene("s.pvd")), 3,
+                 {"s.pvd", "DataSet.timestep", "finite", std::string("\"") + t + "\""});
+  }
+}
+
 TEST_F(Cli, SeriesEntryWithAnOverlongFileName) {
   // found by fuzz_grid: std::filesystem throws (ENAMETOOLONG) on a 300-character name, which
   // must be a bad-input error naming the series, not an internal error (exit 1)
@@ -501,6 +516,19 @@ TEST_F(Cli, GridPieceOutsideItsExtentIsOneClearLine) {
   expect_error(r, 3, {"piece.vti", "Extent: the piece's extent differs from WholeExtent"});
   EXPECT_EQ(r.err.find("ERR|"), std::string::npos) << r.err;
   EXPECT_EQ(r.err.find("0 x 0 x 0"), std::string::npos) << r.err;
+}
+
+TEST_F(Cli, GridValuesOutOfRange) {
+  // a grid's flow within the ranges of a scene's uniform flow: U of 1e30 m/s blew every body out
+  // of the grid in the first step (exit 0, all "exited")
+  const std::string k = "0.1 0.1 0.1 0.1 0.1 0.1 0.1 0.1";
+  const std::string eps = "0.05 0.05 0.05 0.05 0.05 0.05 0.05 0.05";
+  put(dir_ / "fastU.vti", replace(vti(k, eps), "1 0 0 1 0 0 1 0 0", "1 0 0 1 0 0 1e30 0 0"));
+  expect_error(run_scene(grid_scene("fastU.vti")), 3, {"fastU.vti", "U", "point 2", "[-1e5, 1e5] m/s"});
+  put(dir_ / "bigk.vti", vti("0.1 0.1 0.1 1e30 0.1 0.1 0.1 0.1", eps));
+  expect_error(run_scene(grid_scene("bigk.vti")), 3, {"bigk.vti", "k", "point 3", "[0, 1e8]"});
+  put(dir_ / "bige.vti", vti(k, "0.05 1e30 0.05 0.05 0.05 0.05 0.05 0.05"));
+  expect_error(run_scene(grid_scene("bige.vti")), 3, {"bige.vti", "epsilon", "point 1", "[0, 1e12]"});
 }
 
 // ---- meshes ----

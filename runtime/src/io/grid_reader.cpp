@@ -188,6 +188,18 @@ void read_vti(const std::string& path, GridGeometry* geom, RawGridFrame* frame, 
       fail_input(path, "k", "negative value " + fmt(kk) + " at point " + std::to_string(p));
     if (ok && ee < 0)
       fail_input(path, "epsilon", "negative value " + fmt(ee) + " at point " + std::to_string(p));
+    // the ranges of a scene's uniform flow (docs/scene-format.md): beyond them the bodies'
+    // forces overflow and they leave the grid or fail in the first step
+    if (ok && !(std::max({std::abs(u[0]), std::abs(u[1]), std::abs(u[2])}) <= 1e5))
+      fail_input(path, "U", "value (" + fmt(u[0]) + ", " + fmt(u[1]) + ", " + fmt(u[2]) +
+                                ") at point " + std::to_string(p) +
+                                ": components must be in [-1e5, 1e5] m/s");
+    if (ok && kk > 1e8)
+      fail_input(path, "k", "value " + fmt(kk) + " at point " + std::to_string(p) +
+                                ": must be in [0, 1e8] m^2/s^2");
+    if (ok && ee > 1e12)
+      fail_input(path, "epsilon", "value " + fmt(ee) + " at point " + std::to_string(p) +
+                                      ": must be in [0, 1e12] m^2/s^3");
     for (int a = 0; a < 3; ++a) frame->U[3 * p + a] = float(u[a]);
     frame->k[p] = float(kk);
     frame->epsilon[p] = float(ee);
@@ -245,6 +257,10 @@ std::vector<std::pair<double, std::string>> series_entries(const std::string& pa
       } catch (...) {
         fail_input(path, "DataSet.timestep", "not a number: \"" + std::string(mt[1]) + "\"");
       }
+      // "nan" and "inf" read as numbers; a NaN time would then be named as a repeated one
+      if (!std::isfinite(t))
+        fail_input(path, "DataSet.timestep", "must be a finite time in s, got \"" +
+                                                 std::string(mt[1]) + "\"");
     }
     entries.emplace_back(t, (fs::path(path).parent_path() / std::string(mf[1])).string());
   }
