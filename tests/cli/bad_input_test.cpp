@@ -283,17 +283,6 @@ TEST_F(Cli, ShapeLengthsOutOfRangeRefused) {
                3, {"scene.json", "shape.radius", "1e-200", "[1e-9, 1e6] m"});
 }
 
-TEST_F(Cli, NotANumberFlagsRefused) {
-  // CLI11's positive-number check lets NaN through: --tolerance nan ran
-  put(dir_ / "scene.json", base_scene());
-  expect_error(run({"run", "scene.json", "--tolerance", "nan"}), 2, {"--tolerance", "not a number"});
-  expect_error(run({"run", "scene.json", "--tolerance", "0"}), 2, {"--tolerance", "relative error"});
-  const Result r = run({"run", "scene.json", "--tolerance", "0"});
-  EXPECT_LT(r.err.size(), 300u) << "the largest double printed in full: " << r.err;
-  expect_error(run({"run", "scene.json", "--checkpoint-every", "nan"}), 2,
-               {"--checkpoint-every", "not a number"});
-}
-
 TEST_F(Cli, UnknownKeys) {
   expect_error(run_scene(replace(base_scene(), "\"seed\": 3,", "\"seed\": 3, \"colour\": 1,")), 3,
                {"scene.json", "colour", "unknown key"});
@@ -388,6 +377,105 @@ TEST_F(Cli, NonPositiveSizesDensitiesStepsAndDurations) {
     expect_error(run_scene(replace(base_scene(), c.from, c.to)), 3,
                  {"scene.json", c.key, c.value});
   }
+}
+
+// Every number of a scene has a range; outside it a product in the step overflowed and the
+// bodies failed (exit 0), or "auto" judged an effect by a non-finite number and dropped it
+// (gravity 1e308: the bodies hung still).
+TEST_F(Cli, QuantitiesOutOfRangeRefused) {
+#define POS "\"position\": [0, 0, 1]"
+  const BadValue cases[] = {
+      {"\"gravity\": [0, 0, -9.81]", "\"gravity\": [0, 0, -1e308]", "gravity", "[-1e4, 1e4] m/s^2"},
+      {"\"density\": 30", "\"density\": 1e308", "bodies[0].density", "[1e-6, 1e6] kg/m^3"},
+      {"\"density\": 30", "\"density\": 1e-300", "bodies[0].density", "1e-300"},
+      {"\"density\": 1.204", "\"density\": 1e308", "fluid.density", "[1e-6, 1e6] kg/m^3"},
+      {"\"kinematic_viscosity\": 1.5e-5", "\"kinematic_viscosity\": 1e308",
+       "fluid.kinematic_viscosity", "[1e-9, 1e3] m^2/s"},
+      {"\"U\": [1.0, 0.0, 0.0]", "\"U\": [1e300, 0.0, 0.0]", "fluid.uniform.U", "[-1e5, 1e5] m/s"},
+      {"\"k\": 0.1", "\"k\": 1e300", "fluid.uniform.k", "[0, 1e8]"},
+      {"\"epsilon\": 0.05", "\"epsilon\": 1e300", "fluid.uniform.epsilon", "[0, 1e12]"},
+      {POS, "\"position\": [1e308, 0, 1]", "bodies[0].position", "[-1e9, 1e9] m"},
+      {POS, "\"spawn_box\": [[-1e308, 0, 0], [1e308, 1, 1]]", "bodies[0].spawn_box[0]", "1e+308"},
+      {POS, POS ", \"velocity\": [1e300, 0, 0]", "bodies[0].velocity",
+       "[-1e5, 1e5] m/s"},
+      {POS, POS ", \"angular_velocity\": [0, 1e300, 0]",
+       "bodies[0].angular_velocity", "[-1e6, 1e6] rad/s"},
+      {"\"seed\": 3,", "\"seed\": 3, \"ground\": {\"z\": 1e308},", "ground.z", "[-1e9, 1e9] m"},
+      {"\"density\": 30,", "\"density\": 30, \"variation\": {\"size\": [1e-300, 1e300]},",
+       "bodies[0].variation.size", "[1e-9, 1e6] m"},
+      {"\"density\": 30,", "\"density\": 30, \"variation\": {\"density\": [1e-300, 1e300]},",
+       "bodies[0].variation.density", "[1e-6, 1e6] kg/m^3"},
+      {"\"density\": 30,", "\"density\": 30, \"variation\": {\"spin\": [0, 1e300]},",
+       "bodies[0].variation.spin", "1e6 rad/s"},
+      // a step longer than the run: no step at all, an output of t = 0 only
+      {"\"dt\": 0.001", "\"dt\": 1e300", "integrator.dt", "at most duration"},
+  };
+#undef POS
+  for (const BadValue& c : cases) {
+    SCOPED_TRACE(std::string(c.from) + " -> " + c.to);
+    expect_error(run_scene(replace(base_scene(), c.from, c.to)), 3,
+                 {"scene.json", c.key, c.value});
+  }
+}
+
+TEST_F(Cli, RangesEndsRun) {
+  // the ends of the ranges are valid: the bodies run to the end without failing
+  std::string s = replace(base_scene(), "\"gravity\": [0, 0, -9.81]", "\"gravity\": [0, 1e4, -1e4]");
+  s = replace(s, "\"position\": [0, 0, 1]",
+              "\"position\": [1e9, -1e9, 1e9], \"velocity\": [1e5, -1e5, 1e5], "
+              "\"angular_velocity\": [1e6, 0, -1e6]");
+  s = replace(s, "\"U\": [1.0, 0.0, 0.0], \"k\": 0.1, \"epsilon\": 0.05",
+              "\"U\": [1e5, 0.0, -1e5], \"k\": 1e8, \"epsilon\": 1e12");
+  const Result r = run_scene(s);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string summary = slurp(dir_ / "out" / "summary.json");
+  EXPECT_NE(summary.find("\"failed\": 0"), std::string::npos) << summary;
+  // the largest gravity in still air: "auto" keeps it (at 1e308 it dropped it)
+  const Result g = run_scene(
+      replace(base_scene(), "\"gravity\": [0, 0, -9.81]", "\"gravity\": [0, 0, -1e4]"));
+  ASSERT_EQ(g.code, 0) << g.err;
+  const std::string gs = slurp(dir_ / "out" / "summary.json");
+  EXPECT_NE(gs.find("\"effects\": [\n        \"gravity\""), std::string::npos) << gs;
+}
+
+TEST_F(Cli, HugeQuaternionIsNormalized) {
+  // the squares of [1e300, 1e300, 0, 0] overflowed: a NaN orientation and two failed bodies
+  const Result r = run_scene(replace(base_scene(), "\"position\": [0, 0, 1]",
+                                     "\"position\": [0, 0, 1], \"orientation\": [1e300, 1e300, 0, 0]"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(slurp(dir_ / "out" / "summary.json").find("\"failed\": 0"), std::string::npos);
+  // body 0 at t = 0: w = x = 1/sqrt(2)
+  const std::string csv = slurp(dir_ / "out" / "trajectories.csv");
+  EXPECT_NE(csv.find("\n0,bead,0,0,0,1,0.707106781,0.707106781,0,0,"), std::string::npos)
+      << csv.substr(0, 300);
+}
+
+TEST_F(Cli, SeedOfTheWholeUnsignedRange) {
+  // 2^64 - 1 is a seed (--seed takes it too); it was refused as "must be an integer >= 0"
+  const Result r = run_scene(replace(base_scene(), "\"seed\": 3", "\"seed\": 18446744073709551615"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(slurp(dir_ / "out" / "summary.json").find("18446744073709551615"), std::string::npos);
+  fs::remove_all(dir_ / "out");
+  expect_error(run_scene(replace(base_scene(), "\"seed\": 3", "\"seed\": -1")), 3,
+               {"scene.json", "seed", "[0, 2^64 - 1]", "-1"});
+}
+
+TEST_F(Cli, EmptySceneFileNamedAsSuch) {
+  put(dir_ / "empty.json", "");
+  expect_error(run({"run", "empty.json"}), 3, {"empty.json", "is empty"});
+  put(dir_ / "blank.json", " \n\t\n");
+  expect_error(run({"run", "blank.json"}), 3, {"blank.json", "is empty"});
+}
+
+TEST_F(Cli, NotANumberFlagsRefused) {
+  // CLI11's positive-number check lets NaN through: --tolerance nan ran
+  put(dir_ / "scene.json", base_scene());
+  expect_error(run({"run", "scene.json", "--tolerance", "nan"}), 2, {"--tolerance", "not a number"});
+  expect_error(run({"run", "scene.json", "--tolerance", "0"}), 2, {"--tolerance", "relative error"});
+  const Result r = run({"run", "scene.json", "--tolerance", "0"});
+  EXPECT_LT(r.err.size(), 300u) << "the largest double printed in full: " << r.err;
+  expect_error(run({"run", "scene.json", "--checkpoint-every", "nan"}), 2,
+               {"--checkpoint-every", "not a number"});
 }
 
 // ---- grids ----
@@ -565,6 +653,20 @@ TEST_F(Cli, SelfIntersectingMeshRefused) {
       "v 0.2 0.2 1.2\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\nf 5 7 6\nf 5 6 8\nf 5 8 7\nf 6 7 8\n");
   expect_error(run_scene(mesh_scene("two.obj")), 3,
                {"scene.json", "bodies[0].shape.file", "two.obj", "intersects itself", "faces"});
+}
+
+TEST_F(Cli, MeshScaleOutOfRange) {
+  // the scaled mesh keeps to the shapes' lengths: 1e300 and 1e-300 were "face 0 has zero area"
+  const std::string data = std::string(LRIGID_SOURCE_DIR) + "/tests/data/meshes/";
+  fs::copy_file(data + "tetra.obj", dir_ / "tetra.obj");
+  for (const char* scale : {"1e300", "1e-300", "1e7"}) {
+    SCOPED_TRACE(scale);
+    expect_error(run_scene(replace(mesh_scene("tetra.obj"), "\"scale\": 0.01",
+                                   std::string("\"scale\": ") + scale)),
+                 3, {"scene.json", "bodies[0].shape.scale", "tetra.obj", "[1e-9, 1e6] m"});
+  }
+  fs::create_directory(dir_ / "dir.obj");
+  expect_error(run_scene(mesh_scene("dir.obj")), 3, {"dir.obj", "is a directory"});
 }
 
 // ---- output and resources ----
