@@ -143,7 +143,14 @@ void add_added_mass_command(CLI::App& app) {
                                        std::to_string(opt->panels));
     const Shape shape = make_shape(*opt, cmd);
     const MassProperties mp = mass_properties(shape);
-    const AddedMass am = cached_added_mass(shape, opt->fluid_density, opt->panels);
+    AddedMass am;
+    try {
+      am = cached_added_mass(shape, opt->fluid_density, opt->panels);
+    } catch (const Error& e) {
+      // the boundary elements fail only on a surface they cannot solve: the mesh's fault
+      if (e.code() != ExitCode::Runtime || shape.type != ShapeType::Mesh) throw;
+      throw Error(ExitCode::BadInput, shape.source + ": " + e.what());
+    }
     if (opt->json)
       print_json(shape, mp, am, opt->fluid_density);
     else

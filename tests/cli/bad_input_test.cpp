@@ -283,6 +283,14 @@ TEST_F(Cli, ShapeLengthsOutOfRangeRefused) {
                3, {"scene.json", "shape.radius", "1e-200", "[1e-9, 1e6] m"});
 }
 
+TEST_F(Cli, BoxTooThinForTheBoundaryElements) {
+  // a sheet of 1e6:1 ended in "tensor is not positive semi-definite" from the solver
+  expect_error(run_scene(replace(base_scene(),
+                                 "\"shape\": { \"type\": \"sphere\", \"radius\": 0.003 }",
+                                 "\"shape\": { \"type\": \"box\", \"size\": [1, 1, 1e-6] }")),
+               3, {"scene.json", "bodies[0].shape.size", "at most 1e5", "[1,1,1e-06]"});
+}
+
 TEST_F(Cli, UnknownKeys) {
   expect_error(run_scene(replace(base_scene(), "\"seed\": 3,", "\"seed\": 3, \"colour\": 1,")), 3,
                {"scene.json", "colour", "unknown key"});

@@ -189,6 +189,10 @@ Shape read_shape(Obj o, BodySpec* b) {
     const Vec3 l = o.vec3("size");
     if (!(l.minCoeff() > 0)) o.fail("size", "must all be > 0, got " + Obj::dump(o.get("size")));
     lengths("size", l);
+    if (!(l.maxCoeff() / l.minCoeff() <= 1e5))
+      o.fail("size", "longest edge / shortest edge must be at most 1e5 (as body/shape.cpp's: the "
+                     "boundary elements lose the thin direction beyond), got " +
+                         Obj::dump(o.get("size")));
     s = Shape::box(l.x(), l.y(), l.z());
   } else if (type == "mesh") {
     const std::string file = resolve(o.string("file"), o.file());

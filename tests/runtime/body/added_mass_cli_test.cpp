@@ -124,6 +124,11 @@ TEST(AddedMassCli, LengthsPanelsAndDensityOutOfRange) {
               std::string::npos) << r.out;
     EXPECT_NE(r.out.find("[1e-9, 1e6] m"), std::string::npos) << shape << ": " << r.out;
   }
+  // a sheet of 1e6:1: the solver's tensor was not positive (exit 1)
+  const CmdResult sheet = run("--box 1 1 1e-6", t);
+  EXPECT_EQ(sheet.status, 3) << sheet.out;
+  EXPECT_NE(sheet.out.find("at most 1e5"), std::string::npos) << sheet.out;
+  EXPECT_EQ(run("--box 1 1 1e-5", t).status, 0);
   const CmdResult panels = run("--box 1 1 1 --panels 2000000000", t);
   EXPECT_EQ(panels.status, 2) << panels.out;
   EXPECT_NE(panels.out.find("--panels must be in [0, 10000]"), std::string::npos) << panels.out;

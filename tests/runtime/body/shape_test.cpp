@@ -70,7 +70,16 @@ TEST(Shape, RejectsLengthsOutOfRange) {
   }
   // the ends of the range are lengths
   EXPECT_EQ(Shape::sphere(1e-9).half_extents.x(), 1e-9);
-  EXPECT_EQ(Shape::box(1e6, 1, 1).half_extents.x(), 5e5);
+  EXPECT_EQ(Shape::box(1e6, 1e6, 10).half_extents.x(), 5e5);
+  // a sheet thinner than 1e-5 of its width: the boundary elements' tensor was not positive
+  try {
+    Shape::box(1, 1, 1e-6);
+    ADD_FAILURE() << "accepted";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), ExitCode::BadInput);
+    EXPECT_NE(std::string(e.what()).find("at most 1e5"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(Shape::box(1, 1, 1e-5).half_extents.z(), 5e-6);
 }
 
 TEST(MassProperties, ClosedForms) {
