@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -661,6 +662,33 @@ TEST_F(Cli, SelfIntersectingMeshRefused) {
       "v 0.2 0.2 1.2\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\nf 5 7 6\nf 5 6 8\nf 5 8 7\nf 6 7 8\n");
   expect_error(run_scene(mesh_scene("two.obj")), 3,
                {"scene.json", "bodies[0].shape.file", "two.obj", "intersects itself", "faces"});
+}
+
+TEST_F(Cli, MeshOfMorePanelsThanTheSolverTakesNamesTheFile) {
+  // a closed sphere of 10200 triangles: more than the dense solve's 10000 panels. Exit 5 said
+  // "boundary element method: 10200 panels exceed ..." without the scene, key or mesh
+  std::ostringstream obj;
+  const int rings = 52, sectors = 100;
+  obj << "v 0 0 1\n";
+  for (int i = 1; i < rings; ++i)
+    for (int j = 0; j < sectors; ++j) {
+      const double th = M_PI * i / rings, ph = 2 * M_PI * j / sectors;
+      obj << "v " << std::sin(th) * std::cos(ph) << " " << std::sin(th) * std::sin(ph) << " "
+          << std::cos(th) << "\n";
+    }
+  obj << "v 0 0 -1\n";
+  const auto at = [&](int i, int j) { return 2 + (i - 1) * sectors + j % sectors; };  // 1-based
+  const int bottom = 2 + (rings - 1) * sectors;
+  for (int j = 0; j < sectors; ++j) obj << "f 1 " << at(1, j) << " " << at(1, j + 1) << "\n";
+  for (int i = 1; i < rings - 1; ++i)
+    for (int j = 0; j < sectors; ++j)
+      obj << "f " << at(i, j) << " " << at(i + 1, j) << " " << at(i + 1, j + 1) << "\nf "
+          << at(i, j) << " " << at(i + 1, j + 1) << " " << at(i, j + 1) << "\n";
+  for (int j = 0; j < sectors; ++j)
+    obj << "f " << bottom << " " << at(rings - 1, j + 1) << " " << at(rings - 1, j) << "\n";
+  put(dir_ / "fine.obj", obj.str());
+  expect_error(run_scene(mesh_scene("fine.obj")), 5,
+               {"scene.json", "bodies[0].shape.file", "fine.obj", "10200 panels"});
 }
 
 TEST_F(Cli, MeshScaleOutOfRange) {

@@ -37,8 +37,9 @@ TEST(CompileModel, AddedMassFailureOnAMeshIsBadInputNamingTheFile) {
   }
 }
 
-TEST(CompileModel, OtherErrorsOfTheProviderKeepTheirCode) {
+TEST(CompileModel, OtherErrorsOfTheProviderKeepTheirCodeAndNameTheKey) {
   Scene s = test::sphere_scene(0.01, 500, 1000, 1e-6);
+  s.file = "scene.json";
   FluidField f = FluidField::uniform(Vec3::Zero(), 0, 0, s.kinematic_viscosity, s.drift);
   try {
     compile_model(s, std::move(f), [](const Shape&, double, int) -> AddedMass {
@@ -47,6 +48,8 @@ TEST(CompileModel, OtherErrorsOfTheProviderKeepTheirCode) {
     FAIL() << "compiled";
   } catch (const Error& e) {
     EXPECT_EQ(e.code(), ExitCode::Resource) << e.what();
+    EXPECT_NE(std::string(e.what()).find("scene.json: bodies[0].shape: out of memory"),
+              std::string::npos) << e.what();
   }
 }
 
