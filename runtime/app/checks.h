@@ -34,4 +34,18 @@ inline CLI::Validator positive(const std::string& what) {
       "NUMBER > 0");
 }
 
+// a number in [lo, hi] (CLI::Range lets NaN through and prints its bounds with six decimals);
+// `what` as for non_negative, e.g. "a body count from 1 to 1e8"
+inline CLI::Validator within(double lo, double hi, const std::string& what) {
+  return CLI::Validator(
+      [lo, hi, what](std::string& s) -> std::string {
+        double v = 0;
+        if (!CLI::detail::lexical_cast(s, v) || std::isnan(v))
+          return "\"" + s + "\" is not a number: give " + what;
+        if (!(v >= lo && v <= hi)) return s + " is out of range: give " + what;
+        return "";
+      },
+      "NUMBER");
+}
+
 }  // namespace lrigid::app
