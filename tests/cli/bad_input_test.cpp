@@ -239,6 +239,17 @@ TEST_F(Cli, EmptyOutputNameIsAUsageError) {
   expect_error(run({"run", "scene.json", "-o", "", "--quiet"}), 2, {"output", "empty"});
 }
 
+TEST_F(Cli, OutputDirThatIsNoPath) {
+  // "" failed to create a directory (exit 4, no key); a NUL cut the path short: "o\u0000x"
+  // was "o", and a directory of that name ended in exit 1 "basic_filebuf::underflow"
+  fs::create_directory(dir_ / "o");
+  expect_error(run_scene(replace(base_scene(), "\"dir\": \"out\"", "\"dir\": \"\"")), 3,
+               {"scene.json", "output.dir", "must not be empty"});
+  expect_error(run_scene(replace(base_scene(), "\"dir\": \"out\"", "\"dir\": \"o\\u0000x\"")), 3,
+               {"scene.json", "output.dir", "NUL"});
+  EXPECT_TRUE(fs::is_empty(dir_ / "o"));
+}
+
 TEST_F(Cli, HugeOutputEveryRefused) {
   // every / dt beyond 2^64 steps died of SIGFPE converting the output stride
   const std::string s = replace(base_scene(), "\"every\": 0.01", "\"every\": 1e300");
@@ -689,6 +700,12 @@ TEST_F(Cli, MeshOfMorePanelsThanTheSolverTakesNamesTheFile) {
   put(dir_ / "fine.obj", obj.str());
   expect_error(run_scene(mesh_scene("fine.obj")), 5,
                {"scene.json", "bodies[0].shape.file", "fine.obj", "10200 panels"});
+}
+
+TEST_F(Cli, MeshNameTooLongForTheFileSystem) {
+  // std::filesystem threw (ENAMETOOLONG) past the mesh reader: exit 1 "filesystem error"
+  expect_error(run_scene(mesh_scene(std::string(5000, 'm') + ".obj")), 3,
+               {"scene.json", "bodies[0].shape.file", "mmmm", "cannot be read"});
 }
 
 TEST_F(Cli, MeshScaleOutOfRange) {

@@ -87,6 +87,9 @@ class Obj {
   std::string string(const std::string& key) {
     const json& v = get(key);
     if (!v.is_string()) fail(key, "must be a string, got " + dump(v));
+    // a NUL ends a path early: "out\u0000x" would write into "out"
+    if (v.get<std::string>().find('\0') != std::string::npos)
+      fail(key, "must not contain a NUL character (\\u0000), got " + dump(v));
     return v.get<std::string>();
   }
   Vec3 vec3(const std::string& key) { return as_vec3(get(key), key); }
@@ -628,7 +631,10 @@ Scene parse_scene_unchecked(const std::string& text, const std::string& path) {
   }
   if (top.has("output")) {
     Obj o = top.object("output", {"dir", "every", "formats", "checkpoint_every"});
-    if (o.has("dir")) s.output.dir = o.string("dir");  // relative to the working directory
+    if (o.has("dir")) {
+      s.output.dir = o.string("dir");  // relative to the working directory
+      if (s.output.dir.empty()) o.fail("dir", "must not be empty (leave it out for \"results\")");
+    }
     s.output.every = o.positive_or("every", s.output.every);
     // the output stride is every / dt steps, an integer: beyond 4e9 steps it overflows
     if (o.has("every") && s.output.every / s.dt > 4e9)
