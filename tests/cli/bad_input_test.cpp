@@ -303,6 +303,24 @@ TEST_F(Cli, BoxTooThinForTheBoundaryElements) {
                3, {"scene.json", "bodies[0].shape.size", "at most 1e5", "[1,1,1e-06]"});
 }
 
+TEST_F(Cli, TooManyVariantsRefusedBeforeAnyIsBuilt) {
+  // 300 entries of 256 box variants: 76800 boundary-element solves (hours) before the count
+  // of body types was checked
+  std::string entries;
+  for (int i = 0; i < 300; ++i)
+    entries += std::string(i ? ", " : "") +
+               "{\"name\": \"b\", \"shape\": {\"type\": \"box\", \"size\": [0.01, 0.01, 0.002]}, "
+               "\"density\": 30, \"count\": 256, \"position\": [0, 0, 1], "
+               "\"variation\": {\"size\": [1, 2], \"variants\": 256}}";
+  std::string s = base_scene();
+  const size_t a = s.find("\"bodies\": ["), b = s.find("],\n  \"output\"");
+  s = s.substr(0, a) + "\"bodies\": [" + entries + s.substr(b);
+  put(dir_ / "scene.json", s);
+  const auto t0 = std::chrono::steady_clock::now();
+  expect_error(run({"run", "scene.json"}), 3, {"scene.json", "bodies", "65535", "76800"});
+  EXPECT_LT(std::chrono::steady_clock::now() - t0, std::chrono::seconds(60));
+}
+
 TEST_F(Cli, UnknownKeys) {
   expect_error(run_scene(replace(base_scene(), "\"seed\": 3,", "\"seed\": 3, \"colour\": 1,")), 3,
                {"scene.json", "colour", "unknown key"});
@@ -558,6 +576,19 @@ TEST_F(Cli, UnreadableGrid) {
   expect_error(run_scene(grid_scene("dir.vti")), 3, {"dir.vti"});
   put(dir_ / "g.txt", "x");
   expect_error(run_scene(grid_scene("g.txt")), 3, {"g.txt"});
+}
+
+TEST_F(Cli, GridWithoutReadPermission) {
+  // VTK's reader called an unreadable grid "not a VTK XML ImageData (.vti) file"
+  put(dir_ / "g.vti",
+      vti("0.1 0.1 0.1 0.1 0.1 0.1 0.1 0.1", "0.05 0.05 0.05 0.05 0.05 0.05 0.05 0.05"));
+  fs::permissions(dir_ / "g.vti", fs::perms::none);
+  put(dir_ / "scene.json", grid_scene("g.vti"));
+  fs::permissions(dir_, fs::perms::all);  // nobody may enter the folder, not read the grid
+  Limits nobody;
+  nobody.unprivileged = true;
+  expect_error(run({"run", "scene.json", "--quiet", "-o", "/tmp/lrigid_cli_unreadable_out"}, nobody),
+               3, {"g.vti", "cannot be read", "Permission denied"});
 }
 
 TEST_F(Cli, GridWithNaN) {

@@ -11,6 +11,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <regex>
@@ -115,6 +117,9 @@ void check_vti_header(const std::string& path) {
 void read_vti(const std::string& path, GridGeometry* geom, RawGridFrame* frame, double* nu) {
   std::error_code ec;  // the non-throwing overload: an over-long or odd name is a bad input too
   if (!fs::is_regular_file(path, ec)) fail_input(path, "", "grid file not found");
+  // VTK's reader cannot tell an unreadable file from one of another kind
+  if (!std::ifstream(path, std::ios::binary))
+    fail_input(path, "", std::string("cannot be read: ") + std::strerror(errno));
   vtkNew<vtkXMLImageDataReader> reader;
   if (!reader->CanReadFile(path.c_str()))
     fail_input(path, "", "not a VTK XML ImageData (.vti) file");

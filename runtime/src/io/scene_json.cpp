@@ -592,6 +592,16 @@ Scene parse_scene_unchecked(const std::string& text, const std::string& path) {
     }
     if (total > 100000000) top.fail("bodies", "more than 1e8 bodies in total");
     if (s.bodies.size() > 65535) top.fail("bodies", "more than 65535 body types");
+    // the variants each entry becomes (as compile_model makes them), counted before any of
+    // them is built: each box or mesh variant takes a boundary-element solve
+    size_t variants = 0;
+    for (const BodySpec& b : s.bodies)
+      variants += b.variants > 1 && (b.size_max != b.size_min || b.density_max != b.density_min)
+                      ? size_t(std::min(b.variants, b.count))
+                      : 1;
+    if (variants > 65535)
+      top.fail("bodies", "more than 65535 body types with their variation.variants, got " +
+                             std::to_string(variants));
   }
   if (top.has("ground")) {
     Obj g = top.object("ground", {"z", "contact"});
