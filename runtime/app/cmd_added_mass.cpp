@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "body/added_mass.h"
+#include "body/bem.h"
 #include "body/mass_properties.h"
 #include "commands.h"
 #include "io/added_mass_cache.h"
@@ -37,10 +38,21 @@ Shape make_shape(const Options& o, CLI::App* cmd) {
     throw Error(ExitCode::Usage,
                 "added-mass: give exactly one of --sphere R, --ellipsoid A B C, --box LX LY LZ, "
                 "--mesh FILE");
-  if (cmd->count("--sphere")) return Shape::sphere(o.sphere);
+  // a length out of range: the shape's message, with the flag that gave it
+  const auto flag = [](const char* name, auto make) {
+    try {
+      return make();
+    } catch (const Error& e) {
+      throw Error(e.code(), std::string("added-mass: ") + name + ": " + e.what());
+    }
+  };
+  if (cmd->count("--sphere")) return flag("--sphere", [&] { return Shape::sphere(o.sphere); });
   if (cmd->count("--ellipsoid"))
-    return Shape::ellipsoid(o.ellipsoid[0], o.ellipsoid[1], o.ellipsoid[2]);
-  if (cmd->count("--box")) return Shape::box(o.box[0], o.box[1], o.box[2]);
+    return flag("--ellipsoid", [&] {
+      return Shape::ellipsoid(o.ellipsoid[0], o.ellipsoid[1], o.ellipsoid[2]);
+    });
+  if (cmd->count("--box"))
+    return flag("--box", [&] { return Shape::box(o.box[0], o.box[1], o.box[2]); });
   auto mesh = std::make_shared<const TriangleMesh>(read_mesh(o.mesh));
   return Shape::from_mesh(mesh, o.mesh);
 }
@@ -121,15 +133,24 @@ void add_added_mass_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_flag("--json", opt->json, "print JSON (keys volume, added_mass, method, panels, ...)");
   cmd->callback([opt, cmd] {
-    const Shape shape = make_shape(*opt, cmd);
-    if (!(opt->fluid_density >= 0) || !std::isfinite(opt->fluid_density))
-      throw Error(ExitCode::Usage, "added-mass: --fluid-density must be >= 0 kg/m^3, got " +
+    // the flags' ranges before any shape is read or built
+    if (!(opt->fluid_density >= 0 && opt->fluid_density <= 1e6))
+      throw Error(ExitCode::Usage, "added-mass: --fluid-density must be in [0, 1e6] kg/m^3, got " +
                                        std::to_string(opt->fluid_density));
-    if (opt->panels < 0)
-      throw Error(ExitCode::Usage,
-                  "added-mass: --panels must be >= 0, got " + std::to_string(opt->panels));
+    if (opt->panels < 0 || opt->panels > kMaxBemPanels)
+      throw Error(ExitCode::Usage, "added-mass: --panels must be in [0, " +
+                                       std::to_string(kMaxBemPanels) + "] (0 = default), got " +
+                                       std::to_string(opt->panels));
+    const Shape shape = make_shape(*opt, cmd);
     const MassProperties mp = mass_properties(shape);
-    const AddedMass am = cached_added_mass(shape, opt->fluid_density, opt->panels);
+    AddedMass am;
+    try {
+      am = cached_added_mass(shape, opt->fluid_density, opt->panels);
+    } catch (const Error& e) {
+      // the boundary elements fail only on a surface they cannot solve: the mesh's fault
+      if (e.code() != ExitCode::Runtime || shape.type != ShapeType::Mesh) throw;
+      throw Error(ExitCode::BadInput, shape.source + ": " + e.what());
+    }
     if (opt->json)
       print_json(shape, mp, am, opt->fluid_density);
     else

@@ -16,6 +16,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "checks.h"
 #include "commands.h"
 #include "compile/compile_model.h"
 #include "effects/registry.h"
@@ -175,6 +176,7 @@ void bench(const BenchArgs& args) {
     for (const std::string& iname : a.integrators) {
       Scene s = base;
       scale_bodies(&s, n);
+      check_memory(s);  // exit 5 saying how much, before anything is allocated
       s.integrator = integrator_from(iname);
       if (!scene_effects) {
         s.effects_auto = eff_auto;
@@ -238,7 +240,9 @@ void add_bench_command(CLI::App& app) {
   cmd->add_option("scene", args->scene,
                   "Scene file (default: the repository's scenes/leaves_wind.json, wherever "
                   "lrigid is run from)");
-  cmd->add_option("--n", args->n, "Body counts")->delimiter(',')->check(CLI::PositiveNumber);
+  cmd->add_option("--n", args->n, "Body counts")
+      ->delimiter(',')
+      ->check(within(1, 1e8, "body counts from 1 to 1e8 (a scene's limit)"));
   cmd->add_option("--integrators", args->integrators, kIntegratorNames)->delimiter(',');
   cmd->add_option("--threads", args->threads, "Thread counts")
       ->delimiter(',')
@@ -248,7 +252,7 @@ void add_bench_command(CLI::App& app) {
                   "\"auto\" or a comma list; the effects used are printed first");
   cmd->add_option("--body-steps", args->body_steps,
                   "Body-steps timed per point (at least --min-steps steps)")
-      ->check(CLI::PositiveNumber);
+      ->check(within(1, 2e9, "a count of body-steps from 1 to 2e9"));
   cmd->add_option("--min-steps", args->min_steps, "Fewest timed steps")
       ->check(CLI::Range(1, 1 << 20));
   cmd->add_option("--warmup", args->warmup, "Untimed steps first")->check(CLI::Range(0, 1 << 20));

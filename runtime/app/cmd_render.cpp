@@ -28,6 +28,7 @@
 #include <cstdlib>
 #include <filesystem>
 
+#include "checks.h"
 #include "commands.h"
 #include "io/result_writer.h"
 #include "util/error.h"
@@ -324,7 +325,7 @@ void add_render_command(CLI::App& app) {
                   "ground), k, streamlines, ground, none");
   cmd->add_option("--body-scale", args->body_scale,
                   "Draw bodies this many times larger (default: enlarge tiny ones to ~5 px)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive("a factor > 0"));
   cmd->add_flag("--quiet", args->quiet, "Print nothing but errors");
   cmd->callback([args] { render(*args); });
 }

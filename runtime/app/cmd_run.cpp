@@ -233,7 +233,7 @@ void add_run_command(CLI::App& app) {
   cmd->add_option("--tolerance", args->tolerance,
                   "Relative error to reach: picks the cheapest integrator and dt of the measured "
                   "table for this kind of scene (docs/accuracy.md) and says what it chose")
-      ->check(CLI::PositiveNumber);
+      ->check(positive("a relative error > 0, e.g. 0.01"));
   cmd->add_option("--tolerance-table", args->tolerance_table,
                   "Measured table for --tolerance (default: next to the binary, else "
                   "docs/accuracy/tolerance_table.json)");

@@ -592,7 +592,7 @@ void add_view_command(CLI::App& app) {
                   "Height of the slice, m (default: 4 % of the grid's height above its floor)");
   cmd->add_option("--body-scale", args->body_scale,
                   "Draw bodies this many times larger (default: enlarge tiny ones to ~5 px)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive("a factor > 0"));
   cmd->add_option("--multisamples", args->multisamples,
                   "OpenGL antialiasing samples per pixel (default 0: software OpenGL draws "
                   "several times slower with 8)")

@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -238,6 +239,17 @@ TEST_F(Cli, EmptyOutputNameIsAUsageError) {
   expect_error(run({"run", "scene.json", "-o", "", "--quiet"}), 2, {"output", "empty"});
 }
 
+TEST_F(Cli, OutputDirThatIsNoPath) {
+  // "" failed to create a directory (exit 4, no key); a NUL cut the path short: "o\u0000x"
+  // was "o", and a directory of that name ended in exit 1 "basic_filebuf::underflow"
+  fs::create_directory(dir_ / "o");
+  expect_error(run_scene(replace(base_scene(), "\"dir\": \"out\"", "\"dir\": \"\"")), 3,
+               {"scene.json", "output.dir", "must not be empty"});
+  expect_error(run_scene(replace(base_scene(), "\"dir\": \"out\"", "\"dir\": \"o\\u0000x\"")), 3,
+               {"scene.json", "output.dir", "NUL"});
+  EXPECT_TRUE(fs::is_empty(dir_ / "o"));
+}
+
 TEST_F(Cli, HugeOutputEveryRefused) {
   // every / dt beyond 2^64 steps died of SIGFPE converting the output stride
   const std::string s = replace(base_scene(), "\"every\": 0.01", "\"every\": 1e300");
@@ -281,6 +293,32 @@ TEST_F(Cli, ShapeLengthsOutOfRangeRefused) {
   expect_error(run_scene(replace(base_scene(), sphere,
                                  "\"shape\": { \"type\": \"sphere\", \"radius\": 1e-200 }")),
                3, {"scene.json", "shape.radius", "1e-200", "[1e-9, 1e6] m"});
+}
+
+TEST_F(Cli, BoxTooThinForTheBoundaryElements) {
+  // a sheet of 1e6:1 ended in "tensor is not positive semi-definite" from the solver
+  expect_error(run_scene(replace(base_scene(),
+                                 "\"shape\": { \"type\": \"sphere\", \"radius\": 0.003 }",
+                                 "\"shape\": { \"type\": \"box\", \"size\": [1, 1, 1e-6] }")),
+               3, {"scene.json", "bodies[0].shape.size", "at most 1e5", "[1,1,1e-06]"});
+}
+
+TEST_F(Cli, TooManyVariantsRefusedBeforeAnyIsBuilt) {
+  // 300 entries of 256 box variants: 76800 boundary-element solves (hours) before the count
+  // of body types was checked
+  std::string entries;
+  for (int i = 0; i < 300; ++i)
+    entries += std::string(i ? ", " : "") +
+               "{\"name\": \"b\", \"shape\": {\"type\": \"box\", \"size\": [0.01, 0.01, 0.002]}, "
+               "\"density\": 30, \"count\": 256, \"position\": [0, 0, 1], "
+               "\"variation\": {\"size\": [1, 2], \"variants\": 256}}";
+  std::string s = base_scene();
+  const size_t a = s.find("\"bodies\": ["), b = s.find("],\n  \"output\"");
+  s = s.substr(0, a) + "\"bodies\": [" + entries + s.substr(b);
+  put(dir_ / "scene.json", s);
+  const auto t0 = std::chrono::steady_clock::now();
+  expect_error(run({"run", "scene.json"}), 3, {"scene.json", "bodies", "65535", "76800"});
+  EXPECT_LT(std::chrono::steady_clock::now() - t0, std::chrono::seconds(60));
 }
 
 TEST_F(Cli, UnknownKeys) {
@@ -379,6 +417,105 @@ TEST_F(Cli, NonPositiveSizesDensitiesStepsAndDurations) {
   }
 }
 
+// Every number of a scene has a range; outside it a product in the step overflowed and the
+// bodies failed (exit 0), or "auto" judged an effect by a non-finite number and dropped it
+// (gravity 1e308: the bodies hung still).
+TEST_F(Cli, QuantitiesOutOfRangeRefused) {
+#define POS "\"position\": [0, 0, 1]"
+  const BadValue cases[] = {
+      {"\"gravity\": [0, 0, -9.81]", "\"gravity\": [0, 0, -1e308]", "gravity", "[-1e4, 1e4] m/s^2"},
+      {"\"density\": 30", "\"density\": 1e308", "bodies[0].density", "[1e-6, 1e6] kg/m^3"},
+      {"\"density\": 30", "\"density\": 1e-300", "bodies[0].density", "1e-300"},
+      {"\"density\": 1.204", "\"density\": 1e308", "fluid.density", "[1e-6, 1e6] kg/m^3"},
+      {"\"kinematic_viscosity\": 1.5e-5", "\"kinematic_viscosity\": 1e308",
+       "fluid.kinematic_viscosity", "[1e-9, 1e3] m^2/s"},
+      {"\"U\": [1.0, 0.0, 0.0]", "\"U\": [1e300, 0.0, 0.0]", "fluid.uniform.U", "[-1e5, 1e5] m/s"},
+      {"\"k\": 0.1", "\"k\": 1e300", "fluid.uniform.k", "[0, 1e8]"},
+      {"\"epsilon\": 0.05", "\"epsilon\": 1e300", "fluid.uniform.epsilon", "[0, 1e12]"},
+      {POS, "\"position\": [1e308, 0, 1]", "bodies[0].position", "[-1e9, 1e9] m"},
+      {POS, "\"spawn_box\": [[-1e308, 0, 0], [1e308, 1, 1]]", "bodies[0].spawn_box[0]", "1e+308"},
+      {POS, POS ", \"velocity\": [1e300, 0, 0]", "bodies[0].velocity",
+       "[-1e5, 1e5] m/s"},
+      {POS, POS ", \"angular_velocity\": [0, 1e300, 0]",
+       "bodies[0].angular_velocity", "[-1e6, 1e6] rad/s"},
+      {"\"seed\": 3,", "\"seed\": 3, \"ground\": {\"z\": 1e308},", "ground.z", "[-1e9, 1e9] m"},
+      {"\"density\": 30,", "\"density\": 30, \"variation\": {\"size\": [1e-300, 1e300]},",
+       "bodies[0].variation.size", "[1e-9, 1e6] m"},
+      {"\"density\": 30,", "\"density\": 30, \"variation\": {\"density\": [1e-300, 1e300]},",
+       "bodies[0].variation.density", "[1e-6, 1e6] kg/m^3"},
+      {"\"density\": 30,", "\"density\": 30, \"variation\": {\"spin\": [0, 1e300]},",
+       "bodies[0].variation.spin", "1e6 rad/s"},
+      // a step longer than the run: no step at all, an output of t = 0 only
+      {"\"dt\": 0.001", "\"dt\": 1e300", "integrator.dt", "at most duration"},
+  };
+#undef POS
+  for (const BadValue& c : cases) {
+    SCOPED_TRACE(std::string(c.from) + " -> " + c.to);
+    expect_error(run_scene(replace(base_scene(), c.from, c.to)), 3,
+                 {"scene.json", c.key, c.value});
+  }
+}
+
+TEST_F(Cli, RangesEndsRun) {
+  // the ends of the ranges are valid: the bodies run to the end without failing
+  std::string s = replace(base_scene(), "\"gravity\": [0, 0, -9.81]", "\"gravity\": [0, 1e4, -1e4]");
+  s = replace(s, "\"position\": [0, 0, 1]",
+              "\"position\": [1e9, -1e9, 1e9], \"velocity\": [1e5, -1e5, 1e5], "
+              "\"angular_velocity\": [1e6, 0, -1e6]");
+  s = replace(s, "\"U\": [1.0, 0.0, 0.0], \"k\": 0.1, \"epsilon\": 0.05",
+              "\"U\": [1e5, 0.0, -1e5], \"k\": 1e8, \"epsilon\": 1e12");
+  const Result r = run_scene(s);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string summary = slurp(dir_ / "out" / "summary.json");
+  EXPECT_NE(summary.find("\"failed\": 0"), std::string::npos) << summary;
+  // the largest gravity in still air: "auto" keeps it (at 1e308 it dropped it)
+  const Result g = run_scene(
+      replace(base_scene(), "\"gravity\": [0, 0, -9.81]", "\"gravity\": [0, 0, -1e4]"));
+  ASSERT_EQ(g.code, 0) << g.err;
+  const std::string gs = slurp(dir_ / "out" / "summary.json");
+  EXPECT_NE(gs.find("\"effects\": [\n        \"gravity\""), std::string::npos) << gs;
+}
+
+TEST_F(Cli, HugeQuaternionIsNormalized) {
+  // the squares of [1e300, 1e300, 0, 0] overflowed: a NaN orientation and two failed bodies
+  const Result r = run_scene(replace(base_scene(), "\"position\": [0, 0, 1]",
+                                     "\"position\": [0, 0, 1], \"orientation\": [1e300, 1e300, 0, 0]"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(slurp(dir_ / "out" / "summary.json").find("\"failed\": 0"), std::string::npos);
+  // body 0 at t = 0: w = x = 1/sqrt(2)
+  const std::string csv = slurp(dir_ / "out" / "trajectories.csv");
+  EXPECT_NE(csv.find("\n0,bead,0,0,0,1,0.707106781,0.707106781,0,0,"), std::string::npos)
+      << csv.substr(0, 300);
+}
+
+TEST_F(Cli, SeedOfTheWholeUnsignedRange) {
+  // 2^64 - 1 is a seed (--seed takes it too); it was refused as "must be an integer >= 0"
+  const Result r = run_scene(replace(base_scene(), "\"seed\": 3", "\"seed\": 18446744073709551615"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(slurp(dir_ / "out" / "summary.json").find("18446744073709551615"), std::string::npos);
+  fs::remove_all(dir_ / "out");
+  expect_error(run_scene(replace(base_scene(), "\"seed\": 3", "\"seed\": -1")), 3,
+               {"scene.json", "seed", "[0, 2^64 - 1]", "-1"});
+}
+
+TEST_F(Cli, EmptySceneFileNamedAsSuch) {
+  put(dir_ / "empty.json", "");
+  expect_error(run({"run", "empty.json"}), 3, {"empty.json", "is empty"});
+  put(dir_ / "blank.json", " \n\t\n");
+  expect_error(run({"run", "blank.json"}), 3, {"blank.json", "is empty"});
+}
+
+TEST_F(Cli, NotANumberFlagsRefused) {
+  // CLI11's positive-number check lets NaN through: --tolerance nan ran
+  put(dir_ / "scene.json", base_scene());
+  expect_error(run({"run", "scene.json", "--tolerance", "nan"}), 2, {"--tolerance", "not a number"});
+  expect_error(run({"run", "scene.json", "--tolerance", "0"}), 2, {"--tolerance", "relative error"});
+  const Result r = run({"run", "scene.json", "--tolerance", "0"});
+  EXPECT_LT(r.err.size(), 300u) << "the largest double printed in full: " << r.err;
+  expect_error(run({"run", "scene.json", "--checkpoint-every", "nan"}), 2,
+               {"--checkpoint-every", "not a number"});
+}
+
 // ---- grids ----
 
 // A 2x2x2 ASCII .vti; `k` and `eps` are the 8 values of each, as text.
@@ -441,6 +578,19 @@ TEST_F(Cli, UnreadableGrid) {
   expect_error(run_scene(grid_scene("g.txt")), 3, {"g.txt"});
 }
 
+TEST_F(Cli, GridWithoutReadPermission) {
+  // VTK's reader called an unreadable grid "not a VTK XML ImageData (.vti) file"
+  put(dir_ / "g.vti",
+      vti("0.1 0.1 0.1 0.1 0.1 0.1 0.1 0.1", "0.05 0.05 0.05 0.05 0.05 0.05 0.05 0.05"));
+  fs::permissions(dir_ / "g.vti", fs::perms::none);
+  put(dir_ / "scene.json", grid_scene("g.vti"));
+  fs::permissions(dir_, fs::perms::all);  // nobody may enter the folder, not read the grid
+  Limits nobody;
+  nobody.unprivileged = true;
+  expect_error(run({"run", "scene.json", "--quiet", "-o", "/tmp/lrigid_cli_unreadable_out"}, nobody),
+               3, {"g.vti", "cannot be read", "Permission denied"});
+}
+
 TEST_F(Cli, GridWithNaN) {
   put(dir_ / "nan.vti",
       vti("0.1 0.1 nan 0.1 0.1 0.1 0.1 0.1", "0.05 0.05 0.05 0.05 0.05 0.05 0.05 0.05"));
@@ -469,6 +619,21 @@ TEST_F(Cli, EmptyGrids) {
   expect_error(run_scene(grid_scene("empty.pvd")), 3, {"empty.pvd", "empty"});
 }
 
+TEST_F(Cli, SeriesTimeThatIsNotFinite) {
+  // std::stod reads "nan": the message said "times must be distinct, 1 repeats"
+  put(dir_ / "g.vti",
+      vti("0.1 0.1 0.1 0.1 0.1 0.1 0.1 0.1", "0.05 0.05 0.05 0.05 0.05 0.05 0.05 0.05"));
+  for (const char* t : {"nan", "inf"}) {
+    SCOPED_TRACE(t);
+    put(dir_ / "s.pvd", std::string("<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\">\n"
+                                    "<Collection>\n<DataSet timestep=\"") + t +
+                            "\" file=\"g.vti\"/>\n<DataSet timestep=\"1\" file=\"g.vti\"/>\n"
+                            "</Collection>\n</VTKFile>\n");
+    expect_error(run_scene(grid_scene("s.pvd")), 3,
+                 {"s.pvd", "DataSet.timestep", "finite", std::string("\"") + t + "\""});
+  }
+}
+
 TEST_F(Cli, SeriesEntryWithAnOverlongFileName) {
   // found by fuzz_grid: std::filesystem throws (ENAMETOOLONG) on a 300-character name, which
   // must be a bad-input error naming the series, not an internal error (exit 1)
@@ -490,6 +655,19 @@ TEST_F(Cli, GridPieceOutsideItsExtentIsOneClearLine) {
   expect_error(r, 3, {"piece.vti", "Extent: the piece's extent differs from WholeExtent"});
   EXPECT_EQ(r.err.find("ERR|"), std::string::npos) << r.err;
   EXPECT_EQ(r.err.find("0 x 0 x 0"), std::string::npos) << r.err;
+}
+
+TEST_F(Cli, GridValuesOutOfRange) {
+  // a grid's flow within the ranges of a scene's uniform flow: U of 1e30 m/s blew every body out
+  // of the grid in the first step (exit 0, all "exited")
+  const std::string k = "0.1 0.1 0.1 0.1 0.1 0.1 0.1 0.1";
+  const std::string eps = "0.05 0.05 0.05 0.05 0.05 0.05 0.05 0.05";
+  put(dir_ / "fastU.vti", replace(vti(k, eps), "1 0 0 1 0 0 1 0 0", "1 0 0 1 0 0 1e30 0 0"));
+  expect_error(run_scene(grid_scene("fastU.vti")), 3, {"fastU.vti", "U", "point 2", "[-1e5, 1e5] m/s"});
+  put(dir_ / "bigk.vti", vti("0.1 0.1 0.1 1e30 0.1 0.1 0.1 0.1", eps));
+  expect_error(run_scene(grid_scene("bigk.vti")), 3, {"bigk.vti", "k", "point 3", "[0, 1e8]"});
+  put(dir_ / "bige.vti", vti(k, "0.05 1e30 0.05 0.05 0.05 0.05 0.05 0.05"));
+  expect_error(run_scene(grid_scene("bige.vti")), 3, {"bige.vti", "epsilon", "point 1", "[0, 1e12]"});
 }
 
 // ---- meshes ----
@@ -516,6 +694,63 @@ TEST_F(Cli, OpenInvertedAndZeroVolumeMeshes) {
   // and the good mesh runs: the failures above come from the defects
   const Result ok = run_scene(mesh_scene("tetra.obj"));
   EXPECT_EQ(ok.code, 0) << ok.err;
+}
+
+TEST_F(Cli, SelfIntersectingMeshRefused) {
+  // two overlapping tetrahedra: closed, consistently oriented, positive volume, and their faces
+  // cross; the run went on with a wrong added mass (exit 0)
+  put(dir_ / "two.obj",
+      "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv 0.2 0.2 0.2\nv 1.2 0.2 0.2\nv 0.2 1.2 0.2\n"
+      "v 0.2 0.2 1.2\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\nf 5 7 6\nf 5 6 8\nf 5 8 7\nf 6 7 8\n");
+  expect_error(run_scene(mesh_scene("two.obj")), 3,
+               {"scene.json", "bodies[0].shape.file", "two.obj", "intersects itself", "faces"});
+}
+
+TEST_F(Cli, MeshOfMorePanelsThanTheSolverTakesNamesTheFile) {
+  // a closed sphere of 10200 triangles: more than the dense solve's 10000 panels. Exit 5 said
+  // "boundary element method: 10200 panels exceed ..." without the scene, key or mesh
+  std::ostringstream obj;
+  const int rings = 52, sectors = 100;
+  obj << "v 0 0 1\n";
+  for (int i = 1; i < rings; ++i)
+    for (int j = 0; j < sectors; ++j) {
+      const double th = M_PI * i / rings, ph = 2 * M_PI * j / sectors;
+      obj << "v " << std::sin(th) * std::cos(ph) << " " << std::sin(th) * std::sin(ph) << " "
+          << std::cos(th) << "\n";
+    }
+  obj << "v 0 0 -1\n";
+  const auto at = [&](int i, int j) { return 2 + (i - 1) * sectors + j % sectors; };  // 1-based
+  const int bottom = 2 + (rings - 1) * sectors;
+  for (int j = 0; j < sectors; ++j) obj << "f 1 " << at(1, j) << " " << at(1, j + 1) << "\n";
+  for (int i = 1; i < rings - 1; ++i)
+    for (int j = 0; j < sectors; ++j)
+      obj << "f " << at(i, j) << " " << at(i + 1, j) << " " << at(i + 1, j + 1) << "\nf "
+          << at(i, j) << " " << at(i + 1, j + 1) << " " << at(i, j + 1) << "\n";
+  for (int j = 0; j < sectors; ++j)
+    obj << "f " << bottom << " " << at(rings - 1, j + 1) << " " << at(rings - 1, j) << "\n";
+  put(dir_ / "fine.obj", obj.str());
+  expect_error(run_scene(mesh_scene("fine.obj")), 5,
+               {"scene.json", "bodies[0].shape.file", "fine.obj", "10200 panels"});
+}
+
+TEST_F(Cli, MeshNameTooLongForTheFileSystem) {
+  // std::filesystem threw (ENAMETOOLONG) past the mesh reader: exit 1 "filesystem error"
+  expect_error(run_scene(mesh_scene(std::string(5000, 'm') + ".obj")), 3,
+               {"scene.json", "bodies[0].shape.file", "mmmm", "cannot be read"});
+}
+
+TEST_F(Cli, MeshScaleOutOfRange) {
+  // the scaled mesh keeps to the shapes' lengths: 1e300 and 1e-300 were "face 0 has zero area"
+  const std::string data = std::string(LRIGID_SOURCE_DIR) + "/tests/data/meshes/";
+  fs::copy_file(data + "tetra.obj", dir_ / "tetra.obj");
+  for (const char* scale : {"1e300", "1e-300", "1e7"}) {
+    SCOPED_TRACE(scale);
+    expect_error(run_scene(replace(mesh_scene("tetra.obj"), "\"scale\": 0.01",
+                                   std::string("\"scale\": ") + scale)),
+                 3, {"scene.json", "bodies[0].shape.scale", "tetra.obj", "[1e-9, 1e6] m"});
+  }
+  fs::create_directory(dir_ / "dir.obj");
+  expect_error(run_scene(mesh_scene("dir.obj")), 3, {"dir.obj", "is a directory"});
 }
 
 // ---- output and resources ----

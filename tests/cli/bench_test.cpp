@@ -94,6 +94,22 @@ TEST(CliBench, DefaultSceneResolvesFromTheRepositoryNotTheWorkingDirectory) {
 TEST(CliBench, BadArgumentsAreUsageErrors) {
   EXPECT_EQ(run(kScene + " --integrators leapfrog"), 2);
   EXPECT_EQ(run(kScene + " --effects wind_chill"), 2);
+  // counts beyond the scene's limit of 1e8 bodies overflowed the body count: std::bad_alloc,
+  // exit 1; NaN passed CLI11's range checks and was taken as a count of body-steps
+  EXPECT_EQ(run(kScene + " --n 99999999999"), 2);
+  EXPECT_EQ(run(kScene + " --n 0"), 2);
+  EXPECT_EQ(run(kScene + " --body-steps nan"), 2);
+  EXPECT_EQ(run(kScene + " --body-steps 1e300"), 2);
+}
+
+TEST(CliBench, MoreBodiesThanMemoryIsAResourceError) {
+  // 3e7 bodies (about 6 GiB) under an address-space limit of 4 GiB: exit 5 before anything is
+  // allocated, as lrigid run does (bench allocated until std::bad_alloc, exit 1)
+  EXPECT_EQ(std::system(("ulimit -v 4194304; " + kLrigid + " bench " + kScene +
+                         " --n 30000000 --integrators euler --threads 1 > /dev/null 2>&1; "
+                         "test $? -eq 5")
+                            .c_str()),
+            0);
 }
 
 }  // namespace

@@ -77,15 +77,17 @@ Mat6 lamb_ellipsoid(const Vec3& s) {
 }
 
 int resolve_panels(int panels) {
-  if (panels < 0)
-    throw Error(ExitCode::Usage, "added mass: panel count must be >= 0 (0 = default), got " +
+  // checked before any tessellation: 2e9 panels would be built before the solver's own limit
+  if (panels < 0 || panels > kMaxBemPanels)
+    throw Error(ExitCode::Usage, "added mass: panel count must be in [0, " +
+                                     std::to_string(kMaxBemPanels) + "] (0 = default), got " +
                                      std::to_string(panels));
   return panels == 0 ? kDefaultPanels : panels;
 }
 
 void check_density(double rho) {
-  if (!(rho >= 0) || !std::isfinite(rho))
-    throw Error(ExitCode::Usage, "added mass: fluid density must be finite and >= 0 kg/m^3, got " +
+  if (!(rho >= 0 && rho <= 1e6))
+    throw Error(ExitCode::Usage, "added mass: fluid density must be in [0, 1e6] kg/m^3, got " +
                                      std::to_string(rho));
 }
 

@@ -1,6 +1,7 @@
 #include "body/mesh_check.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <sstream>
@@ -26,6 +27,85 @@ struct EdgeUse {
   int face = -1;      // first face that uses it
   int other = -1;     // second face
 };
+
+// Where segment p-q crosses the plane of triangle (a, b, c) strictly inside the triangle, with
+// the endpoints strictly on either side of the plane (beyond `tol`); false when it does not.
+// A segment that only touches the plane or the triangle's edges does not count, so faces that
+// meet along an edge or at a vertex are not reported.
+bool segment_crosses_triangle(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b,
+                              const Vec3& c, double tol, Vec3* at) {
+  const Vec3 n = (b - a).cross(c - a);
+  const double nn = n.norm();
+  if (!(nn > 0)) return false;
+  const double dp = n.dot(p - a) / nn, dq = n.dot(q - a) / nn;
+  if (!((dp > tol && dq < -tol) || (dp < -tol && dq > tol))) return false;
+  const Vec3 x = p + (dp / (dp - dq)) * (q - p);
+  // barycentric coordinates of x: each sub-triangle's area against the whole, signed along n
+  const double u = n.dot((b - x).cross(c - x)) / (nn * nn);
+  const double v = n.dot((c - x).cross(a - x)) / (nn * nn);
+  const double w = 1.0 - u - v;
+  constexpr double kInside = 1e-9;
+  if (!(u > kInside && v > kInside && w > kInside)) return false;
+  *at = x;
+  return true;
+}
+
+int shared_vertices(const std::array<int, 3>& s, const std::array<int, 3>& t) {
+  int n = 0;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) n += s[i] == t[j];
+  return n;
+}
+
+// The first pair of faces that cross, found by sweeping the faces' bounding boxes along the
+// mesh's longest axis; false when none do. Faces sharing an edge meet only along it and are
+// skipped; faces sharing one vertex are tested with the edges that do not hold it.
+bool find_crossing(const TriangleMesh& mesh, int* f1, int* f2, Vec3* at) {
+  const int nf = static_cast<int>(mesh.faces.size());
+  Vec3 lo = Vec3::Constant(INFINITY), hi = Vec3::Constant(-INFINITY);
+  std::vector<Vec3> flo(nf), fhi(nf);
+  for (int f = 0; f < nf; ++f) {
+    flo[f] = fhi[f] = mesh.vertices[mesh.faces[f][0]];
+    for (int k = 1; k < 3; ++k) {
+      flo[f] = flo[f].cwiseMin(mesh.vertices[mesh.faces[f][k]]);
+      fhi[f] = fhi[f].cwiseMax(mesh.vertices[mesh.faces[f][k]]);
+    }
+    lo = lo.cwiseMin(flo[f]);
+    hi = hi.cwiseMax(fhi[f]);
+  }
+  int axis = 0;
+  (hi - lo).maxCoeff(&axis);
+  const double tol = 1e-12 * (hi - lo).norm();
+  std::vector<int> order(nf);
+  for (int f = 0; f < nf; ++f) order[f] = f;
+  std::sort(order.begin(), order.end(),
+            [&](int a, int b) { return flo[a][axis] < flo[b][axis]; });
+  for (int i = 0; i < nf; ++i) {
+    const int s = order[i];
+    const auto& fs = mesh.faces[s];
+    for (int j = i + 1; j < nf && flo[order[j]][axis] <= fhi[s][axis]; ++j) {
+      const int t = order[j];
+      if (((flo[t] - fhi[s]).array() > tol).any() || ((flo[s] - fhi[t]).array() > tol).any())
+        continue;
+      const auto& ft = mesh.faces[t];
+      if (shared_vertices(fs, ft) >= 2) continue;
+      const auto crosses = [&](const std::array<int, 3>& e, const std::array<int, 3>& tri) {
+        for (int k = 0; k < 3; ++k)
+          if (segment_crosses_triangle(mesh.vertices[e[k]], mesh.vertices[e[(k + 1) % 3]],
+                                       mesh.vertices[tri[0]], mesh.vertices[tri[1]],
+                                       mesh.vertices[tri[2]], tol, at))
+            return true;
+        return false;
+      };
+      if (crosses(fs, ft) || crosses(ft, fs)) {
+        *f1 = std::min(s, t);
+        *f2 = std::max(s, t);
+        return true;
+      }
+    }
+  }
+  return false;
+}
 
 }  // namespace
 
@@ -128,6 +208,18 @@ MeshCheck check_mesh(const TriangleMesh& mesh) {
       return fail(MeshDefect::NonManifold, "mesh is non-manifold at vertex " + std::to_string(v) +
                                                ": its " + std::to_string(l.size()) +
                                                " faces form more than one fan");
+  }
+
+  // self-intersection: two faces crossing make the inside ambiguous; the volume and the
+  // boundary elements' solution are then meaningless
+  int f1 = -1, f2 = -1;
+  Vec3 at;
+  if (find_crossing(mesh, &f1, &f2, &at)) {
+    std::ostringstream s;
+    s.precision(6);
+    s << "mesh intersects itself: faces " << f1 << " and " << f2 << " cross near (" << at.x()
+      << ", " << at.y() << ", " << at.z() << "); a body's surface must not pass through itself";
+    return fail(MeshDefect::SelfIntersecting, s.str());
   }
 
   // orientation: outward faces enclose a positive volume (sum of signed tetrahedra)

@@ -1,5 +1,6 @@
 // Validity checks for closed triangle surfaces (body meshes): every edge shared by exactly two
-// faces with opposite directions, every vertex a single fan, no degenerate faces, positive volume.
+// faces with opposite directions, every vertex a single fan, no degenerate faces, no two faces
+// crossing each other, positive volume.
 #pragma once
 #include <string>
 
@@ -17,6 +18,7 @@ enum class MeshDefect {
   NonManifold,   // an edge with more than two faces, or a vertex whose faces form several fans
   Inconsistent,  // two neighbouring faces have opposite orientation
   Inverted,      // faces point inwards (negative volume) or the volume is zero
+  SelfIntersecting,  // two faces cross (an edge of one passes through the other)
 };
 
 struct MeshCheck {

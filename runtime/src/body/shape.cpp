@@ -1,6 +1,8 @@
 #include "body/shape.h"
 
+#include <algorithm>
 #include <cmath>
+#include <sstream>
 #include <utility>
 
 #include "body/mesh_check.h"
@@ -24,11 +26,21 @@ const char* shape_type_name(ShapeType t) {
 
 namespace {
 
-// sizes must be finite and > 0 (NaN fails the comparison too)
+// The lengths a shape may have (radius, semi-axes, edges), m: outside them the added-mass
+// integrals underflow (a radius of 1e-200 m) or the boundary elements never finish (a box of
+// 1e160 m). The scene's parser checks the same range first, naming the key.
+constexpr double kMinShapeLength = 1e-9, kMaxShapeLength = 1e6;
+// A box's longest edge over its shortest: at 1e6 the boundary elements' tensor is no longer
+// positive (a sheet of 1 m x 1 m x 1 um); 1e5 still solves to the thin-plate limit.
+constexpr double kMaxBoxAspect = 1e5;
+
+// sizes must be finite and within [kMinShapeLength, kMaxShapeLength] (NaN fails the comparison)
 void require_positive(const char* shape, const char* what, double v) {
-  if (!(v > 0.0) || !std::isfinite(v))
-    throw Error(ExitCode::BadInput, std::string(shape) + ": " + what +
-                                        " must be a finite length > 0 m, got " + std::to_string(v));
+  if (!(v >= kMinShapeLength && v <= kMaxShapeLength)) {
+    std::ostringstream m;
+    m << shape << ": " << what << " must be a length in [1e-9, 1e6] m, got " << v;
+    throw Error(ExitCode::BadInput, m.str());
+  }
 }
 
 }  // namespace
@@ -55,6 +67,13 @@ Shape Shape::box(double lx, double ly, double lz) {
   require_positive("box", "edge length lx", lx);
   require_positive("box", "edge length ly", ly);
   require_positive("box", "edge length lz", lz);
+  const double ratio = std::max({lx, ly, lz}) / std::min({lx, ly, lz});
+  if (!(ratio <= kMaxBoxAspect)) {
+    std::ostringstream m;
+    m << "box: longest edge / shortest edge must be at most 1e5 (the boundary elements lose "
+         "the thin direction beyond), got " << ratio;
+    throw Error(ExitCode::BadInput, m.str());
+  }
   Shape s;
   s.type = ShapeType::Box;
   s.half_extents = 0.5 * Vec3(lx, ly, lz);

@@ -253,7 +253,18 @@ BodyType make_body_type(const Scene& scene, const BodySpec& b, const Shape& shap
   if (t.flat) ellipsoid_stokes_resistance(t.ell, &t.stokes_force, &t.stokes_torque);
 
   // the fluid tensor is computed for every body type: "auto" needs its size
-  const AddedMass am = added_mass(shape, scene.fluid_density, b.panels);
+  AddedMass am;
+  try {
+    am = added_mass(shape, scene.fluid_density, b.panels);
+  } catch (const Error& e) {
+    // named with the body type's key and the mesh file. The boundary elements find no
+    // (positive) solution only for a surface they cannot solve: a fault of the input. Other
+    // codes stay (a mesh of more panels than the dense solve takes is a resource limit)
+    const bool mesh = shape.type == ShapeType::Mesh;
+    const std::string at = where(scene.file, key + (mesh ? ".shape.file" : ".shape"),
+                                 (mesh ? shape.source + ": " : std::string()) + e.what());
+    throw Error(e.code() == ExitCode::Runtime ? ExitCode::BadInput : e.code(), at);
+  }
   t.K_fluid = shift_tensor(am.tensor, t.centroid - t.com);
   // exactly symmetric, as M: the kernels read it in either order (effects/added_mass.h)
   t.K_fluid = 0.5 * (t.K_fluid + t.K_fluid.transpose()).eval();

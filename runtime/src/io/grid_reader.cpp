@@ -11,6 +11,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <regex>
@@ -115,6 +117,9 @@ void check_vti_header(const std::string& path) {
 void read_vti(const std::string& path, GridGeometry* geom, RawGridFrame* frame, double* nu) {
   std::error_code ec;  // the non-throwing overload: an over-long or odd name is a bad input too
   if (!fs::is_regular_file(path, ec)) fail_input(path, "", "grid file not found");
+  // VTK's reader cannot tell an unreadable file from one of another kind
+  if (!std::ifstream(path, std::ios::binary))
+    fail_input(path, "", std::string("cannot be read: ") + std::strerror(errno));
   vtkNew<vtkXMLImageDataReader> reader;
   if (!reader->CanReadFile(path.c_str()))
     fail_input(path, "", "not a VTK XML ImageData (.vti) file");
@@ -188,6 +193,18 @@ void read_vti(const std::string& path, GridGeometry* geom, RawGridFrame* frame, 
       fail_input(path, "k", "negative value " + fmt(kk) + " at point " + std::to_string(p));
     if (ok && ee < 0)
       fail_input(path, "epsilon", "negative value " + fmt(ee) + " at point " + std::to_string(p));
+    // the ranges of a scene's uniform flow (docs/scene-format.md): beyond them the bodies'
+    // forces overflow and they leave the grid or fail in the first step
+    if (ok && !(std::max({std::abs(u[0]), std::abs(u[1]), std::abs(u[2])}) <= 1e5))
+      fail_input(path, "U", "value (" + fmt(u[0]) + ", " + fmt(u[1]) + ", " + fmt(u[2]) +
+                                ") at point " + std::to_string(p) +
+                                ": components must be in [-1e5, 1e5] m/s");
+    if (ok && kk > 1e8)
+      fail_input(path, "k", "value " + fmt(kk) + " at point " + std::to_string(p) +
+                                ": must be in [0, 1e8] m^2/s^2");
+    if (ok && ee > 1e12)
+      fail_input(path, "epsilon", "value " + fmt(ee) + " at point " + std::to_string(p) +
+                                      ": must be in [0, 1e12] m^2/s^3");
     for (int a = 0; a < 3; ++a) frame->U[3 * p + a] = float(u[a]);
     frame->k[p] = float(kk);
     frame->epsilon[p] = float(ee);
@@ -245,6 +262,10 @@ std::vector<std::pair<double, std::string>> series_entries(const std::string& pa
       } catch (...) {
         fail_input(path, "DataSet.timestep", "not a number: \"" + std::string(mt[1]) + "\"");
       }
+      // "nan" and "inf" read as numbers; a NaN time would then be named as a repeated one
+      if (!std::isfinite(t))
+        fail_input(path, "DataSet.timestep", "must be a finite time in s, got \"" +
+                                                 std::string(mt[1]) + "\"");
     }
     entries.emplace_back(t, (fs::path(path).parent_path() / std::string(mf[1])).string());
   }

@@ -213,7 +213,13 @@ TriangleMesh read_stl(const std::string& path) {
 
 TriangleMesh read_mesh(const std::string& path) {
   const std::string ext = lower(std::filesystem::path(path).extension().string());
-  if (!std::filesystem::exists(path)) bad(path, "file does not exist");
+  // with error codes: a name too long for the file system throws otherwise (exit 1)
+  std::error_code ec;
+  const auto status = std::filesystem::status(path, ec);
+  if (ec && ec != std::errc::no_such_file_or_directory)
+    bad(path, "cannot be read: " + ec.message());
+  if (!std::filesystem::exists(status)) bad(path, "file does not exist");
+  if (std::filesystem::is_directory(status)) bad(path, "is a directory, not a mesh file");
   if (ext != ".obj" && ext != ".stl")
     bad(path, "unknown mesh format '" + ext + "' (expected .obj or .stl)");
   TriangleMesh mesh = ext == ".obj" ? read_obj(path) : read_stl(path);

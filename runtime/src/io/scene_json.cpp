@@ -4,7 +4,9 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <algorithm>
+#include <cmath>
 #include <initializer_list>
+#include <memory>
 #include <set>
 #include <sstream>
 #include <string>
@@ -60,6 +62,23 @@ class Obj {
     return v;
   }
   double positive_or(const std::string& key, double def) { return has(key) ? positive(key) : def; }
+  // a number in the closed range [lo, hi]; `range` is how the message states it
+  double bounded(const std::string& key, double lo, double hi, const std::string& range) {
+    const double v = number(key);
+    if (!(v >= lo && v <= hi)) fail(key, "must be in " + range + ", got " + dump(get(key)));
+    return v;
+  }
+  // three numbers, each in [-limit, limit]; `range` is how the message states it
+  Vec3 bounded_vec3(const std::string& key, double limit, const std::string& range) {
+    return as_bounded_vec3(get(key), key, limit, range);
+  }
+  Vec3 as_bounded_vec3(const json& v, const std::string& key, double limit,
+                       const std::string& range) const {
+    const Vec3 r = as_vec3(v, key);
+    if (!(r.cwiseAbs().maxCoeff() <= limit))
+      fail(key, "must all be in " + range + ", got " + dump(v));
+    return r;
+  }
   bool boolean(const std::string& key) {
     const json& v = get(key);
     if (!v.is_boolean()) fail(key, "must be true or false, got " + dump(v));
@@ -68,6 +87,9 @@ class Obj {
   std::string string(const std::string& key) {
     const json& v = get(key);
     if (!v.is_string()) fail(key, "must be a string, got " + dump(v));
+    // a NUL ends a path early: "out\u0000x" would write into "out"
+    if (v.get<std::string>().find('\0') != std::string::npos)
+      fail(key, "must not contain a NUL character (\\u0000), got " + dump(v));
     return v.get<std::string>();
   }
   Vec3 vec3(const std::string& key) { return as_vec3(get(key), key); }
@@ -133,8 +155,20 @@ constexpr Keys kShapeKeys = {"type", "radius", "semi_axes", "size", "file", "sca
 
 // Lengths a shape may have, m: outside them the added mass integrals underflow (a radius of
 // 1e-200 m) or the boundary elements never converge (a box of 1e160 m).
-constexpr double kMinLength = 1e-9, kMaxLength = 1e6;
+constexpr double kMinLength = 1e-9, kMaxLength = 1e6;  // as the shapes' (body/shape.cpp)
 const char* const kLengthRange = "in [1e-9, 1e6] m";
+
+// The other quantities' ranges: far beyond any body in air or water, and within them the
+// products the step forms (momenta, drag, the added mass) stay finite; outside them a force
+// overflows to NaN, or "auto" judges an effect by a non-finite number and drops it.
+constexpr double kMinDensity = 1e-6, kMaxDensity = 1e6;
+const char* const kDensityRange = "[1e-6, 1e6] kg/m^3";
+constexpr double kMaxCoordinate = 1e9;  // positions, m
+const char* const kCoordinateRange = "[-1e9, 1e9] m";
+constexpr double kMaxSpeed = 1e5;  // velocities, m/s
+const char* const kSpeedRange = "[-1e5, 1e5] m/s";
+constexpr double kMaxSpin = 1e6;  // angular velocities, rad/s
+const char* const kSpinRange = "[-1e6, 1e6] rad/s";
 
 Shape read_shape(Obj o, BodySpec* b) {
   const std::string type = o.string("type");
@@ -158,16 +192,41 @@ Shape read_shape(Obj o, BodySpec* b) {
     const Vec3 l = o.vec3("size");
     if (!(l.minCoeff() > 0)) o.fail("size", "must all be > 0, got " + Obj::dump(o.get("size")));
     lengths("size", l);
+    if (!(l.maxCoeff() / l.minCoeff() <= 1e5))
+      o.fail("size", "longest edge / shortest edge must be at most 1e5 (as body/shape.cpp's: the "
+                     "boundary elements lose the thin direction beyond), got " +
+                         Obj::dump(o.get("size")));
     s = Shape::box(l.x(), l.y(), l.z());
   } else if (type == "mesh") {
     const std::string file = resolve(o.string("file"), o.file());
     const double scale = o.positive_or("scale", 1.0);
+    std::shared_ptr<TriangleMesh> mesh;
     try {
-      auto mesh = std::make_shared<TriangleMesh>(read_mesh(file));
-      for (Vec3& v : mesh->vertices) v *= scale;
-      s = Shape::from_mesh(std::move(mesh), file);
+      mesh = std::make_shared<TriangleMesh>(read_mesh(file));
     } catch (const Error& e) {
       // the mesh's own message names the mesh file; add where the scene asked for it
+      o.fail("file", e.what());
+    }
+    for (Vec3& v : mesh->vertices) v *= scale;
+    // the scaled mesh's size as a box's: a scale that takes it out of that range would end in
+    // the mesh checks' or the boundary elements' misleading words
+    if (!mesh->vertices.empty()) {
+      Vec3 lo = mesh->vertices[0], hi = mesh->vertices[0];
+      for (const Vec3& v : mesh->vertices) {
+        lo = lo.cwiseMin(v);
+        hi = hi.cwiseMax(v);
+      }
+      const double extent = (hi - lo).maxCoeff();
+      if (!(extent >= kMinLength && extent <= kMaxLength)) {
+        std::ostringstream m;
+        m << "makes " << file << " " << extent << " m wide; its largest extent must be "
+          << kLengthRange << ", got " << Obj::dump(o.get("scale"));
+        o.fail("scale", m.str());
+      }
+    }
+    try {
+      s = Shape::from_mesh(std::move(mesh), file);
+    } catch (const Error& e) {
       o.fail("file", e.what());
     }
   } else {
@@ -268,7 +327,7 @@ BodySpec read_body(Obj o) {
                      "CSV field), got " + Obj::dump(o.get("name")));
   if (b.name.empty()) o.fail("name", "must not be empty");
   b.shape = read_shape(o.object("shape", kShapeKeys), &b);
-  b.density = o.positive("density");
+  b.density = o.bounded("density", kMinDensity, kMaxDensity, kDensityRange);
   b.mass_offset = o.vec3_or("mass_offset", Vec3::Zero());
   if (const std::string why = offset_outside_shape(b.shape, b.mass_offset); !why.empty())
     o.fail("mass_offset", why);
@@ -282,14 +341,14 @@ BodySpec read_body(Obj o) {
   const bool pos = o.has("position"), box = o.has("spawn_box");
   if (pos == box) o.fail("", "needs exactly one of \"position\" or \"spawn_box\"");
   if (pos) {
-    b.position = o.vec3("position");
+    b.position = o.bounded_vec3("position", kMaxCoordinate, kCoordinateRange);
   } else {
     const json& sb = o.get("spawn_box");
     if (!sb.is_array() || sb.size() != 2)
       o.fail("spawn_box", "must be [[x0,y0,z0],[x1,y1,z1]], got " + Obj::dump(sb));
     b.spawn_in_box = true;
-    b.box_lo = o.as_vec3(sb[0], "spawn_box[0]");
-    b.box_hi = o.as_vec3(sb[1], "spawn_box[1]");
+    b.box_lo = o.as_bounded_vec3(sb[0], "spawn_box[0]", kMaxCoordinate, kCoordinateRange);
+    b.box_hi = o.as_bounded_vec3(sb[1], "spawn_box[1]", kMaxCoordinate, kCoordinateRange);
     for (int a = 0; a < 3; ++a)
       if (!(b.box_hi[a] >= b.box_lo[a])) o.fail("spawn_box", "upper corner below lower corner");
   }
@@ -300,15 +359,18 @@ BodySpec read_body(Obj o) {
       double c[4];
       for (int i = 0; i < 4; ++i)
         c[i] = o.as_number((*q)[i], "orientation[" + std::to_string(i) + "]");
-      const Quat qq(c[0], c[1], c[2], c[3]);
-      if (!(qq.norm() > 1e-12)) o.fail("orientation", "quaternion must not be zero");
+      // scaled by its largest component first: the squares of [1e300, 1e300, 0, 0] overflow
+      const double cmax = std::max({std::abs(c[0]), std::abs(c[1]), std::abs(c[2]), std::abs(c[3])});
+      if (!(cmax > 0)) o.fail("orientation", "quaternion must not be zero");
+      const Quat qq(c[0] / cmax, c[1] / cmax, c[2] / cmax, c[3] / cmax);
       b.orientation = qq.normalized();
     } else {
       o.fail("orientation", "must be [w,x,y,z] or \"random\", got " + Obj::dump(*q));
     }
   }
-  b.velocity = o.vec3_or("velocity", Vec3::Zero());
-  b.angular_velocity = o.vec3_or("angular_velocity", Vec3::Zero());
+  if (o.has("velocity")) b.velocity = o.bounded_vec3("velocity", kMaxSpeed, kSpeedRange);
+  if (o.has("angular_velocity"))
+    b.angular_velocity = o.bounded_vec3("angular_velocity", kMaxSpin, kSpinRange);
   if (o.has("variation")) {
     // art direction: per-body draws from [lo, hi] (docs/effects.md)
     Obj v = o.object("variation", {"size", "density", "spin", "variants"});
@@ -323,9 +385,36 @@ BodySpec read_body(Obj o) {
                         ", got " + Obj::dump(r));
       if (!(*hi >= *lo)) v.fail(key, "upper bound below lower bound, got " + Obj::dump(r));
     };
-    if (v.has("size")) range("size", 1e-300, &b.size_min, &b.size_max);
-    if (v.has("density")) range("density", 1e-300, &b.density_min, &b.density_max);
-    if (v.has("spin")) range("spin", 0, &b.spin_min, &b.spin_max);
+    if (v.has("size")) {
+      range("size", 1e-300, &b.size_min, &b.size_max);
+      // the varied shapes keep to the shapes' lengths: a box is given by its edges, a mesh by
+      // its extent, a sphere and an ellipsoid by their semi-axes
+      const Vec3 l = b.shape.type == ShapeType::Sphere || b.shape.type == ShapeType::Ellipsoid
+                         ? b.shape.half_extents
+                         : Vec3(2 * b.shape.half_extents);
+      if (!(b.size_min * l.minCoeff() >= kMinLength && b.size_max * l.maxCoeff() <= kMaxLength)) {
+        std::ostringstream m;
+        m << "makes the shape's lengths " << b.size_min * l.minCoeff() << " to "
+          << b.size_max * l.maxCoeff() << " m; they must stay " << kLengthRange << ", got "
+          << Obj::dump(v.get("size"));
+        v.fail("size", m.str());
+      }
+    }
+    if (v.has("density")) {
+      range("density", 1e-300, &b.density_min, &b.density_max);
+      if (!(b.density_min * b.density >= kMinDensity && b.density_max * b.density <= kMaxDensity)) {
+        std::ostringstream m;
+        m << "makes the density " << b.density_min * b.density << " to "
+          << b.density_max * b.density << " kg/m^3; it must stay in " << kDensityRange
+          << ", got " << Obj::dump(v.get("density"));
+        v.fail("density", m.str());
+      }
+    }
+    if (v.has("spin")) {
+      range("spin", 0, &b.spin_min, &b.spin_max);
+      if (!(b.spin_max <= kMaxSpin))
+        v.fail("spin", "upper bound must be at most 1e6 rad/s, got " + Obj::dump(v.get("spin")));
+    }
     if (const json* n = v.find("variants")) {
       if (!n->is_number_integer() || n->get<long long>() < 1 || n->get<long long>() > 256)
         v.fail("variants", "must be an integer in [1, 256], got " + Obj::dump(*n));
@@ -417,8 +506,8 @@ Scene parse_scene_unchecked(const std::string& text, const std::string& path) {
   }
   {
     Obj f = top.object("fluid", {"density", "kinematic_viscosity", "field", "uniform", "time"});
-    s.fluid_density = f.positive("density");
-    s.kinematic_viscosity = f.positive("kinematic_viscosity");
+    s.fluid_density = f.bounded("density", kMinDensity, kMaxDensity, kDensityRange);
+    s.kinematic_viscosity = f.bounded("kinematic_viscosity", 1e-9, 1e3, "[1e-9, 1e3] m^2/s");
     const bool field = f.has("field"), uniform = f.has("uniform");
     if (field == uniform) f.fail("", "needs exactly one of \"field\" or \"uniform\"");
     if (field) {
@@ -435,18 +524,16 @@ Scene parse_scene_unchecked(const std::string& text, const std::string& path) {
       }
     } else {
       Obj u = f.object("uniform", {"U", "k", "epsilon"});
-      s.uniform_U = u.vec3("U");
-      s.uniform_k = u.number("k");
-      s.uniform_epsilon = u.number("epsilon");
-      if (s.uniform_k < 0) u.fail("k", "must be >= 0");
-      if (s.uniform_epsilon < 0) u.fail("epsilon", "must be >= 0");
+      s.uniform_U = u.bounded_vec3("U", kMaxSpeed, kSpeedRange);
+      s.uniform_k = u.bounded("k", 0, 1e8, "[0, 1e8] m^2/s^2");
+      s.uniform_epsilon = u.bounded("epsilon", 0, 1e12, "[0, 1e12] m^2/s^3");
       if ((s.uniform_k > 0) != (s.uniform_epsilon > 0))
         u.fail("", "k and epsilon must both be > 0 or both be 0");
       u.finish();
     }
     f.finish();
   }
-  s.gravity = top.vec3("gravity");
+  s.gravity = top.bounded_vec3("gravity", 1e4, "[-1e4, 1e4] m/s^2");
   {
     const json& e = top.get("effects");
     if (e.is_string() && e.get<std::string>() == "auto") {
@@ -484,10 +571,14 @@ Scene parse_scene_unchecked(const std::string& text, const std::string& path) {
   }
   s.duration = top.positive("duration");
   if (s.duration / s.dt > 4e9) top.fail("duration", "more than 4e9 steps of integrator.dt");
+  if (s.dt > s.duration)
+    top.fail("integrator.dt", "must be at most duration (" + Obj::dump(top.get("duration")) +
+                                  " s): the run would take no step, got " +
+                                  Obj::dump(top.get("integrator").at("dt")));
   {
     const json& seed = top.get("seed");
-    if (!seed.is_number_integer() || seed.get<long long>() < 0)
-      top.fail("seed", "must be an integer >= 0, got " + Obj::dump(seed));
+    if (!seed.is_number_unsigned())
+      top.fail("seed", "must be an integer in [0, 2^64 - 1], got " + Obj::dump(seed));
     s.seed = seed.get<uint64_t>();
   }
   {
@@ -501,11 +592,21 @@ Scene parse_scene_unchecked(const std::string& text, const std::string& path) {
     }
     if (total > 100000000) top.fail("bodies", "more than 1e8 bodies in total");
     if (s.bodies.size() > 65535) top.fail("bodies", "more than 65535 body types");
+    // the variants each entry becomes (as compile_model makes them), counted before any of
+    // them is built: each box or mesh variant takes a boundary-element solve
+    size_t variants = 0;
+    for (const BodySpec& b : s.bodies)
+      variants += b.variants > 1 && (b.size_max != b.size_min || b.density_max != b.density_min)
+                      ? size_t(std::min(b.variants, b.count))
+                      : 1;
+    if (variants > 65535)
+      top.fail("bodies", "more than 65535 body types with their variation.variants, got " +
+                             std::to_string(variants));
   }
   if (top.has("ground")) {
     Obj g = top.object("ground", {"z", "contact"});
     s.has_ground = true;
-    s.ground_z = g.number("z");
+    s.ground_z = g.bounded("z", -kMaxCoordinate, kMaxCoordinate, kCoordinateRange);
     if (g.has("contact")) s.ground_contact = read_contact_mode(g);
     g.finish();
   }
@@ -540,7 +641,10 @@ Scene parse_scene_unchecked(const std::string& text, const std::string& path) {
   }
   if (top.has("output")) {
     Obj o = top.object("output", {"dir", "every", "formats", "checkpoint_every"});
-    if (o.has("dir")) s.output.dir = o.string("dir");  // relative to the working directory
+    if (o.has("dir")) {
+      s.output.dir = o.string("dir");  // relative to the working directory
+      if (s.output.dir.empty()) o.fail("dir", "must not be empty (leave it out for \"results\")");
+    }
     s.output.every = o.positive_or("every", s.output.every);
     // the output stride is every / dt steps, an integer: beyond 4e9 steps it overflows
     if (o.has("every") && s.output.every / s.dt > 4e9)
@@ -601,6 +705,8 @@ Scene read_scene(const std::string& path) {
   if (!in) fail_input(path, "", fs::exists(path, ec) ? "cannot be read" : "file not found");
   std::stringstream ss;
   ss << in.rdbuf();
+  if (ss.str().find_first_not_of(" \t\r\n") == std::string::npos)
+    fail_input(path, "", "is empty, not a scene file");
   return parse_scene(ss.str(), path);
 }
 

@@ -112,4 +112,32 @@ TEST(AddedMassCli, MeshFromFile) {
   fs::remove_all(dir);
 }
 
+TEST(AddedMassCli, LengthsPanelsAndDensityOutOfRange) {
+  // each is refused at once (timeout: a box of 1e160 m kept the boundary elements busy without
+  // end, 2e9 panels were tessellated first; a radius of 1e-200 m ended in exit 1)
+  const std::string t = "timeout 60";
+  for (const char* shape : {"--sphere 1e-200", "--sphere 1e300", "--ellipsoid 1e-200 1e-200 2e-200",
+                            "--box 1e160 1 1", "--box 1e-300 1 1"}) {
+    const CmdResult r = run(shape, t);
+    EXPECT_EQ(r.status, 3) << shape << ": " << r.out;
+    EXPECT_NE(r.out.find(std::string(shape).substr(0, std::string(shape).find(' '))),
+              std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("[1e-9, 1e6] m"), std::string::npos) << shape << ": " << r.out;
+  }
+  // a sheet of 1e6:1: the solver's tensor was not positive (exit 1)
+  const CmdResult sheet = run("--box 1 1 1e-6", t);
+  EXPECT_EQ(sheet.status, 3) << sheet.out;
+  EXPECT_NE(sheet.out.find("at most 1e5"), std::string::npos) << sheet.out;
+  EXPECT_EQ(run("--box 1 1 1e-5", t).status, 0);
+  const CmdResult panels = run("--box 1 1 1 --panels 2000000000", t);
+  EXPECT_EQ(panels.status, 2) << panels.out;
+  EXPECT_NE(panels.out.find("--panels must be in [0, 10000]"), std::string::npos) << panels.out;
+  const CmdResult rho = run("--sphere 1 --fluid-density 1e308", t);
+  EXPECT_EQ(rho.status, 2) << rho.out;
+  EXPECT_NE(rho.out.find("--fluid-density"), std::string::npos) << rho.out;
+  const CmdResult dir = run("--mesh " + fs::temp_directory_path().string(), t);
+  EXPECT_EQ(dir.status, 3) << dir.out;
+  EXPECT_NE(dir.out.find("is a directory"), std::string::npos) << dir.out;
+}
+
 }  // namespace

@@ -4,8 +4,11 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <memory>
+#include <vector>
+#include <functional>
 
 #include "body/mass_properties.h"
 #include "body/mesh_check.h"
@@ -49,6 +52,34 @@ TEST(Shape, RejectsNonPositiveSizes) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("ly"), std::string::npos) << e.what();
   }
+}
+
+TEST(Shape, RejectsLengthsOutOfRange) {
+  // a radius of 1e-200 m underflowed the added-mass integrals (carlson_rd: invalid arguments);
+  // a box of 1e160 m kept the boundary elements busy without end
+  for (const auto& make : std::vector<std::function<void()>>{
+           [] { Shape::sphere(1e-200); }, [] { Shape::sphere(1e300); },
+           [] { Shape::ellipsoid(1e-200, 1e-200, 2e-200); }, [] { Shape::box(1e160, 1, 1); }}) {
+    try {
+      make();
+      ADD_FAILURE() << "accepted";
+    } catch (const Error& e) {
+      EXPECT_EQ(e.code(), ExitCode::BadInput);
+      EXPECT_NE(std::string(e.what()).find("[1e-9, 1e6] m"), std::string::npos) << e.what();
+    }
+  }
+  // the ends of the range are lengths
+  EXPECT_EQ(Shape::sphere(1e-9).half_extents.x(), 1e-9);
+  EXPECT_EQ(Shape::box(1e6, 1e6, 10).half_extents.x(), 5e5);
+  // a sheet thinner than 1e-5 of its width: the boundary elements' tensor was not positive
+  try {
+    Shape::box(1, 1, 1e-6);
+    ADD_FAILURE() << "accepted";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), ExitCode::BadInput);
+    EXPECT_NE(std::string(e.what()).find("at most 1e5"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(Shape::box(1, 1, 1e-5).half_extents.z(), 5e-6);
 }
 
 TEST(MassProperties, ClosedForms) {
@@ -239,6 +270,37 @@ TEST(MeshCheck, DetectsEachDefect) {
   const MeshCheck bc = check_mesh(bow);
   EXPECT_EQ(bc.defect, MeshDefect::NonManifold) << bc.message;
   EXPECT_NE(bc.message.find("vertex 0"), std::string::npos) << bc.message;
+
+  // two closed tetrahedra overlapping: every edge and vertex fine, positive volume, but the
+  // surfaces cross (a surface whose inside is ambiguous for the volume and the boundary elements)
+  TriangleMesh two = tetra();
+  for (const Vec3& v : tetra().vertices) two.vertices.push_back(v + Vec3(0.2, 0.2, 0.2));
+  for (const auto& f : tetra().faces) two.faces.push_back({f[0] + 4, f[1] + 4, f[2] + 4});
+  const MeshCheck tc = check_mesh(two);
+  EXPECT_EQ(tc.defect, MeshDefect::SelfIntersecting) << tc.message;
+  EXPECT_NE(tc.message.find("intersects itself"), std::string::npos) << tc.message;
+  // the same two apart are a valid body of two parts
+  TriangleMesh apart = two;
+  for (size_t i = 4; i < apart.vertices.size(); ++i) apart.vertices[i] += Vec3(3, 0, 0);
+  EXPECT_TRUE(check_mesh(apart).ok()) << check_mesh(apart).message;
+  // one surface: a unit cube (corner index 4 ix + 2 iy + iz) with corner (1, 1, 1) pushed
+  // through its bottom face
+  TriangleMesh cube;
+  for (int ix = 0; ix < 2; ++ix)
+    for (int iy = 0; iy < 2; ++iy)
+      for (int iz = 0; iz < 2; ++iz) cube.vertices.emplace_back(ix, iy, iz);
+  for (const std::array<int, 4>& q : {std::array<int, 4>{0, 1, 3, 2}, {4, 6, 7, 5}, {0, 4, 5, 1},
+                                      {2, 3, 7, 6}, {0, 2, 6, 4}, {1, 5, 7, 3}}) {
+    cube.faces.push_back({q[0], q[1], q[2]});
+    cube.faces.push_back({q[0], q[2], q[3]});
+  }
+  ASSERT_TRUE(check_mesh(cube).ok()) << check_mesh(cube).message;
+  cube.vertices[7] = Vec3(0.4, 0.7, -0.5);
+  const MeshCheck cc = check_mesh(cube);
+  EXPECT_EQ(cc.defect, MeshDefect::SelfIntersecting) << cc.message;
+  // meshes that only come close stay valid: a thin curled leaf, tessellated shapes
+  EXPECT_TRUE(check_mesh(test::polygon_prism(64, 0.03, 1e-5)).ok());
+  EXPECT_TRUE(check_mesh(tessellate(Shape::ellipsoid(0.03, 0.02, 1e-4), 1500)).ok());
 
   // from_mesh refuses, naming the source
   try {

@@ -171,9 +171,9 @@ INSTANTIATE_TEST_SUITE_P(
                 "bodies[0].mass_offset: [0, 0, 0.0006] m from the volume centroid puts the centre "
                 "of mass outside the body (the box's half extents [0.03, 0.02, 0.0005] m)"},
         BadCase{"zero density", [](json& j) { j["bodies"][0]["density"] = 0; },
-                "bodies[0].density: must be > 0, got 0"},
+                "bodies[0].density: must be in [1e-6, 1e6] kg/m^3, got 0"},
         BadCase{"fluid density", [](json& j) { j["fluid"]["density"] = -1; },
-                "fluid.density: must be > 0, got -1"},
+                "fluid.density: must be in [1e-6, 1e6] kg/m^3, got -1"},
         BadCase{"zero dt", [](json& j) { j["integrator"]["dt"] = 0; },
                 "integrator.dt: must be > 0, got 0"},
         BadCase{"negative duration", [](json& j) { j["duration"] = -2; },
@@ -211,7 +211,11 @@ INSTANTIATE_TEST_SUITE_P(
                 },
                 "fluid.field: file not found: /tmp/nowhere.vti"},
         BadCase{"negative k", [](json& j) { j["fluid"]["uniform"]["k"] = -1; },
-                "fluid.uniform.k: must be >= 0"},
+                "fluid.uniform.k: must be in [0, 1e8] m^2/s^2, got -1"},
+        BadCase{"huge gravity", [](json& j) { j["gravity"] = {0, 0, -1e308}; },
+                "gravity: must all be in [-1e4, 1e4] m/s^2, got [0,0,-1e+308]"},
+        BadCase{"step beyond the run", [](json& j) { j["integrator"]["dt"] = 1e3; },
+                "integrator.dt: must be at most duration"},
         BadCase{"missing mesh",
                 [](json& j) {
                   j["bodies"][0]["shape"] = {{"type", "mesh"}, {"file", "no.obj"}};
