@@ -316,9 +316,9 @@ TEST_F(Cli, TooManyVariantsRefusedBeforeAnyIsBuilt) {
   const size_t a = s.find("\"bodies\": ["), b = s.find("],\n  \"output\"");
   s = s.substr(0, a) + "\"bodies\": [" + entries + s.substr(b);
   put(dir_ / "scene.json", s);
-  const auto t0 = std::chrono::steady_clock::now();
+  // (refused when the scene is read: were the variants built first, the test would run into
+  // ctest's timeout instead)
   expect_error(run({"run", "scene.json"}), 3, {"scene.json", "bodies", "65535", "76800"});
-  EXPECT_LT(std::chrono::steady_clock::now() - t0, std::chrono::seconds(60));
 }
 
 TEST_F(Cli, UnknownKeys) {
