@@ -1,6 +1,9 @@
-// Cost per body-step of representative effect sets (docs/effects.md). Each benchmark advances
-// 1024 bodies of one type by step_body, single thread, uniform field; the reported
-// "ns_per_body_step" is wall time / body-steps.
+// Cost per body-step of representative effect sets (docs/effects.md), and of each effect of the
+// registry: the leaf with every effect against the leaf with every effect but one
+// (Leaf_AllEffects_Splitting, Leaf_AllEffectsBut_<name>_Splitting, one pair per row of
+// effects/registry.cpp, the row's cost_ns). Each benchmark advances 1024 bodies of one type by
+// step_body, single thread, uniform field; the reported "ns_per_body_step" is wall time /
+// body-steps.
 //   build/bin/effects_bench --benchmark_min_time=0.5
 #include <benchmark/benchmark.h>
 
@@ -9,6 +12,7 @@
 
 #include "body/added_mass.h"
 #include "compile/compile_model.h"
+#include "effects/registry.h"
 #include "integrate/integrators.h"
 #include "model/state.h"
 
@@ -126,7 +130,32 @@ LR_BENCH(Leaf_Lift_Splitting, Leaf, kLeaf, Splitting);
 LR_BENCH(Leaf_LiftMagnus_Splitting, Leaf, plus(kLeaf, Effect::Magnus), Splitting);
 LR_BENCH(Leaf_Lift_RK4, Leaf, kLeaf, RK4);
 
+// the leaf (flat and spinning: every effect acts on it) with every effect of the registry, and
+// without each one in turn
+void register_each_effect() {
+  EffectSet all;
+  for (const EffectInfo& e : all_effects()) all.add(e.effect);
+  auto add = [](const std::string& name, EffectSet set) {
+    benchmark::RegisterBenchmark(name.c_str(), [set](benchmark::State& s) {
+      run(s, Body::Leaf, set, Integrator::Splitting);
+    })->Unit(benchmark::kMillisecond);
+  };
+  add("Leaf_AllEffects_Splitting", all);
+  for (const EffectInfo& e : all_effects()) {
+    EffectSet less = all;
+    less.remove(e.effect);
+    add(std::string("Leaf_AllEffectsBut_") + e.name + "_Splitting", less);
+  }
+}
+
 }  // namespace
 }  // namespace lrigid
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+  lrigid::register_each_effect();
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

@@ -24,7 +24,7 @@ The same for the full leaves model: scenes/leaves_wind.json (leaves, paper sheet
 the scene's own effects) with 0.5 s of warm-up before the timed steps (the start, bodies at rest
 in the wind, hands more steps to the scalar step), against the same OpenFOAM parcels and MuJoCo
 stepping the scene's seed pods (mujoco_harness's default body), and its float cost on landing
-points without turbulence (art.turbulence_scale = 0). And the full effect set (all nine effects on
+points without turbulence (art.turbulence_scale = 0). And the full effect set (every effect on
 every type, Basset history and Magnus included) on the leaves scene: N = 10^4 on one thread and
 300,000 bodies on two, double and float.
 About 10 minutes on 2 cores.
@@ -41,7 +41,7 @@ import time
 
 import numpy as np
 
-ALL_EFFECTS = "all"  # lrigid bench --effects all: all nine effects on every body type
+ALL_EFFECTS = "all"  # lrigid bench --effects all: every effect of the registry on every body type
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
 
@@ -176,7 +176,7 @@ def main():
     rows = throughput(base, "beads", 2)
     leaves = os.path.join(ROOT, "scenes/leaves_wind.json")
     leaf_rows = throughput(leaves, "leaves", 250)
-    # the full effect set: all nine effects on every type (Basset history and Magnus too, and
+    # the full effect set: every effect on every type (Basset history and Magnus too, and
     # added mass and buoyancy for the seed pods, which the scene's "auto" leaves out): N = 10^4
     # on one thread and 300,000 bodies on two, double and float
     leaf_all = {"effects": ALL_EFFECTS, "runs": []}
@@ -185,7 +185,7 @@ def main():
             ("plates", ("leaf", "paper"), "double", 10000, 1),
             ("pods", ("seed_pod",), "double", 10000, 1),
             ("all", None, "double", 300000, 2), ("all", None, "float", 300000, 2)):
-        print(f"batch_bench.py: leaves, all nine effects, bodies: {key}, {prec}, N = {n}, "
+        print(f"batch_bench.py: leaves, every effect, bodies: {key}, {prec}, N = {n}, "
               f"{t} thread(s)", file=sys.stderr)
         # (not the scene's own name: bench's JSON would overwrite the scene)
         name = f"tp_leaves_all9_{key}_{prec}"
@@ -325,7 +325,7 @@ def leaves_section(leaves, peers):
         "",
     ]
     lines += throughput_table(rows, handoffs=True)
-    lines += ["", f"The full effect set: all nine effects on every type (`--effects "
+    lines += ["", f"The full effect set: every effect on every type (`--effects "
               f"{all9['effects']}`: the Basset history and the Magnus force too, and added mass "
               "and buoyancy for the seed pods, which `auto` leaves out as below 1 % of their "
               "forces). Body-steps per second (wall clock; per CPU second in brackets), the "

@@ -414,7 +414,7 @@ def main():
         of_on = (peers or {}).get("openfoam", {}).get("dispersion_on") or 0.9e6
         mj_rk4 = (peers or {}).get("mujoco", {}).get("rk4") or 0.3e6
         src = "measured at N = %s" % peers.get("n") if peers else "reference figure"
-        w("| leaves scene with all nine effects (`lrigid bench`'s default: the batched step, "
+        w("| leaves scene with every effect (`lrigid bench`'s default: the batched step, "
           "double, no warm-up), splitting >= 10 x OpenFOAM parcel rate per core (%s: %s, dispersion on) | %s at "
           "N = %d (%.1f x) | %s |" % (src, si(of_on), si(s), split1["n"], s / of_on,
                                       "yes" if s >= 10 * of_on else "no"))
@@ -423,7 +423,7 @@ def main():
     if split2:
         s = split2["body_steps_per_s"]
         s2 = 2 * split2.get("body_steps_per_cpu_s", 0)
-        w("| all nine effects (`lrigid bench`'s default: double, at its largest N), 300 000 "
+        w("| every effect (`lrigid bench`'s default: double, at its largest N), 300 000 "
           "bodies at 60 Hz on 2 cores (2 x 10^7 body-steps/s) | %s wall (2 threads, "
           "N = %d, load %s before the runs); %s = 2 x per-CPU-second rate (idle-machine "
           "estimate) | %s |" % (si(s), split2["n"], mach.get("load_before", "?"), si(s2),
@@ -480,7 +480,7 @@ def batch_target_rows(w, batch):
     for r in all9.get("runs", []):
         if r["bodies"] != "all":
             continue
-        what = "full effect set: all nine effects on the leaves scene (%s)" % r["precision"]
+        what = "full effect set: every effect on the leaves scene (%s)" % r["precision"]
         if r["threads"] == 1:
             c = r["cpu_rate"]
             if of:

@@ -31,7 +31,7 @@ TEST_P(LongRun, MillionStepsStayFiniteBoundedAndStatisticallyRight) {
   const double k = 0.2;
   Scene s = test::sphere_scene(0.005, c.density_ratio * kRhoAir, kRhoAir, kNuAir);
   if (c.aspect > 1) s.bodies[0].shape = Shape::ellipsoid(0.02, 0.02, 0.02 / c.aspect);
-  s.effects = stability::all_effects();
+  s.effects = stability::base_effects();
   s.integrator = Integrator::Splitting;
   s.uniform_U = U;
   s.uniform_k = k;

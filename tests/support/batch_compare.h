@@ -16,6 +16,8 @@
 #include <vector>
 
 #include "compile/compile_model.h"
+#include "effects/plan.h"
+#include "effects/registry.h"
 #include "integrate/simulation.h"
 #include "support/fixture.h"
 
@@ -190,6 +192,68 @@ inline double moved_by(const Scene& s, const FluidField& field, const Outcome& w
   Scene plain = s;
   for (Effect e : drop) plain.effects.remove(e);
   return farthest_apart(with, run(plain, field, true, Precision::Double));
+}
+
+// The largest differences between two runs' states, without asking for the same statuses (a
+// run without an effect may land its bodies elsewhere or at other times).
+inline Diff apart(const Outcome& a, const Outcome& b) {
+  Diff d;
+  for (size_t i = 0; i < a.state.size(); ++i) {
+    d.x = std::max(d.x, (a.state.x[i] - b.state.x[i]).norm());
+    d.v = std::max(d.v, (a.state.v[i] - b.state.v[i]).norm());
+    d.w = std::max(d.w, (a.state.w[i] - b.state.w[i]).norm());
+    d.q = std::max(d.q, (a.state.q[i].coeffs() - b.state.q[i].coeffs()).norm());
+  }
+  return d;
+}
+
+// Every effect of the registry (effects/registry.h) that its row says the batched loops
+// implement, at once, on scene s (one body type, which must take the batched step: its own
+// effects are replaced), in each of the four schemes: the batched step ends where the scalar
+// step ends, within tol (m, m/s, rad/s), and taking any one of those effects away moves the
+// scalar step's bodies by more than 100 tol. A batched step that left an effect out, took it
+// in another frame or handed the body type to the scalar step fails here, whatever the effect:
+// nothing in the test names one. An effect whose row picks no wrench term for the body type
+// (lift on a body that is not flat) does not apply to it and is not asked to move it.
+// eligible: the batched step's test (sphere_batch_eligible, rigid_batch_eligible).
+inline void expect_every_batched_effect_applied(
+    Scene s, const FluidField& field, double tol,
+    bool (*eligible)(const Model&, const BodyType&, std::string*)) {
+  s.effects = EffectSet{};
+  for (const EffectInfo& e : all_effects())
+    if (e.batched) s.effects.add(e.effect);
+  for (const Integrator scheme :
+       {Integrator::Splitting, Integrator::Strang, Integrator::Euler, Integrator::RK4}) {
+    s.integrator = scheme;
+    SCOPED_TRACE(integrator_name(scheme));
+    const Model m = test::compile(s, field);
+    std::string why;
+    ASSERT_TRUE(eligible(m, m.types[0], &why)) << why;
+    const Both b = scalar_and_batched(s, field);
+    EXPECT_EQ(b.scalar.stats.body_steps, b.batched.stats.body_steps);
+    // the loops take the steps themselves
+    EXPECT_GT(b.batched.stats.body_steps, 0u);
+    EXPECT_LE(b.batched.stats.scalar_handoffs, b.batched.stats.body_steps / 100);
+    EXPECT_LT(b.d.x, tol);
+    EXPECT_LT(b.d.v, tol);
+    EXPECT_LT(b.d.w, tol);
+    EXPECT_LT(b.d.q, tol);
+    const char* least = "";
+    double least_moved = std::numeric_limits<double>::infinity();
+    for (const EffectInfo& e : all_effects()) {
+      if (!s.effects.has(e.effect)) continue;
+      if (e.term && !wrench_term(m.types[0], e.effect)) continue;
+      Scene less = s;
+      less.effects.remove(e.effect);
+      const Diff moved = apart(run(less, field, false, Precision::Double), b.scalar);
+      const double most = std::max({moved.x, moved.v, moved.w});
+      EXPECT_GT(most, 100 * tol) << e.name << " does not move the bodies";
+      if (most < least_moved) least_moved = most, least = e.name;
+    }
+    std::printf("%s: batched - scalar %.2g m, %.2g m/s, %.2g rad/s; the effect that moves the "
+                "bodies least: %s, by %.2g (largest of m, m/s, rad/s)\n",
+                integrator_name(scheme), b.d.x, b.d.v, b.d.w, least, least_moved);
+  }
 }
 
 inline size_t count(const State& s, BodyStatus status) {

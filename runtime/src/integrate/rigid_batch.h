@@ -21,10 +21,10 @@
 //
 // What qualifies (rigid_batch_eligible): a type that is not a uniform sphere (a sphere whose
 // centre of mass is off its centroid is this step's; with such an offset the fluid's forces and the
-// buoyancy act at the centroid and turn the body about its centre of mass, the step's `Extra`
-// switch), with any of the nine effects, and what every batched step needs (batch_lanes.h
-// batch_exclusion: the seen model, one noise increment per step, a steady field or a series; any
-// of the four schemes).
+// buoyancy act at the centroid and turn the body about its centre of mass, runtime factors in the
+// loops), with any effect whose registry row is batched, and what every batched step needs
+// (batch_lanes.h batch_exclusion: the seen model, one noise increment per step, a steady field or
+// a series; any of the four schemes).
 #pragma once
 #include <cstdint>
 #include <string>

@@ -124,9 +124,12 @@ LRIGID_LANE DragOut<T> sphere_drag(const StepConsts& tc, const T* u, const T* w)
 // The forces stage's sum on a sphere lane, written once for every scheme (the batched
 // counterpart of the scalar step's EffectPlan): F the given force (weight, buoyancy, the Basset
 // history, the fluid's acceleration on the added mass), relative velocity vr, and the spin in
-// the frame of each kernel (the drag's torque in the frame of w; Magnus on wm, in vr's frame).
-// Returns the drag with its stiffness, which the splitting and strang steps take implicitly; fe
-// the explicit rest, F + Magnus (an effect off contributes its factor 0).
+// the frame of each kernel: w in the frame the caller keeps the spin in (the body frame in the
+// splitting, strang and rk4 steps, the world frame in euler), wm in vr's frame (Magnus). Returns
+// the drag with its stiffness, which the splitting and strang steps take implicitly; fe =
+// (force; torque) of the explicit rest: the force F + Magnus in vr's frame, the torque in w's
+// frame (zero: Magnus has no torque about a sphere's centre; every caller adds it to its step,
+// for an effect that has one, docs/adding-an-effect.md). An effect off contributes its factor 0.
 template <typename T>
 LRIGID_LANE DragOut<T> sphere_force_sum(const StepConsts& tc, const T* F, const T* vr,
                                         const T* w, const T* wm, T* fe) {
@@ -134,7 +137,10 @@ LRIGID_LANE DragOut<T> sphere_force_sum(const StepConsts& tc, const T* F, const 
   T fm[3];
   magnus_kernel(T(tc.magnus), wm, vr, fm);
 #pragma GCC unroll 3
-  for (int a = 0; a < 3; ++a) fe[a] = F[a] + fm[a];
+  for (int a = 0; a < 3; ++a) {
+    fe[a] = F[a] + fm[a];
+    fe[3 + a] = T(0);
+  }
   return d;
 }
 
@@ -156,7 +162,7 @@ LRIGID_LANE void strang_force_lane(const StepConsts& tc, const T* q, const T* u_
   }
   DragOut<T> J{};
   auto forces = [&](const T* dPi, bool first, T* f) LRIGID_LANE_LAMBDA {
-    T vr[3], ws[3], wW[3], fe[3];
+    T vr[3], ws[3], wW[3], fe[6];
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
       vr[a] = (P[a] + dPi[a] + T(tc.ma) * u_f[a]) / T(tc.m) - u_f[a];
@@ -167,7 +173,7 @@ LRIGID_LANE void strang_force_lane(const StepConsts& tc, const T* q, const T* u_
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
       f[a] = fe[a] + d.f[a];
-      f[3 + a] = d.tq[a];
+      f[3 + a] = fe[3 + a] + d.tq[a];
     }
     if (first) J = d;
   };
@@ -257,7 +263,8 @@ LRIGID_IVDEP
   for (int j = 0; j < nw; ++j) next.scalar[j] = 0;
   // what the Newton iteration of stiff drag needs
   alignas(64) T uf[3][kBatch], Pi[3][kBatch], dP[3][kBatch], dL[3][kBatch], V0[3][kBatch];
-  alignas(64) T G[3][kBatch];  // h times the forces other than drag, + b_B h a_fluid
+  // h times the forces other than drag, + b_B h a_fluid; h times the torques other than drag
+  alignas(64) T G[6][kBatch];
   alignas(64) T norm_r[kBatch];
   int stiff[kBatch];
   int any_stiff = 0;
@@ -293,22 +300,24 @@ LRIGID_IVDEP
     for (int a = 0; a < 3; ++a) vr[a] = V[a] - u_f[a];
     // Magnus on the world spin (the flow rotates q about w, so either orientation gives it);
     // the Basset history force joins the weight, its current interval's b_B h a_fluid the rest
-    T Gj[3], Fj[3], wW[3], fe[3];
+    T Gj[6], Fj[3], wW[3], fe[6];
     const T qj[4] = {qn[0][j], qn[1][j], qn[2][j], qn[3][j]};
     rotate_by(qj, w, wW);
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) Fj[a] = T(tc.F[a]) + lanes->fb[a][j];
     const DragOut<T> drag = sphere_force_sum(tc, Fj, vr, w, wW, fe);
 #pragma GCC unroll 3
-    for (int a = 0; a < 3; ++a)
+    for (int a = 0; a < 3; ++a) {
       Gj[a] = h * fe[a] + T(tc.basset_mass) * h * T(tc.gu) * lanes->acc[a][j];
+      Gj[3 + a] = h * fe[3 + a];
+    }
     // the implicit step's impulse change (model/kirchhoff.h implicit_impulse; the world and
     // body frames differ by a rotation, under which the isotropic M and the stiffness commute)
     T b[6], P[3], dPL_j[6], Vnew[3], wnew[3], u_end[3];
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
       b[a] = Gj[a] + h * drag.f[a];
-      b[3 + a] = h * drag.tq[a];
+      b[3 + a] = Gj[3 + a] + h * drag.tq[a];
       P[a] = T(tc.m) * V[a] - T(tc.ma) * u_f[a];
       // the fluid velocity at the end of the step enters through the added mass
       u_end[a] = u_f[a] + h * T(tc.gu) * lanes->acc[a][j];
@@ -335,6 +344,7 @@ LRIGID_IVDEP
       dP[a][j] = dPj[a];
       dL[a][j] = dLj[a];
       G[a][j] = Gj[a];
+      G[3 + a][j] = Gj[3 + a];
       V0[a][j] = V[a];
       Vn[a][j] = Vnew[a];
       wn[a][j] = wnew[a];
@@ -363,7 +373,7 @@ LRIGID_IVDEP
 #pragma GCC unroll 3
         for (int a = 0; a < 3; ++a) {
           res[a] = dP[a][j] - G[a][j] - h * drag.f[a] + T(tc.basset_mass / tc.m) * dP[a][j];
-          res[3 + a] = dL[a][j] - h * drag.tq[a];
+          res[3 + a] = dL[a][j] - h * drag.tq[a] - G[3 + a][j];
         }
         implicit_impulse(tc.mass, T(tc.basset_mass), drag, h, res, x);
         const T* dd = x;

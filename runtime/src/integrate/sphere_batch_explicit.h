@@ -44,17 +44,17 @@ LRIGID_LANE void sphere_fluid(const StepConsts& tc, const Lanes<T>* lanes, int j
 }
 
 // The forces on a sphere in one frame (world or body): sphere_force_sum with the spin w in that
-// frame for both kernels; f the force, tq the torque (the drag's), both in that frame (the
-// sphere's drag and Magnus turn with the frame)
+// frame for both kernels; f the force, tq the torque (the drag's and the explicit rest's), both
+// in that frame (the sphere's drag and Magnus turn with the frame)
 template <typename T>
 LRIGID_LANE void sphere_forces(const StepConsts& tc, const T* F, const T* vr, const T* w, T* f,
                                T* tq) {
-  T fe[3];
+  T fe[6];
   const DragOut<T> d = sphere_force_sum(tc, F, vr, w, w, fe);
 #pragma GCC unroll 3
   for (int a = 0; a < 3; ++a) {
     f[a] = fe[a] + d.f[a];
-    tq[a] = d.tq[a];
+    tq[a] = fe[3 + a] + d.tq[a];
   }
 }
 

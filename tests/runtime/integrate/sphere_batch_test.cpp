@@ -191,6 +191,17 @@ TEST(SphereBatch, BassetHistoryAndMagnusMatchTheScalarStep) {
   }
 }
 
+TEST(SphereBatch, EveryBatchedEffectOfTheRegistryIsAppliedByEveryScheme) {
+  // spinning beads in the wind grid with every effect the registry says the loops implement
+  // (lift does not apply to a sphere), in each scheme (batch_compare.h)
+  Scene s = bead_scene(2.5e-4, 2500, 32);
+  s.bodies[0].angular_velocity = Vec3(300, -150, 80);
+  s.dt = 5e-4;
+  s.duration = 0.3;
+  batch_test::expect_every_batched_effect_applied(s, wind_grid(1.5e-5), 1e-9,
+                                                  sphere_batch_eligible);
+}
+
 TEST(SphereBatch, StrangMatchesTheScalarStep) {
   // the Strang scheme on the loops and on the scalar step: spinning beads in the wind grid
   // (Magnus, seen turbulence), stiff droplets at 20 ms (ROS2, no Newton), and light spheres in
