@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "body/mesh_check.h"
+#include "body/shape_limits.h"
 #include "util/error.h"
 
 namespace lrigid {
@@ -25,14 +26,6 @@ const char* shape_type_name(ShapeType t) {
 }
 
 namespace {
-
-// The lengths a shape may have (radius, semi-axes, edges), m: outside them the added-mass
-// integrals underflow (a radius of 1e-200 m) or the boundary elements never finish (a box of
-// 1e160 m). The scene's parser checks the same range first, naming the key.
-constexpr double kMinShapeLength = 1e-9, kMaxShapeLength = 1e6;
-// A box's longest edge over its shortest: at 1e6 the boundary elements' tensor is no longer
-// positive (a sheet of 1 m x 1 m x 1 um); 1e5 still solves to the thin-plate limit.
-constexpr double kMaxBoxAspect = 1e5;
 
 // sizes must be finite and within [kMinShapeLength, kMaxShapeLength] (NaN fails the comparison)
 void require_positive(const char* shape, const char* what, double v) {

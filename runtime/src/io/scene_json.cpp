@@ -14,6 +14,7 @@
 
 #include "body/bem.h"
 #include "body/mass_properties.h"
+#include "body/shape_limits.h"
 #include "effects/registry.h"
 #include "io/mesh_io.h"
 #include "util/error.h"
@@ -153,9 +154,7 @@ std::string resolve(const std::string& rel, const std::string& scene_file) {
 // the keys of a shape object (a body's "shape", and Python's lrigid.added_mass)
 constexpr Keys kShapeKeys = {"type", "radius", "semi_axes", "size", "file", "scale", "panels"};
 
-// Lengths a shape may have, m: outside them the added mass integrals underflow (a radius of
-// 1e-200 m) or the boundary elements never converge (a box of 1e160 m).
-constexpr double kMinLength = 1e-9, kMaxLength = 1e6;  // as the shapes' (body/shape.cpp)
+// the shapes' lengths (body/shape_limits.h) as the messages state them
 const char* const kLengthRange = "in [1e-9, 1e6] m";
 
 // The other quantities' ranges: far beyond any body in air or water, and within them the
@@ -174,12 +173,12 @@ Shape read_shape(Obj o, BodySpec* b) {
   const std::string type = o.string("type");
   Shape s;
   auto lengths = [&](const char* key, const Vec3& l) {
-    if (!(l.minCoeff() >= kMinLength && l.maxCoeff() <= kMaxLength))
+    if (!(l.minCoeff() >= kMinShapeLength && l.maxCoeff() <= kMaxShapeLength))
       o.fail(key, std::string("must all be ") + kLengthRange + ", got " + Obj::dump(o.get(key)));
   };
   if (type == "sphere") {
     const double r = o.positive("radius");
-    if (!(r >= kMinLength && r <= kMaxLength))
+    if (!(r >= kMinShapeLength && r <= kMaxShapeLength))
       o.fail("radius", std::string("must be ") + kLengthRange + ", got " + Obj::dump(o.get("radius")));
     s = Shape::sphere(r);
   } else if (type == "ellipsoid") {
@@ -192,7 +191,7 @@ Shape read_shape(Obj o, BodySpec* b) {
     const Vec3 l = o.vec3("size");
     if (!(l.minCoeff() > 0)) o.fail("size", "must all be > 0, got " + Obj::dump(o.get("size")));
     lengths("size", l);
-    if (!(l.maxCoeff() / l.minCoeff() <= 1e5))
+    if (!(l.maxCoeff() / l.minCoeff() <= kMaxBoxAspect))
       o.fail("size", "longest edge / shortest edge must be at most 1e5 (as body/shape.cpp's: the "
                      "boundary elements lose the thin direction beyond), got " +
                          Obj::dump(o.get("size")));
@@ -217,7 +216,7 @@ Shape read_shape(Obj o, BodySpec* b) {
         hi = hi.cwiseMax(v);
       }
       const double extent = (hi - lo).maxCoeff();
-      if (!(extent >= kMinLength && extent <= kMaxLength)) {
+      if (!(extent >= kMinShapeLength && extent <= kMaxShapeLength)) {
         std::ostringstream m;
         m << "makes " << file << " " << extent << " m wide; its largest extent must be "
           << kLengthRange << ", got " << Obj::dump(o.get("scale"));
@@ -392,7 +391,8 @@ BodySpec read_body(Obj o) {
       const Vec3 l = b.shape.type == ShapeType::Sphere || b.shape.type == ShapeType::Ellipsoid
                          ? b.shape.half_extents
                          : Vec3(2 * b.shape.half_extents);
-      if (!(b.size_min * l.minCoeff() >= kMinLength && b.size_max * l.maxCoeff() <= kMaxLength)) {
+      if (!(b.size_min * l.minCoeff() >= kMinShapeLength &&
+            b.size_max * l.maxCoeff() <= kMaxShapeLength)) {
         std::ostringstream m;
         m << "makes the shape's lengths " << b.size_min * l.minCoeff() << " to "
           << b.size_max * l.maxCoeff() << " m; they must stay " << kLengthRange << ", got "
