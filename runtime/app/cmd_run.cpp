@@ -156,13 +156,15 @@ void run(const RunArgs& a, const Ranks& ranks) {
         size_t moving = 0, landed = 0, exited = 0, resting = 0;
         for (size_t i = 0; i < s.size(); ++i) {
           const BodyStatus b = s.status[i];
-          moving += b == BodyStatus::Moving;
+          // each body counted once: moving (flying or sliding), resting on a surface or asleep
+          // there (contact/sleep.h), landed, or stopped (exited or failed)
+          const bool rests = b == BodyStatus::Sleeping ||
+                             (b == BodyStatus::Moving && i < s.contact.size() &&
+                              s.contact[i] == ContactState::Resting);
+          resting += rests;
+          moving += b == BodyStatus::Moving && !rests;
           landed += b == BodyStatus::Landed;
           exited += b == BodyStatus::Exited || b == BodyStatus::Failed;
-          // resting on a surface or asleep there (contact/sleep.h)
-          resting += b == BodyStatus::Sleeping ||
-                     (b == BodyStatus::Moving && i < s.contact.size() &&
-                      s.contact[i] == ContactState::Resting);
         }
         char buf[200];
         std::snprintf(buf, sizeof buf,

@@ -2,6 +2,8 @@
 // bound (CLI11's own check would print the largest double in full, 309 digits), and
 // `added-mass --help` states the panel counts that lrigid added-mass actually uses.
 #include <gtest/gtest.h>
+
+#include <algorithm>
 #include <regex>
 #include <string>
 
@@ -59,6 +61,25 @@ TEST(Messages, AddedMassHelpStatesThePanelCountsUsed) {
   EXPECT_EQ(panels_of("--mesh " + std::string(LRIGID_SOURCE_DIR) +
                       "/tests/data/meshes/cube_quads.obj"),
             std::stoi(mesh[1].str()));
+}
+
+// The progress line counts each body once: moving (flying or sliding), resting (or asleep),
+// landed and stopped add up to the bodies of the scene, with some of them resting on the ground.
+TEST(Messages, ProgressLineCountsEachBodyOnce) {
+  const Result r = lrigid("run " + kScene + " -o \"$(mktemp -d)/out\"");
+  ASSERT_EQ(r.rc, 0) << r.out;
+  const std::regex line("moving ([0-9]+), resting ([0-9]+), landed ([0-9]+), stopped ([0-9]+)");
+  int lines = 0, most_resting = 0;
+  for (auto it = std::sregex_iterator(r.out.begin(), r.out.end(), line);
+       it != std::sregex_iterator(); ++it, ++lines) {
+    const int moving = std::stoi((*it)[1].str()), resting = std::stoi((*it)[2].str());
+    EXPECT_EQ(moving + resting + std::stoi((*it)[3].str()) + std::stoi((*it)[4].str()), 400)
+        << it->str();
+    most_resting = std::max(most_resting, resting);
+  }
+  EXPECT_GE(lines, 5) << r.out;
+  EXPECT_GT(most_resting, 0) << "no body rests on the ground: the check above checks nothing\n"
+                             << r.out;
 }
 
 }  // namespace
