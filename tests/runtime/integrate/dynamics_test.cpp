@@ -1,14 +1,16 @@
 // The generalized Kirchhoff equations of one body (integrate/dynamics.h): the acceleration and
-// the impulse form's rates, each effect's exact share of them; the free Kirchhoff flow
-// (kirchhoff_flow) and the invariants of Lamb §124 (force-free motion in fluid at rest conserves
-// the energy 1/2 xi.M xi, the world impulse R P, |P| and P.L; the Munk moment turns a prolate
-// body broadside); the structured mass paths (diagonal M, a sphere's closed-form flow) against
-// the general one.
+// the impulse form's rates, each effect's exact share of them, the impulse and its inverse; the
+// free Kirchhoff flow (kirchhoff_flow) against Euler's equations of a symmetric top and the
+// invariants of Lamb §124 (force-free motion in fluid at rest conserves the energy
+// 1/2 xi.M xi, the world impulse R P, |P| and P.L; the Munk moment turns a prolate body
+// broadside); the structured mass paths (diagonal M, a sphere's closed-form flow) against the
+// general one.
 #include "integrate/dynamics.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -296,6 +298,81 @@ TEST(MassPaths, SphereClosedFormKirchhoffFlowMatchesTheIteration) {
   expect_same_motion(fast, general, 1e-10);
   // and not every diagonal M is isotropic
   EXPECT_FALSE(test::compile(sheet_scene(Integrator::Splitting)).types[0].M_isotropic);
+}
+
+// A sphere's generalized mass: m + m_a on the translation (m_a = rho V / 2, Lamb §92), J on the
+// rotation. Its acceleration from rest under weight and buoyancy is (m - rho V) g / (m + m_a) in
+// any orientation, and in a uniform mean flow U its impulse is (m + m_a) v - m_a R^T U, which
+// velocity_from_impulse turns back into its velocity.
+TEST(Dynamics, ASpheresAccelerationAndImpulseAreItsClosedForms) {
+  const double r = 0.01, rho_s = 2500, rho_f = 1000;
+  Scene s = test::sphere_scene(r, rho_s, rho_f, 1e-6);
+  s.effects = test::effects({Effect::Gravity, Effect::Buoyancy, Effect::AddedMass,
+                             Effect::MeanFlow});
+  s.uniform_U = Vec3(0.4, -0.3, 0.1);
+  const Model m = test::compile(s);
+  const BodyType& t = m.types[0];
+  const double V = 4.0 / 3.0 * M_PI * r * r * r, mass = rho_s * V, m_a = 0.5 * rho_f * V;
+  const double J = 0.4 * mass * r * r;
+  ASSERT_NEAR(t.mass, mass, 1e-12 * mass);
+  const Mat3 R = Eigen::AngleAxisd(0.9, Vec3(1, -2, 0.5).normalized()).toRotationMatrix();
+  // moving with the fluid (no relative velocity, so no added-mass reaction), not spinning
+  const Vec3 v_rest = R.transpose() * s.uniform_U;
+  const Kinematics at_rest{Vec3::Zero(), R, v_rest, Vec3::Zero(), Vec3::Zero()};
+  Vec6 xi_dot;
+  FluidSample fs;
+  ASSERT_EQ(velocity_derivative(m, t, at_rest, 0, &xi_dot, &fs), EvalResult::Ok);
+  const Vec3 a = (mass - rho_f * V) / (mass + m_a) * (R.transpose() * s.gravity);
+  EXPECT_TRUE(test::near(Vec3(xi_dot.head<3>()), a, 1e-9 * a.norm()));
+  EXPECT_TRUE(test::near(Vec3(xi_dot.tail<3>()), Vec3::Zero(), 1e-12));
+  // moving through the flow and spinning: the impulse, and back
+  const Kinematics k{Vec3::Zero(), R, Vec3(0.2, 0.5, -0.7), Vec3(3, -1, 2), Vec3::Zero()};
+  ImpulseRates rates;
+  ASSERT_EQ(impulse_rates(m, t, k, 0, &rates, nullptr), EvalResult::Ok);
+  EXPECT_TRUE(rates.fluid_inertia);
+  const Vec3 P = (mass + m_a) * k.v - m_a * (R.transpose() * s.uniform_U);
+  EXPECT_TRUE(test::near(Vec3(rates.impulse.head<3>()), P, 1e-9 * P.norm()));
+  EXPECT_TRUE(test::near(Vec3(rates.impulse.tail<3>()), Vec3(J * k.w), 1e-9 * J * k.w.norm()));
+  Vec6 xi;
+  xi << k.v, k.w;
+  EXPECT_TRUE(test::near(
+      velocity_from_impulse(t, rates.impulse, R.transpose() * rates.u_fluid, true), xi,
+      1e-12 * xi.norm()));
+  // the impulse changes by the weight and buoyancy alone (world-frame rates: no gyroscopic term)
+  const Vec3 F = (mass - rho_f * V) * (R.transpose() * s.gravity);
+  EXPECT_TRUE(test::near(Vec3(rates.rate.head<3>()), F, 1e-9 * F.norm()));
+}
+
+// The free flow of a body without added mass in fluid at rest is Euler's torque-free rotation.
+// For a symmetric top (I1 = I2) w3 stays constant and (w1, w2) turns at
+// Omega = (I1 - I3) w3 / I1: w1(t) = w1 cos(Omega t) + w2 sin(Omega t),
+// w2(t) = w2 cos(Omega t) - w1 sin(Omega t). The implicit midpoint rule is second order: halving
+// h divides the error by 4.
+TEST(Dynamics, TheFreeFlowOfASymmetricTopIsEulersRotationToSecondOrder) {
+  Scene s = test::sphere_scene(1, 1000, 1000, 1e-6);
+  s.bodies[0].shape = Shape::ellipsoid(0.03, 0.03, 0.01);
+  const Model m = test::compile(s);
+  const BodyType& t = m.types[0];
+  const double I1 = t.M(3, 3), I3 = t.M(5, 5);
+  ASSERT_NEAR(t.M(4, 4), I1, 1e-14 * I1);
+  ASSERT_GT(std::abs(I1 - I3), 0.5 * I1);
+  const Vec3 w0(1.0, 0.5, 5.0);
+  const double T = 1.0, Omega = (I1 - I3) * w0.z() / I1;
+  const Vec3 exact(w0.x() * std::cos(Omega * T) + w0.y() * std::sin(Omega * T),
+                   w0.y() * std::cos(Omega * T) - w0.x() * std::sin(Omega * T), w0.z());
+  double err[2];
+  for (int i = 0; i < 2; ++i) {
+    const int n = 50 << i;
+    Quat q = Quat::Identity();
+    Vec3 v = Vec3::Zero(), w = w0;
+    for (int k = 0; k < n; ++k) kirchhoff_flow(t, Vec3::Zero(), T / n, &q, &v, &w);
+    EXPECT_EQ(v, Vec3::Zero()) << "no force: the centre of mass stays at rest";
+    err[i] = (w - exact).norm();
+  }
+  std::printf("symmetric top: error %.3g rad/s at h = %.3g s, %.3g at h/2\n", err[0], T / 50,
+              err[1]);
+  EXPECT_LT(err[1], 1e-3 * w0.norm());
+  EXPECT_NEAR(std::log2(err[0] / err[1]), 2.0, 0.1);
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
-// The constant model (model/model.h): a body type's products with M and M^-1 take the diagonal
-// shortcut when M is diagonal and give the dense products.
+// The constant model (model/model.h, model.cpp): a body type's products with M and M^-1 take
+// the diagonal shortcut when M is diagonal and give the dense products; each scheme is found
+// back from its name.
 #include "model/model.h"
 
 #include <gtest/gtest.h>
@@ -26,6 +27,19 @@ TEST(MassPaths, ShortcutsApplyTheSameMatrices) {
   const Vec6 y = (Vec6() << 1, -2, 3, 0.5, -0.25, 0.125).finished();
   EXPECT_TRUE(test::near(t.M_inv_times(y), Vec6(t.M_inv * y), 1e-12 * (t.M_inv * y).norm()));
   EXPECT_TRUE(test::near(t.M_times(y), Vec6(t.M * y), 1e-15 * (t.M * y).norm()));
+}
+
+TEST(Model, EachSchemeIsFoundByItsName) {
+  for (const Integrator i :
+       {Integrator::Euler, Integrator::RK4, Integrator::Splitting, Integrator::Strang}) {
+    Integrator found = i == Integrator::Euler ? Integrator::RK4 : Integrator::Euler;
+    ASSERT_TRUE(integrator_from_name(integrator_name(i), &found)) << integrator_name(i);
+    EXPECT_EQ(found, i);
+  }
+  Integrator untouched = Integrator::Strang;
+  EXPECT_FALSE(integrator_from_name("rk45", &untouched));
+  EXPECT_FALSE(integrator_from_name("", &untouched));
+  EXPECT_EQ(untouched, Integrator::Strang);
 }
 
 }  // namespace
