@@ -339,7 +339,7 @@ TEST(Plate, AFlatMeshsPlanformIsItsOutline) {
 // anisotropic part, and the added-mass kernel's moment in steady translation is munk times the
 // whole couple, in the velocity form (rk4) and the impulse form (euler); in an ideal fluid (no
 // drag) and for round bodies nothing is taken back. (The free Kirchhoff flow of splitting and
-// strang: model/kirchhoff_kernels_test.cpp.)
+// strang: model/kirchhoff_test.cpp.)
 TEST(Plate, AFlatBodyWithDragKeepsItsShareOfTheMunkCouple) {
   const double rho = 1.2, nu = 1.5e-5, U = 3;
   Scene s = test::sphere_scene(1, 1000, rho, nu);

@@ -193,41 +193,6 @@ TEST(WellMixed, WithoutTheDriftCorrectionTracersGatherAtLowK) {
 namespace lrigid {
 namespace {
 
-// With noise_substeps = r, a step of r h sees the sum of the r increments a run with step h sees:
-// the two runs follow the same Brownian path (what the strong-error study needs). For slow
-// decay (alpha T << 1) the velocity is ~ beta W(T), so both runs must end close together,
-// while a different seed ends far away.
-TEST(BrownianPath, CoarseStepsSumTheFineIncrements) {
-  for (Integrator scheme : {Integrator::Euler, Integrator::Splitting}) {
-    auto final_velocity = [&](double dt, uint32_t r, uint64_t seed) {
-      Scene s = ou_scene(TurbulenceModel::Body, Drift::Stationary, scheme, dt, 50);
-      s.uniform_k = 1.0;
-      s.uniform_epsilon = 1e-3;  // alpha ~ 5e-3 1/s: over 1 s the path is ~ beta W
-      s.seed = seed;
-      s.duration = 1.0;
-      Model m = test::compile(s);
-      m.noise_substeps = r;
-      State st = initial_state(m, s);
-      simulate(m, &st, RunOptions{});
-      return st;
-    };
-    const State coarse = final_velocity(0.04, 4, 9), fine = final_velocity(0.01, 1, 9),
-                other = final_velocity(0.01, 1, 10);
-    double same = 0, diff = 0;
-    for (size_t i = 0; i < coarse.size(); ++i) {
-      same = std::max(same, (coarse.u_seen[i] - fine.u_seen[i]).norm());
-      diff = std::max(diff, (other.u_seen[i] - fine.u_seen[i]).norm());
-    }
-    EXPECT_LT(same, 0.02 * diff) << integrator_name(scheme);
-  }
-}
-
-}  // namespace
-}  // namespace lrigid
-
-namespace lrigid {
-namespace {
-
 // The "body" model with drag on: drag acts on the body's own (non-turbulent) motion, the
 // turbulent velocity u' moves the body directly, so the body's velocity variance is the field's
 // 2k/3 for any dt (before, drag relaxed the fluctuation away within the step: ~beta^2 h / 2).
