@@ -25,6 +25,7 @@
 #include "io/atomic_file.h"
 #include "io/field_loader.h"
 #include "io/scene_json.h"
+#include "io/source_dir.h"
 #include "model/state.h"
 #include "util/error.h"
 
@@ -45,11 +46,8 @@ std::string default_scene() {
                            .parent_path() / rel;
     if (fs::exists(p)) return p.string();
   }
-#ifdef LRIGID_SOURCE_DIR
-  return std::string(LRIGID_SOURCE_DIR) + "/" + rel;
-#else
-  return rel;
-#endif
+const std::string src = source_dir();
+  return src.empty() ? rel : src + "/" + rel;
 }
 
 struct BenchArgs {

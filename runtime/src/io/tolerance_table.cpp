@@ -9,6 +9,7 @@
 #include <sstream>
 #include <vector>
 
+#include "io/source_dir.h"
 #include "model/scene.h"
 #include "util/error.h"
 
@@ -78,9 +79,8 @@ std::string default_tolerance_table_path() {
     dir = dir.substr(0, dir.find_last_of('/'));
     candidates.push_back(dir + "/tolerance_table.json");
   }
-#ifdef LRIGID_SOURCE_DIR
-  candidates.push_back(std::string(LRIGID_SOURCE_DIR) + "/docs/accuracy/tolerance_table.json");
-#endif
+if (const std::string src = source_dir(); !src.empty())
+    candidates.push_back(src + "/docs/accuracy/tolerance_table.json");
   for (const auto& c : candidates)
     if (std::ifstream(c).good()) return c;
   return candidates.empty() ? "tolerance_table.json" : candidates.back();
