@@ -25,7 +25,7 @@ struct RunSpec {
   EffectMode effects = EffectMode::Scene;
   bool turbulence = true;        // false: the Turbulence effect is removed from every body type
   int threads = 1;
-  // the batched steps' arithmetic (integrate/sphere_batch.h, rigid_batch.h; splitting only)
+  // the batched step's arithmetic (integrate/rigid_batch.h; splitting only)
   Precision precision = Precision::Double;
 };
 

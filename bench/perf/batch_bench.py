@@ -1,6 +1,6 @@
 #!/usr/bin/python3
-"""The batched steps (runtime/src/integrate/sphere_batch.h for spheres, rigid_batch.h for plates
-and ellipsoids) against the scalar step, and what single precision costs in accuracy. Writes
+"""The batched step (runtime/src/integrate/rigid_batch.h: spheres, plates, ellipsoids, meshes)
+against the scalar step, and what single precision costs in accuracy. Writes
 docs/batched-step.md (machine and date stamped).
 
     bench/perf/batch_bench.py [--build build] [--out build/perf/batch] [--quick]
@@ -376,22 +376,22 @@ def write_doc(path, m, rows, acc, peers, mujoco, quick, leaves=None):
         f"Measured {m['date']} on {m['cpu']} ({m['cores']} cores), commit {m['commit']}, "
         f"load before {m['load']}{' (--quick: short runs)' if quick else ''}.",
         "",
-        "Spheres whose mass matrix is isotropic take a batched step "
-        "(`runtime/src/integrate/sphere_batch.h`): blocks of 32 bodies of one type, structure "
-        "of arrays, each stage one loop across the block that the compiler vectorizes, the "
-        "field sampled once per step. Plates and ellipsoids (a diagonal mass matrix: leaves, "
-        "paper, seed pods) and meshes (a full 6 x 6 one: an artist's curled leaf) take a second"
-        " one (`runtime/src/integrate/rigid_batch.h`) built the same way, with the Kirchhoff "
-        "implicit midpoint iterated per lane under a convergence mask, its loops compiled once "
-        "for each kind of mass matrix (`bench/perf/mesh_leaf_bench.py`: a mesh leaf costs "
-        "1.3-1.45 times a box leaf with `splitting` and `strang` in the courtyard grid and in "
-        "uniform wind, 1.1 times with `euler` and `rk4` in the grid, docs/performance.md). Both"
-        " take every effect, the Basset history (kept by the block driver, its current interval"
-        " a mass in the implicit solve) and the Magnus force included. A body whose centre of "
-        "mass is off its volume centroid (`mass_offset`: a keel, a weighted stem; a sphere too,"
-        " whose loops then are the plates') takes the plates' step: the fluid's forces act at "
-        "the centroid, moving at v + ω × r_cob, and they and the buoyancy turn the body about "
-        "its centre of mass (runtime factors in the loops, zero for a uniform body, as for Magnus and Basset; "
+        "Body types take a batched step (`runtime/src/integrate/rigid_batch.h`): blocks of 32 "
+        "bodies of one type, structure of arrays, each stage one loop across the block that the"
+        " compiler vectorizes, the field sampled once per step. Its loops are compiled once for "
+        "each kind of mass matrix: isotropic (uniform spheres: the free Kirchhoff flow is a "
+        "rotation alone and the lanes keep the world velocity), diagonal (plates and ellipsoids:"
+        " leaves, paper, seed pods; the Kirchhoff implicit midpoint iterated per lane under a "
+        "convergence mask) and full 6 x 6 (meshes: an artist's curled leaf; "
+        "`bench/perf/mesh_leaf_bench.py`: a mesh leaf costs 1.3-1.45 times a box leaf with "
+        "`splitting` and `strang` in the courtyard grid and in uniform wind, 1.1 times with "
+        "`euler` and `rk4` in the grid, docs/performance.md). Every effect is batched, the "
+        "Basset history (kept by the block driver, its current interval a mass in the implicit "
+        "solve) and the Magnus force included. A body whose centre of mass is off its volume "
+        "centroid (`mass_offset`: a keel, a weighted stem; a sphere too, whose loops then are "
+        "those of a diagonal or full mass matrix): the fluid's forces act at the centroid, "
+        "moving at v + ω × r_cob, and they and the buoyancy turn the body about its centre of "
+        "mass (runtime factors in the loops, zero for a uniform body, as for Magnus and Basset; "
         "`RigidBatch.BodiesWithTheirCentreOfMassOffTheCentroidMatchTheScalarStep`: leaves, seed"
         " pods, a leaf without added mass and a sphere, each scheme: positions within 10⁻¹³ m "
         "and spins within 10⁻⁹ rad/s of the scalar step after 0.2 s). The loops run the scalar "
@@ -400,10 +400,10 @@ def write_doc(path, m, rows, acc, peers, mujoco, quick, leaves=None):
         "scalar step then substeps) or the scene rules the batched step out. The physics is the"
         " scalar step's, term for term, for each scheme (`euler` and `rk4` too: "
         "docs/physics/integrators.md); `tests/runtime/integrate/sphere_batch_test.cpp` and "
-        "`rigid_batch_test.cpp` hold them to the scalar step to 1e-9 (1e-8 for tumbling leaves,"
-        " whose chaos amplifies rounding). Scenes choose a step per body type automatically "
-        "(`lrigid explain` says which); `\"integrator\": {\"batched\": false}` turns them off and "
-        "`\"precision\": \"float\"` runs them in single precision (docs/scene-format.md).",
+        "`rigid_batch_test.cpp` hold it to the scalar step to 1e-9 (1e-8 for tumbling leaves,"
+" whose chaos amplifies rounding). Scenes choose a step per body type automatically "
+        "(`lrigid explain` says which); `\"integrator\": {\"batched\": false}` turns it off and "
+        "`\"precision\": \"float\"` runs it in single precision (docs/scene-format.md).",
         "",
         "## Throughput",
         "",

@@ -74,10 +74,10 @@ TEST(CliExplain, CardGetsLiftBeadDoesNotAndTheSphereIsCheaper) {
   EXPECT_NE(t[1].chooses.find("buoyancy"), std::string::npos) << "30 kg/m^3 bead in air";
   EXPECT_GT(t[0].cost_ns, 0.0);
   EXPECT_GT(t[1].cost_ns, 0.0);
-  EXPECT_LT(t[1].cost_ns, t[0].cost_ns) << "closed-form sphere step vs iterated plate step";
+  EXPECT_LT(t[1].cost_ns, t[0].cost_ns) << "closed-form sphere flow vs iterated plate flow";
   // each takes its batched step, and the output says so
-  const size_t card = r.out.find("step: batched (plates and ellipsoids), 32 bodies per block");
-  const size_t bead = r.out.find("step: batched (spheres), 32 bodies per block");
+  const size_t card = r.out.find("step: batched (diagonal M), 32 bodies per block");
+  const size_t bead = r.out.find("step: batched (isotropic M), 32 bodies per block");
   EXPECT_NE(card, std::string::npos) << r.out;
   EXPECT_NE(bead, std::string::npos) << r.out;
   EXPECT_LT(card, bead) << "card first, as in the scene";
@@ -174,7 +174,7 @@ TEST(CliExplain, MeshLeafTakesTheBatchedStep) {
     std::remove(path.c_str());
     rmdir(dir.c_str());
     ASSERT_EQ(r.rc, 0) << scheme << ": " << r.out;
-    EXPECT_NE(r.out.find("step: batched (plates and ellipsoids)"), std::string::npos)
+    EXPECT_NE(r.out.find("step: batched (diagonal M)"), std::string::npos)
         << scheme << ": " << r.out;
     EXPECT_EQ(r.out.find("not batched"), std::string::npos) << scheme << ": " << r.out;
   }
@@ -203,7 +203,7 @@ TEST(CliExplain, SpheresTakeTheBatchedStepOnEveryScheme) {
     fclose(f);
     const Result r = explain(path);
     ASSERT_EQ(r.rc, 0) << r.out;
-    EXPECT_NE(r.out.find("step: batched (spheres)"), std::string::npos) << schemes[k] << r.out;
+    EXPECT_NE(r.out.find("step: batched (isotropic M)"), std::string::npos) << schemes[k] << r.out;
     EXPECT_EQ(r.out.find("not batched"), std::string::npos) << schemes[k] << r.out;
     const auto t = types(r.out);
     ASSERT_EQ(t.size(), 1u) << r.out;

@@ -215,7 +215,7 @@ inline Diff apart(const Outcome& a, const Outcome& b) {
 // in another frame or handed the body type to the scalar step fails here, whatever the effect:
 // nothing in the test names one. An effect whose row picks no wrench term for the body type
 // (lift on a body that is not flat) does not apply to it and is not asked to move it.
-// eligible: the batched step's test (sphere_batch_eligible, rigid_batch_eligible).
+// eligible: the batched step's test (rigid_batch_eligible).
 inline void expect_every_batched_effect_applied(
     Scene s, const FluidField& field, double tol,
     bool (*eligible)(const Model&, const BodyType&, std::string*)) {

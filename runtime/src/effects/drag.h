@@ -34,8 +34,8 @@ struct DragStiffness {
   Vec3 u_hat = Vec3::Zero();
 };
 
-// ---- the kernel, written once: the scalar step (drag_wrench) and the batched steps' loops
-// (integrate/sphere_batch.cpp, rigid_batch_step.h) call it ---------------------------------------
+// ---- the kernel, written once: the scalar step (drag_wrench) and the batched step's loops
+// (integrate/rigid_batch_step.h) call it ---------------------------------------------------------
 
 // What the drag law needs of a body type and the fluid, built once per body type.
 struct DragParams {

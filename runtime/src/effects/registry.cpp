@@ -234,7 +234,8 @@ double estimated_batched_cost_ns(EffectSet set, Precision precision, bool rigid,
   // docs/physics/integrators.md): 18.0 and 5.86 against 10.9 M body-steps/s
   if (rigid && integrator == Integrator::Euler) ns *= 0.61;
   if (rigid && integrator == Integrator::RK4) ns *= 1.86;
-  // spheres on euler and rk4 (sphere_batch_explicit.h), against splitting on the beads scene
+  // uniform spheres on euler and rk4 (the isotropic M's loops, rigid_batch_explicit.h), against
+  // splitting on the beads scene
   // (lrigid bench scenes/beads_wind.json, N = 10^4, one thread, per CPU second, best of 2,
   // 2026-12-02, docs/physics/integrators.md): 17.3 and 6.37 against 14.7 M body-steps/s
   if (!rigid && integrator == Integrator::Euler) ns *= 0.85;

@@ -78,9 +78,9 @@ const EffectInfo* first_unbatched(EffectSet set);
 // Estimated cost of one body-step for an effect set and integrator, ns: an additive fit to the
 // table in docs/effects.md (uniform field; grid sampling is extra). A guide, not a promise.
 double estimated_cost_ns(EffectSet set, Integrator integrator, bool grid, bool isotropic_mass);
-// The same for a body type that takes a batched step: spheres (integrate/sphere_batch.h) or, with
-// `rigid`, plates and ellipsoids (integrate/rigid_batch.h); a fit to docs/batched-step.md's
-// measurements (AVX-512 loops, steady grid, one core).
+// The same for a body type that takes the batched step (integrate/rigid_batch.h): uniform spheres
+// (the loops of an isotropic M) or, with `rigid`, plates, ellipsoids and meshes; a fit to
+// docs/batched-step.md's measurements (AVX-512 loops, steady grid, one core).
 double estimated_batched_cost_ns(EffectSet set, Precision precision, bool rigid = false,
                                  Integrator integrator = Integrator::Splitting);
 

@@ -1,8 +1,8 @@
 // What the euler and rk4 loops of the batched steps need beyond batch_lanes.h, written for any
 // kind of lane (Lanes derived from Samples<T>, consts derived from FieldConsts): the field's
 // frames at rk4's stage times, rk4's per-stage storage across a block, and the Euler-Maruyama
-// update of the seen fluctuation. Internal to the batched steps' explicit schemes
-// (sphere_batch_explicit.h, rigid_batch_explicit.h).
+// update of the seen fluctuation. Internal to the batched step's explicit schemes
+// (rigid_batch_explicit.h).
 #pragma once
 #include <type_traits>
 

@@ -1,9 +1,9 @@
-// What the batched steps share (integrate/sphere_batch.cpp for spheres, rigid_batch_step.h for
-// plates and ellipsoids): the compile switches of their loops across bodies, the field sample and
-// the Ornstein-Uhlenbeck half step in structure-of-arrays form, the per-lane normals, and the
-// driver that runs a block of bodies through a stretch of steps and stops them as the scalar loop
-// of integrate/simulation.cpp does. Internal to those two files: everything here has internal
-// linkage (each file compiles its own versions of the loops, see LRIGID_MULTIVERSION).
+// What the batched step's loops (integrate/rigid_batch_step.h, for each kind of M) share: the
+// compile switches of their loops across bodies, the field sample and the Ornstein-Uhlenbeck half
+// step in structure-of-arrays form, the per-lane normals, and the driver that runs a block of
+// bodies through a stretch of steps and stops them as the scalar loop of integrate/simulation.cpp
+// does. Internal to the files that instantiate the loops: everything here has internal linkage
+// (each file compiles its own versions of the loops, see LRIGID_MULTIVERSION).
 #pragma once
 #include <cmath>
 #include <cstdint>
@@ -24,7 +24,7 @@
 #include "integrate/dynamics.h"
 #include "integrate/impacts.h"
 #include "integrate/integrators.h"
-#include "integrate/sphere_batch.h"
+#include "integrate/rigid_batch.h"
 #include "integrate/step_end.h"
 #include "model/model.h"
 #include "model/state.h"
@@ -165,8 +165,7 @@ inline void set_field_consts(const Model& model, const BodyType& type, FieldCons
 }
 
 // What rules out the batched steps for every body type: the integrator (euler and rk4 only where
-// explicit_schemes; both steps run them, sphere_batch_explicit.h and rigid_batch_explicit.h,
-// so both pass true), the turbulence model, the noise, the field. Empty when none does.
+// explicit_schemes; the batched step runs them, rigid_batch_explicit.h, and passes true), the turbulence model, the noise, the field. Empty when none does.
 inline std::string batch_exclusion(const Model& model, const BodyType& type,
                                    bool explicit_schemes) {
   if (!model.batched) return "the scene turns the batched step off";
@@ -545,8 +544,8 @@ struct NewState {
 // at the start of the step). sampled_inside0: the step has already sampled the field at the new
 // positions (strang), and this is each lane's inside flag at the start of the step. OUHalfStep
 // false: no OU half step here (euler and rk4 update the seen fluctuation within the step). Inlined
-// into each version of the step (as target_clones of its own it halved the sphere step's speed:
-// 9.5 against 14.5 M body-steps/s per core on the beads scene).
+// into each version of the step (as target_clones of its own it halved the step's speed on the
+// beads scene: 9.5 against 14.5 M body-steps/s per core).
 template <typename T, bool OUHalfStep = true, class Lanes>
 LRIGID_LANE void end_step(const FieldConsts& fc, const T (*z2)[kBatch], const T (*V)[kBatch],
                           NewState<T>* next, Lanes* lanes, int* outcome, int* landed,

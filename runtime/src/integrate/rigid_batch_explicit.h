@@ -1,4 +1,4 @@
-// The euler and rk4 schemes (integrate/integrators.h) on the batched rigid-body step: internal to
+// The euler and rk4 schemes (integrate/integrators.h) on the batched step: internal to
 // rigid_batch_step.h, which includes this file after its StepConsts, Lanes and body_forces (the
 // lanes, the consts and the force kernels of the splitting and strang loops are these loops' too).
 //
@@ -9,9 +9,14 @@
 // (effects/added_mass.h, impulse form for euler, velocity form for rk4), the Kirchhoff gyroscopic
 // terms (effects/wrench.h), the exponential map and dexp^-1 (util/lane.h), the implicit solve
 // (model/kirchhoff.h), the OU update (effects/turbulence.h). Like the splitting loops, they
-// are compiled for each kind of M (model/kirchhoff.h DiagonalMass, FullMass: meshes): the
+// are compiled for each kind of M (model/kirchhoff.h IsotropicMass, DiagonalMass, FullMass): the
 // impulse and velocity conversions (impulse_of_velocity, velocity_of_impulse), M^-1
-// (mass_inv_times) and the products with M_body and K (mass_times) are the kernels' for either.
+// (mass_inv_times) and the products with M_body and K (mass_times) are the kernels' for each.
+// euler takes the forces in the lanes' frame (FrameOf: the world frame for an isotropic M);
+// rk4 runs its stages in the body frame for every M, as the scalar step does. For an isotropic M
+// the moments that vanish (w x L, v x P_b, the added mass's v_r x P_f) are left out: on the
+// scalar step they are a torque of rounding noise, which turns a small sphere released without
+// spin (J ~ r^5) by ~1e-9 rad/s.
 // Neither scheme iterates: no lane is handed to the scalar step but an rk4 lane whose stage leaves
 // the fluid (the scalar step then exits it where it would have).
 #pragma once
@@ -26,24 +31,27 @@
 namespace lrigid {
 namespace {  // NOLINT(build/namespaces): internal to rigid_batch_step.h
 
-// The effects' wrench on a lane's body (body frame), f = (force; torque), at rotation R (body ->
-// world), velocity v and spin w (body frame), the fluid velocity ufb (body frame), the weight and
-// buoyancy (plus the Basset history force) Fw (world) and the fluid's material derivative acc
-// (world, the gu factor applied). ImpulseForm: euler's (the added mass's -v_r x P_f alone), else
-// rk4's velocity form (the added mass's Kirchhoff terms and the drag-along K a~). As
-// effects/evaluate.cpp context_from_sample and the plan's terms.
-template <typename T, bool Plate, bool ImpulseForm, class Mass>
-LRIGID_LANE void lane_wrench(const StepConsts<Mass>& tc, const T* R, const T* Fw, const T* ufb,
-                             const T* acc, const T* v, const T* w, T* f) {
+// The effects' wrench on a lane's body, f = (force; torque), in the frame fr (the force) and the
+// body frame (the torque), at velocity v (in fr) and spin w (body frame), the fluid velocity ufb
+// (in fr), the weight and buoyancy (plus the Basset history force) Fw (world) and the fluid's
+// material derivative acc (world, the gu factor applied). ImpulseForm: euler's (the added mass's
+// -v_r x P_f alone), else rk4's velocity form (the added mass's Kirchhoff terms and the
+// drag-along K a~; rk4 passes the body frame). As effects/evaluate.cpp context_from_sample and
+// the plan's terms. For an isotropic M the added mass's moment v_r x P_f vanishes and is left
+// out: computed, it is a torque of rounding noise, which a small sphere's tiny J (~r^5) turns
+// into a spurious spin.
+template <typename T, bool Plate, bool ImpulseForm, class Mass, class Frame>
+LRIGID_LANE void lane_wrench(const StepConsts<Mass>& tc, const Frame& fr, const T* Fw,
+                             const T* ufb, const T* acc, const T* v, const T* w, T* f) {
   T vr[3], Fb[3], fe[6], fa[3] = {0, 0, 0}, am[6];
 #pragma GCC unroll 3
   for (int a = 0; a < 3; ++a) vr[a] = v[a] - ufb[a];
-  mul_t(R, Fw, Fb);
-  const DragOut<T> d = lane_forces<T, Plate>(tc, R, Fb, vr, w, fe);
+  fr.of_world(Fw, Fb);
+  const DragOut<T> d = lane_forces<T, Plate>(tc, fr, Fb, vr, w, fe);
   if constexpr (!ImpulseForm) {
     // a~ = R^T Du/Dt - w x u_f (effects/added_mass.h)
     T ab[3], wu[3];
-    mul_t(R, acc, ab);
+    fr.of_world(acc, ab);
     cross3(w, ufb, wu);
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) fa[a] = ab[a] - wu[a];
@@ -52,15 +60,15 @@ LRIGID_LANE void lane_wrench(const StepConsts<Mass>& tc, const T* R, const T* Fw
 #pragma GCC unroll 3
   for (int a = 0; a < 3; ++a) {
     f[a] = fe[a] + d.f[a] + am[a];
-    f[3 + a] = fe[3 + a] + d.tq[a] + am[3 + a];
+    f[3 + a] = fe[3 + a] + d.tq[a] + (kIsotropic<Mass> ? T(0) : am[3 + a]);
   }
 }
 
 // A lane's fluid velocity (world): the mean flow and the seen fluctuation us; its material
 // derivative (world, 0 without gradients); the weight and buoyancy with the Basset history force
 // (zero without the history)
-template <typename T, class C>
-LRIGID_LANE void lane_fluid(const C& tc, const Lanes<T>* lanes, int j, const T* us, T* u_f, T* acc,
+template <typename T, class C, class L>
+LRIGID_LANE void lane_fluid(const C& tc, const L* lanes, int j, const T* us, T* u_f, T* acc,
                             T* Fw) {
   const T tu = T(tc.tu);
 #pragma GCC unroll 3
@@ -75,7 +83,7 @@ LRIGID_LANE void lane_fluid(const C& tc, const Lanes<T>* lanes, int j, const T* 
 // Munk moment and rotation from the start of the step, the Basset history's current interval
 // implicit; then the seen fluctuation by Euler-Maruyama.
 template <typename T, bool Plate, class Mass>
-LRIGID_MULTIVERSION void euler_lanes(const StepConsts<Mass>& tc, Lanes<T>* lanes, uint64_t step,
+LRIGID_MULTIVERSION void euler_lanes(const StepConsts<Mass>& tc, Lanes<T, Mass>* lanes, uint64_t step,
                                      int* outcome, int* landed) {
   const int nw = lanes->width;
   const T h = T(tc.h);
@@ -90,12 +98,13 @@ LRIGID_MULTIVERSION void euler_lanes(const StepConsts<Mass>& tc, Lanes<T>* lanes
     const T q[4] = {lanes->q[0][j], lanes->q[1][j], lanes->q[2][j], lanes->q[3][j]};
     const T v[3] = {lanes->v[0][j], lanes->v[1][j], lanes->v[2][j]};
     const T w[3] = {lanes->w[0][j], lanes->w[1][j], lanes->w[2][j]};
-    T R[9], V0[3], u_f[3], acc[3], Fw[3], ufb[3], rate[6];
-    rotation(q, R);
-    mul(R, v, V0);
+    T V0[3], u_f[3], acc[3], Fw[3], ufb[3], rate[6];
+    FrameOf<T, Mass> fr;
+    fr.set(q);
+    fr.to_world(v, V0);
     lane_fluid(tc, lanes, j, us, u_f, acc, Fw);
-    mul_t(R, u_f, ufb);
-    lane_wrench<T, Plate, true>(tc, R, Fw, ufb, acc, v, w, rate);
+    fr.of_world(u_f, ufb);
+    lane_wrench<T, Plate, true>(tc, fr, Fw, ufb, acc, v, w, rate);
     // the impulse Pi = M xi - K (u_f; 0) and its change h rate
     const T xi[6] = {v[0], v[1], v[2], w[0], w[1], w[2]};
     T Pi[6], dPi[6];
@@ -109,7 +118,7 @@ LRIGID_MULTIVERSION void euler_lanes(const StepConsts<Mass>& tc, Lanes<T>* lanes
       T ha[3], hab[3], x[6];
 #pragma GCC unroll 3
       for (int a = 0; a < 3; ++a) ha[a] = h * acc[a];
-      mul_t(R, ha, hab);
+      fr.of_world(ha, hab);
 #pragma GCC unroll 3
       for (int a = 0; a < 3; ++a) dPi[a] += b * hab[a];
       const DragOut<T> none{};
@@ -125,20 +134,21 @@ LRIGID_MULTIVERSION void euler_lanes(const StepConsts<Mass>& tc, Lanes<T>* lanes
       L[a] = Pi[3 + a] + dPi[3 + a];
       ufn[a] = u_f[a] + h * acc[a];
     }
-    mul(R, P, Pw);
-    mul(R, L, Lw);
+    fr.to_world(P, Pw);
+    fr.body_to_world(L, Lw);
     const T theta[3] = {h * w[0], h * w[1], h * w[2]};
     // and the velocity there, xi = M^-1 (Pi + K (u_f; 0))
-    T q1[4], R1[9], Pn[6], ufb1[3], xi1[6], V1[3];
+    T q1[4], Pn[6], ufb1[3], xi1[6], V1[3];
     exp_rotate<LaneMath>(q, theta, q1);
-    rotation(q1, R1);
-    mul_t(R1, Pw, Pn);
-    mul_t(R1, Lw, Pn + 3);
-    mul_t(R1, ufn, ufb1);
+    FrameOf<T, Mass> fr1;
+    fr1.set(q1);
+    fr1.of_world(Pw, Pn);
+    fr1.body_of_world(Lw, Pn + 3);
+    fr1.of_world(ufn, ufb1);
     velocity_of_impulse(tc.mass, tc.K, Pn, ufb1, xi1);
     const T* v1 = xi1;
     const T* w1 = xi1 + 3;
-    mul(R1, v1, V1);
+    fr1.to_world(v1, V1);
     ou_euler_lane(tc, lanes, j, V0, z, us);
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
@@ -155,25 +165,38 @@ LRIGID_MULTIVERSION void euler_lanes(const StepConsts<Mass>& tc, Lanes<T>* lanes
   end_step<T, false>(tc, z, Vn, &next, lanes, outcome, landed);
 }
 
-// rk4's stage I (0 to 3) on every lane: the rates at the stage's state on the lanes' samples
-// there, added to the sums, and the next stage's state (c = 1/2, 1/2, 1); stage 0 also updates
-// the seen fluctuation (into next->us) from the start's sample
+// rk4's stage I (0 to 3) on every lane, in the body frame as integrators.cpp rk4 (stages in the
+// world frame would be another fourth-order scheme, not the same numbers): the rates at the
+// stage's state on the lanes' samples there, added to the sums, and the next stage's state
+// (c = 1/2, 1/2, 1); stage 0 also updates the seen fluctuation (into next->us) from the start's
+// sample, and for lanes that keep the world velocity (an isotropic M) takes the start's
+// body-frame velocity (into k->v0)
 template <typename T, bool Plate, int I, class Mass>
-LRIGID_LANE void rk4_stage(const StepConsts<Mass>& tc, const Lanes<T>* lanes, const T (*z)[kBatch],
-                           Rk4Block<T>* k, NewState<T>* next) {
+LRIGID_LANE void rk4_stage(const StepConsts<Mass>& tc, const Lanes<T, Mass>* lanes,
+                           const T (*z)[kBatch], Rk4Block<T>* k, NewState<T>* next) {
+  constexpr bool world = Lanes<T, Mass>::kWorld;
   const int nw = lanes->width;
   const T h = T(tc.h);
   LRIGID_IVDEP
   for (int j = 0; j < nw; ++j) {
     const T us0[3] = {lanes->us[0][j], lanes->us[1][j], lanes->us[2][j]};
     const T q0[4] = {lanes->q[0][j], lanes->q[1][j], lanes->q[2][j], lanes->q[3][j]};
+    const T vl[3] = {lanes->v[0][j], lanes->v[1][j], lanes->v[2][j]};
     T q[4], theta[3], v[3], w[3];
+    BodyFrame<T> fr;
     if constexpr (I == 0) {
+      fr.set(q0);
+      if constexpr (world) {
+        fr.of_world(vl, v);
+      } else {
+#pragma GCC unroll 3
+        for (int a = 0; a < 3; ++a) v[a] = vl[a];
+      }
 #pragma GCC unroll 3
       for (int a = 0; a < 3; ++a) {
         theta[a] = T(0);
-        v[a] = lanes->v[a][j];
         w[a] = lanes->w[a][j];
+        if constexpr (world) k->v0[a][j] = v[a];
       }
 #pragma GCC unroll 4
       for (int a = 0; a < 4; ++a) q[a] = q0[a];
@@ -185,30 +208,34 @@ LRIGID_LANE void rk4_stage(const StepConsts<Mass>& tc, const Lanes<T>* lanes, co
         w[a] = k->ws[a][j];
       }
       exp_rotate<LaneMath>(q0, theta, q);
+      fr.set(q);
     }
-    T R[9], u_f[3], acc[3], Fw[3], ufb[3], f[6];
-    rotation(q, R);
+    T u_f[3], acc[3], Fw[3], ufb[3], f[6];
     lane_fluid(tc, lanes, j, us0, u_f, acc, Fw);
-    mul_t(R, u_f, ufb);
-    lane_wrench<T, Plate, false>(tc, R, Fw, ufb, acc, v, w, f);
-    // the rigid body's own gyroscopic terms (about the centre of mass), xi' = M^-1 (f - g)
+    fr.of_world(u_f, ufb);
+    lane_wrench<T, Plate, false>(tc, fr, Fw, ufb, acc, v, w, f);
+    // the rigid body's own gyroscopic terms (about the centre of mass), xi' = M^-1 (f - g); for
+    // an isotropic M their moment w x L + v x P vanishes and is left out (lane_wrench)
     const T xi[6] = {v[0], v[1], v[2], w[0], w[1], w[2]};
     T PL[6], g[6], kx[3], kth[3], kxi[6];
     mass_times(tc.body, xi, PL);
     kirchhoff_gyro_kernel(v, w, PL, PL + 3, g);
 #pragma GCC unroll 6
-    for (int a = 0; a < 6; ++a) f[a] -= g[a];
+    for (int a = 0; a < 6; ++a) f[a] -= kIsotropic<Mass> && a >= 3 ? T(0) : g[a];
     mass_inv_times(tc.mass, f, kxi);
-    mul(R, v, kx);
+    fr.to_world(v, kx);
     dexpinv(theta, w, kth);
     const bool in = !tc.sample | (lanes->inside[j] != T(0));
     const T x0[3] = {lanes->x[0][j], lanes->x[1][j], lanes->x[2][j]};
-    const T v0[3] = {lanes->v[0][j], lanes->v[1][j], lanes->v[2][j]};
+    T v0[3];
+#pragma GCC unroll 3
+    for (int a = 0; a < 3; ++a) v0[a] = world ? k->v0[a][j] : vl[a];
     const T w0[3] = {lanes->w[0][j], lanes->w[1][j], lanes->w[2][j]};
     rk4_sum_lane<I>(k, j, in, h, x0, v0, w0, kx, kth, kxi);
     if constexpr (I == 0) {
+      // the path velocity of the seen fluctuation's drift: the start's world velocity
       T us[3] = {us0[0], us0[1], us0[2]};
-      ou_euler_lane(tc, lanes, j, kx, z, us);
+      ou_euler_lane(tc, lanes, j, world ? vl : kx, z, us);
 #pragma GCC unroll 3
       for (int a = 0; a < 3; ++a) next->us[a][j] = us[a];
     }
@@ -221,7 +248,9 @@ LRIGID_LANE void rk4_stage(const StepConsts<Mass>& tc, const Lanes<T>* lanes, co
 // seen fluctuation by Euler-Maruyama from the start of the step.
 template <typename T, bool Plate, class Mass>
 LRIGID_MULTIVERSION void rk4_lanes(const StepConsts<Mass>& tc, const Rk4Frames& frames,
-                                   Lanes<T>* lanes, uint64_t step, int* outcome, int* landed) {
+                                   Lanes<T, Mass>* lanes, uint64_t step, int* outcome,
+                                   int* landed) {
+  constexpr bool world = Lanes<T, Mass>::kWorld;
   const int nw = lanes->width;
   const T h = T(tc.h);
   alignas(64) T z[3][kBatch], Vn[3][kBatch];
@@ -245,10 +274,32 @@ LRIGID_MULTIVERSION void rk4_lanes(const StepConsts<Mass>& tc, const Rk4Frames& 
     rotation(q1, R1);
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
-      v1[a] = lanes->v[a][j] + dxi[a];
+      v1[a] = (world ? k.v0[a][j] : lanes->v[a][j]) + dxi[a];
       w1[a] = lanes->w[a][j] + dxi[3 + a];
     }
-    {
+    if constexpr (world) {
+      // the world velocity V1 = R1 v1 as V0 + R0 dv + (R1 - R0) v1 (R0 v0 = V0): the start's is
+      // not taken through R0 and back, which in single precision scaled it by |q|^4 every step;
+      // then the Basset history's current interval, implicitly (zero without it), in the world
+      // frame: V1 + (M + b P)^-1 b (V0 - V1)
+      T R0[9], dR[9], a0[3], a1[3], d[3], corr[6];
+      rotation(q0, R0);
+#pragma GCC unroll 9
+      for (int e = 0; e < 9; ++e) dR[e] = R1[e] - R0[e];
+      mul(R0, dxi, a0);
+      mul(dR, v1, a1);
+#pragma GCC unroll 3
+      for (int a = 0; a < 3; ++a) {
+        V1[a] = lanes->v[a][j] + a0[a] + a1[a];
+        d[a] = T(tc.basset_mass) * (lanes->v[a][j] - V1[a]);
+      }
+      fluid_impulse(tc.basset_inv, d, corr);
+#pragma GCC unroll 3
+      for (int a = 0; a < 3; ++a) {
+        V1[a] += corr[a];
+        v1[a] = V1[a];  // the lanes' velocity
+      }
+    } else {
       // the Basset history's current interval, implicitly (zero without it): (M + b P) xi = M xi* + b P xi_0,
       // xi_0 the start's velocity in the new body frame; the correction (M + b P)^-1 (b (v0 - v);
       // 0) (a full M: the spin too)
@@ -264,10 +315,10 @@ LRIGID_MULTIVERSION void rk4_lanes(const StepConsts<Mass>& tc, const Rk4Frames& 
 #pragma GCC unroll 3
       for (int a = 0; a < 3; ++a) {
         v1[a] += corr[a];
-        if constexpr (!std::is_same_v<Mass, DiagonalMass>) w1[a] += corr[3 + a];
+        if constexpr (!kDiagonal<Mass>) w1[a] += corr[3 + a];
       }
+      mul(R1, v1, V1);
     }
-    mul(R1, v1, V1);
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
       next.x[a][j] = lanes->x[a][j] + h6 * k.Sx[a][j];

@@ -1,11 +1,17 @@
-// The batched rigid-body step's loops (integrate/rigid_batch.h): the constants of a body type,
-// the lanes, the force kernels, the splitting and strang loops (step_lanes), the euler and rk4
-// loops (rigid_batch_explicit.h) and advance<T, Mass>, which drives a block through them.
-// Internal to the four files that instantiate it, one for each precision and kind of M
-// (rigid_batch_{diag,full}_{double,float}.cpp), which compile side by side. Each holds the
-// splitting and strang loops once (the plate force stage is chosen inside them by with_switch)
-// and the euler and rk4 loops once per plate switch: 6 instantiations per file, each compiled for
-// every target of LRIGID_MULTIVERSION. bench/perf/build_time.sh measures what that costs.
+// The batched step's loops (integrate/rigid_batch.h): the constants of a body type, the lanes,
+// the force kernels, the splitting and strang loops (splitting_lanes, strang_lanes), the euler
+// and rk4 loops (rigid_batch_explicit.h) and advance<T, Mass>, which drives a block through them.
+// Internal to the six files that instantiate it, one for each precision and kind of M
+// (rigid_batch_{iso,diag,full}_{double,float}.cpp), which compile side by side. Each holds the
+// splitting and strang loops once (the plate force stage is chosen inside them by by_shape) and
+// the euler and rk4 loops once per plate switch: 6 instantiations per file for a diagonal or full
+// M, 4 for an isotropic one (a sphere is never a plate), 32 in all, each compiled for every
+// target of LRIGID_MULTIVERSION. bench/perf/build_time.sh measures what that costs.
+//
+// The kind of M is a policy of the stages: for an isotropic M the free Kirchhoff flow leaves the
+// impulse unchanged (the stages skip its iteration), the lanes keep the world velocity (FrameOf:
+// the translation needs no rotation), the drag takes a sphere's projected area and the terms of
+// an offset centre of mass and of a plate are not compiled in.
 #pragma once
 #include <algorithm>
 #include <cmath>
@@ -23,11 +29,18 @@
 namespace lrigid {
 namespace {  // NOLINT(build/namespaces): internal to rigid_batch_*.cpp
 
+// The kinds of M: a diagonal one (IsotropicMass is one too) and an isotropic one
+template <class Mass>
+constexpr bool kDiagonal = std::is_base_of_v<DiagonalMass, Mass>;
+template <class Mass>
+constexpr bool kIsotropic = std::is_same_v<Mass, IsotropicMass>;
+
 // What the step needs of the body type. Mass: M as the kernels of model/kirchhoff.h see it,
-// DiagonalMass (boxes, disks, ellipsoids) or FullMass (meshes: the step's loops are compiled
-// once for each).
+// IsotropicMass (uniform spheres), DiagonalMass (boxes, disks, ellipsoids) or FullMass (meshes;
+// the step's loops are compiled once for each).
 template <class Mass>
 struct StepConsts : FieldConsts {
+  static constexpr bool isotropic = kIsotropic<Mass>;
   bool plate = false;       // flat: plate drag and lift (with turb, the step's template switches)
   bool strang = false;      // the Strang scheme (not with the Basset history: integrators.h)
   Mass mass;                // M (model/kirchhoff.h)
@@ -36,6 +49,7 @@ struct StepConsts : FieldConsts {
   // the drag of bodies that are not flat (effects/drag.h) and the plate model (effects/plate.h)
   DragParams law;
   PlateParams plate_model;
+  double sphere_area = 0, sphere_diameter = 0;  // an isotropic M's (a sphere's), m^2 and m
   // euler and rk4 (rigid_batch_explicit.h): the scheme; M_body and K as the gyroscopic and
   // added-mass kernels take them (mass_times reads .M; K zero without added mass); the Basset
   // history's (M + b P)^-1, its first three columns in K's layout (fluid_impulse applies them)
@@ -55,7 +69,10 @@ StepConsts<Mass> make_consts(const Model& model, const BodyType& type) {
   const bool am = e.has(Effect::AddedMass);
   tc.plate = type.flat;
   tc.strang = model.integrator == Integrator::Strang && !tc.basset;
-  if constexpr (std::is_same_v<Mass, DiagonalMass>) {
+  if constexpr (kIsotropic<Mass>) {
+    tc.mass = isotropic_mass(type.M(0, 0), type.M(3, 3));
+    for (int a = 0; a < 3; ++a) tc.K.K[a] = am ? type.K_fluid(a, a) : 0.0;
+  } else if constexpr (kDiagonal<Mass>) {
     tc.mass = diagonal_mass(type);
     for (int a = 0; a < 3; ++a) tc.K.K[a] = am ? type.K_fluid(a, a) : 0.0;
   } else {
@@ -64,12 +81,17 @@ StepConsts<Mass> make_consts(const Model& model, const BodyType& type) {
       for (int c = 0; c < 3; ++c) tc.K.K[r * 3 + c] = am ? type.K_fluid(r, c) : 0.0;
   }
   tc.drag = e.has(Effect::Drag) ? 1.0 : 0.0;
+  {
+    const double r = type.ell.x();
+    tc.sphere_area = M_PI * r * r;
+    tc.sphere_diameter = 2.0 * r;
+  }
   // the kernels' parameters, as the scalar step's terms read them (effects/plan.h)
   tc.law = type.plan.params->drag;
   if (type.flat) tc.plate_model = type.plan.params->plate_both;
   tc.scheme = model.integrator;
   const Mat6& inv = type.basset.implicit_inv;
-  if constexpr (std::is_same_v<Mass, DiagonalMass>) {
+  if constexpr (kDiagonal<Mass>) {
     for (int a = 0; a < 6; ++a) {
       tc.body.M[a] = type.M_body(a, a);
       tc.fluid.M[a] = am ? type.K_fluid(a, a) : 0.0;
@@ -86,20 +108,63 @@ StepConsts<Mass> make_consts(const Model& model, const BodyType& type) {
   return tc;
 }
 
-// The state of a block of bodies, structure of arrays, in the scalar step's frames: v and w in
-// the body frame.
+// The frame a lane keeps its velocity v in and the loops take its translation in: the body
+// frame (the scalar step's), or for an isotropic M the world frame: a uniform sphere's forces do
+// not depend on its orientation, so its translation needs no rotation. The spin w stays in the
+// body frame in both. The frame at orientation q (set): velocities to and from the world frame
+// (to_world, of_world), and the spin w in the frame (spin: Magnus takes it with the velocity).
 template <typename T>
+struct BodyFrame {
+  T R[9];  // body -> world
+  LRIGID_LANE void set(const T* q) { rotation(q, R); }
+  LRIGID_LANE void to_world(const T* a, T* b) const { mul(R, a, b); }
+  LRIGID_LANE void of_world(const T* a, T* b) const { mul_t(R, a, b); }
+  LRIGID_LANE void spin(const T* w, T* s) const {
+#pragma GCC unroll 3
+    for (int a = 0; a < 3; ++a) s[a] = w[a];
+  }
+  // a body-frame vector (the angular momentum) to and from the world frame
+  LRIGID_LANE void body_to_world(const T* a, T* b) const { mul(R, a, b); }
+  LRIGID_LANE void body_of_world(const T* a, T* b) const { mul_t(R, a, b); }
+};
+template <typename T>
+struct WorldFrame {
+  T q[4];
+  LRIGID_LANE void set(const T* qb) {
+#pragma GCC unroll 4
+    for (int a = 0; a < 4; ++a) q[a] = qb[a];
+  }
+  LRIGID_LANE void to_world(const T* a, T* b) const {
+#pragma GCC unroll 3
+    for (int c = 0; c < 3; ++c) b[c] = a[c];
+  }
+  LRIGID_LANE void of_world(const T* a, T* b) const { to_world(a, b); }
+  LRIGID_LANE void spin(const T* w, T* s) const { rotate_by(q, w, s); }
+  LRIGID_LANE void body_to_world(const T* a, T* b) const { rotate_by(q, a, b); }
+  LRIGID_LANE void body_of_world(const T* a, T* b) const {
+    const T c[4] = {q[0], -q[1], -q[2], -q[3]};
+    rotate_by(c, a, b);
+  }
+};
+template <typename T, class Mass>
+using FrameOf = std::conditional_t<kIsotropic<Mass>, WorldFrame<T>, BodyFrame<T>>;
+
+// The state of a block of bodies, structure of arrays: v in the frame of FrameOf<T, Mass> (the
+// body frame, or the world frame for an isotropic M), w in the body frame.
+template <typename T, class Mass>
 struct Lanes : Samples<T> {
+  static constexpr bool kWorld = kIsotropic<Mass>;
   alignas(64) T v[3][kBatch];
   alignas(64) T w[3][kBatch];
   alignas(64) T q[4][kBatch];  // (w, x, y, z)
   alignas(64) T us[3][kBatch];
 
   void load(int j, const BodyState& b) {
+    const Vec3 vf = kWorld ? Vec3(b.q * b.v) : b.v;
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
       this->x[a][j] = T(b.x[a]);
-      v[a][j] = T(b.v[a]);
+      v[a][j] = T(vf[a]);
       w[a][j] = T(b.w[a]);
       us[a][j] = T(b.u_seen[a]);
     }
@@ -109,6 +174,7 @@ struct Lanes : Samples<T> {
     b->x = Vec3(double(this->x[0][j]), double(this->x[1][j]), double(this->x[2][j]));
     b->q = Quat(double(q[0][j]), double(q[1][j]), double(q[2][j]), double(q[3][j]));
     b->v = Vec3(double(v[0][j]), double(v[1][j]), double(v[2][j]));
+    if (kWorld) b->v = b->q.toRotationMatrix().transpose() * b->v;
     b->w = Vec3(double(w[0][j]), double(w[1][j]), double(w[2][j]));
     b->u_seen = Vec3(double(us[0][j]), double(us[1][j]), double(us[2][j]));
   }
@@ -156,6 +222,24 @@ LRIGID_LANE void add_offset_torque(const C& tc, const T* f, T* tq) {
 // bit (u + w x 0 = u), so one loop serves bodies with and without an offset centre of mass.
 template <typename T, bool Plate, class C>
 LRIGID_LANE DragOut<T> body_forces(const C& tc, const T* u, const T* w, T* lift) {
+  if constexpr (C::isotropic) {
+    // a uniform sphere: the centroid is the centre of mass, the projected area the same across
+    // every direction
+    const T a_perp = T(tc.sphere_area), d_perp = T(tc.sphere_diameter);
+    DragOut<T> d = drag_kernel(tc.law, u, w, [&](const T*, T* a, T* diameter) {
+      *a = a_perp;
+      *diameter = d_perp;
+    });
+    const T dr = T(tc.drag);
+#pragma GCC unroll 3
+    for (int a = 0; a < 3; ++a) {
+      d.f[a] *= dr;
+      d.tq[a] *= dr;
+      d.c_ang[a] *= dr;
+    }
+    d.c_lin *= dr;
+    return d;
+  }
   T uc[3];
   centroid_velocity(tc, u, w, uc);
   DragOut<T> drag;
@@ -170,6 +254,7 @@ LRIGID_LANE DragOut<T> body_forces(const C& tc, const T* u, const T* w, T* lift)
 // The Magnus force (body frame) on a lane with relative velocity u and spin w, at the centroid
 template <typename T, class C>
 LRIGID_LANE void lane_magnus(const C& tc, const T* u, const T* w, T* f) {
+  if constexpr (C::isotropic) return magnus_kernel(T(tc.magnus), w, u, f);
   T uc[3];
   centroid_velocity(tc, u, w, uc);
   magnus_kernel(T(tc.magnus), w, uc, f);
@@ -177,12 +262,18 @@ LRIGID_LANE void lane_magnus(const C& tc, const T* u, const T* w, T* f) {
 
 // The torque about the centre of mass of the explicit forces that act at the centroid
 // (effects/buoyancy.h, lift.cpp, magnus.h): r_cob x (buoyancy + lift + Magnus), the buoyancy
-// rotated to the body by R (body -> world); zero for a uniform body
-template <typename T, class C>
-LRIGID_LANE void explicit_torque(const C& tc, const T* R, const T* lift, const T* fx, T* tq) {
+// rotated to the body by the frame fr (BodyFrame); zero for a uniform body
+template <typename T, class C, class Frame>
+LRIGID_LANE void explicit_torque(const C& tc, const Frame& fr, const T* lift, const T* fx,
+                                 T* tq) {
+  if constexpr (C::isotropic) {
+#pragma GCC unroll 3
+    for (int a = 0; a < 3; ++a) tq[a] = T(0);
+    return;
+  }
   const T Fw[3] = {T(tc.F_buoy[0]), T(tc.F_buoy[1]), T(tc.F_buoy[2])};
   T f[3];
-  mul_t(R, Fw, f);
+  fr.of_world(Fw, f);
 #pragma GCC unroll 3
   for (int a = 0; a < 3; ++a) {
     f[a] += lift[a] + fx[a];
@@ -192,19 +283,21 @@ LRIGID_LANE void explicit_torque(const C& tc, const T* R, const T* lift, const T
 }
 
 // The forces stage's sum on one lane, written once for every scheme (the batched counterpart of
-// the scalar step's EffectPlan): at rotation R (body -> world), relative velocity vr and spin w
-// (body frame), with Fb the weight and buoyancy (and the Basset history force) in the body
+// the scalar step's EffectPlan): in the frame fr (FrameOf: the body frame, or the world frame
+// for an isotropic M), relative velocity vr in that frame and spin w (body frame), with Fb the
+// weight and buoyancy (and the Basset history force) in that frame. The torques are in the body
 // frame. Returns the drag (and the plate's dissipative torque) with its stiffness, which the
 // splitting and strang steps take implicitly; fe = (force; torque) of the explicit rest: Fb, the
 // plate's lift, Magnus, and their torque about an offset centre of mass. Each term is its
 // effect's kernel (effects/); an effect off contributes its factor 0.
-template <typename T, bool Plate, class Mass>
-LRIGID_LANE DragOut<T> lane_forces(const StepConsts<Mass>& tc, const T* R, const T* Fb,
+template <typename T, bool Plate, class Mass, class Frame>
+LRIGID_LANE DragOut<T> lane_forces(const StepConsts<Mass>& tc, const Frame& fr, const T* Fb,
                                    const T* vr, const T* w, T* fe) {
-  T lift[3] = {0, 0, 0}, fx[3], tx[3];
+  T lift[3] = {0, 0, 0}, fx[3], tx[3], ws[3];
   const DragOut<T> d = body_forces<T, Plate>(tc, vr, w, lift);
-  lane_magnus(tc, vr, w, fx);
-  explicit_torque(tc, R, lift, fx, tx);
+  fr.spin(w, ws);  // Magnus: the spin in vr's frame
+  lane_magnus(tc, vr, ws, fx);
+  explicit_torque(tc, fr, lift, fx, tx);
 #pragma GCC unroll 3
   for (int a = 0; a < 3; ++a) {
     fe[a] = Fb[a] + lift[a] + fx[a];
@@ -213,19 +306,20 @@ LRIGID_LANE DragOut<T> lane_forces(const StepConsts<Mass>& tc, const T* R, const
   return d;
 }
 
-// The Strang scheme's force step over hs on a lane's body-frame velocities v, w (in place), at
-// orientation R (body -> world) and the fluid velocity u_f (world) with its material derivative
-// acc (world, the gu factor applied here): ROS2 (model/kirchhoff.h ros2_impulse), as
-// integrators.cpp strang_force_step. Not with the Basset history (tc.strang).
+// The Strang scheme's force step over hs on a lane's velocities v (in the frame fr) and w (body
+// frame), in place, and the fluid velocity u_f (world) with its material derivative acc (world,
+// the gu factor applied here): ROS2 (model/kirchhoff.h ros2_impulse), as integrators.cpp
+// strang_force_step (for an isotropic M the world and body frames give the same step). Not with
+// the Basset history (tc.strang).
 template <typename T, bool Plate, class Mass>
-LRIGID_LANE void strang_force_lane(const StepConsts<Mass>& tc, const T* R, const T* u_f,
-                                   const T* acc, T hs, T* v, T* w) {
+LRIGID_LANE void strang_force_lane(const StepConsts<Mass>& tc, const FrameOf<T, Mass>& fr,
+                                   const T* u_f, const T* acc, T hs, T* v, T* w) {
   const T F[3] = {T(tc.F[0]), T(tc.F[1]), T(tc.F[2])};
   const T a_f[3] = {T(tc.gu) * acc[0], T(tc.gu) * acc[1], T(tc.gu) * acc[2]};
   T ufb[3], ab[3], Fb[3], P[6];
-  mul_t(R, u_f, ufb);
-  mul_t(R, a_f, ab);
-  mul_t(R, F, Fb);
+  fr.of_world(u_f, ufb);
+  fr.of_world(a_f, ab);
+  fr.of_world(F, Fb);
   // the fluid's acceleration drags the added mass along: K (R^T a; 0), a force and (meshes) a
   // torque
   T drag_along[6];
@@ -240,7 +334,7 @@ LRIGID_LANE void strang_force_lane(const StepConsts<Mass>& tc, const T* R, const
     velocity_of_impulse(tc.mass, tc.K, Pn, ufb, xi);
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) vr[a] = xi[a] - ufb[a];
-    const DragOut<T> d = lane_forces<T, Plate>(tc, R, Fb, vr, xi + 3, fe);
+    const DragOut<T> d = lane_forces<T, Plate>(tc, fr, Fb, vr, xi + 3, fe);
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
       f[a] = fe[a] + drag_along[a] + d.f[a];
@@ -273,16 +367,16 @@ LRIGID_LANE void strang_force_lane(const StepConsts<Mass>& tc, const T* R, const
 }
 
 // The end of the free Kirchhoff flow of lane j from the converged iterate: the orientation
-// q <- q cay(h w_mid) (q: the lane's at the start), its rotation R, and the body-frame v, w
+// q <- q cay(h w_mid) (q: the lane's at the start), the frame there, and v (in that frame), w
 // relative to the fluid velocity u_f (world) the flow moved in
 template <typename T, class Mass>
 LRIGID_LANE void flow_end(const StepConsts<Mass>& tc, const T* q0, const T* y0, const T* y,
-                          const T* u_f, T* q, T* R, T* ufb, T* v, T* w) {
+                          const T* u_f, T* q, FrameOf<T, Mass>* fr, T* ufb, T* v, T* w) {
   const T hh = T(0.5 * tc.h);
   T ym[6], xi[6], a[3];
 #pragma GCC unroll 6
   for (int k = 0; k < 6; ++k) ym[k] = T(0.5) * (y0[k] + y[k]);
-  if constexpr (std::is_same_v<Mass, DiagonalMass>) {
+  if constexpr (kDiagonal<Mass>) {
     // (h/2 M^-1 first: the diagonal path's rounding, which its tests compare against)
 #pragma GCC unroll 3
     for (int k = 0; k < 3; ++k) a[k] = hh * T(tc.mass.Mi[3 + k]) * ym[3 + k];
@@ -293,8 +387,8 @@ LRIGID_LANE void flow_end(const StepConsts<Mass>& tc, const T* q0, const T* y0, 
     for (int k = 0; k < 3; ++k) a[k] = hh * xm[3 + k];
   }
   cayley_rotate(q0, a, q);
-  rotation(q, R);
-  mul_t(R, u_f, ufb);
+  fr->set(q);
+  fr->of_world(u_f, ufb);
   mass_inv_times(tc.mass, y, xi);
 #pragma GCC unroll 3
   for (int a = 0; a < 3; ++a) {
@@ -309,7 +403,8 @@ LRIGID_LANE void flow_end(const StepConsts<Mass>& tc, const T* q0, const T* y0, 
 template <typename T, class Mass>
 LRIGID_LANE void lane_flow_end(const StepConsts<Mass>& tc, const T (*q0)[kBatch],
                                const T (*Y0)[kBatch], const T (*Y)[kBatch],
-                               const T (*uf)[kBatch], int j, T* q, T* R, T* ufb, T* v, T* w) {
+                               const T (*uf)[kBatch], int j, T* q, FrameOf<T, Mass>* fr, T* ufb,
+                               T* v, T* w) {
   T y0[6], y[6];
 #pragma GCC unroll 6
   for (int a = 0; a < 6; ++a) {
@@ -318,7 +413,7 @@ LRIGID_LANE void lane_flow_end(const StepConsts<Mass>& tc, const T (*q0)[kBatch]
   }
   const T q0j[4] = {q0[0][j], q0[1][j], q0[2][j], q0[3][j]};
   const T u_f[3] = {uf[0][j], uf[1][j], uf[2][j]};
-  flow_end(tc, q0j, y0, y, u_f, q, R, ufb, v, w);
+  flow_end(tc, q0j, y0, y, u_f, q, fr, ufb, v, w);
 }
 
 // The force step's norms, d^T M^-1 d of an impulse change d and xi^T M xi of a velocity xi
@@ -327,7 +422,7 @@ LRIGID_LANE void lane_flow_end(const StepConsts<Mass>& tc, const T (*q0)[kBatch]
 // its results their rounding, from these sums
 template <typename T, class Mass>
 LRIGID_LANE T lane_energy_norm2(const Mass& m, const T* d) {
-  if constexpr (std::is_same_v<Mass, DiagonalMass>) {
+  if constexpr (kDiagonal<Mass>) {
     T s = 0;
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a)
@@ -339,7 +434,7 @@ LRIGID_LANE T lane_energy_norm2(const Mass& m, const T* d) {
 }
 template <typename T, class Mass>
 LRIGID_LANE T lane_velocity_norm2(const Mass& m, const T* xi) {
-  if constexpr (std::is_same_v<Mass, DiagonalMass>) {
+  if constexpr (kDiagonal<Mass>) {
     T s = 0;
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a)
@@ -370,6 +465,16 @@ struct FlowBlock {
   int active[kBatch];
 };
 
+// Calls f with std::bool_constant<plate> (with_switch), and with false alone for an isotropic M
+// (a sphere is never flat): the plate's kernels are not compiled into its loops
+template <class Mass, class F>
+LRIGID_LANE void by_shape(bool plate, F f) {
+  if constexpr (kIsotropic<Mass>)
+    f(std::false_type{});
+  else
+    with_switch(plate, f);
+}
+
 // The stages of the splitting and strang steps (integrators.h), each a loop (or a few) across the
 // block's live lanes, inlined into each scheme's loop function below. "in => out" names what a
 // stage reads and writes of the block (lanes: the state at the start of the step and the samples;
@@ -379,7 +484,7 @@ struct FlowBlock {
 // first exact OU half step along the start's world velocity), flow.uf (the fluid velocity,
 // world: the mean flow and that fluctuation), next.scalar = 0.
 template <typename T, class Mass>
-LRIGID_LANE void stage_turbulence_start(const StepConsts<Mass>& tc, const Lanes<T>* lanes,
+LRIGID_LANE void stage_turbulence_start(const StepConsts<Mass>& tc, const Lanes<T, Mass>* lanes,
                                         const T (*z1)[kBatch], FlowBlock<T>* flow,
                                         NewState<T>* next) {
   const int nw = lanes->width;
@@ -389,9 +494,10 @@ LRIGID_IVDEP
     T us[3] = {lanes->us[0][j], lanes->us[1][j], lanes->us[2][j]};
     const T q[4] = {lanes->q[0][j], lanes->q[1][j], lanes->q[2][j], lanes->q[3][j]};
     const T v[3] = {lanes->v[0][j], lanes->v[1][j], lanes->v[2][j]};
-    T R[9], V[3];
-    rotation(q, R);
-    mul(R, v, V);
+    T V[3];
+    FrameOf<T, Mass> fr;
+    fr.set(q);
+    fr.to_world(v, V);
     lane_ou_half(tu, wm, hh, *lanes, z1, j, V, us);
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
@@ -408,7 +514,7 @@ LRIGID_IVDEP
 // velocity Vn. The body's shape (Plate) chooses the force kernels: the recipes
 // call it through by_shape, outside the loop.
 template <typename T, bool Plate, class Mass>
-LRIGID_LANE void stage_strang_forces(const StepConsts<Mass>& tc, const Lanes<T>* lanes,
+LRIGID_LANE void stage_strang_forces(const StepConsts<Mass>& tc, const Lanes<T, Mass>* lanes,
                                      const T (*q)[kBatch], const T (*v)[kBatch],
                                      const T (*w)[kBatch], NewState<T>* next, T (*Vn)[kBatch]) {
   const int nw = lanes->width;
@@ -417,13 +523,14 @@ LRIGID_IVDEP
   for (int j = 0; j < nw; ++j) {
     const T qj[4] = {q[0][j], q[1][j], q[2][j], q[3][j]};
     const T acc[3] = {lanes->acc[0][j], lanes->acc[1][j], lanes->acc[2][j]};
-    T R[9], u_f[3], vj[3] = {v[0][j], v[1][j], v[2][j]}, wj[3] = {w[0][j], w[1][j], w[2][j]};
-    rotation(qj, R);
+    T u_f[3], vj[3] = {v[0][j], v[1][j], v[2][j]}, wj[3] = {w[0][j], w[1][j], w[2][j]};
+    FrameOf<T, Mass> fr;
+    fr.set(qj);
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) u_f[a] = T(tc.mf) * lanes->U[a][j] + tu * next->us[a][j];
-    strang_force_lane<T, Plate>(tc, R, u_f, acc, hh, vj, wj);
+    strang_force_lane<T, Plate>(tc, fr, u_f, acc, hh, vj, wj);
     T Vend[3];
-    mul(R, vj, Vend);
+    fr.to_world(vj, Vend);
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
       next->vel[a][j] = vj[a];
@@ -439,7 +546,7 @@ LRIGID_IVDEP
 // at the flow's midpoint for strang, mid = 1; Y0 and the explicit midpoint predictor Y of the
 // motion relative to the fluid, tol2, active).
 template <typename T, class Mass>
-LRIGID_LANE void stage_flow_begin(const StepConsts<Mass>& tc, const Lanes<T>* lanes,
+LRIGID_LANE void stage_flow_begin(const StepConsts<Mass>& tc, const Lanes<T, Mass>* lanes,
                                   const T (*v)[kBatch], const T (*w)[kBatch], T mid,
                                   FlowBlock<T>* flow) {
   const int nw = lanes->width;
@@ -448,19 +555,26 @@ LRIGID_IVDEP
   for (int j = 0; j < nw; ++j) {
     const T q[4] = {lanes->q[0][j], lanes->q[1][j], lanes->q[2][j], lanes->q[3][j]};
     const T vj[3] = {v[0][j], v[1][j], v[2][j]}, wj[3] = {w[0][j], w[1][j], w[2][j]};
-    T R[9], V[3], u_f[3], ufb[3];
-    rotation(q, R);
-    mul(R, vj, V);
+    T V[3], u_f[3], ufb[3];
+    FrameOf<T, Mass> fr;
+    fr.set(q);
+    fr.to_world(vj, V);
 #pragma GCC unroll 3
     for (int p = 0; p < 3; ++p)
       u_f[p] = flow->uf[p][j] + gm * (lanes->gU[p * 3][j] * V[0] + lanes->gU[p * 3 + 1][j] * V[1] +
                                       lanes->gU[p * 3 + 2][j] * V[2]);
-    mul_t(R, u_f, ufb);
+    fr.of_world(u_f, ufb);
     // the implicit midpoint rule's start (dynamics.cpp kirchhoff_midpoint)
     T y0[6], y[6];
     const T xr[6] = {vj[0] - ufb[0], vj[1] - ufb[1], vj[2] - ufb[2], wj[0], wj[1], wj[2]};
     mass_times(tc.mass, xr, y0);
-    kirchhoff_predictor(tc.mass, h, y0, y);
+    // an isotropic M: G = 0, the flow leaves Y unchanged (a rotation alone)
+    if constexpr (kIsotropic<Mass>) {
+#pragma GCC unroll 6
+      for (int a = 0; a < 6; ++a) y[a] = y0[a];
+    } else {
+      kirchhoff_predictor(tc.mass, h, y0, y);
+    }
     const T norm0 = energy_norm2(tc.mass, y0);
 #pragma GCC unroll 6
     for (int a = 0; a < 6; ++a) {
@@ -469,7 +583,7 @@ LRIGID_IVDEP
     }
     flow->tol2[j] = T(kLaneKirchhoffTol<T> * kLaneKirchhoffTol<T>) * norm0;
     flow->last[j] = T(0);
-    flow->active[j] = 1;
+    flow->active[j] = kIsotropic<Mass> ? 0 : 1;
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
       flow->uf[a][j] = u_f[a];
@@ -483,11 +597,12 @@ LRIGID_IVDEP
 // step. The fixed-point iteration per lane under a convergence mask, then Newton for the lanes
 // whose fixed point stopped.
 template <typename T, class Mass>
-LRIGID_LANE void stage_kirchhoff_flow(const StepConsts<Mass>& tc, Lanes<T>* lanes,
+LRIGID_LANE void stage_kirchhoff_flow(const StepConsts<Mass>& tc, Lanes<T, Mass>* lanes,
                                       FlowBlock<T>* flow, NewState<T>* next) {
   const int nw = lanes->width;
   const T h = T(tc.h), hh = T(0.5 * tc.h);
   (void)h, (void)hh;
+  if constexpr (kIsotropic<Mass>) return;  // nothing to iterate (stage_flow_begin)
   // the fixed-point iteration Y <- Y0 - h gyro((Y0 + Y)/2); lanes drop out as they converge;
   // a lane that contracts slowly or diverges goes to the scalar step (its Newton iteration)
   for (int it = 0; it < kKirchhoffMaxFixedPoint; ++it) {
@@ -625,7 +740,7 @@ LRIGID_IVDEP
 // the lanes whose drag is stiff. flow (Y0, Y, uf), lanes (sample, Basset force) => next.q, the
 // body-frame velocities next.vel, next.w.
 template <typename T, bool Plate, class Mass>
-LRIGID_LANE void stage_forces_implicit(const StepConsts<Mass>& tc, Lanes<T>* lanes,
+LRIGID_LANE void stage_forces_implicit(const StepConsts<Mass>& tc, Lanes<T, Mass>* lanes,
                                        FlowBlock<T>* flow, NewState<T>* next) {
   const int nw = lanes->width;
   const T h = T(tc.h), hh = T(0.5 * tc.h);
@@ -642,8 +757,9 @@ LRIGID_LANE void stage_forces_implicit(const StepConsts<Mass>& tc, Lanes<T>* lan
 LRIGID_IVDEP
   for (int j = 0; j < nw; ++j) {
     // q <- q cay(h w_mid)
-    T q[4], R[9], ufb[3], v[3], w[3], vr[3];
-    lane_flow_end(tc, lanes->q, flow->Y0, flow->Y, flow->uf, j, q, R, ufb, v, w);
+    T q[4], ufb[3], v[3], w[3], vr[3];
+    FrameOf<T, Mass> fr;
+    lane_flow_end(tc, lanes->q, flow->Y0, flow->Y, flow->uf, j, q, &fr, ufb, v, w);
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) vr[a] = v[a] - ufb[a];
     // the Basset history force (world; zero without the history) joins the weight; the current
@@ -654,12 +770,12 @@ LRIGID_IVDEP
       F[a] = T(tc.F[a]) + lanes->fb[a][j];
       acc[a] = T(tc.gu) * lanes->acc[a][j];
     }
-    mul_t(R, acc, ab);
-    mul_t(R, F, Fb);
-    const DragOut<T> drag = lane_forces<T, Plate>(tc, R, Fb, vr, w, fe);
+    fr.of_world(acc, ab);
+    fr.of_world(F, Fb);
+    const DragOut<T> drag = lane_forces<T, Plate>(tc, fr, Fb, vr, w, fe);
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) u_end[a] = flow->uf[a][j] + h * T(tc.gu) * lanes->acc[a][j];
-    mul_t(R, u_end, ufb_end);
+    fr.of_world(u_end, ufb_end);
     T Gj[6], rhs[6], dPL_j[6];
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
@@ -724,7 +840,7 @@ LRIGID_IVDEP
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
       T b_dv = T(tc.basset_mass) * ddv[a];
-      if constexpr (std::is_same_v<Mass, DiagonalMass>)
+      if constexpr (kDiagonal<Mass>)
         b_dv = T(tc.basset_mass) * T(tc.mass.Mi[a]) * dPi[a];  // (the diagonal step's rounding)
       res[a] = dPi[a] - G[a][j] - h * drag.f[a] + b_dv;
       res[3 + a] = dPi[3 + a] - h * drag.tq[a] - G[3 + a][j];
@@ -787,7 +903,7 @@ LRIGID_IVDEP
 // Stage 4 of splitting, the positions by the trapezoidal rule on the world velocity:
 // lanes.x, flow.V0, next (q, vel) => next.x and Vn, the world velocity at the end.
 template <typename T, class Mass>
-LRIGID_LANE void stage_positions(const StepConsts<Mass>& tc, const Lanes<T>* lanes,
+LRIGID_LANE void stage_positions(const StepConsts<Mass>& tc, const Lanes<T, Mass>* lanes,
                                  FlowBlock<T>* flow, NewState<T>* next, T (*Vn)[kBatch]) {
   const int nw = lanes->width;
   const T h = T(tc.h), hh = T(0.5 * tc.h);
@@ -797,9 +913,10 @@ LRIGID_IVDEP
   for (int j = 0; j < nw; ++j) {
     const T q[4] = {next->q[0][j], next->q[1][j], next->q[2][j], next->q[3][j]};
     const T v[3] = {next->vel[0][j], next->vel[1][j], next->vel[2][j]};
-    T R[9], Vend[3];
-    rotation(q, R);
-    mul(R, v, Vend);
+    T Vend[3];
+    FrameOf<T, Mass> fr;
+    fr.set(q);
+    fr.to_world(v, Vend);
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
       next->x[a][j] = lanes->x[a][j] + hh * (flow->V0[a][j] + Vend[a]);
@@ -812,15 +929,16 @@ LRIGID_IVDEP
 // trapezoidal rule over the flow; the field sampled at next.x (inside0: each lane's inside flag
 // before). The second force half step (stage_strang_forces) follows on that sample.
 template <typename T, class Mass>
-LRIGID_LANE void stage_strang_flow_end(const StepConsts<Mass>& tc, Lanes<T>* lanes,
+LRIGID_LANE void stage_strang_flow_end(const StepConsts<Mass>& tc, Lanes<T, Mass>* lanes,
                                        FlowBlock<T>* flow, NewState<T>* next, T* inside0) {
   const int nw = lanes->width;
   const T hh = T(0.5 * tc.h);
 LRIGID_IVDEP
   for (int j = 0; j < nw; ++j) {
-    T q[4], R[9], ufb[3], v[3], w[3], Vend[3];
-    lane_flow_end(tc, lanes->q, flow->Y0, flow->Y, flow->uf, j, q, R, ufb, v, w);
-    mul(R, v, Vend);
+    T q[4], ufb[3], v[3], w[3], Vend[3];
+    FrameOf<T, Mass> fr;
+    lane_flow_end(tc, lanes->q, flow->Y0, flow->Y, flow->uf, j, q, &fr, ufb, v, w);
+    fr.to_world(v, Vend);
     next->scalar[j] |= flow->active[j];
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
@@ -841,7 +959,7 @@ LRIGID_IVDEP
 // is on or below the ground after the step. The body's shape chooses the force stage's kernels
 // (with_switch, outside the loops).
 template <typename T, class Mass>
-LRIGID_MULTIVERSION void splitting_lanes(const StepConsts<Mass>& tc, Lanes<T>* lanes,
+LRIGID_MULTIVERSION void splitting_lanes(const StepConsts<Mass>& tc, Lanes<T, Mass>* lanes,
                                          uint64_t step, int* outcome, int* landed) {
   alignas(64) T z1[3][kBatch], z2[3][kBatch], Vn[3][kBatch];
   lane_normals(tc, *lanes, step, z1, z2);
@@ -850,7 +968,7 @@ LRIGID_MULTIVERSION void splitting_lanes(const StepConsts<Mass>& tc, Lanes<T>* l
   stage_turbulence_start(tc, lanes, z1, &flow, &next);
   stage_flow_begin(tc, lanes, lanes->v, lanes->w, T(0), &flow);
   stage_kirchhoff_flow(tc, lanes, &flow, &next);
-  with_switch(tc.plate, [&](auto plate) LRIGID_LANE_LAMBDA {
+  by_shape<Mass>(tc.plate, [&](auto plate) LRIGID_LANE_LAMBDA {
     stage_forces_implicit<T, decltype(plate)::value>(tc, lanes, &flow, &next);
   });
   stage_positions(tc, lanes, &flow, &next, Vn);
@@ -861,21 +979,21 @@ LRIGID_MULTIVERSION void splitting_lanes(const StepConsts<Mass>& tc, Lanes<T>* l
 // Kirchhoff flow, the positions, the second force half step and OU half step at the new
 // positions.
 template <typename T, class Mass>
-LRIGID_MULTIVERSION void strang_lanes(const StepConsts<Mass>& tc, Lanes<T>* lanes, uint64_t step,
+LRIGID_MULTIVERSION void strang_lanes(const StepConsts<Mass>& tc, Lanes<T, Mass>* lanes, uint64_t step,
                                       int* outcome, int* landed) {
   alignas(64) T z1[3][kBatch], z2[3][kBatch], Vn[3][kBatch], inside0[kBatch];
   lane_normals(tc, *lanes, step, z1, z2);
   FlowBlock<T> flow;
   NewState<T> next;
   stage_turbulence_start(tc, lanes, z1, &flow, &next);
-  with_switch(tc.plate, [&](auto plate) LRIGID_LANE_LAMBDA {
+  by_shape<Mass>(tc.plate, [&](auto plate) LRIGID_LANE_LAMBDA {
     stage_strang_forces<T, decltype(plate)::value>(tc, lanes, lanes->q, lanes->v, lanes->w,
                                                    &next, Vn);
   });
   stage_flow_begin(tc, lanes, next.vel, next.w, T(1), &flow);
   stage_kirchhoff_flow(tc, lanes, &flow, &next);
   stage_strang_flow_end(tc, lanes, &flow, &next, inside0);
-  with_switch(tc.plate, [&](auto plate) LRIGID_LANE_LAMBDA {
+  by_shape<Mass>(tc.plate, [&](auto plate) LRIGID_LANE_LAMBDA {
     stage_strang_forces<T, decltype(plate)::value>(tc, lanes, next.q, next.vel, next.w, &next,
                                                    Vn);
   });
@@ -893,8 +1011,8 @@ BlockStats advance(const Model& model, const BodyType& type, State* state, const
                    int count, uint64_t first, uint64_t last) {
   const StepConsts<Mass> tc = make_consts<Mass>(model, type);
   const bool unsteady = tc.grid && model.field.frame_count() > 1;
-  auto step = [&](auto plate, Lanes<T>* lanes, uint64_t s, int* outcome, int* landed) {
-    constexpr bool P = decltype(plate)::value;
+  auto step = [&](auto plate, Lanes<T, Mass>* lanes, uint64_t s, int* outcome, int* landed) {
+    constexpr bool P = decltype(plate)::value && !kIsotropic<Mass>;
     if (tc.scheme == Integrator::Euler) return euler_lanes<T, P>(tc, lanes, s, outcome, landed);
     if (tc.scheme == Integrator::RK4)
       return rk4_lanes<T, P>(tc, rk4_frames(model, unsteady, s), lanes, s, outcome, landed);
@@ -903,7 +1021,7 @@ BlockStats advance(const Model& model, const BodyType& type, State* state, const
     else
       splitting_lanes<T>(tc, lanes, s, outcome, landed);
   };
-  return drive_block<T, Lanes<T>>(model, type, tc, tc.plate, state, body, count, first, last,
+  return drive_block<T, Lanes<T, Mass>>(model, type, tc, tc.plate, state, body, count, first, last,
                                   step);
 }
 

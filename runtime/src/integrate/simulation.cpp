@@ -10,7 +10,6 @@
 #include "contact/sleep.h"
 #include "integrate/integrators.h"
 #include "integrate/rigid_batch.h"
-#include "integrate/sphere_batch.h"
 #include "integrate/step_end.h"
 
 namespace lrigid {
@@ -117,20 +116,15 @@ WorkList work_list(const Model& model, const State& st, const std::vector<StepKi
 }  // namespace
 
 StepKind step_kind(const Model& model, const BodyType& type, std::string* why_not_batched) {
-  // a uniform sphere takes the sphere step or none; anything else (a sphere with its centre of
-  // mass off the centroid too) the plates-and-ellipsoids step
   std::string why;
-  const bool sphere = uniform_sphere_mass(type);
-  if (sphere ? sphere_batch_eligible(model, type, &why) : rigid_batch_eligible(model, type, &why))
-    return sphere ? StepKind::SphereBlock : StepKind::RigidBlock;
+  if (rigid_batch_eligible(model, type, &why)) return StepKind::Batched;
   if (why_not_batched) *why_not_batched = why;
   return StepKind::Scalar;
 }
 
 const char* step_kind_name(StepKind kind) {
   switch (kind) {
-    case StepKind::SphereBlock: return "batched spheres";
-    case StepKind::RigidBlock: return "batched plates and ellipsoids";
+    case StepKind::Batched: return "batched";
     case StepKind::Scalar: return "scalar";
   }
   return "scalar";
@@ -157,8 +151,7 @@ RunStats simulate(const Model& model, State* state, const RunOptions& options) {
   const auto n = static_cast<int64_t>(std::min(st.size(), options.body_end));
   const auto n0 = static_cast<int64_t>(std::min(st.size(), options.body_begin));
   double wall = stats.wall_seconds;
-  // body types that take a batched step: spheres (integrate/sphere_batch.h), plates and
-  // ellipsoids (integrate/rigid_batch.h)
+  // body types that take the batched step (integrate/rigid_batch.h)
   std::vector<StepKind> kinds(model.types.size());
   for (size_t t = 0; t < model.types.size(); ++t)
     kinds[t] = step_kind(model, model.types[t], nullptr);
@@ -186,10 +179,8 @@ RunStats simulate(const Model& model, State* state, const RunOptions& options) {
       for (int64_t k = 0; k < nblocks; ++k) {
         const std::vector<uint32_t>& blk = work.blocks[k];
         const uint16_t t = st.type[blk[0]];
-        const auto advance = kinds[t] == StepKind::SphereBlock ? advance_sphere_block
-                                                        : advance_rigid_block;
-        const BlockStats b = advance(model, model.types[t], &st, blk.data(),
-                                     static_cast<int>(blk.size()), first, last);
+        const BlockStats b = advance_rigid_block(model, model.types[t], &st, blk.data(),
+                                                 static_cast<int>(blk.size()), first, last);
         body_steps += b.body_steps;
         handoffs += b.scalar_steps;
         newton += b.newton_steps;

@@ -43,9 +43,9 @@ struct RunOptions {
 
 RunStats simulate(const Model& model, State* state, const RunOptions& options);
 
-// Which step a body type takes: "batched spheres" (integrate/sphere_batch.h), "batched plates
-// and ellipsoids" (integrate/rigid_batch.h) or "scalar"; for the scalar step, why not batched.
-enum class StepKind { SphereBlock, RigidBlock, Scalar };
+// Which step a body type takes: "batched" (integrate/rigid_batch.h) or "scalar"; for the scalar
+// step, why not batched.
+enum class StepKind { Batched, Scalar };
 StepKind step_kind(const Model& model, const BodyType& type, std::string* why_not_batched);
 const char* step_kind_name(StepKind kind);
 

@@ -7,7 +7,7 @@
 #include "compile/compile_model.h"
 #include "effects/registry.h"
 #include "integrate/simulation.h"
-#include "integrate/sphere_batch.h"
+#include "integrate/rigid_batch.h"
 #include "io/added_mass_cache.h"
 #include "io/explain_words.h"
 #include "io/field_loader.h"
@@ -64,17 +64,20 @@ nlohmann::json body_type(const Scene& scene, const Model& model, const FlowScale
   // which step it takes (integrate/simulation.h step_kind), and why not batched
   std::string why;
   const StepKind kind = step_kind(model, t, &why);
-  const bool sphere = kind == StepKind::SphereBlock, rigid = kind == StepKind::RigidBlock;
-  j["step"] = {{"batched", sphere || rigid},
-               {"kind", sphere ? "spheres" : rigid ? "plates and ellipsoids" : "scalar"},
+  // (batched: the kind of M its loops are compiled for, rigid_batch.h)
+  const bool batched = kind == StepKind::Batched;
+  const BatchMass mass = batch_mass(t);
+  j["step"] = {{"batched", batched},
+               {"kind", batched ? batch_mass_name(mass) : "scalar"},
                {"block", kBatch},
-               {"isa", sphere_batch_isa()},
+               {"isa", batch_isa()},
                {"precision", model.precision == Precision::Float ? "float" : "double"},
-               {"reason", sphere || rigid ? "" : why}};
-  j["cost_ns"] = sphere || rigid ? estimated_batched_cost_ns(t.effects, model.precision, rigid,
-                                                             scene.integrator)
-                                 : estimated_cost_ns(t.effects, scene.integrator,
-                                                     !scene.uniform_field, t.M_isotropic);
+               {"reason", batched ? "" : why}};
+  j["cost_ns"] = batched ? estimated_batched_cost_ns(t.effects, model.precision,
+                                                     mass != BatchMass::Isotropic,
+                                                     scene.integrator)
+                         : estimated_cost_ns(t.effects, scene.integrator, !scene.uniform_field,
+                                             t.M_isotropic);
   return j;
 }
 

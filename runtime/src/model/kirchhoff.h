@@ -33,10 +33,17 @@ struct DiagonalMass {
   double S[3] = {0, 0, 0};
 };
 
-// An isotropic M = diag(m, m, m, J, J, J) (spheres): the implicit step's closed form is cheaper
-struct IsotropicMass {
-  double m = 0, J = 0;
-};
+// An isotropic M = diag(m, m, m, J, J, J) (uniform spheres): a diagonal M whose free flow is a
+// rotation alone (G(Y) = 0) and whose implicit force step has a cheaper closed form
+struct IsotropicMass : DiagonalMass {};
+inline IsotropicMass isotropic_mass(double m, double J) {
+  IsotropicMass r;
+  for (int a = 0; a < 3; ++a) {
+    r.M[a] = m, r.M[3 + a] = J;
+    r.Mi[a] = 1.0 / m, r.Mi[3 + a] = 1.0 / J;
+  }
+  return r;
+}
 
 // A full symmetric M (meshes, bodies with an offset centre of mass): M and M^-1, 36 numbers each
 // (symmetric, so row and column major are the same; the scalar step points into BodyType::M and
@@ -134,6 +141,10 @@ struct FluidImpulseOf {
 };
 template <>
 struct FluidImpulseOf<DiagonalMass> {
+  using type = DiagonalFluidImpulse;
+};
+template <>
+struct FluidImpulseOf<IsotropicMass> {
   using type = DiagonalFluidImpulse;
 };
 
@@ -365,13 +376,14 @@ LRIGID_LANE bool implicit_impulse(const DiagonalMass& m, T basset_mass, const Dr
 template <typename T>
 LRIGID_LANE bool implicit_impulse(const IsotropicMass& m, T basset_mass, const DragOut<T>& d, T h,
                                   const T* b, T* x) {
-  const T a = T(m.m) + basset_mass + h * d.c_lin, c = h * d.c_lin * d.p;
+  const T mm = T(m.M[0]), J = T(m.M[3]);
+  const T a = mm + basset_mass + h * d.c_lin, c = h * d.c_lin * d.p;
   const T ub = dot3(d.u_hat, b);
   const T g = c / (a + c);
 #pragma GCC unroll 3
   for (int i = 0; i < 3; ++i) {
-    x[i] = T(m.m) * (b[i] - g * d.u_hat[i] * ub) / a;
-    x[3 + i] = T(m.J) * b[3 + i] / (T(m.J) + h * d.c_ang[i]);
+    x[i] = mm * (b[i] - g * d.u_hat[i] * ub) / a;
+    x[3 + i] = J * b[3 + i] / (J + h * d.c_ang[i]);
   }
   return true;
 }

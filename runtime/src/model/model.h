@@ -121,8 +121,8 @@ struct Model {
   Vec3 gravity = Vec3(0, 0, -9.81);
   FluidField field;
   Integrator integrator = kDefaultIntegrator;
-  // spheres, plates and ellipsoids take the batched steps (integrate/sphere_batch.h,
-  // rigid_batch.h) unless the scene says otherwise, in double or single precision
+  // body types take the batched step (integrate/rigid_batch.h) unless the scene says otherwise,
+  // in double or single precision
   bool batched = true;
   Precision precision = Precision::Double;
   double dt = 1e-3;              // s

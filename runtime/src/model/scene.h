@@ -17,7 +17,7 @@ enum class Integrator { Euler, RK4, Splitting, Strang };
 // scene kind measured; splitting (first order) stays fully supported.
 constexpr Integrator kDefaultIntegrator = Integrator::Strang;
 enum class TurbulenceModel { Body, Seen };
-// arithmetic of the batched steps (integrate/sphere_batch.h, rigid_batch.h); the scalar step is double
+// arithmetic of the batched step (integrate/rigid_batch.h); the scalar step is double
 enum class Precision { Double, Float };
 
 // How bodies meet the ground, the grid's solids and the grid's outer boundary (scene keys

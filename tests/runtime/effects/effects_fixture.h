@@ -13,7 +13,7 @@
 #include "effects/drag.h"
 #include "effects/lift.h"
 #include "effects/plate.h"
-#include "integrate/sphere_batch.h"
+#include "integrate/rigid_batch.h"
 #include "support/fixture.h"
 
 namespace lrigid::effects_test {

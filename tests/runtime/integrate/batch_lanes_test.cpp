@@ -1,7 +1,7 @@
 // What the batched steps share (integrate/batch_lanes.h): the block driver drive_block and the
 // lane stages. The driver hands a lane the loops leave to the scalar step, which then takes it
 // to the bit, and stops lanes as the scalar loop stops bodies; a block ends where its bodies end
-// stepped one by one (the sphere and the rigid steps, double and float); the sample stage is the
+// stepped one by one (spheres on the isotropic M, plates on the diagonal one, double and float); the sample stage is the
 // field's sample, the normals are the scalar step's, the OU update is the identity without seen
 // turbulence, and an outcome names a lane's first non-finite part before its leaving the fluid.
 // (The header has internal linkage: this file compiles its own copy of what it calls.)
@@ -192,7 +192,7 @@ TEST(BatchLanes, ABlockEndsWhereItsBodiesEndSteppedOneByOne) {
   tissue.bodies[0].angular_velocity = Vec3(40, -25, 10);
   for (const Precision p : {Precision::Double, Precision::Float}) {
     SCOPED_TRACE(p == Precision::Double ? "double" : "float");
-    expect_block_is_one_by_one(beads, field, p, advance_sphere_block);
+    expect_block_is_one_by_one(beads, field, p, advance_rigid_block);
     expect_block_is_one_by_one(tissue, field, p, advance_rigid_block);
   }
   // the scenes take those paths

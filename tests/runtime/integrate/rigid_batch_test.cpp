@@ -15,7 +15,6 @@
 #include <vector>
 
 #include "integrate/simulation.h"
-#include "integrate/sphere_batch.h"
 #include "support/batch_compare.h"
 #include "support/fixture.h"
 
@@ -52,7 +51,7 @@ void expect_eligible(const Scene& s, const FluidField& field) {
   const Model m = test::compile(s, field);
   std::string why;
   EXPECT_TRUE(rigid_batch_eligible(m, m.types[0], &why)) << why;
-  EXPECT_FALSE(sphere_batch_eligible(m, m.types[0]));
+  EXPECT_NE(batch_mass(m.types[0]), BatchMass::Isotropic);  // the diagonal or the full loops
 }
 
 TEST(RigidBatch, LeavesInAGridMatchTheScalarStep) {
@@ -416,7 +415,7 @@ TEST(RigidBatch, FreeFlowOfAFullMassKeepsItsInvariants) {
     const BodyType& t = m.types[0];
     ASSERT_FALSE(t.M_diagonal);
     std::string why;
-    ASSERT_EQ(step_kind(m, t, &why), StepKind::RigidBlock) << why;
+    ASSERT_EQ(step_kind(m, t, &why), StepKind::Batched) << why;
     State st = initial_state(m, s);
     auto impulse = [&](const State& x, size_t i) {
       Vec6 xi;
@@ -574,8 +573,8 @@ TEST(RigidBatch, BodiesWithTheirCentreOfMassOffTheCentroidMatchTheScalarStep) {
   // fluid's forces and the buoyancy act at the centroid, which moves at v + w x r_cob, and turn
   // the body about its centre of mass. Every scheme, on leaves (plate drag, torque and lift; with
   // added mass M is full), seed pods (ellipsoid drag), a leaf without added mass (a diagonal M)
-  // and a sphere (the sphere step takes only uniform spheres), spinning, with Magnus, in the wind
-  // grid with seen turbulence, 0.2 s
+  // and a sphere (not on the isotropic M's loops, which take only uniform spheres), spinning,
+  // with Magnus, in the wind grid with seen turbulence, 0.2 s
   struct Case {
     const char* name;
     Shape shape;
@@ -606,7 +605,7 @@ TEST(RigidBatch, BodiesWithTheirCentreOfMassOffTheCentroidMatchTheScalarStep) {
         const Model m = test::compile(s, field);
         std::string why;
         EXPECT_TRUE(rigid_batch_eligible(m, m.types[0], &why)) << name << ": " << why;
-        EXPECT_EQ(step_kind(m, m.types[0], nullptr), StepKind::RigidBlock) << name;
+        EXPECT_EQ(step_kind(m, m.types[0], nullptr), StepKind::Batched) << name;
       }
       const auto [scalar, batched, d] = scalar_and_batched(s, field);
       EXPECT_EQ(scalar.stats.body_steps, batched.stats.body_steps) << name;
@@ -634,8 +633,6 @@ TEST(RigidBatch, EligibilitySaysWhatExcludesABodyType) {
   batch_test::expect_exclusions(
       s, field, rigid_batch_eligible,
       {
-          {[](Scene& e) { e.bodies[0].shape = Shape::sphere(0.01); },
-           "an isotropic generalized mass (the sphere step's)"},
           {[](Scene& e) { e.turbulence_model = TurbulenceModel::Body; },
            "the body turbulence model"},
           {[](Scene& e) { e.batched = false; }, "the scene turns the batched step off"},

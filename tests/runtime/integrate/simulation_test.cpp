@@ -4,6 +4,7 @@
 // each output), the range of bodies a process advances, a resumed run ending where the whole run
 // ends, and the same seed giving bitwise-identical trajectories for any thread count
 // (counter-based noise keyed by seed, body and step) while a different seed gives others.
+#include "integrate/rigid_batch.h"
 #include "integrate/simulation.h"
 
 #include <gtest/gtest.h>
@@ -14,7 +15,6 @@
 #include <vector>
 
 #include "compile/compile_model.h"
-#include "integrate/sphere_batch.h"
 #include "support/fixture.h"
 
 namespace lrigid {
@@ -49,30 +49,39 @@ bool same_body(const State& a, const State& b, size_t i) {
          a.w[i] == b.w[i] && a.u_seen[i] == b.u_seen[i];
 }
 
-// A uniform sphere takes the sphere step; a body with its centre of mass off its centroid (a
-// sphere too), an ellipsoid, a box take the rigid step; what rules the batched steps out (the
-// scene's "batched": false, the body turbulence model, noise substeps) leaves the scalar step,
-// and says why.
+// A uniform sphere takes the batched step with the isotropic M; a body with its centre of mass
+// off its centroid (a sphere too), an ellipsoid and a box with the diagonal M; what rules the
+// batched step out (the scene's "batched": false, the body turbulence model, noise substeps)
+// leaves the scalar step, and says why.
 TEST(Simulation, StepKindFollowsTheBodyTypeAndTheScene) {
   auto kind = [](const Scene& s, std::string* why = nullptr) {
     const Model m = test::compile(s);
     return step_kind(m, m.types[0], why);
   };
+  auto mass = [](const Scene& s) {
+    const Model m = test::compile(s);
+    return batch_mass(m.types[0]);
+  };
   const Scene beads = wind_scene(1);
-  EXPECT_EQ(kind(beads), StepKind::SphereBlock);
+  EXPECT_EQ(kind(beads), StepKind::Batched);
+  EXPECT_EQ(mass(beads), BatchMass::Isotropic);
   Scene keel = beads;
   keel.bodies[0].mass_offset = Vec3(0, 0, -0.0005);
-  EXPECT_EQ(kind(keel), StepKind::RigidBlock);
+  EXPECT_EQ(kind(keel), StepKind::Batched);
+  EXPECT_EQ(mass(keel), BatchMass::Diagonal);
   Scene seed = beads;
   seed.bodies[0].shape = Shape::ellipsoid(0.004, 0.002, 0.001);
-  EXPECT_EQ(kind(seed), StepKind::RigidBlock);
+  EXPECT_EQ(kind(seed), StepKind::Batched);
+  EXPECT_EQ(mass(seed), BatchMass::Diagonal);
   Scene card = beads;
   card.effects.remove(Effect::AddedMass);  // (a box's comes from the panel method)
   card.bodies[0].shape = Shape::box(0.05, 0.03, 5e-4);
-  EXPECT_EQ(kind(card), StepKind::RigidBlock);
+  EXPECT_EQ(kind(card), StepKind::Batched);
+  EXPECT_EQ(mass(card), BatchMass::Diagonal);
   Scene single = beads;
   single.precision = Precision::Float;
-  EXPECT_EQ(kind(single), StepKind::SphereBlock) << "the precision does not change the step";
+  EXPECT_EQ(kind(single), StepKind::Batched) << "the precision does not change the step";
+  EXPECT_EQ(mass(single), BatchMass::Isotropic);
   for (Scene scalar : {beads, seed}) {
     std::string why;
     Scene off = scalar;

@@ -1,8 +1,9 @@
-// The batched sphere step (integrate/sphere_batch.h) against the scalar step it replaces: the
-// same scene run with model.batched on and off gives the same statuses, stop times and reasons,
-// and states that differ by rounding only (double), or by what single precision costs (float).
+// Uniform spheres on the batched step (integrate/rigid_batch.h: its loops for an isotropic M)
+// against the scalar step: the same scene run with model.batched on and off gives the same
+// statuses, stop times and reasons, and states that differ by rounding only (double), or by what
+// single precision costs (float).
 #include "compile/compile_model.h"
-#include "integrate/sphere_batch.h"
+#include "integrate/rigid_batch.h"
 
 #include <gtest/gtest.h>
 
@@ -29,6 +30,14 @@ using batch_test::Outcome;
 using batch_test::run;
 using batch_test::scalar_and_batched;
 using batch_test::wind_grid;
+
+// The body type takes the batched step, on its loops for an isotropic M
+bool sphere_batch_eligible(const Model& model, const BodyType& type, std::string* why = nullptr) {
+  if (!rigid_batch_eligible(model, type, why)) return false;
+  if (batch_mass(type) == BatchMass::Isotropic) return true;
+  if (why) *why = batch_mass_name(batch_mass(type));
+  return false;
+}
 
 Scene bead_scene(double radius, double density, int count) {
   Scene s = test::sphere_scene(radius, density, 1.2, 1.5e-5, count);
@@ -58,7 +67,7 @@ TEST(SphereBatch, BeadsInAGridMatchTheScalarStep) {
   EXPECT_GT((batched.state.u_seen[0] - batched.state.u_seen[1]).norm(), 0.0);
 }
 
-// The sphere step's lanes do not depend on how many lanes their block steps either
+// A sphere lane does not depend on how many lanes its block steps either
 // (batch_test::expect_lanes_ignore_width).
 TEST(SphereBatch, ALaneEndsTheSameWhateverHowManyLanesItsBlockSteps) {
   const FluidField field = wind_grid(1.5e-5);
@@ -250,7 +259,7 @@ TEST(SphereBatch, StrangMatchesTheScalarStep) {
 }
 
 TEST(SphereBatch, EulerAndRk4MatchTheScalarStep) {
-  // the explicit schemes (integrators.h euler, rk4; sphere_batch_explicit.h) on the loops and on
+  // the explicit schemes (integrators.h euler, rk4; rigid_batch_explicit.h) on the loops and on
   // the scalar step: beads in the wind grid with seen turbulence, then spinning with the Basset
   // history and Magnus too, and light spheres in a uniform water flow (added mass, velocity form
   // in rk4's stages)
@@ -291,7 +300,7 @@ TEST(SphereBatch, EulerAndRk4MatchTheScalarStep) {
       // sphere the moments v x m v and v_r x m_a v_r (rk4's gyroscopic and added-mass terms,
       // euler's -v_r x P_f) vanish only to round-off there, and a 0.25 mm bead's
       // J = 4e-15 kg m^2 turns that into ~5e-10 rad/s after 1 s (beads released without spin;
-      // the loops leave these moments out, sphere_batch_explicit.h)
+      // the loops leave these moments out for an isotropic M, rigid_batch_explicit.h)
       double dV = 0;
       for (size_t i = 0; i < scalar.state.size(); ++i)
         dV = std::max(dV, (scalar.state.q[i] * scalar.state.v[i] -
@@ -427,7 +436,7 @@ TEST(SphereBatch, NonFiniteStateFailsWithTheScalarStepsReason) {
 }
 
 TEST(SphereBatch, FloatCostsLittleAccuracy) {
-  // every scheme's loops in single precision (euler and rk4: sphere_batch_explicit.h)
+  // every scheme's loops in single precision (euler and rk4: rigid_batch_explicit.h)
   for (const Integrator scheme :
        {Integrator::Splitting, Integrator::Strang, Integrator::Euler, Integrator::RK4}) {
     Scene s = bead_scene(2.5e-4, 2500, 300);
@@ -458,7 +467,7 @@ TEST(SphereBatch, EligibilitySaysWhatExcludesABodyType) {
   with_lift.effects.add(Effect::Lift);
   const Model lifted = test::compile(with_lift, field);
   EXPECT_TRUE(sphere_batch_eligible(lifted, lifted.types[0], &why)) << why;
-  // every scheme runs on it (euler and rk4: sphere_batch_explicit.h)
+  // every scheme runs on it (euler and rk4: rigid_batch_explicit.h)
   for (const Integrator scheme :
        {Integrator::Euler, Integrator::RK4, Integrator::Splitting, Integrator::Strang}) {
     Scene e = s;
@@ -469,12 +478,20 @@ TEST(SphereBatch, EligibilitySaysWhatExcludesABodyType) {
   batch_test::expect_exclusions(
       s, field, sphere_batch_eligible,
       {
+          // batched, on the loops of a diagonal M
           {[](Scene& e) { e.bodies[0].shape = Shape::ellipsoid(3e-4, 2.5e-4, 2e-4); },
-           "not a sphere"},
+           "diagonal M"},
           {[](Scene& e) { e.turbulence_model = TurbulenceModel::Body; },
            "the body turbulence model"},
           {[](Scene& e) { e.batched = false; }, "the scene turns the batched step off"},
       });
+  // a sphere whose centre of mass is off its centroid is batched, not on the isotropic loops
+  // (its fluid forces act at the centroid, rigid_batch_test.cpp)
+  Scene offset = s;
+  offset.bodies[0].mass_offset = Vec3(0, 0, -5e-5);
+  const Model mo = test::compile(offset, field);
+  EXPECT_TRUE(rigid_batch_eligible(mo, mo.types[0], &why)) << why;
+  EXPECT_NE(batch_mass(mo.types[0]), BatchMass::Isotropic);
 }
 
 }  // namespace

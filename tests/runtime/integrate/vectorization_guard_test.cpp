@@ -18,8 +18,8 @@
 #include <nlohmann/json.hpp>
 
 #include "compile/compile_model.h"
+#include "integrate/rigid_batch.h"
 #include "integrate/simulation.h"
-#include "integrate/sphere_batch.h"
 #include "io/scene_json.h"
 #include "support/batch_compare.h"
 
@@ -94,7 +94,7 @@ TEST(VectorizationGuard, BatchedStepIsAtLeastFourTimesTheScalarStepOnTheLeavesSc
   }
   const double ratio = best_batched / best_scalar;
   std::printf("batched %.3g, scalar %.3g body-steps per CPU-second: ratio %.2f (%s loops)\n",
-              best_batched, best_scalar, ratio, sphere_batch_isa());
+              best_batched, best_scalar, ratio, batch_isa());
   EXPECT_GE(ratio, kMinRatio);
 }
 
@@ -123,7 +123,7 @@ TEST(VectorizationGuard, EulerAndRk4OnTheBatchedStep) {
     }
     std::printf("%s: batched %.3g, scalar %.3g body-steps per CPU-second: ratio %.2f (%s loops)\n",
                 names[k], best_batched[k], best_scalar[k], best_batched[k] / best_scalar[k],
-                sphere_batch_isa());
+                batch_isa());
   }
   for (int k = 1; k < 3; ++k) EXPECT_GE(best_batched[k] / best_scalar[k], kMinRatio) << names[k];
   EXPECT_GE(best_batched[1], best_batched[0] / 3) << "euler against splitting, batched";
@@ -145,15 +145,16 @@ Model beads_model(Integrator scheme, Scene* scene) {
 }
 
 TEST(VectorizationGuard, EulerAndRk4OnTheBatchedSphereStep) {
-  // the explicit schemes on the batched sphere step (sphere_batch_explicit.h), each against its
-  // own scalar step in one run: at least four times it
+  // the explicit schemes on the batched step's loops for an isotropic M (rigid_batch_explicit.h),
+  // each against its own scalar step in one run: at least four times it
   const Integrator schemes[2] = {Integrator::Euler, Integrator::RK4};
   const char* names[2] = {"euler", "rk4"};
   for (int k = 0; k < 2; ++k) {
     Scene s;
     Model batched = beads_model(schemes[k], &s);
     std::string why;
-    EXPECT_EQ(step_kind(batched, batched.types[0], &why), StepKind::SphereBlock) << why;
+    EXPECT_EQ(step_kind(batched, batched.types[0], &why), StepKind::Batched) << why;
+    EXPECT_EQ(batch_mass(batched.types[0]), BatchMass::Isotropic);
     Model scalar = batched;
     scalar.batched = false;
     const State initial = initial_state(batched, s);
@@ -166,7 +167,7 @@ TEST(VectorizationGuard, EulerAndRk4OnTheBatchedSphereStep) {
     std::printf("%s spheres: batched %.3g, scalar %.3g body-steps per CPU-second: ratio %.2f "
                 "(%s loops)\n",
                 names[k], best_batched, best_scalar, best_batched / best_scalar,
-                sphere_batch_isa());
+                batch_isa());
     EXPECT_GE(best_batched / best_scalar, kMinRatio) << names[k];
   }
 }

@@ -239,17 +239,18 @@ TEST(KirchhoffKernels, FullMassKernelsMatchTheDenseAlgebra) {
 }
 
 TEST(KirchhoffKernels, ImplicitImpulseOfAnIsotropicMassIsTheDiagonalOne) {
-  // the sphere step's closed form against the diagonal kernel on M = diag(m, m, m, J, J, J)
+  // the isotropic M's closed form against the diagonal kernel on M = diag(m, m, m, J, J, J)
   std::mt19937_64 gen(17);
   std::uniform_real_distribution<double> u(-1, 1), s(0.0, 5.0);
   for (int trial = 0; trial < 100; ++trial) {
-    const IsotropicMass iso{2e-3 * (1 + s(gen)), 4e-7 * (1 + s(gen))};
+    const double m = 2e-3 * (1 + s(gen)), J = 4e-7 * (1 + s(gen));
+    const IsotropicMass iso = isotropic_mass(m, J);
     DiagonalMass diag;
     for (int a = 0; a < 3; ++a) {
-      diag.M[a] = iso.m;
-      diag.Mi[a] = 1 / iso.m;
-      diag.M[3 + a] = iso.J;
-      diag.Mi[3 + a] = 1 / iso.J;
+      diag.M[a] = m;
+      diag.Mi[a] = 1 / m;
+      diag.M[3 + a] = J;
+      diag.Mi[3 + a] = 1 / J;
     }
     DragOut<double> d{};
     d.c_lin = 1e-3 * s(gen);

@@ -47,7 +47,7 @@ TEST(FastMath, LogOverEveryExponentAndAtTheMantissaSplit) {
 }
 
 TEST(FastMath, ExpAndOneMinusExpMatchLibrary) {
-  // relative errors of a few ulp over the ranges the batched sphere step uses them on
+  // relative errors of a few ulp over the ranges the batched step uses them on
   double worst_exp = 0, worst_om = 0;
   for (int i = 0; i <= 200000; ++i) {
     const double x = -700.0 + 1400.0 * i / 200000.0;

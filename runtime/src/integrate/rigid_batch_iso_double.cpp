@@ -1,0 +1,13 @@
+// The batched rigid-body step for an isotropic M (uniform spheres) in double precision: one of the
+// six instantiations of rigid_batch_step.h, each in its own file so that they compile side by
+// side.
+#include "integrate/rigid_batch_step.h"
+
+namespace lrigid::rigid_batch_detail {
+
+BlockStats advance_iso_double(const Model& model, const BodyType& type, State* state,
+                      const uint32_t* body, int count, uint64_t first, uint64_t last) {
+  return advance<double, IsotropicMass>(model, type, state, body, count, first, last);
+}
+
+}  // namespace lrigid::rigid_batch_detail
