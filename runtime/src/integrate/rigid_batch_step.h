@@ -251,7 +251,8 @@ LRIGID_LANE DragOut<T> body_forces(const C& tc, const T* u, const T* w, T* lift)
   return drag;
 }
 
-// The Magnus force (body frame) on a lane with relative velocity u and spin w, at the centroid
+// The Magnus force on a lane with relative velocity u and spin w (both in the lanes' frame,
+// FrameOf), at the centroid
 template <typename T, class C>
 LRIGID_LANE void lane_magnus(const C& tc, const T* u, const T* w, T* f) {
   if constexpr (C::isotropic) return magnus_kernel(T(tc.magnus), w, u, f);
