@@ -142,19 +142,28 @@ TEST(KirchhoffKernels, FixedPointAndResidualAgreeWithTheMidpointEquation) {
   }
 }
 
+// a drag of random coefficients (c_ang one per axis, of the scale given) along a random
+// direction, drawn as the implicit force step's tests draw it
+DragOut<double> random_drag(std::mt19937_64& gen, double ang_scale) {
+  std::uniform_real_distribution<double> u(-1, 1), s(0.0, 5.0);
+  DragOut<double> d{};
+  d.c_lin = 1e-3 * s(gen);
+  d.p = s(gen);
+  for (int a = 0; a < 3; ++a) d.c_ang[a] = ang_scale * s(gen);
+  Vec3 uh(u(gen), u(gen), u(gen));
+  uh.normalize();
+  for (int a = 0; a < 3; ++a) d.u_hat[a] = uh[a];
+  return d;
+}
+
 TEST(KirchhoffKernels, ImplicitImpulseSolvesTheImplicitForceStep) {
   std::mt19937_64 gen(13);
   std::uniform_real_distribution<double> u(-1, 1), s(0.0, 5.0);
   const double h = 1e-3;
   for (int trial = 0; trial < 100; ++trial) {
     Case c = make_case(gen);
-    DragOut<double> d{};
-    d.c_lin = 1e-3 * s(gen);
-    d.p = s(gen);
-    for (int a = 0; a < 3; ++a) d.c_ang[a] = 1e-6 * s(gen);  // one per axis
-    Vec3 uh(u(gen), u(gen), u(gen));
-    uh.normalize();
-    for (int a = 0; a < 3; ++a) d.u_hat[a] = uh[a];
+    const DragOut<double> d = random_drag(gen, 1e-6);
+    const Vec3 uh(d.u_hat[0], d.u_hat[1], d.u_hat[2]);
     const double b = trial % 2 ? 2e-4 : 0.0;  // with and without the Basset mass
     Vec6 rhs;
     for (int a = 0; a < 6; ++a) rhs[a] = c.M(a, a) * u(gen);
@@ -213,13 +222,8 @@ TEST(KirchhoffKernels, FullMassKernelsMatchTheDenseAlgebra) {
     EXPECT_NEAR(velocity_norm2(full, xi.data()), xi.dot(M * xi), 1e-13 * xi.dot(M * xi));
     EXPECT_NEAR(energy_norm2(full, Pi.data()), Pi.dot(Mi * Pi), 1e-12 * Pi.dot(Mi * Pi));
     // the implicit force step, in one call and factored once for two right-hand sides
-    DragOut<double> d{};
-    d.c_lin = 1e-3 * s(gen);
-    d.p = s(gen);
-    for (int a = 0; a < 3; ++a) d.c_ang[a] = 1e-6 * s(gen);  // one per axis
-    Vec3 uh(u(gen), u(gen), u(gen));
-    uh.normalize();
-    for (int a = 0; a < 3; ++a) d.u_hat[a] = uh[a];
+    const DragOut<double> d = random_drag(gen, 1e-6);
+    const Vec3 uh(d.u_hat[0], d.u_hat[1], d.u_hat[2]);
     Mat6 A = M;
     A.topLeftCorner<3, 3>() += h * d.c_lin * (Mat3::Identity() + d.p * uh * uh.transpose());
     A.bottomRightCorner<3, 3>() +=
@@ -252,13 +256,7 @@ TEST(KirchhoffKernels, ImplicitImpulseOfAnIsotropicMassIsTheDiagonalOne) {
       diag.M[3 + a] = J;
       diag.Mi[3 + a] = 1 / J;
     }
-    DragOut<double> d{};
-    d.c_lin = 1e-3 * s(gen);
-    d.p = s(gen);
-    for (int a = 0; a < 3; ++a) d.c_ang[a] = 1e-7 * s(gen);
-    Vec3 uh(u(gen), u(gen), u(gen));
-    uh.normalize();
-    for (int a = 0; a < 3; ++a) d.u_hat[a] = uh[a];
+    const DragOut<double> d = random_drag(gen, 1e-7);
     Vec6 b;
     for (int a = 0; a < 6; ++a) b[a] = 1e-3 * u(gen);
     Vec6 xi, xd;
