@@ -37,10 +37,12 @@ from callgrind_count import callgrind, inclusive_table, instructions_of  # noqa:
 
 # measure 2's difference by part: (key, the functions' symbols); the first three do not call one
 # another, so with the rest of `simulate` they split it
-PARTS = (("step", r"step_lanes<"), ("contact", r"lrigid::contact_after_step\("),
-         ("watch", r"lrigid::watch_sleeper\("), ("sample", r"sample_lanes<"))
+PARTS = (("step", r"(splitting|strang|euler|rk4)_lanes<"),
+         ("contact", r"lrigid::contact_after_step\("), ("watch", r"lrigid::watch_sleeper\("),
+         ("sample", r"sample_lanes<"))
 PART_NAMES = {
-    "step": "the batched steps' loops (`step_lanes`, every variant; with the samples they take)",
+    "step": "the batched steps' loops (`splitting_lanes`, `strang_lanes`, `euler_lanes`, "
+            "`rk4_lanes`, every variant; with the samples they take)",
     "contact": "the contact pass (`contact_after_step`)",
     "watch": "the sleepers' gust watches (`watch_sleeper`)",
     "rest": "the rest of `simulate` (block driver, samples taken again after a contact, hand-offs)",

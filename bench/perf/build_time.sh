@@ -23,6 +23,7 @@ done
 DIR=$(mktemp -d "${TMPDIR:-/tmp}/lrigid-build-time.XXXXXX")
 trap 'rm -rf "$DIR" "$DIR.log"' EXIT
 export CCACHE_DISABLE=1
+export CMAKE_GENERATOR=${CMAKE_GENERATOR:-Ninja}  # as ./Allrun
 python3 - "$ROOT" "$DIR" "$JOBS" "$UNITS" <<'PY'
 import json, os, resource, subprocess, sys, time
 root, d, jobs, units = sys.argv[1], sys.argv[2], sys.argv[3], sys.argv[4] == "1"
@@ -39,7 +40,8 @@ def run(cmd, cwd=None):
 commit = subprocess.run(["git", "-C", root, "rev-parse", "--short", "HEAD"], capture_output=True,
                         text=True).stdout.strip()
 cpu = next((l.split(":", 1)[1].strip() for l in open("/proc/cpuinfo") if l.startswith("model name")), "?")
-print("commit %s, %s, %d cores, %s jobs" % (commit, cpu, os.cpu_count(), jobs))
+print("commit %s, %s, %d cores, %s jobs, %s" % (commit, cpu, os.cpu_count(), jobs,
+                                             os.environ["CMAKE_GENERATOR"]))
 wall, _ = run(["cmake", "-S", root, "-B", d, "-DCMAKE_BUILD_TYPE=Release"])
 print("configure: %.0f s" % wall)
 wall, cpu_s = run(["cmake", "--build", d, "-j", jobs, "--target", "lrigid", "foam2grid"])

@@ -291,8 +291,6 @@ BodyType make_body_type(const Scene& scene, const BodySpec& b, const Shape& shap
   }
   t.M_inv = ldlt.solve(Mat6::Identity());
   t.M_inv = 0.5 * (t.M_inv + t.M_inv.transpose());  // exactly symmetric (model/kirchhoff.h)
-  t.M_block_diagonal =
-      t.M.topRightCorner<3, 3>().isZero(0.0) && t.M.bottomLeftCorner<3, 3>().isZero(0.0);
   t.M_diagonal = Mat6(t.M.diagonal().asDiagonal()) == t.M;
   if (t.M_diagonal) t.M_inv_diagonal = t.M.diagonal().cwiseInverse();
   auto equal3 = [](const Vec3& d) {

@@ -1,5 +1,5 @@
 // The batched rigid-body step for a diagonal M (boxes, disks, ellipsoids) in single precision: one
-// of the four instantiations of rigid_batch_step.h, each in its own file so that they compile side
+// of the six instantiations of rigid_batch_step.h, each in its own file so that they compile side
 // by side.
 #include "integrate/rigid_batch_step.h"
 

@@ -1,4 +1,4 @@
-// The batched rigid-body step for a full M (meshes) in single precision: one of the four
+// The batched rigid-body step for a full M (meshes) in single precision: one of the six
 // instantiations of rigid_batch_step.h, each in its own file so that they compile side by side.
 #include "integrate/rigid_batch_step.h"
 

@@ -66,9 +66,6 @@ struct BodyType {
   Mat3 munk_back = Mat3::Zero();
   Mat6 M = Mat6::Zero();         // what the step inverts: M_body (+ K_fluid with added_mass)
   Mat6 M_inv = Mat6::Zero();
-  // M has no linear-angular coupling (centre of mass at the centroid of a symmetric shape): the
-  // implicit impulse step then solves two 3x3 systems instead of one 6x6
-  bool M_block_diagonal = false;
   // M is diagonal (boxes, ellipsoids, spheres with the centre of mass at the centroid): M^-1 is
   // applied as the element-wise product with M_inv_diagonal
   bool M_diagonal = false;
