@@ -61,11 +61,11 @@ Vec6 rotate6(const Mat3& R, const Vec6& a) {
   return r;
 }
 
-// x = M (M + h J + b P)^-1 rhs: the implicit force step's impulse change (model/kirchhoff.h
-// implicit_impulse, the batched steps' kernel), J the drag stiffness ds (none: null), b the Basset
-// history's current interval as a mass (0 without)
-Vec6 implicit_impulse_change(const BodyType& type, double b, const DragStiffness* ds, double h,
-                             const Vec6& rhs) {
+// The implicit force step's solve for right-hand side rhs, J the drag stiffness ds (none: null),
+// b the Basset history's current interval as a mass (0 without): (M + h J + b P)^-1 rhs, the
+// velocity change (implicit_velocity_change; model/kirchhoff.h implicit_velocity, the batched
+// steps' kernel), or M times that, the impulse change (implicit_impulse_change)
+DragOut<double> drag_out(const DragStiffness* ds) {
   DragOut<double> d{};
   if (ds) {
     d.c_lin = ds->c_lin;
@@ -73,11 +73,24 @@ Vec6 implicit_impulse_change(const BodyType& type, double b, const DragStiffness
     for (int a = 0; a < 3; ++a) d.c_ang[a] = ds->c_ang[a];
     for (int a = 0; a < 3; ++a) d.u_hat[a] = ds->u_hat[a];
   }
+  return d;
+}
+Vec6 implicit_velocity_change(const BodyType& type, double b, const DragStiffness* ds, double h,
+                              const Vec6& rhs) {
+  Vec6 y;
+  if (type.M_diagonal)
+    implicit_velocity(diagonal_mass(type), b, drag_out(ds), h, rhs.data(), y.data());
+  else
+    implicit_velocity(full_mass(type), b, drag_out(ds), h, rhs.data(), y.data());
+  return y;
+}
+Vec6 implicit_impulse_change(const BodyType& type, double b, const DragStiffness* ds, double h,
+                             const Vec6& rhs) {
   Vec6 x;
   if (type.M_diagonal)
-    implicit_impulse(diagonal_mass(type), b, d, h, rhs.data(), x.data());
+    implicit_impulse(diagonal_mass(type), b, drag_out(ds), h, rhs.data(), x.data());
   else
-    implicit_impulse(full_mass(type), b, d, h, rhs.data(), x.data());
+    implicit_impulse(full_mass(type), b, drag_out(ds), h, rhs.data(), x.data());
   return x;
 }
 
@@ -196,7 +209,7 @@ StepOutcome split_deterministic_step(const Model& model, const BodyType& type, d
 }
 
 // The Strang scheme's force step over h at the body's position and orientation (both held), on
-// the fluid sample taken there: ROS2 on the impulse (model/kirchhoff.h ros2_impulse), the
+// the fluid sample taken there: ROS2 (model/kirchhoff.h ros2_velocity), the
 // stiffness J the drag's. The added-mass term is all in the Kirchhoff flow but for the fluid's
 // own acceleration, a constant force K (R^T Du/Dt; 0) here; the forces see the fluid velocity at
 // the body's (held) position.
@@ -215,14 +228,11 @@ void strang_force_step(const Model& model, const BodyType& type, const FluidSamp
   Vec6 drag_along = Vec6::Zero();
   if (fluid_inertia && plan.mean_flow)
     drag_along = type.K_fluid.leftCols<3>() * (c.Rt * mean_flow_acceleration(fluid));
-  Vec6 xi;
-  xi << s->v, s->w;
-  Vec6 Pi = type.M_times(xi);
-  if (fluid_inertia) Pi -= type.K_fluid.leftCols<3>() * uf_b;
-  auto forces = [&](const double* dPi, bool first, double* F) {
-    const Vec6 x = velocity_from_impulse(type, Pi + Eigen::Map<const Vec6>(dPi), uf_b, fluid_inertia);
-    c.v_rel = x.head<3>() - uf_b;
-    c.w = x.tail<3>();
+  Vec6 xi0;
+  xi0 << s->v, s->w;
+  auto forces = [&](const double* dxi, bool first, double* F) {
+    c.v_rel = xi0.head<3>() + Eigen::Map<const Vec3>(dxi) - uf_b;
+    c.w = xi0.tail<3>() + Eigen::Map<const Vec3>(dxi + 3);
     Vec6 rate = drag_along;
     for (size_t i = 0; i < plan.terms.size(); ++i) {
       const Effect e = plan.term_effect[i];
@@ -234,15 +244,19 @@ void strang_force_step(const Model& model, const BodyType& type, const FluidSamp
     Eigen::Map<Vec6> out(F);
     out = rate;
   };
-  auto solve = [&](double gh, const double* b, double* x) {
-    Eigen::Map<Vec6> out(x);
-    out = implicit_impulse_change(type, 0.0, has_drag ? &J : nullptr, gh, Eigen::Map<const Vec6>(b));
+  auto solve = [&](double gh, const double* b, double* y) {
+    Eigen::Map<Vec6> out(y);
+    out = implicit_velocity_change(type, 0.0, has_drag ? &J : nullptr, gh,
+                                   Eigen::Map<const Vec6>(b));
   };
-  Vec6 dPi;
-  ros2_impulse(h, forces, solve, dPi.data());
-  const Vec6 xi_new = velocity_from_impulse(type, Pi + dPi, uf_b, fluid_inertia);
-  s->v = xi_new.head<3>();
-  s->w = xi_new.tail<3>();
+  auto m_times = [&](const double* y, double* out) {
+    Eigen::Map<Vec6> x(out);
+    x = type.M_times(Eigen::Map<const Vec6>(y));
+  };
+  Vec6 dxi;
+  ros2_velocity(h, forces, solve, m_times, dxi.data());
+  s->v = xi0.head<3>() + dxi.head<3>();
+  s->w = xi0.tail<3>() + dxi.tail<3>();
 }
 
 // Deterministic part of the Strang scheme (docs/physics/integrators.md): the symmetric

@@ -309,7 +309,7 @@ LRIGID_LANE DragOut<T> lane_forces(const StepConsts<Mass>& tc, const Frame& fr, 
 
 // The Strang scheme's force step over hs on a lane's velocities v (in the frame fr) and w (body
 // frame), in place, and the fluid velocity u_f (world) with its material derivative acc (world,
-// the gu factor applied here): ROS2 (model/kirchhoff.h ros2_impulse), as integrators.cpp
+// the gu factor applied here): ROS2 (model/kirchhoff.h ros2_velocity), as integrators.cpp
 // strang_force_step (for an isotropic M the world and body frames give the same step). Not with
 // the Basset history (tc.strang).
 template <typename T, bool Plate, class Mass>
@@ -317,7 +317,7 @@ LRIGID_LANE void strang_force_lane(const StepConsts<Mass>& tc, const FrameOf<T, 
                                    const T* u_f, const T* acc, T hs, T* v, T* w) {
   const T F[3] = {T(tc.F[0]), T(tc.F[1]), T(tc.F[2])};
   const T a_f[3] = {T(tc.gu) * acc[0], T(tc.gu) * acc[1], T(tc.gu) * acc[2]};
-  T ufb[3], ab[3], Fb[3], P[6];
+  T ufb[3], ab[3], Fb[3];
   fr.of_world(u_f, ufb);
   fr.of_world(a_f, ab);
   fr.of_world(F, Fb);
@@ -326,16 +326,15 @@ LRIGID_LANE void strang_force_lane(const StepConsts<Mass>& tc, const FrameOf<T, 
   T drag_along[6];
   fluid_impulse(tc.K, ab, drag_along);
   const T xi0[6] = {v[0], v[1], v[2], w[0], w[1], w[2]};
-  impulse_of_velocity(tc.mass, tc.K, xi0, ufb, P);
   DragOut<T> J{};
-  auto forces = [&](const T* dPi, bool first, T* f) LRIGID_LANE_LAMBDA {
-    T Pn[6], xi[6], vr[3], fe[6];
-#pragma GCC unroll 6
-    for (int a = 0; a < 6; ++a) Pn[a] = P[a] + dPi[a];
-    velocity_of_impulse(tc.mass, tc.K, Pn, ufb, xi);
+  auto forces = [&](const T* dxi, bool first, T* f) LRIGID_LANE_LAMBDA {
+    T vr[3], wn[3], fe[6];
 #pragma GCC unroll 3
-    for (int a = 0; a < 3; ++a) vr[a] = xi[a] - ufb[a];
-    const DragOut<T> d = lane_forces<T, Plate>(tc, fr, Fb, vr, xi + 3, fe);
+    for (int a = 0; a < 3; ++a) {
+      vr[a] = xi0[a] + dxi[a] - ufb[a];
+      wn[a] = xi0[3 + a] + dxi[3 + a];
+    }
+    const DragOut<T> d = lane_forces<T, Plate>(tc, fr, Fb, vr, wn, fe);
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
       f[a] = fe[a] + drag_along[a] + d.f[a];
@@ -346,24 +345,22 @@ LRIGID_LANE void strang_force_lane(const StepConsts<Mass>& tc, const FrameOf<T, 
   // (a full M: the matrix of ROS2's two stages factored once, at the first)
   [[maybe_unused]] T lu[std::is_same_v<Mass, FullMass> ? 36 : 1];
   [[maybe_unused]] bool factored = false;
-  auto solve = [&](T gh, const T* b, T* x) LRIGID_LANE_LAMBDA {
+  auto solve = [&](T gh, const T* b, T* y) LRIGID_LANE_LAMBDA {
     if constexpr (std::is_same_v<Mass, FullMass>) {
       if (!factored) implicit_factor(tc.mass, T(0), J, gh, lu);
       factored = true;
-      implicit_solve(tc.mass, lu, b, x);
+      implicit_solve(lu, b, y);
     } else {
-      implicit_impulse(tc.mass, T(0), J, gh, b, x);
+      implicit_velocity(tc.mass, T(0), J, gh, b, y);
     }
   };
-  T dPi[6], xi[6];
-  ros2_impulse(hs, forces, solve, dPi);
-#pragma GCC unroll 6
-  for (int a = 0; a < 6; ++a) dPi[a] += P[a];
-  velocity_of_impulse(tc.mass, tc.K, dPi, ufb, xi);
+  auto m_times = [&](const T* y, T* x) LRIGID_LANE_LAMBDA { mass_times(tc.mass, y, x); };
+  T dxi[6];
+  ros2_velocity(hs, forces, solve, m_times, dxi);
 #pragma GCC unroll 3
   for (int a = 0; a < 3; ++a) {
-    v[a] = xi[a];
-    w[a] = xi[3 + a];
+    v[a] = xi0[a] + dxi[a];
+    w[a] = xi0[3 + a] + dxi[3 + a];
   }
 }
 

@@ -346,15 +346,11 @@ LRIGID_LANE void kirchhoff_residual(const Mass& m, T h, const T* Y0, const T* Y,
 
 // ---- the implicit force step --------------------------------------------------------------------
 
-// x = M (M + h J + b_B P)^-1 b: the impulse change of the implicit force step (integrators.cpp
-// split_deterministic_step) for right-hand side b (6: linear, angular), where J is the drag's
-// stiffness d (linear block c_lin (I + p u u^T), angular diag(c_ang): never coupled) and b_B the
-// Basset history's current interval as a mass on the linear block (0 without). Diagonal M:
-// Sherman-Morrison on the linear block, closed form on the angular one.
+// The linear block of the implicit force step for a diagonal M, by Sherman-Morrison:
+// (D + cp u u^T)^-1 b = Dinv_b - g Dinv_u, D = M + b_B + h c_lin (diagonal), cp = h c_lin p
 template <typename T>
-LRIGID_LANE bool implicit_impulse(const DiagonalMass& m, T basset_mass, const DragOut<T>& d, T h,
-                                  const T* b, T* x) {
-  T Dinv_b[3], Dinv_u[3];
+LRIGID_LANE T sherman_morrison_linear(const DiagonalMass& m, T basset_mass, const DragOut<T>& d,
+                                      T h, const T* b, T* Dinv_b, T* Dinv_u) {
 #pragma GCC unroll 3
   for (int a = 0; a < 3; ++a) {
     const T Dinv = T(1) / (T(m.M[a]) + basset_mass + h * d.c_lin);
@@ -362,7 +358,35 @@ LRIGID_LANE bool implicit_impulse(const DiagonalMass& m, T basset_mass, const Dr
     Dinv_u[a] = Dinv * d.u_hat[a];
   }
   const T cp = h * d.c_lin * d.p;
-  const T g = cp * dot3(d.u_hat, Dinv_b) / (T(1) + cp * dot3(d.u_hat, Dinv_u));
+  return cp * dot3(d.u_hat, Dinv_b) / (T(1) + cp * dot3(d.u_hat, Dinv_u));
+}
+
+// y = (M + h J + b_B P)^-1 b: the velocity change of the implicit force step (integrators.cpp
+// split_deterministic_step) for right-hand side b (6: linear, angular), where J is the drag's
+// stiffness d (linear block c_lin (I + p u u^T), angular diag(c_ang): never coupled) and b_B the
+// Basset history's current interval as a mass on the linear block (0 without); implicit_impulse
+// gives the impulse change M y. Diagonal M: Sherman-Morrison on the linear block, closed form on
+// the angular one.
+template <typename T>
+LRIGID_LANE bool implicit_velocity(const DiagonalMass& m, T basset_mass, const DragOut<T>& d, T h,
+                                   const T* b, T* y) {
+  T Dinv_b[3], Dinv_u[3];
+  const T g = sherman_morrison_linear(m, basset_mass, d, h, b, Dinv_b, Dinv_u);
+#pragma GCC unroll 3
+  for (int a = 0; a < 3; ++a) {
+    y[a] = Dinv_b[a] - g * Dinv_u[a];
+    y[3 + a] = b[3 + a] / (T(m.M[3 + a]) + h * d.c_ang[a]);
+  }
+  return true;
+}
+// x = M (M + h J + b_B P)^-1 b, the impulse change (written out rather than as M times
+// implicit_velocity: GCC 12 then compiled the splitting loop so that a lane's last bit depended
+// on the block's width, BatchLanes.ABlockEndsWhereItsBodiesEndSteppedOneByOne)
+template <typename T>
+LRIGID_LANE bool implicit_impulse(const DiagonalMass& m, T basset_mass, const DragOut<T>& d, T h,
+                                  const T* b, T* x) {
+  T Dinv_b[3], Dinv_u[3];
+  const T g = sherman_morrison_linear(m, basset_mass, d, h, b, Dinv_b, Dinv_u);
 #pragma GCC unroll 3
   for (int a = 0; a < 3; ++a) {
     x[a] = T(m.M[a]) * (Dinv_b[a] - g * Dinv_u[a]);
@@ -373,6 +397,20 @@ LRIGID_LANE bool implicit_impulse(const DiagonalMass& m, T basset_mass, const Dr
 
 // Isotropic M: (m + b_B) I + h c_lin (I + p u u^T) is inverted by Sherman-Morrison in closed form
 // (one scalar a for all three axes)
+template <typename T>
+LRIGID_LANE bool implicit_velocity(const IsotropicMass& m, T basset_mass, const DragOut<T>& d, T h,
+                                   const T* b, T* y) {
+  const T mm = T(m.M[0]), J = T(m.M[3]);
+  const T a = mm + basset_mass + h * d.c_lin, c = h * d.c_lin * d.p;
+  const T ub = dot3(d.u_hat, b);
+  const T g = c / (a + c);
+#pragma GCC unroll 3
+  for (int i = 0; i < 3; ++i) {
+    y[i] = (b[i] - g * d.u_hat[i] * ub) / a;
+    y[3 + i] = b[3 + i] / (J + h * d.c_ang[i]);
+  }
+  return true;
+}
 template <typename T>
 LRIGID_LANE bool implicit_impulse(const IsotropicMass& m, T basset_mass, const DragOut<T>& d, T h,
                                   const T* b, T* x) {
@@ -405,23 +443,31 @@ LRIGID_LANE int implicit_factor(const FullMass& m, T basset_mass, const DragOut<
   }
   return lu_factor<6>(A);
 }
-// x = M A^-1 b for A from implicit_factor
+// y = A^-1 b for A from implicit_factor
 template <typename T>
-LRIGID_LANE void implicit_solve(const FullMass& m, const T* A, const T* b, T* x) {
-  T y[6];
+LRIGID_LANE void implicit_solve(const T* A, const T* b, T* y) {
 #pragma GCC unroll 6
   for (int a = 0; a < 6; ++a) y[a] = b[a];
   lu_solve<6>(A, y);
-  mass_times(m, y, x);
 }
-// implicit_impulse for a full M: factor and solve
+// implicit_velocity for a full M: factor and solve
+template <typename T>
+LRIGID_LANE bool implicit_velocity(const FullMass& m, T basset_mass, const DragOut<T>& d, T h,
+                                   const T* b, T* y) {
+  T A[36];
+  const int ok = implicit_factor(m, basset_mass, d, h, A);
+  implicit_solve(A, b, y);
+  return ok != 0;
+}
+
+// x = M (M + h J + b_B P)^-1 b: the impulse change of the implicit force step (implicit_velocity)
 template <typename T>
 LRIGID_LANE bool implicit_impulse(const FullMass& m, T basset_mass, const DragOut<T>& d, T h,
                                   const T* b, T* x) {
-  T A[36];
-  const int ok = implicit_factor(m, basset_mass, d, h, A);
-  implicit_solve(m, A, b, x);
-  return ok != 0;
+  T y[6];
+  const bool ok = implicit_velocity(m, basset_mass, d, h, b, y);
+  mass_times(m, y, x);
+  return ok;
 }
 
 // ---- the force step of the Strang scheme --------------------------------------------------------
@@ -433,26 +479,30 @@ LRIGID_LANE bool implicit_impulse(const FullMass& m, T basset_mass, const DragOu
 //   dPi = h (3/2 k1 + 1/2 k2),   g = 1 + 1/sqrt(2).
 // Second order for any matrix J (a W-method: the drag's stiffness leaves out the lift and the
 // drag's cross terms), L-stable where J is the forces' exact stiffness; without drag (J = 0) it
-// is Heun's method. forces(dPi, first, F) fills the impulse rate F (6: force, torque, body frame)
-// at the velocity of impulse change dPi (first: the first stage, which also sets the stiffness
-// J); solve(gh, b, x) sets x = M (M + gh J)^-1 b with the J of the first stage.
+// is Heun's method. With the fluid velocity held, the velocity changes by M^-1 dPi, and the
+// stages are taken in the velocity y_i = M^-1 k_i, which needs M once per step and M^-1 never:
+//   (M + g h J) y1 = F(0),   (M + g h J) y2 = F(h y1) - 2 M y1,   dxi = h (3/2 y1 + 1/2 y2).
+// forces(dxi, first, F) fills the impulse rate F (6: force, torque, body frame) at the velocity
+// change dxi (first: the first stage, which also sets the stiffness J); solve(gh, b, y) sets
+// y = (M + gh J)^-1 b with the J of the first stage; m_times(y, x) sets x = M y.
 constexpr double kRos2Gamma = 1.0 + M_SQRT1_2;
-template <typename T, class Forces, class Solve>
-LRIGID_LANE void ros2_impulse(T h, Forces forces, Solve solve, T* dPi) {
-  T F[6], k1[6], k2[6], y[6];
+template <typename T, class Forces, class Solve, class MassTimes>
+LRIGID_LANE void ros2_velocity(T h, Forces forces, Solve solve, MassTimes m_times, T* dxi) {
+  T F[6], y1[6], y2[6], k1[6], x[6];
 #pragma GCC unroll 6
-  for (int a = 0; a < 6; ++a) y[a] = T(0);
-  forces(y, true, F);
+  for (int a = 0; a < 6; ++a) x[a] = T(0);
+  forces(x, true, F);
   const T gh = T(kRos2Gamma) * h;
-  solve(gh, F, k1);
+  solve(gh, F, y1);
 #pragma GCC unroll 6
-  for (int a = 0; a < 6; ++a) y[a] = h * k1[a];
-  forces(y, false, F);
+  for (int a = 0; a < 6; ++a) x[a] = h * y1[a];
+  forces(x, false, F);
+  m_times(y1, k1);
 #pragma GCC unroll 6
   for (int a = 0; a < 6; ++a) F[a] -= T(2) * k1[a];
-  solve(gh, F, k2);
+  solve(gh, F, y2);
 #pragma GCC unroll 6
-  for (int a = 0; a < 6; ++a) dPi[a] = h * (T(1.5) * k1[a] + T(0.5) * k2[a]);
+  for (int a = 0; a < 6; ++a) dxi[a] = h * (T(1.5) * y1[a] + T(0.5) * y2[a]);
 }
 
 }  // namespace lrigid

@@ -192,8 +192,14 @@ TEST(BatchLanes, ABlockEndsWhereItsBodiesEndSteppedOneByOne) {
   tissue.bodies[0].angular_velocity = Vec3(40, -25, 10);
   for (const Precision p : {Precision::Double, Precision::Float}) {
     SCOPED_TRACE(p == Precision::Double ? "double" : "float");
-    expect_block_is_one_by_one(beads, field, p, advance_rigid_block);
-    expect_block_is_one_by_one(tissue, field, p, advance_rigid_block);
+    {
+      SCOPED_TRACE("beads");
+      expect_block_is_one_by_one(beads, field, p, advance_rigid_block);
+    }
+    {
+      SCOPED_TRACE("tissue");
+      expect_block_is_one_by_one(tissue, field, p, advance_rigid_block);
+    }
   }
   // the scenes take those paths
   const Model mb = test::compile(beads, field);
