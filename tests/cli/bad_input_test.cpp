@@ -696,6 +696,27 @@ TEST_F(Cli, OpenInvertedAndZeroVolumeMeshes) {
   EXPECT_EQ(ok.code, 0) << ok.err;
 }
 
+// A relative "field" or mesh "file" is looked for in the scene's folder: when it is not there, the
+// message says which folder that was (absolute), whatever the working directory; an absolute
+// name is reported as it is
+TEST_F(Cli, MissingRelativeFilesNameTheFolderTheyWereLookedFor) {
+  fs::create_directory(dir_ / "shots");
+  const std::string folder = (dir_ / "shots").lexically_normal().string();
+  put(dir_ / "shots" / "grid.json", grid_scene("grids/wind.vti"));
+  expect_error(run({"run", "shots/grid.json", "--quiet"}), 3,
+               {"fluid.field", "shots/grids/wind.vti",
+                "(\"grids/wind.vti\" is relative to the scene's folder, " + folder + ")"});
+  put(dir_ / "shots" / "mesh.json", mesh_scene("leaves/leaf.obj"));
+  expect_error(run({"run", "shots/mesh.json", "--quiet"}), 3,
+               {"bodies[0].shape.file", "leaf.obj",
+                "(\"leaves/leaf.obj\" is relative to the scene's folder, " + folder + ")"});
+  // an absolute name: no folder added
+  const std::string abs = (dir_ / "nowhere.vti").string();
+  const Result r = run_scene(grid_scene(abs));
+  expect_error(r, 3, {"file not found: " + abs});
+  EXPECT_EQ(r.err.find("relative to the scene's folder"), std::string::npos) << r.err;
+}
+
 TEST_F(Cli, SelfIntersectingMeshRefused) {
   // two overlapping tetrahedra: closed, consistently oriented, positive volume, and their faces
   // cross; the run went on with a wrong added mass (exit 0)

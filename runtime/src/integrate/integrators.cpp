@@ -75,23 +75,29 @@ DragOut<double> drag_out(const DragStiffness* ds) {
   }
   return d;
 }
+// f(M, out) with the body type's M as the kernels take it (diagonal or full); returns out
+template <class F>
+Vec6 with_mass(const BodyType& type, F f) {
+  Vec6 out;
+  if (type.M_diagonal)
+    f(diagonal_mass(type), out.data());
+  else
+    f(full_mass(type), out.data());
+  return out;
+}
 Vec6 implicit_velocity_change(const BodyType& type, double b, const DragStiffness* ds, double h,
                               const Vec6& rhs) {
-  Vec6 y;
-  if (type.M_diagonal)
-    implicit_velocity(diagonal_mass(type), b, drag_out(ds), h, rhs.data(), y.data());
-  else
-    implicit_velocity(full_mass(type), b, drag_out(ds), h, rhs.data(), y.data());
-  return y;
+  const DragOut<double> d = drag_out(ds);
+  return with_mass(type, [&](const auto& m, double* y) {
+    implicit_velocity(m, b, d, h, rhs.data(), y);
+  });
 }
 Vec6 implicit_impulse_change(const BodyType& type, double b, const DragStiffness* ds, double h,
                              const Vec6& rhs) {
-  Vec6 x;
-  if (type.M_diagonal)
-    implicit_impulse(diagonal_mass(type), b, drag_out(ds), h, rhs.data(), x.data());
-  else
-    implicit_impulse(full_mass(type), b, drag_out(ds), h, rhs.data(), x.data());
-  return x;
+  const DragOut<double> d = drag_out(ds);
+  return with_mass(type, [&](const auto& m, double* x) {
+    implicit_impulse(m, b, d, h, rhs.data(), x);
+  });
 }
 
 // One explicit Euler step in world-frame impulse form (see dynamics.h): forces, Munk moment

@@ -151,6 +151,18 @@ std::string resolve(const std::string& rel, const std::string& scene_file) {
   return (fs::path(scene_file).parent_path() / p).lexically_normal().string();
 }
 
+// For an error about a file the scene names: where a relative name was looked for (the scene's
+// folder, absolute), so that a wrong working directory or a misplaced scene shows at once; empty
+// for an absolute name
+std::string resolved_against(const std::string& rel, const std::string& scene_file) {
+  if (fs::path(rel).is_absolute()) return "";
+  std::error_code ec;
+  fs::path folder = fs::absolute(fs::path(scene_file).parent_path(), ec);
+  if (ec) return "";
+  return " (\"" + rel + "\" is relative to the scene's folder, " +
+         folder.lexically_normal().string() + ")";
+}
+
 // the keys of a shape object (a body's "shape", and Python's lrigid.added_mass)
 constexpr Keys kShapeKeys = {"type", "radius", "semi_axes", "size", "file", "scale", "panels"};
 
@@ -197,14 +209,17 @@ Shape read_shape(Obj o, BodySpec* b) {
                          Obj::dump(o.get("size")));
     s = Shape::box(l.x(), l.y(), l.z());
   } else if (type == "mesh") {
-    const std::string file = resolve(o.string("file"), o.file());
+    const std::string name = o.string("file"), file = resolve(name, o.file());
     const double scale = o.positive_or("scale", 1.0);
     std::shared_ptr<TriangleMesh> mesh;
     try {
       mesh = std::make_shared<TriangleMesh>(read_mesh(file));
     } catch (const Error& e) {
-      // the mesh's own message names the mesh file; add where the scene asked for it
-      o.fail("file", e.what());
+      // the mesh's own message names the mesh file; add where the scene asked for it and, for a
+      // file that is not there, where a relative name was looked for
+      std::error_code ec;
+      o.fail("file", std::string(e.what()) +
+                         (fs::exists(file, ec) ? "" : resolved_against(name, o.file())));
     }
     for (Vec3& v : mesh->vertices) v *= scale;
     // the scaled mesh's size as a box's: a scale that takes it out of that range would end in
@@ -512,10 +527,11 @@ Scene parse_scene_unchecked(const std::string& text, const std::string& path) {
     if (field == uniform) f.fail("", "needs exactly one of \"field\" or \"uniform\"");
     if (field) {
       s.uniform_field = false;
-      s.field_path = resolve(f.string("field"), path);
+      const std::string name = f.string("field");
+      s.field_path = resolve(name, path);
       std::error_code ec;
       if (!fs::exists(s.field_path, ec))
-        f.fail("field", "file not found: " + s.field_path);
+        f.fail("field", "file not found: " + s.field_path + resolved_against(name, path));
       if (f.has("time")) {
         const std::string m = f.string("time");
         if (m == "loop") s.time_mode = TimeMode::Loop;
