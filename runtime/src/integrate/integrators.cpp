@@ -61,10 +61,7 @@ Vec6 rotate6(const Mat3& R, const Vec6& a) {
   return r;
 }
 
-// The implicit force step's solve for right-hand side rhs, J the drag stiffness ds (none: null),
-// b the Basset history's current interval as a mass (0 without): (M + h J + b P)^-1 rhs, the
-// velocity change (implicit_velocity_change; model/kirchhoff.h implicit_velocity, the batched
-// steps' kernel), or M times that, the impulse change (implicit_impulse_change)
+// the drag stiffness ds (none: null) as the kernels of model/kirchhoff.h take it
 DragOut<double> drag_out(const DragStiffness* ds) {
   DragOut<double> d{};
   if (ds) {
@@ -85,6 +82,10 @@ Vec6 with_mass(const BodyType& type, F f) {
     f(full_mass(type), out.data());
   return out;
 }
+// The implicit force step's solve for right-hand side rhs, J the drag stiffness ds (none: null),
+// b the Basset history's current interval as a mass (0 without): (M + h J + b P)^-1 rhs, the
+// velocity change (implicit_velocity_change; model/kirchhoff.h implicit_velocity, the batched
+// steps' kernel), or M times that, the impulse change (implicit_impulse_change)
 Vec6 implicit_velocity_change(const BodyType& type, double b, const DragStiffness* ds, double h,
                               const Vec6& rhs) {
   const DragOut<double> d = drag_out(ds);
