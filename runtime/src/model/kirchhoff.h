@@ -396,31 +396,38 @@ LRIGID_LANE bool implicit_impulse(const DiagonalMass& m, T basset_mass, const Dr
 }
 
 // Isotropic M: (m + b_B) I + h c_lin (I + p u u^T) is inverted by Sherman-Morrison in closed form
-// (one scalar a for all three axes)
+// (one scalar a for all three axes): its inverse applied to b is (b - g u (u . b)) / a
+template <typename T>
+struct IsotropicSolve {
+  T a, g, ub;
+};
+template <typename T>
+LRIGID_LANE IsotropicSolve<T> isotropic_sherman_morrison(const IsotropicMass& m, T basset_mass,
+                                                         const DragOut<T>& d, T h, const T* b) {
+  const T a = T(m.M[0]) + basset_mass + h * d.c_lin, c = h * d.c_lin * d.p;
+  return {a, c / (a + c), dot3(d.u_hat, b)};
+}
 template <typename T>
 LRIGID_LANE bool implicit_velocity(const IsotropicMass& m, T basset_mass, const DragOut<T>& d, T h,
                                    const T* b, T* y) {
-  const T mm = T(m.M[0]), J = T(m.M[3]);
-  const T a = mm + basset_mass + h * d.c_lin, c = h * d.c_lin * d.p;
-  const T ub = dot3(d.u_hat, b);
-  const T g = c / (a + c);
+  const T J = T(m.M[3]);
+  const IsotropicSolve<T> s = isotropic_sherman_morrison(m, basset_mass, d, h, b);
 #pragma GCC unroll 3
   for (int i = 0; i < 3; ++i) {
-    y[i] = (b[i] - g * d.u_hat[i] * ub) / a;
+    y[i] = (b[i] - s.g * d.u_hat[i] * s.ub) / s.a;
     y[3 + i] = b[3 + i] / (J + h * d.c_ang[i]);
   }
   return true;
 }
+// the impulse change M y, written out (as the diagonal M's implicit_impulse)
 template <typename T>
 LRIGID_LANE bool implicit_impulse(const IsotropicMass& m, T basset_mass, const DragOut<T>& d, T h,
                                   const T* b, T* x) {
   const T mm = T(m.M[0]), J = T(m.M[3]);
-  const T a = mm + basset_mass + h * d.c_lin, c = h * d.c_lin * d.p;
-  const T ub = dot3(d.u_hat, b);
-  const T g = c / (a + c);
+  const IsotropicSolve<T> s = isotropic_sherman_morrison(m, basset_mass, d, h, b);
 #pragma GCC unroll 3
   for (int i = 0; i < 3; ++i) {
-    x[i] = mm * (b[i] - g * d.u_hat[i] * ub) / a;
+    x[i] = mm * (b[i] - s.g * d.u_hat[i] * s.ub) / s.a;
     x[3 + i] = J * b[3 + i] / (J + h * d.c_ang[i]);
   }
   return true;
