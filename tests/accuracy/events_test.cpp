@@ -48,7 +48,7 @@ Landing run(Scene s, Integrator integ, double dt, bool batched = true) {
   return {st.x, st.t_stop, st.t_touch, st.x_touch};
 }
 
-double log_log_slope(const std::vector<double>& dt, const std::vector<double>& err) {
+double events_log_log_slope(const std::vector<double>& dt, const std::vector<double>& err) {
   double sx = 0, sy = 0, sxx = 0, sxy = 0;
   const double n = double(dt.size());
   for (size_t i = 0; i < dt.size(); ++i) {
@@ -78,7 +78,7 @@ Slopes landing_slopes(const Scene& s, Integrator integ, const std::vector<double
     std::printf("%s %s dt %.3g s: landing point error %.3e m, time error %.3e s\n", label,
                 integrator_name(integ), dt, ex.back(), et.back());
   }
-  const Slopes p{log_log_slope(dts, ex), log_log_slope(dts, et)};
+  const Slopes p{events_log_log_slope(dts, ex), events_log_log_slope(dts, et)};
   std::printf("%s %s: slopes %.2f (point), %.2f (time)\n", label, integrator_name(integ), p.x,
               p.t);
   return p;

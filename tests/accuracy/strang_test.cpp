@@ -50,13 +50,13 @@ FluidField uniform_field(const Scene& s) {
                              s.drift);
 }
 
-double rms_diff(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
+double strang_rms_diff(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
   double s = 0;
   for (size_t i = 0; i < a.size(); ++i) s += (a[i] - b[i]).squaredNorm();
   return std::sqrt(s / double(a.size()));
 }
 
-double log_log_slope(const std::vector<double>& dt, const std::vector<double>& err) {
+double strang_log_log_slope(const std::vector<double>& dt, const std::vector<double>& err) {
   double sx = 0, sy = 0, sxx = 0, sxy = 0;
   const double n = double(dt.size());
   for (size_t i = 0; i < dt.size(); ++i) {
@@ -75,10 +75,10 @@ double slope(const Scene& s, const FluidField& f, Integrator integ, const std::v
   const FinalState ref = run(s, f, Integrator::RK4, dt_ref);
   std::vector<double> err;
   for (double dt : dts) {
-    err.push_back(rms_diff(run(s, f, integ, dt).x, ref.x));
+    err.push_back(strang_rms_diff(run(s, f, integ, dt).x, ref.x));
     std::printf("%s %s dt %.3g s: error %.3e m\n", label, integrator_name(integ), dt, err.back());
   }
-  const double p = log_log_slope(dts, err);
+  const double p = strang_log_log_slope(dts, err);
   std::printf("%s %s: slope %.2f\n", label, integrator_name(integ), p);
   if (errors) *errors = err;
   return p;
@@ -223,7 +223,7 @@ TEST(Strang, LeafInAShearedWind) {
 // position couples to u' through the drag; the symmetric composition around exact OU half steps
 // (the BAOAB idea, Leimkuhler and Matthews 2013) gives its variance weak order 2 here (splitting:
 // 1, convergence_test.cpp), measured on the same Brownian path at every dt.
-Scene ou_scene(int count) {
+Scene strang_ou_scene(int count) {
   Scene s = test::sphere_scene(2e-3, 1000, 998.2, 1e-6, count);
   s.uniform_k = 1e-3;
   s.uniform_epsilon = 5e-4;
@@ -235,7 +235,7 @@ Scene ou_scene(int count) {
 }
 
 TEST(Strang, OUVarianceStaysStationaryAtAnyStep) {
-  const Scene s = ou_scene(20000);
+  const Scene s = strang_ou_scene(20000);
   const FluidField f = uniform_field(s);
   FluidSample fs;
   f.sample(Vec3::Zero(), 0.0, false, &fs);
@@ -256,7 +256,7 @@ TEST(Strang, OUVarianceStaysStationaryAtAnyStep) {
 TEST(Strang, WeakOrderOfThePositionVariance) {
   // every dt sees the same Brownian path (noise substeps), so the paired differences of the
   // variance have a small Monte Carlo error; reference: strang at a 20 times finer step
-  Scene s = ou_scene(1000);
+  Scene s = strang_ou_scene(1000);
   s.duration = 2.0;
   const double h = 1e-3;
   auto run_sub = [&](double dt, uint32_t sub) {
@@ -290,7 +290,7 @@ TEST(Strang, WeakOrderOfThePositionVariance) {
     std::printf("ou strang dt %.3g s: weak (variance) %.3e m^2 of %.3e\n", r * h, weak.back(),
                 var_ref);
   }
-  const double p = log_log_slope(dts, weak);
+  const double p = strang_log_log_slope(dts, weak);
   std::printf("ou strang: weak slope %.2f\n", p);
   EXPECT_GE(p, 1.6);
 }

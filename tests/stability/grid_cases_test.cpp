@@ -11,15 +11,15 @@
 namespace lrigid {
 namespace {
 
-constexpr double kRhoAir = 1.204, kNuAir = 1.5e-5;
-const Vec3 kU(2, 0, 0);
+constexpr double kGridRhoAir = 1.204, kGridNuAir = 1.5e-5;
+const Vec3 kGridU(2, 0, 0);
 
 // [0, 2] x [0, 1] x [0, 1] m, spacing 0.1 m
 FluidField hard_grid() {
   const GridGeometry g = test::grid_geometry(21, 11, 11, Vec3::Zero(), Vec3(0.1, 0.1, 0.1));
   const RawGridFrame f = test::grid_frame(g, [](const Vec3& p, Vec3* U, double* k, double* eps) {
     const double x = p.x(), y = p.y();
-    *U = kU;
+    *U = kGridU;
     *k = 0.3;
     *eps = 1.0;
     if (x >= 0.55 && x <= 0.85) *k = *eps = 0.0;  // no turbulence at all
@@ -30,7 +30,7 @@ FluidField hard_grid() {
     // a solid block over the lower half of the channel
     return !(x >= 1.35 && x <= 1.55 && y <= 0.45);
   });
-  return FluidField::grid(g, {f}, kNuAir, Drift::Stationary, TimeMode::Clamp);
+  return FluidField::grid(g, {f}, kGridNuAir, Drift::Stationary, TimeMode::Clamp);
 }
 
 struct GridCase {
@@ -43,7 +43,7 @@ class GridHardCases : public ::testing::TestWithParam<GridCase> {};
 
 TEST_P(GridHardCases, BodiesCrossKZeroAndInvalidRegionsAndExitCleanly) {
   const GridCase c = GetParam();
-  Scene s = test::sphere_scene(0.01, c.density_ratio * kRhoAir, kRhoAir, kNuAir, 64);
+  Scene s = test::sphere_scene(0.01, c.density_ratio * kGridRhoAir, kGridRhoAir, kGridNuAir, 64);
   s.uniform_field = false;
   if (c.aspect > 1) s.bodies[0].shape = Shape::ellipsoid(0.01, 0.01, 0.01 / c.aspect);
   s.bodies[0].spawn_in_box = true;
@@ -60,7 +60,7 @@ TEST_P(GridHardCases, BodiesCrossKZeroAndInvalidRegionsAndExitCleanly) {
   std::ostringstream id;
   id << "rho_b/rho_f = " << c.density_ratio << ", aspect " << c.aspect << ", dt = " << c.dt;
   SCOPED_TRACE(id.str());
-  const stability::Observed o = stability::run_observed(m, &st, kU);
+  const stability::Observed o = stability::run_observed(m, &st, kGridU);
   EXPECT_EQ(o.failure, "");
   EXPECT_EQ(o.stats.failed, 0u);
   EXPECT_EQ(o.stats.exited, st.size()) << "every body leaves the grid (through a side or the "

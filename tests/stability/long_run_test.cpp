@@ -12,8 +12,8 @@
 namespace lrigid {
 namespace {
 
-constexpr double kRhoAir = 1.204, kNuAir = 1.5e-5;
-constexpr uint64_t kSteps = 1000000;
+constexpr double kLongRhoAir = 1.204, kLongNuAir = 1.5e-5;
+constexpr uint64_t kLongSteps = 1000000;
 
 struct LongCase {
   const char* name;
@@ -29,7 +29,7 @@ TEST_P(LongRun, MillionStepsStayFiniteBoundedAndStatisticallyRight) {
   const LongCase c = GetParam();
   const Vec3 U(1, 0.5, 0);
   const double k = 0.2;
-  Scene s = test::sphere_scene(0.005, c.density_ratio * kRhoAir, kRhoAir, kNuAir);
+  Scene s = test::sphere_scene(0.005, c.density_ratio * kLongRhoAir, kLongRhoAir, kLongNuAir);
   if (c.aspect > 1) s.bodies[0].shape = Shape::ellipsoid(0.02, 0.02, 0.02 / c.aspect);
   s.effects = stability::base_effects();
   s.integrator = Integrator::Splitting;
@@ -37,7 +37,7 @@ TEST_P(LongRun, MillionStepsStayFiniteBoundedAndStatisticallyRight) {
   s.uniform_k = k;
   s.uniform_epsilon = c.ek_dt * k / c.dt;
   s.dt = c.dt;
-  s.duration = c.dt * kSteps;
+  s.duration = c.dt * kLongSteps;
   const Model m = test::compile(s);
   State st = initial_state(m, s);
   const stability::Observed o = stability::run_observed(m, &st, U);
@@ -46,7 +46,7 @@ TEST_P(LongRun, MillionStepsStayFiniteBoundedAndStatisticallyRight) {
                ", max |V-U| = " + std::to_string(o.max_speed) +
                " m/s, max E/bound = " + std::to_string(o.max_energy_ratio));
   EXPECT_EQ(o.failure, "");
-  EXPECT_EQ(o.stats.steps, kSteps);
+  EXPECT_EQ(o.stats.steps, kLongSteps);
   EXPECT_EQ(o.stats.failed + o.stats.exited, 0u);
   EXPECT_LT(o.max_q_err, 1e-12);
   EXPECT_NEAR(fs.sigma2 / (2 * k / 3), 1, 1e-6) << "stationary drift keeps the field's k";

@@ -17,7 +17,7 @@
 namespace lrigid {
 namespace {
 
-Shape mesh_shape(TriangleMesh m) {
+Shape bem_mesh_shape(TriangleMesh m) {
   return Shape::from_mesh(std::make_shared<const TriangleMesh>(std::move(m)), "test");
 }
 
@@ -100,7 +100,7 @@ TEST(Bem, BoxTensorRotatesWithTheMesh) {
   const Vec3 shift(3, -1, 0.5);
   TriangleMesh moved = m;
   for (Vec3& v : moved.vertices) v = r * v + shift;
-  const AddedMass am = added_mass(mesh_shape(moved), 1.0, static_cast<int>(m.faces.size()));
+  const AddedMass am = added_mass(bem_mesh_shape(moved), 1.0, static_cast<int>(m.faces.size()));
   ASSERT_EQ(am.panels, static_cast<int>(m.faces.size()));
   const Mat6 t = spatial_rotation(r);
   EXPECT_LT((am.tensor - t * k * t.transpose()).cwiseAbs().maxCoeff(),
@@ -125,7 +125,7 @@ TEST(Bem, MirrorSymmetryZeros) {
     p = Vec3(q.x() * (1 + 0.3 * q.y()), 1.5 * q.y() + 0.3 * q.z() * q.z(),
              0.7 * q.z() + 0.25 * q.y() * q.y() + 0.2 * q.y());
   }
-  const AddedMass am = added_mass(mesh_shape(m), 1.0, 320);
+  const AddedMass am = added_mass(bem_mesh_shape(m), 1.0, 320);
   const Mat6& k = am.tensor;
   const double s[6] = {-1, 1, 1, 1, -1, -1};
   const double scale = k.cwiseAbs().maxCoeff();

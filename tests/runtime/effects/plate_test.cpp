@@ -36,7 +36,7 @@ using test::effects;
 
 // The plates the batched steps take: a rectangular and an elliptic plate (normal along z and
 // along x); compiled once
-const std::vector<Model>& models() {
+const std::vector<Model>& plate_models() {
   static const std::vector<Model> m = [] {
     std::vector<Model> v;
     v.push_back(model_of(Shape::box(0.06, 0.04, 0.0004), 600, all_forces()));
@@ -47,17 +47,17 @@ const std::vector<Model>& models() {
 }
 
 TEST(Plate, BlockAgreesWithScalarStepInDouble) {
-  effects_test::expect_blocks_match_scalar<double>(models(), {1u, 2u, 3u}, 1e-13);
+  effects_test::expect_blocks_match_scalar<double>(plate_models(), {1u, 2u, 3u}, 1e-13);
 }
 
 TEST(Plate, BlockAgreesWithScalarStepInFloat) {
-  effects_test::expect_blocks_match_scalar<float>(models(), {4u, 5u}, 2e-4);
+  effects_test::expect_blocks_match_scalar<float>(plate_models(), {4u, 5u}, 2e-4);
 }
 
 TEST(Plate, BroadsideAndEdgewiseDragFollowTheAspectRatio) {
   // inviscid limit: broadside 1/2 rho S C_D90 U^2 with the rectangle's C_D90 (side ratio 1.5:
   // between 1.18 at 1 and 1.2 at 5, linear in 1 / aspect), edgewise APW's 1/2 rho S (A - B) U^2
-  const BodyType& box = models()[0].types[0];  // 6 x 4 cm, normal along z
+  const BodyType& box = plate_models()[0].types[0];  // 6 x 4 cm, normal along z
   PlateParams k = plate_params(box, kRho, kNu, true, false);
   for (double& s : k.sf) s = 0;  // no Stokes part
   const double S = 0.06 * 0.04, U = 2.0, w[3] = {0, 0, 0};

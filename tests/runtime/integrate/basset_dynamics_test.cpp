@@ -26,7 +26,7 @@ double erfcx(double x) {
   return 1.0 / (x * std::sqrt(M_PI)) * (1 - 0.5 / x2 + 0.75 / (x2 * x2));
 }
 
-struct Case {
+struct BassetCase {
   double a = 5e-6, rho_p = 250, rho = 1000, nu = 1e-6, g = 9.81;
   double m() const { return rho_p * 4.0 / 3.0 * M_PI * a * a * a; }
   double mf() const { return rho * 4.0 / 3.0 * M_PI * a * a * a; }
@@ -46,7 +46,7 @@ struct Case {
 };
 
 // v_z(t) of the sphere; window > 0 replaces the kernel by a direct full-history quadrature
-std::vector<std::pair<double, double>> run(const Case& c, double dt, double T, bool basset,
+std::vector<std::pair<double, double>> run(const BassetCase& c, double dt, double T, bool basset,
                                            int direct_window = 0,
                                            Integrator integ = Integrator::Splitting) {
   Scene s = test::sphere_scene(c.a, c.rho_p, c.rho, c.nu);
@@ -77,7 +77,7 @@ std::vector<std::pair<double, double>> run(const Case& c, double dt, double T, b
 }
 
 TEST(BassetDynamics, SphereFromRestMatchesTheClosedForm) {
-  const Case c;
+  const BassetCase c;
   const double tau = 1 / c.alpha();   // ~4 microseconds
   const double dt = tau / 400, T = 20 * tau;
   const double v_term = c.gamma() / c.alpha();
@@ -100,7 +100,7 @@ TEST(BassetDynamics, SphereFromRestMatchesTheClosedForm) {
 
 TEST(BassetDynamics, EulerAndRk4AlsoMatchTheClosedForm) {
   // the history force enters both step forms (impulse form: euler; velocity form: rk4)
-  const Case c;
+  const BassetCase c;
   const double tau = 1 / c.alpha(), dt = tau / 400, T = 20 * tau;
   const double v_term = std::abs(c.gamma() / c.alpha());
   for (Integrator integ : {Integrator::Euler, Integrator::RK4}) {
@@ -115,7 +115,7 @@ TEST(BassetDynamics, EulerAndRk4AlsoMatchTheClosedForm) {
 }
 
 TEST(BassetDynamics, FastKernelMatchesFullHistoryQuadrature) {
-  const Case c;
+  const BassetCase c;
   const double tau = 1 / c.alpha();
   const double dt = tau / 100, T = 20 * tau;
   const int steps = int(std::llround(T / dt));

@@ -24,7 +24,6 @@ namespace {
 using batch_test::count;
 using batch_test::Diff;
 using batch_test::farthest_apart;
-using batch_test::Outcome;
 using batch_test::run;
 using batch_test::scalar_and_batched;
 using batch_test::wind_grid;
@@ -92,7 +91,7 @@ TEST(RigidBatch, LeavesInAGustingSeriesMatchTheScalarStep) {
   EXPECT_LT(batched.stats.scalar_handoffs, batched.stats.body_steps / 100);
   // the gusts matter: the same leaves in the first frame alone end elsewhere
   const FluidField steady = wind_grid(1.5e-5);
-  const Outcome first = run(s, steady, true, Precision::Double, 1);
+  const batch_test::Outcome first = run(s, steady, true, Precision::Double, 1);
   const double apart = farthest_apart(first, batched);
   EXPECT_GT(apart, 0.05);  // m
 }
@@ -188,7 +187,7 @@ TEST(RigidBatch, StrangMatchesTheScalarStep) {
       // and it is not the splitting scheme: the same scene with splitting ends elsewhere
       Scene split = s;
       split.integrator = Integrator::Splitting;
-      const Outcome o = run(split, field, true, Precision::Double);
+      const batch_test::Outcome o = run(split, field, true, Precision::Double);
       Diff ds;
       ds.x = farthest_apart(o, batched);
       EXPECT_GT(ds.x, 1e-6);
@@ -230,7 +229,7 @@ TEST(RigidBatch, EulerAndRk4MatchTheScalarStep) {
         // and it is the scheme asked for: splitting ends elsewhere
         Scene split = s;
         split.integrator = Integrator::Splitting;
-        const Outcome o = run(split, field, true, Precision::Double);
+        const batch_test::Outcome o = run(split, field, true, Precision::Double);
         const double apart = farthest_apart(o, batched);
         EXPECT_GT(apart, 1e-6) << name;
         std::printf("%s %s%s: scalar vs batched |dx| %.2e |v| %.2e |w| %.2e, vs splitting %.2e m, "
@@ -367,7 +366,7 @@ TEST(RigidBatch, MeshLeavesEulerAndRk4MatchTheScalarStep) {
       // and it is the scheme asked for: splitting ends elsewhere
       Scene split = s;
       split.integrator = Integrator::Splitting;
-      const Outcome o = run(split, field, true, Precision::Double);
+      const batch_test::Outcome o = run(split, field, true, Precision::Double);
       const double apart = farthest_apart(o, batched);
       EXPECT_GT(apart, 1e-6) << name;
       std::printf("mesh leaves, %s%s: scalar vs batched |dx| %.2e |v| %.2e |w| %.2e, vs "
@@ -386,8 +385,8 @@ TEST(RigidBatch, MeshLeavesInFloatStayCloseToDouble) {
   Scene s = mesh_leaf_scene(64);
   s.duration = 0.3;
   const FluidField field = wind_grid(1.5e-5);
-  const Outcome dbl = run(s, field, true, Precision::Double);
-  const Outcome flt = run(s, field, true, Precision::Float);
+  const batch_test::Outcome dbl = run(s, field, true, Precision::Double);
+  const batch_test::Outcome flt = run(s, field, true, Precision::Float);
   EXPECT_EQ(flt.stats.scalar_handoffs, 0u);
   const auto [same, dx] = batch_test::float_vs_double(dbl, flt, false);
   EXPECT_GE(same, dbl.state.size() - 2);
@@ -527,8 +526,8 @@ TEST(RigidBatch, PlatesInFluidAtRestMatchTheScalarStep) {
 TEST(RigidBatch, IdenticalForAnyThreadCount) {
   const Scene s = rigid_scene(Shape::box(0.06, 0.04, 4e-4), 600, 200);
   const FluidField field = wind_grid(1.5e-5);
-  const Outcome one = run(s, field, true, Precision::Double, 1);
-  const Outcome two = run(s, field, true, Precision::Double, 2);
+  const batch_test::Outcome one = run(s, field, true, Precision::Double, 1);
+  const batch_test::Outcome two = run(s, field, true, Precision::Double, 2);
   const Diff d = batch_test::compare(one, two);
   EXPECT_EQ(d.x, 0.0);
   EXPECT_EQ(d.t, 0.0);
@@ -560,8 +559,8 @@ TEST(RigidBatch, FloatStaysCloseToDouble) {
   s.effects.remove(Effect::AddedMass);
   s.bodies[0].angular_velocity = Vec3(5, 20, -10);
   const FluidField field = wind_grid(1.5e-5);
-  const Outcome dbl = run(s, field, true, Precision::Double);
-  const Outcome flt = run(s, field, true, Precision::Float);
+  const batch_test::Outcome dbl = run(s, field, true, Precision::Double);
+  const batch_test::Outcome flt = run(s, field, true, Precision::Float);
   const auto [same, dx] = batch_test::float_vs_double(dbl, flt, false);  // where they stopped
   EXPECT_GE(same, dbl.state.size() - 3);
   EXPECT_LT(dx, 1e-3);
@@ -615,7 +614,7 @@ TEST(RigidBatch, BodiesWithTheirCentreOfMassOffTheCentroidMatchTheScalarStep) {
       // and the offset's terms ran: the same bodies with a uniform mass end elsewhere
       Scene uniform = s;
       uniform.bodies[0].mass_offset = Vec3::Zero();
-      const Outcome o = run(uniform, field, true, Precision::Double);
+      const batch_test::Outcome o = run(uniform, field, true, Precision::Double);
       const double apart = farthest_apart(o, batched);
       EXPECT_GT(apart, 1e-5) << name;
       std::printf("%s: scalar vs batched |dx| %.2e |v| %.2e |w| %.2e, vs a uniform mass %.2e m, "

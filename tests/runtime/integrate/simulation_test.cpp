@@ -44,7 +44,7 @@ bool identical(const State& a, const State& b) {
          std::memcmp(a.u_seen.data(), b.u_seen.data(), a.u_seen.size() * sizeof(Vec3)) == 0;
 }
 
-bool same_body(const State& a, const State& b, size_t i) {
+bool simulated_same_body(const State& a, const State& b, size_t i) {
   return a.x[i] == b.x[i] && a.q[i].coeffs() == b.q[i].coeffs() && a.v[i] == b.v[i] &&
          a.w[i] == b.w[i] && a.u_seen[i] == b.u_seen[i];
 }
@@ -175,8 +175,8 @@ TEST(Simulation, OnlyTheBodiesOfItsRangeAreAdvanced) {
     EXPECT_EQ(stats.body_steps, 22u * 200u);
     for (size_t i = 0; i < start.size(); ++i) {
       const bool mine = i >= 7 && i < 29;
-      EXPECT_TRUE(same_body(part, mine ? all : start, i)) << "body " << i << " batched " << batched;
-      EXPECT_FALSE(same_body(all, start, i)) << "body " << i << " moved";
+      EXPECT_TRUE(simulated_same_body(part, mine ? all : start, i)) << "body " << i << " batched " << batched;
+      EXPECT_FALSE(simulated_same_body(all, start, i)) << "body " << i << " moved";
     }
   }
 }

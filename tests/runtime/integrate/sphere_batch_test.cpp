@@ -26,7 +26,6 @@ using batch_test::Both;
 using batch_test::count;
 using batch_test::Diff;
 using batch_test::farthest_apart;
-using batch_test::Outcome;
 using batch_test::run;
 using batch_test::scalar_and_batched;
 using batch_test::wind_grid;
@@ -323,7 +322,7 @@ TEST(SphereBatch, EulerAndRk4MatchTheScalarStep) {
       // and it is the scheme asked for: splitting ends elsewhere
       Scene split = s;
       split.integrator = Integrator::Splitting;
-      const Outcome o = run(split, field, true, Precision::Double);
+      const batch_test::Outcome o = run(split, field, true, Precision::Double);
       const double apart = farthest_apart(o, batched);
       EXPECT_GT(apart, 1e-6) << name << " " << c;
       std::printf("%s spheres %d: scalar vs batched |dx| %.2e |dV| %.2e |dw| %.2e, vs "
@@ -396,8 +395,8 @@ TEST(SphereBatch, SpheresInFluidAtRestMatchTheScalarStep) {
 TEST(SphereBatch, IdenticalForAnyThreadCount) {
   const Scene s = bead_scene(2.5e-4, 2500, 200);
   const FluidField field = wind_grid(1.5e-5);
-  const Outcome one = run(s, field, true, Precision::Double, 1);
-  const Outcome two = run(s, field, true, Precision::Double, 2);
+  const batch_test::Outcome one = run(s, field, true, Precision::Double, 1);
+  const batch_test::Outcome two = run(s, field, true, Precision::Double, 2);
   const Diff d = compare(one, two);
   EXPECT_EQ(d.x, 0.0);
   EXPECT_EQ(d.t, 0.0);
@@ -409,7 +408,7 @@ TEST(SphereBatch, IdenticalForAnyThreadCount) {
 TEST(SphereBatch, NonFiniteStateFailsWithTheScalarStepsReason) {
   const Scene s = bead_scene(2.5e-4, 2500, 40);
   const FluidField field = wind_grid(1.5e-5);
-  Outcome r[2];
+  batch_test::Outcome r[2];
   for (int b = 0; b < 2; ++b) {
     Model m = test::compile(s, field);
     m.batched = b == 1;
@@ -442,8 +441,8 @@ TEST(SphereBatch, FloatCostsLittleAccuracy) {
     Scene s = bead_scene(2.5e-4, 2500, 300);
     s.integrator = scheme;
     const FluidField field = wind_grid(1.5e-5);
-    const Outcome dbl = run(s, field, true, Precision::Double);
-    const Outcome flt = run(s, field, true, Precision::Float);
+    const batch_test::Outcome dbl = run(s, field, true, Precision::Double);
+    const batch_test::Outcome flt = run(s, field, true, Precision::Float);
     // the same bodies keep moving; positions after 1 s (of up to ~5 m travel) agree to well
     // below a millimetre where both still move
     const auto [same, dx] = batch_test::float_vs_double(dbl, flt, true);

@@ -45,13 +45,13 @@ RawGridFrame frame(int i) {
   return f;
 }
 
-struct Outcome {
+struct StreamOutcome {
   State state;
   StreamStats stats;
   size_t max_resident_seen = 0;  // at every output
 };
 
-Outcome run(bool streamed, TimeMode mode, Integrator integrator, double duration) {
+StreamOutcome run(bool streamed, TimeMode mode, Integrator integrator, double duration) {
   Scene s = test::sphere_scene(0.002, 1000, 1.2, 1.5e-5, 64);
   s.effects = test::effects({Effect::AddedMass, Effect::Drag, Effect::MeanFlow,
                              Effect::Turbulence});
@@ -72,7 +72,7 @@ Outcome run(bool streamed, TimeMode mode, Integrator integrator, double duration
                                                  1.5e-5, s.drift, mode)
                           : FluidField::grid(geometry(), frames, 1.5e-5, s.drift, mode);
   const Model m = test::compile(s, std::move(f));
-  Outcome r;
+  StreamOutcome r;
   r.state = initial_state(m, s);
   RunOptions opt;
   opt.every = 0.25;  // outputs between frame times
@@ -97,8 +97,8 @@ void expect_same(const State& a, const State& b) {
 
 TEST(StreamedField, ClampSeriesGivesTheInMemoryRunWithAtMostThreeFramesResident) {
   for (const Integrator in : {Integrator::Splitting, Integrator::RK4}) {
-    const Outcome mem = run(false, TimeMode::Clamp, in, 0.8);
-    const Outcome str = run(true, TimeMode::Clamp, in, 0.8);
+    const StreamOutcome mem = run(false, TimeMode::Clamp, in, 0.8);
+    const StreamOutcome str = run(true, TimeMode::Clamp, in, 0.8);
     expect_same(mem.state, str.state);
     // the bodies moved through the whole series
     size_t moving = 0;
@@ -115,8 +115,8 @@ TEST(StreamedField, ClampSeriesGivesTheInMemoryRunWithAtMostThreeFramesResident)
 
 TEST(StreamedField, LoopingSeriesRereadsFramesAndStillMatches) {
   // 1.7 s over a 0.8 s loop: the series wraps twice, frames are read again after each wrap
-  const Outcome mem = run(false, TimeMode::Loop, Integrator::Splitting, 1.7);
-  const Outcome str = run(true, TimeMode::Loop, Integrator::Splitting, 1.7);
+  const StreamOutcome mem = run(false, TimeMode::Loop, Integrator::Splitting, 1.7);
+  const StreamOutcome str = run(true, TimeMode::Loop, Integrator::Splitting, 1.7);
   expect_same(mem.state, str.state);
   // the step that wraps needs the last two frames and the first two
   EXPECT_LE(str.stats.max_resident, 4u);
