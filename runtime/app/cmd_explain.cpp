@@ -42,6 +42,14 @@ void print_type(const json& t) {
   std::printf("  tau_p = %.3g s   St(k/eps) = %.3g   St(Kolmogorov) = %.3g   spin ratio = %.3g\n",
               num(t, "tau_p"), num(t, "stokes_k_eps"), num(t, "stokes_kolmogorov"),
               num(t, "spin_ratio"));
+  const json& ct = t["crossing_trajectories"];
+  if (ct["on"].get<bool>())
+    std::printf("  crossing trajectories: drift %.3g m/s = %.3g u'; time scale of the velocity "
+                "it sees / %.3g along the drift, / %.3g across it\n",
+                num(ct, "drift_speed"), num(ct, "drift_over_u_turb"), num(ct, "factor_along"),
+                num(ct, "factor_across"));
+  else
+    std::printf("  crossing trajectories: off (%s)\n", ct["reason"].get<std::string>().c_str());
   std::printf("  %-11s %-10s %s\n", "effect", "size", "auto");
   for (const json& e : t["effects"]) {
     const std::string status =

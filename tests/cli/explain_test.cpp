@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <regex>
 #include <string>
@@ -148,6 +149,60 @@ TEST(CliExplain, EachBodyTypeStartsWithAPlainSentenceThatMatchesItsNumbers) {
             std::string::npos)
       << leaves.out;
   EXPECT_NE(leaves.out.find("its flat shape makes it flutter and tumble."), std::string::npos);
+}
+
+// crossing trajectories: a glass bead settling through air turbulence at about u' gets Csanady's
+// factors b = (1 + 0.64 r^2)^1/2 along its drift and b' = (1 + 2.56 r^2)^1/2 across it, r = v_d / u'
+// as printed, and a sentence saying it spreads sideways b' times less; a neutral tracer and the
+// scene key false turn it off, each with its reason
+TEST(CliExplain, CrossingTrajectoriesPrintTheDriftAndCsanadysFactors) {
+  char tmpl[] = "/tmp/lrigid_explain_XXXXXX";
+  ASSERT_NE(mkdtemp(tmpl), nullptr);
+  const std::string dir = tmpl, path = dir + "/scene.json";
+  auto write = [&](const char* turbulence) {
+    FILE* f = fopen(path.c_str(), "w");
+    ASSERT_NE(f, nullptr);
+    fprintf(f, R"({"version": 1, "fluid": {"density": 1.2, "kinematic_viscosity": 1.5e-5,
+      "uniform": {"U": [0, 0, 0], "k": 0.015, "epsilon": 0.005}}, "gravity": [0, 0, -9.81],
+      "effects": ["gravity", "buoyancy", "drag", "turbulence"], "duration": 0.1, "seed": 1,
+      "integrator": {"scheme": "strang", "dt": 0.001},
+      "turbulence": %s,
+      "bodies": [
+        {"name": "bead", "shape": {"type": "sphere", "radius": 2e-5}, "density": 2500,
+         "count": 1, "position": [0, 0, 1]},
+        {"name": "tracer", "shape": {"type": "sphere", "radius": 2e-5}, "density": 1.2,
+         "count": 1, "position": [0, 0, 1]}]})",
+            turbulence);
+    fclose(f);
+  };
+  write(R"({"model": "seen"})");
+  const Result on = explain(path);
+  write(R"({"model": "seen", "crossing_trajectories": false})");
+  const Result off = explain(path);
+  std::remove(path.c_str());
+  rmdir(dir.c_str());
+  ASSERT_EQ(on.rc, 0) << on.out;
+  ASSERT_EQ(off.rc, 0) << off.out;
+  std::smatch m;
+  const std::regex line(
+      "crossing trajectories: drift ([0-9.e+-]+) m/s = ([0-9.e+-]+) u'; time scale of the "
+      "velocity it sees / ([0-9.e+-]+) along the drift, / ([0-9.e+-]+) across it");
+  ASSERT_TRUE(std::regex_search(on.out, m, line)) << on.out;
+  const double r = std::stod(m[2].str()), along = std::stod(m[3].str()),
+               across = std::stod(m[4].str());
+  EXPECT_GT(r, 0.8);  // a 20 um glass bead settles at about u' = 0.1 m/s
+  EXPECT_LT(r, 1.5);
+  // to the printing (three digits of r)
+  EXPECT_NEAR(along, std::sqrt(1 + 0.64 * r * r), 1e-2 * along);
+  EXPECT_NEAR(across, std::sqrt(1 + 2.56 * r * r), 1e-2 * across);
+  EXPECT_NE(on.out.find("so they spread it sideways about"), std::string::npos) << on.out;
+  // the tracer (as dense as the air) has no drift; the key false turns it off for both
+  EXPECT_NE(on.out.find("crossing trajectories: off (no drift"), std::string::npos) << on.out;
+  EXPECT_EQ(off.out.find("crossing trajectories: drift"), std::string::npos) << off.out;
+  EXPECT_NE(off.out.find("crossing trajectories: off (turbulence.crossing_trajectories is "
+                         "false)"),
+            std::string::npos)
+      << off.out;
 }
 
 // an artist's leaf from an OBJ (curled and turned: a full 6 x 6 generalized mass) takes the

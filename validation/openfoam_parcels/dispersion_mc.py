@@ -12,7 +12,10 @@ expected spread ratio from the same geometry:
   the particle follows an Ornstein-Uhlenbeck process per component, alpha = 3/4 C0 eps/k
   ("stationary" drift), beta^2 = C0 eps, C0 from Sawford's fit of R_lambda, with Thomson's
   well-mixed drift 1/2 grad(sigma^2) + u' v.grad(sigma^2) / (2 sigma^2) along the parcel's path
-  (v its velocity); u' starts from its stationary distribution at the release point.
+  (v its velocity); u' starts from its stationary distribution at the release point. Crossing
+  trajectories (Csanady): the time scale is 1/alpha divided by b = (1 + 0.64 vd^2/sigma^2)^1/2
+  along the drift (down) and b' = (1 + 2.56 vd^2/sigma^2)^1/2 across it, the noise amplitude
+  multiplied by sqrt(b), vd the particle's settling speed in still fluid.
 * OpenFOAM's stochasticDispersionRAS (read from its source, v1912 = OpenFOAM-dev here): a
   random velocity sigma |xi| e, sigma = sqrt(2k/3), xi standard normal, e a uniform random
   direction, held for the eddy lifetime t_e = min(k/eps, 0.16432 k^1.5 / (eps |u_rel|)) and then
@@ -101,15 +104,28 @@ def sigma2_at(grid, x, nu):
     return langevin_coefficients(k, e, nu)[2]
 
 
+def settling_speed(D, rho_p, rho_f, nu, gravity=9.81):
+    """Terminal speed in still fluid with Schiller-Naumann drag, m/s (the drift lrigid's
+    compile_model gives a sphere)."""
+    gp = gravity * abs(1.0 - rho_f / rho_p)
+    tau_st = rho_p * D * D / (18.0 * rho_f * nu)
+    v = gp * tau_st
+    for _ in range(200):
+        v = gp * tau_st / (1.0 + 0.15 * (v * D / nu) ** 0.687)
+    return v
+
+
 def simulate(grid, release, n, model, *, D, rho_p, rho_f, nu, dt, t_end, seed=1,
-             gravity=9.81):
+             gravity=9.81, crossing=True):
     """Land n particles released at rest at `release` with dispersion model "lrigid" or
-    "openfoam". Returns (landing x,y array (m,2), number that left the fluid, number airborne)."""
+    "openfoam". crossing: lrigid's crossing-trajectory correction (on by default, as in its
+    scenes). Returns (landing x,y array (m,2), number that left the fluid, number airborne)."""
     rng = np.random.default_rng(seed)
     x = np.tile(np.asarray(release, float), (n, 1))
     v = np.zeros((n, 3))
     g = np.array([0.0, 0.0, -gravity * (1.0 - rho_f / rho_p)])
     tau_st = rho_p * D * D / (18.0 * rho_f * nu)
+    vd = settling_speed(D, rho_p, rho_f, nu, gravity) if crossing else 0.0
     alive = np.ones(n, bool)
     landed = np.full((n, 2), np.nan)
     left = 0
@@ -136,10 +152,13 @@ def simulate(grid, release, n, model, *, D, rho_p, rho_f, nu, dt, t_end, seed=1,
                     2 * d[c])
             # along the parcel's path (effects/turbulence.h): its velocity va
             drift = 0.5 * grad + ua * (np.sum(va * grad, axis=1) / (2 * s2))[:, None]
-            decay = np.exp(-alpha * dt)
-            noise = np.sqrt(beta2 * -np.expm1(-2 * alpha * dt) / (2 * alpha))
-            ua = decay[:, None] * ua + dt * drift + noise[:, None] * rng.standard_normal(
-                (len(idx), 3))
+            # per axis: across the drift (x, y) and along it (z)
+            r = np.where(s2 > 0, vd * vd / np.where(s2 > 0, s2, 1.0), 0.0)
+            b = np.stack([np.sqrt(1 + 2.56 * r)] * 2 + [np.sqrt(1 + 0.64 * r)], axis=1)
+            ab = alpha[:, None] * b
+            decay = np.exp(-ab * dt)
+            noise = np.sqrt(beta2[:, None] * b * -np.expm1(-2 * ab * dt) / (2 * ab))
+            ua = decay * ua + dt * drift + noise * rng.standard_normal((len(idx), 3))
         else:
             urel = np.linalg.norm(va - U - ua, axis=1)
             te = np.minimum(k / (e + 1e-300), CPS * k ** 1.5 / (e + 1e-300) / (urel + 1e-15))

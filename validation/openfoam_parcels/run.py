@@ -22,7 +22,8 @@ models differ by construction (physics-notes §8). OpenFOAM holds a random veloc
 per-component variance 2k/9 for an eddy lifetime min(k/ε, C_μ^{3/4} k^{3/2}/(ε|u_rel|)) — the
 second term, the eddy-crossing time, is what makes settling particles decorrelate fast (crossing
 trajectories). lrigid's fluctuation has per-component variance 2k/3 and decorrelates in
-T_L = 4k/(3 C0 ε) along the particle path without a crossing-trajectory correction. What should
+T_L = 4k/(3 C0 ε) divided by Csanady's crossing-trajectory factors (b along the settling, b′
+across it; docs/physics/langevin.md). What should
 agree: the mean landing point (within the no-dispersion tolerance plus 4 standard errors). What
 should not: the spread. Its expected size comes from dispersion_mc.py, an independent numpy Monte
 Carlo of each model on the same grid (1000 particles per release point and model): each code's
@@ -227,13 +228,13 @@ def main():
             st.fail("%s: case run / conversion / tracking" % name, str(e).splitlines()[0][:200])
     st.note("Spread: OpenFOAM's eddy lifetime for a settling particle is the eddy-crossing time "
             "C_μ^{3/4} k^{3/2}/(ε|u_rel|), far below k/ε here, and its per-component variance is "
-            "2k/9; lrigid's seen model keeps the fluid-tracer time scale T_L = 4k/(3C0 ε) and "
-            "variance 2k/3, so its heavy particles disperse more. The expected spreads come from "
-            "an independent Monte Carlo of each model on the same grid (dispersion_mc.py); each "
-            "code is compared with its own model, and the spread ratio with the ratio of the "
-            "two Monte Carlo spreads. Which model is closer to reality for settling particles "
-            "is the crossing-trajectory question (Csanady 1963): the OpenFOAM model includes "
-            "it, lrigid does not.")
+            "2k/9; lrigid's seen model keeps the variance 2k/3 and shortens the fluid-tracer "
+            "time scale T_L = 4k/(3C0 ε) by Csanady's crossing-trajectory factors (b along the "
+            "settling, b′ across it, β = 0.8). Both models thus include the crossing-trajectory "
+            "effect, in different forms. The expected spreads come from an independent Monte "
+            "Carlo of each model on the same grid (dispersion_mc.py); each code is compared "
+            "with its own model, and the spread ratio with the ratio of the two Monte Carlo "
+            "spreads. The 1-D estimate in the notes uses the tracer's T_L for lrigid.")
     st.finish()
 
 

@@ -307,6 +307,19 @@ BodyType make_body_type(const Scene& scene, const BodySpec& b, const Shape& shap
     t.basset.implicit_inv = A.inverse();
   }
   build_effect_plan(&t, scene.turbulence_model, scene.fluid_density, scene.kinematic_viscosity);
+  // the drift of the crossing trajectories: the speed at which drag balances the weight and
+  // buoyancy the type simulates, along their resultant
+  if (scene.crossing_trajectories && scene.turbulence_model == TurbulenceModel::Seen &&
+      t.effects.has(Effect::Turbulence)) {
+    Vec3 F = Vec3::Zero();
+    if (t.effects.has(Effect::Gravity)) F += t.mass * scene.gravity;
+    if (t.effects.has(Effect::Buoyancy)) F -= scene.fluid_density * t.volume * scene.gravity;
+    const double Fn = F.norm();
+    if (Fn > 0) {
+      t.drift_speed = speed_for_force(t, Fn, scene.fluid_density, scene.kinematic_viscosity);
+      t.drift_dir = F / Fn;
+    }
+  }
   (void)field;
   return t;
 }
@@ -327,6 +340,7 @@ Model compile_model(const Scene& scene, FluidField field, const AddedMassProvide
   m.seed = scene.seed;
   m.turbulence_model = scene.turbulence_model;
   m.drift = scene.drift;
+  m.crossing_trajectories = scene.crossing_trajectories;
   m.has_ground = scene.has_ground;
   m.ground_z = scene.ground_z;
   m.ground_contact = scene.ground_contact;

@@ -107,6 +107,16 @@ uint64_t watch_sleeper(const Model& model, State* st, size_t i, uint64_t upto) {
     return w.wake;
   const double un = s.U.norm();
   const Vec3 along = un > 0 ? Vec3(s.U / un) : Vec3::UnitX();
+  // crossing trajectories (effects/turbulence.h): u' along the mean flow takes the time scale of
+  // the axis of the type's drift nearer to the flow, along the drift or across it (for a flow
+  // along the ground and a drift along gravity, across: exact there)
+  const BodyType& type = model.types[st->type[i]];
+  double along_drift, across_drift;
+  crossing_factors(type.drift_speed * type.drift_speed, s.sigma2, &along_drift, &across_drift);
+  const double cosd = type.drift_dir.dot(along);
+  const double b = 2 * cosd * cosd >= 1 ? along_drift : across_drift;
+  s.alpha *= b;
+  s.beta *= std::sqrt(b);
   const double h = model.dt;
   const OUStep one = ou_exact(s.alpha, s.beta, h);
   // the seen model's update (ou_update) for a body at rest, whose path velocity is 0, is

@@ -73,6 +73,70 @@ LRIGID_LANE void ou_update(T wm, T decay, T noise, T sigma2, const T* V, const T
     us[a] = decay * us[a] + h * (on * (T(0.5) * gs[a] + us[a] * proj)) + noise * z[a];
 }
 
+// Crossing trajectories (Csanady 1963): a body that drifts through the turbulence at v_d relative
+// to the fluid leaves each eddy before the eddy forgets itself, so the fluid velocity it sees
+// decorrelates faster than a tracer's, most across the drift (continuity). The seen model's time
+// scale T_L becomes T_L / b along the drift direction and T_L / b' across it, with
+//   b = sqrt(1 + beta^2 v_d^2 / sigma2),  b' = sqrt(1 + 4 beta^2 v_d^2 / sigma2),  beta = 0.8,
+// as Wang & Stock (1993), Minier & Peirano (2001) and code_saturne's Lagrangian module take it
+// (sigma2: the model's per-component variance, 2k/3 with the stationary drift). Each axis keeps
+// the variance sigma2 (noise beta_OU sqrt(b)): the fluid velocity at the body's place has the
+// fluid's one-point statistics whatever the path. v_d = 0 (tracers) gives b = b' = 1 exactly.
+constexpr double kCsanadyBeta = 0.8;  // ratio of Lagrangian to Eulerian integral time scales, -
+
+// b and b' above for a drift speed squared vd2 (m^2/s^2) at the sample's sigma2 (m^2/s^2); 1 and
+// 1 where there is no turbulence (sigma2 <= 0: the noise is 0 there anyway)
+template <typename T>
+LRIGID_LANE void crossing_factors(T vd2, T sigma2, T* along, T* across) {
+  const T r = sigma2 > T(0) ? vd2 / (sigma2 > T(0) ? sigma2 : T(1)) : T(0);
+  const T b2 = T(kCsanadyBeta * kCsanadyBeta);
+  *along = std::sqrt(T(1) + b2 * r);
+  *across = std::sqrt(T(1) + T(4) * b2 * r);
+}
+
+// The exact OU coefficients over h with the crossing factors (ou_exact_kernel on alpha b and
+// beta sqrt(b)): decay and noise across the drift, decay_a and noise_a along it. vd2 = 0: the
+// two pairs are ou_exact_kernel's (alpha, beta), to the bit.
+template <class Math = LaneMath>
+LRIGID_LANE void ou_crossing_exact_kernel(double alpha, double beta, double sigma2, double vd2,
+                                          double h, double* decay, double* noise,
+                                          double* decay_a, double* noise_a) {
+  double along, across;
+  crossing_factors(vd2, sigma2, &along, &across);
+  ou_exact_kernel<Math>(alpha * across, beta * std::sqrt(across), h, decay, noise);
+  ou_exact_kernel<Math>(alpha * along, beta * std::sqrt(along), h, decay_a, noise_a);
+}
+
+// Euler-Maruyama's coefficients with the crossing factors (the euler and rk4 steps). Each factor
+// is capped at 1 / (alpha h) (but not below 1), so the decay 1 - alpha b h stays >= 0 wherever
+// the tracer's does: a step that does not resolve T_L / b takes the time scale h instead.
+template <typename T>
+LRIGID_LANE void ou_crossing_euler_kernel(T alpha, T beta, T sigma2, T vd2, T h, T* decay,
+                                          T* noise, T* decay_a, T* noise_a) {
+  T along, across;
+  crossing_factors(vd2, sigma2, &along, &across);
+  const T ah = alpha * h;
+  const T cap = ah > T(1) ? T(1) : (ah > T(0) ? T(1) / ah : along + across);
+  along = along < cap ? along : cap;
+  across = across < cap ? across : cap;
+  ou_euler_kernel(alpha * across, beta * std::sqrt(across), h, decay, noise);
+  ou_euler_kernel(alpha * along, beta * std::sqrt(along), h, decay_a, noise_a);
+}
+
+// ou_update with the crossing trajectories: decay and noise (across the drift) act on every
+// component as in ou_update, then the component along the unit drift direction d (world; zero
+// without a drift) takes decay_a and noise_a instead. With decay_a == decay and noise_a ==
+// noise (no drift) this adds 0: the tracer's update to the bit.
+template <typename T>
+LRIGID_LANE void ou_update_crossing(T wm, T decay, T noise, T decay_a, T noise_a, const T* d,
+                                    T sigma2, const T* V, const T* gs, const T* z, T h, T* us) {
+  const T ud = dot3(d, us), zd = dot3(d, z);
+  ou_update(wm, decay, noise, sigma2, V, gs, z, h, us);
+  const T c = (decay_a - decay) * ud + (noise_a - noise) * zd;
+#pragma GCC unroll 3
+  for (int a = 0; a < 3; ++a) us[a] += c * d[a];
+}
+
 // Thomson's well-mixed drift correction for the seen fluctuation u' (world frame), m/s^2, for u'
 // sampled along a path moving at path_velocity (world frame, m/s).
 Vec3 well_mixed_drift(const Vec3& u_seen, const Vec3& path_velocity, const FluidSample& s);

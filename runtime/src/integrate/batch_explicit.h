@@ -102,10 +102,13 @@ LRIGID_LANE void rk4_stages(const FieldConsts& fc, const Rk4Frames& frames, Lane
 template <typename T, class Lanes>
 LRIGID_LANE void ou_euler_lane(const FieldConsts& fc, const Lanes* lanes, int j, const T* V0,
                                const T (*z)[kBatch], T* us) {
-  T decay, noise;
-  ou_euler_kernel(lanes->alpha[j], lanes->beta[j], T(fc.h), &decay, &noise);
+  T decay, noise, decay_a, noise_a;
+  ou_crossing_euler_kernel(lanes->alpha[j], lanes->beta[j], lanes->sigma2[j], T(fc.vd2), T(fc.h),
+                           &decay, &noise, &decay_a, &noise_a);
+  const T cd[3] = {T(fc.cd[0]), T(fc.cd[1]), T(fc.cd[2])};
   // without seen turbulence (tu = 0) the identity, exactly
-  lane_ou_update(T(fc.tu), T(fc.wm), decay, noise, T(fc.h), *lanes, z, j, V0, us);
+  lane_ou_update(T(fc.tu), T(fc.wm), decay, noise, decay_a, noise_a, cd, T(fc.h), *lanes, z, j,
+                 V0, us);
 }
 
 }  // namespace

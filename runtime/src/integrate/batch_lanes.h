@@ -81,6 +81,9 @@ struct FieldConsts {
   // switches as factors 1 or 0, so the loops across bodies stay free of branches: mean flow,
   // Thomson's drift, grad U for the fluid acceleration (added mass in a mean flow)
   double mf = 0, wm = 0, gu = 0, tu = 0;  // (tu: the seen fluctuation in the fluid velocity)
+  // crossing trajectories (effects/turbulence.h): the type's drift speed squared (m^2/s^2) and
+  // direction (world, unit; zero without a drift)
+  double vd2 = 0, cd[3] = {0, 0, 0};
   double mean_flow_scale = 1, turbulence_scale = 1;
   double F[3] = {0, 0, 0};  // gravity and buoyancy, world frame, N
   // the effects with memory or spin, as runtime factors (0 without them): the Basset
@@ -118,6 +121,8 @@ inline void set_field_consts(const Model& model, const BodyType& type, FieldCons
   fc->mf = e.has(Effect::MeanFlow) ? 1.0 : 0.0;
   fc->wm = model.well_mixed_correction ? 1.0 : 0.0;
   fc->gu = type.plan.gradients ? 1.0 : 0.0;
+  fc->vd2 = type.drift_speed * type.drift_speed;
+  for (int a = 0; a < 3; ++a) fc->cd[a] = type.drift_dir[a];
   fc->grid = !model.field.is_uniform();
   fc->mean_flow_scale = model.mean_flow_scale;
   fc->turbulence_scale = model.turbulence_scale;
@@ -210,6 +215,10 @@ struct Samples {
   // second half step of one step and the first of the next the same ones
   alignas(64) T decay[kBatch];  // exp(-alpha h/2)
   alignas(64) T noise[kBatch];  // beta sqrt((1 - exp(-alpha h)) / (2 alpha)), m/s
+  // along the type's drift (crossing trajectories: alpha b and beta sqrt(b) in place of alpha
+  // and beta); decay and noise above are then across it. Without a drift, the same values
+  alignas(64) T decay_a[kBatch];
+  alignas(64) T noise_a[kBatch];
   // Basset: the history force of the past intervals, world frame, N (basset_history_force), and
   // where each lane's history lives in the State
   alignas(64) T fb[3][kBatch];
@@ -396,17 +405,22 @@ LRIGID_IVDEP
   }
 }
 
-// The OU half step's decay and noise at the lanes' samples (effects/turbulence.h ou_exact).
+// The OU half step's decay and noise at the lanes' samples, across and along the type's drift
+// (effects/turbulence.h ou_crossing_exact_kernel).
 template <typename T>
 LRIGID_MULTIVERSION void ou_coefficients(const FieldConsts& fc, Samples<T>* lanes, int lo = 0,
                                          int hi = kBatch) {
-  const double hh = 0.5 * fc.h;
+  const double hh = 0.5 * fc.h, vd2 = fc.vd2;
 LRIGID_IVDEP
   for (int j = lo; j < hi; ++j) {
-    double decay, noise;
-    ou_exact_kernel(double(lanes->alpha[j]), double(lanes->beta[j]), hh, &decay, &noise);
+    double decay, noise, decay_a, noise_a;
+    ou_crossing_exact_kernel(double(lanes->alpha[j]), double(lanes->beta[j]),
+                             double(lanes->sigma2[j]), vd2, hh, &decay, &noise, &decay_a,
+                             &noise_a);
     lanes->decay[j] = T(decay);
     lanes->noise[j] = T(noise);
+    lanes->decay_a[j] = T(decay_a);
+    lanes->noise_a[j] = T(noise_a);
   }
 }
 
@@ -508,20 +522,25 @@ LRIGID_LANE int lane_landed(const FieldConsts& fc, const T* q, T z) {
 // The exact OU half step (effects/turbulence.h ou_update, Thomson's drift along the world
 // velocity V) of lane j's seen fluctuation us, with normals z (3 x kBatch) and the lanes'
 // coefficients at their samples (lane_ou_update: with any decay and noise, as euler's and rk4's
-// Euler-Maruyama update takes). tu: the seen turbulence's factor, 1 or 0; with 0 the update is
-// the identity (decay 1, no noise, no drift), exactly. (A factor, not a select on a flag: GCC
-// does not vectorize a loop that selects on a bool.)
+// Euler-Maruyama update takes), across and along the drift direction cd (world, unit; zero
+// without a drift: effects/turbulence.h ou_update_crossing). tu: the seen turbulence's factor,
+// 1 or 0; with 0 the update is the identity (decay 1, no noise, no drift), exactly. (A factor,
+// not a select on a flag: GCC does not vectorize a loop that selects on a bool.)
 template <typename T>
-LRIGID_LANE void lane_ou_update(T tu, T wm, T decay, T noise, T h, const Samples<T>& lanes,
-                                const T (*z)[kBatch], int j, const T* V, T* us) {
+LRIGID_LANE void lane_ou_update(T tu, T wm, T decay, T noise, T decay_a, T noise_a, const T* cd,
+                                T h, const Samples<T>& lanes, const T (*z)[kBatch], int j,
+                                const T* V, T* us) {
   const T gs[3] = {lanes.gs[0][j], lanes.gs[1][j], lanes.gs[2][j]};
   const T zj[3] = {z[0][j], z[1][j], z[2][j]};
-  ou_update(wm * tu, decay * tu + (T(1) - tu), noise * tu, lanes.sigma2[j], V, gs, zj, h, us);
+  const T off = T(1) - tu;
+  ou_update_crossing(wm * tu, decay * tu + off, noise * tu, decay_a * tu + off, noise_a * tu, cd,
+                     lanes.sigma2[j], V, gs, zj, h, us);
 }
 template <typename T>
-LRIGID_LANE void lane_ou_half(T tu, T wm, T hh, const Samples<T>& lanes, const T (*z)[kBatch],
-                              int j, const T* V, T* us) {
-  lane_ou_update(tu, wm, lanes.decay[j], lanes.noise[j], hh, lanes, z, j, V, us);
+LRIGID_LANE void lane_ou_half(T tu, T wm, T hh, const T* cd, const Samples<T>& lanes,
+                              const T (*z)[kBatch], int j, const T* V, T* us) {
+  lane_ou_update(tu, wm, lanes.decay[j], lanes.noise[j], lanes.decay_a[j], lanes.noise_a[j], cd,
+                 hh, lanes, z, j, V, us);
 }
 
 // A step's new state per lane, filled by a batched step before end_step: position,
@@ -552,6 +571,7 @@ LRIGID_LANE void end_step(const FieldConsts& fc, const T (*z2)[kBatch], const T 
                           const T* sampled_inside0 = nullptr) {
   const int nw = lanes->width;
   const T hh = T(0.5 * fc.h), wm = T(fc.wm);
+  const T cd[3] = {T(fc.cd[0]), T(fc.cd[1]), T(fc.cd[2])};
   alignas(64) T inside0[kBatch];
   if (sampled_inside0) {
     for (int j = 0; j < nw; ++j) inside0[j] = sampled_inside0[j];
@@ -568,7 +588,7 @@ LRIGID_IVDEP
     T us[3] = {next->us[0][j], next->us[1][j], next->us[2][j]};
     if constexpr (OUHalfStep) {
       const T Vj[3] = {V[0][j], V[1][j], V[2][j]};
-      lane_ou_half(tu, wm, hh, *lanes, z2, j, Vj, us);
+      lane_ou_half(tu, wm, hh, cd, *lanes, z2, j, Vj, us);
     }
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) next->us[a][j] = us[a];

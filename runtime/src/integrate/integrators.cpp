@@ -30,23 +30,24 @@ StepOutcome turbulence_update(const Model& model, const BodyType& type, double t
   FluidSample fs;
   const bool seen = model.turbulence_model == TurbulenceModel::Seen;
   if (!sample_fluid(model, s->x, t, !model.field.is_uniform(), &fs)) return StepOutcome::Exited;
-  const Vec3 xi1(z[0], z[1], z[2]);
-  double decay, noise;
-  if (exact) {
-    const OUStep ou = ou_exact(fs.alpha, fs.beta, h);
-    decay = ou.decay;
-    noise = ou.noise_std;
-  } else {
-    ou_euler_kernel(fs.alpha, fs.beta, h, &decay, &noise);
-  }
+  // across and along the body type's drift (crossing trajectories; the same pair without one)
+  const double vd2 = type.drift_speed * type.drift_speed;
+  double decay, noise, decay_a, noise_a;
+  if (exact)
+    ou_crossing_exact_kernel<ScalarMath>(fs.alpha, fs.beta, fs.sigma2, vd2, h, &decay, &noise,
+                                         &decay_a, &noise_a);
+  else
+    ou_crossing_euler_kernel(fs.alpha, fs.beta, fs.sigma2, vd2, h, &decay, &noise, &decay_a,
+                             &noise_a);
   // the turbulent velocity u' (world frame, in u_seen) follows the OU process with Thomson's
   // well-mixed drift in both models: "seen" makes it the fluid velocity around the body (acting
   // through drag and added mass), "body" adds it to the body's own velocity (x' = R v + u').
   // The drift follows the body's path: its velocity x'.
   Vec3 path_velocity = s->q * s->v;
   if (!seen) path_velocity += s->u_seen;
-  ou_update(model.well_mixed_correction ? 1.0 : 0.0, decay, noise, fs.sigma2,
-            path_velocity.data(), fs.grad_sigma2.data(), z, h, s->u_seen.data());
+  ou_update_crossing(model.well_mixed_correction ? 1.0 : 0.0, decay, noise, decay_a, noise_a,
+                     type.drift_dir.data(), fs.sigma2, path_velocity.data(),
+                     fs.grad_sigma2.data(), z, h, s->u_seen.data());
   if (!seen) {
     const Vec3 xi2(z[3], z[4], z[5]);
     s->w = decay * s->w + (noise / type.r_eq) * xi2;

@@ -487,6 +487,7 @@ LRIGID_LANE void stage_turbulence_start(const StepConsts<Mass>& tc, const Lanes<
                                         NewState<T>* next) {
   const int nw = lanes->width;
   const T hh = T(0.5 * tc.h), wm = T(tc.wm), tu = T(tc.tu);
+  const T cd[3] = {T(tc.cd[0]), T(tc.cd[1]), T(tc.cd[2])};
 LRIGID_IVDEP
   for (int j = 0; j < nw; ++j) {
     T us[3] = {lanes->us[0][j], lanes->us[1][j], lanes->us[2][j]};
@@ -496,7 +497,7 @@ LRIGID_IVDEP
     FrameOf<T, Mass> fr;
     fr.set(q);
     fr.to_world(v, V);
-    lane_ou_half(tu, wm, hh, *lanes, z1, j, V, us);
+    lane_ou_half(tu, wm, hh, cd, *lanes, z1, j, V, us);
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
       flow->uf[a][j] = T(tc.mf) * lanes->U[a][j] + tu * us[a];

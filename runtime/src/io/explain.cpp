@@ -6,6 +6,7 @@
 
 #include "compile/compile_model.h"
 #include "effects/registry.h"
+#include "effects/turbulence.h"
 #include "integrate/simulation.h"
 #include "integrate/rigid_batch.h"
 #include "io/added_mass_cache.h"
@@ -50,6 +51,25 @@ nlohmann::json body_type(const Scene& scene, const Model& model, const FlowScale
   j["stokes_k_eps"] = a.stokes_k_eps;
   j["stokes_kolmogorov"] = a.stokes_kolmogorov;
   j["spin_ratio"] = a.spin_ratio;
+  // crossing trajectories at the representative flow (effects/turbulence.h): the drift against
+  // the turbulent velocity u' = sqrt(2k/3), and the factors by which it shortens the time scale of
+  // the velocity the body sees along and across the drift
+  {
+    const double u_turb = std::sqrt(2.0 * flow.k / 3.0), vd = t.drift_speed;
+    double along = 1, across = 1;
+    crossing_factors(vd * vd, u_turb * u_turb, &along, &across);
+    std::string off;
+    if (!t.effects.has(Effect::Turbulence)) off = "no turbulence simulated";
+    else if (model.turbulence_model != TurbulenceModel::Seen) off = "the body turbulence model";
+    else if (!model.crossing_trajectories) off = "turbulence.crossing_trajectories is false";
+    else if (!(vd > 0)) off = "no drift (neither weight nor buoyancy simulated, or they balance)";
+    j["crossing_trajectories"] = {{"on", off.empty()},
+                                  {"reason", off},
+                                  {"drift_speed", vd},
+                                  {"drift_over_u_turb", u_turb > 0 ? vd / u_turb : 0.0},
+                                  {"factor_along", along},
+                                  {"factor_across", across}};
+  }
   j["effects"] = nlohmann::json::array();
   for (const auto& [e, size] : a.size_rel) {
     nlohmann::json r = {{"name", effect_name(e)}, {"size", size}, {"keep", true},

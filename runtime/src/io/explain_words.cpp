@@ -19,6 +19,13 @@ std::string speed(double v) {
   return b;
 }
 
+// x to two significant digits, without an exponent (150, 2.1, 0.35)
+std::string two_digits(double x) {
+  char b[32];
+  std::snprintf(b, sizeof b, x >= 10 ? "%.0f" : "%.2g", x);
+  return b;
+}
+
 }  // namespace
 
 std::string plain_words(const nlohmann::json& t, const nlohmann::json& j) {
@@ -45,6 +52,15 @@ std::string plain_words(const nlohmann::json& t, const nlohmann::json& j) {
     parts.push_back("turbulence shakes it noticeably, but it lags behind the quicker eddies");
   else
     parts.push_back("heavy enough that turbulence barely moves it");
+
+  // crossing trajectories: a drift through the eddies shortens what it sees of them
+  const nlohmann::json& ct = t["crossing_trajectories"];
+  if (ct["on"].get<bool>() && ct["factor_across"].get<double>() >= 1.2)
+    parts.push_back("it drifts through the eddies at " +
+                    two_digits(ct["drift_over_u_turb"].get<double>()) +
+                    " times their speed, so they spread it sideways about " +
+                    two_digits(ct["factor_across"].get<double>()) + " times less than the " +
+                    fluid + " itself");
 
   // settling: falls, rises, or floats
   const double ratio = t["density_ratio"].get<double>(), vt = t["terminal_speed"].get<double>();

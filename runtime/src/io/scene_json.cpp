@@ -627,7 +627,7 @@ Scene parse_scene_unchecked(const std::string& text, const std::string& path) {
     g.finish();
   }
   if (top.has("turbulence")) {
-    Obj t = top.object("turbulence", {"model", "drift"});
+    Obj t = top.object("turbulence", {"model", "drift", "crossing_trajectories"});
     if (t.has("model")) {
       const std::string m = t.string("model");
       if (m == "body") s.turbulence_model = TurbulenceModel::Body;
@@ -640,6 +640,8 @@ Scene parse_scene_unchecked(const std::string& text, const std::string& path) {
       else if (d == "stationary") s.drift = Drift::Stationary;
       else t.fail("drift", "must be \"original\" or \"stationary\", got \"" + d + "\"");
     }
+    if (t.has("crossing_trajectories"))
+      s.crossing_trajectories = t.boolean("crossing_trajectories");
     t.finish();
   }
   if (top.has("art")) {

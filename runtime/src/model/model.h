@@ -106,6 +106,12 @@ struct BodyType {
   // and from the walls cannot touch them (the one comparison bodies far from surfaces pay)
   std::shared_ptr<const ContactParams> contact;
   double reach = 0;
+  // crossing trajectories of the seen model (effects/turbulence.h): the body's drift through the
+  // fluid, its settling (or rising) velocity in still fluid under the weight and buoyancy it
+  // simulates, as a unit direction (world) and a speed (m/s); zero for tracers, without the seen
+  // model or with "crossing_trajectories": false
+  Vec3 drift_dir = Vec3::Zero();
+  double drift_speed = 0;
 };
 
 // thickness / width below which a body counts as flat
@@ -148,6 +154,9 @@ struct Model {
   bool contacts() const { return ground_collides() || walls_collide(); }
   // Thomson's well-mixed drift for the seen model; off only to show what it prevents
   bool well_mixed_correction = true;
+  // crossing trajectories in the seen model (effects/turbulence.h): the drift of heavy and light
+  // bodies shortens the time scale of the velocity they see (BodyType::drift_speed)
+  bool crossing_trajectories = true;
   // Brownian path resolution: each step's noise is the sum of this many finer increments, so a
   // run with dt = r h sees the same path as a run with dt = h and 1 (docs/accuracy.md)
   uint32_t noise_substeps = 1;

@@ -109,6 +109,7 @@ struct Scene {
   OutsideMode outside = OutsideMode::Remove;
   TurbulenceModel turbulence_model = TurbulenceModel::Seen;
   Drift drift = Drift::Stationary;
+  bool crossing_trajectories = true;      // seen model: Csanady's correction (docs/physics/langevin.md)
   // art direction: scales of the mean flow U and of the turbulent velocity (sqrt k) the bodies
   // see; 1 is the physical field (docs/effects.md)
   double mean_flow_scale = 1;             // -

@@ -4,6 +4,7 @@
 // body; a gust watch wakes a sleeper at the OU process's mean first-passage time (closed form),
 // and wakes it at the same step on the scalar and the batched step, whatever the stretches.
 #include "contact/sleep.h"
+#include "effects/turbulence.h"
 
 #include <gtest/gtest.h>
 
@@ -187,22 +188,34 @@ TEST(Sleeping, TheWakeGustIsWhereTheFlowStartsToMoveTheBody) {
 // 0.5826 sigma sqrt(2 alpha dt) would (Broadie, Glasserman & Kou 1997's correction). The
 // components of u' across the mean flow, drawn at the wake, are those of the process at that
 // time: mean 0, variance sigma^2 (1 - exp(-2 alpha t)). A watch asked again and again, a few
-// steps further each time, wakes at the same step with the same u' as one asked once.
-TEST(Sleeping, AGustWatchWakesAtTheOuProcesssFirstPassage) {
+// steps further each time, wakes at the same step with the same u' as one asked once. With the
+// crossing trajectories the rate is alpha b', Csanady's factor across the body's drift (the mean
+// flow along x is across a drift along gravity): checked on a light hollow ball settling at about
+// 1.6 u' (b' = 2.8); without them, on a heavy ball, alpha.
+void expect_first_passage(double density, double k, double eps, bool crossing) {
   const int n = 4000;
-  Scene s = test::sphere_scene(0.01, 1000, 1.2, 1.5e-5, n);
-  s.effects = test::effects({Effect::Gravity, Effect::Drag, Effect::Turbulence});
+  Scene s = test::sphere_scene(0.01, density, 1.2, 1.5e-5, n);
+  s.effects = test::effects({Effect::Gravity, Effect::Buoyancy, Effect::Drag, Effect::Turbulence});
   s.uniform_U = Vec3(1, 0, 0);
-  s.uniform_k = 0.01;
-  s.uniform_epsilon = 0.1;
+  s.uniform_k = k;
+  s.uniform_epsilon = eps;
   s.has_ground = true;
   s.dt = 1e-4;
   s.duration = 10;
+  s.crossing_trajectories = crossing;
   const Model m = test::compile(s);
   ASSERT_TRUE(keeps_gust_watch(m, m.types[0]));
   FluidSample fs;
   ASSERT_TRUE(m.field.sample(Vec3::Zero(), 0, false, &fs));
-  const double sigma = std::sqrt(fs.sigma2), alpha = fs.alpha, a = 1.5;
+  const double vd = m.types[0].drift_speed;
+  double b_along, b_across;
+  crossing_factors(vd * vd, fs.sigma2, &b_along, &b_across);
+  if (crossing) {
+    EXPECT_GT(b_across, 2.0) << "the test tells the rates apart";
+  } else {
+    EXPECT_EQ(b_across, 1.0);
+  }
+  const double sigma = std::sqrt(fs.sigma2), alpha = fs.alpha * b_across, a = 1.5;
   ASSERT_GT(alpha * s.dt, 1e-4);
   ASSERT_LT(alpha * s.dt, 1e-2);
   State st = initial_state(m, s);
@@ -255,6 +268,17 @@ TEST(Sleeping, AGustWatchWakesAtTheOuProcesssFirstPassage) {
                                       << "correction " << mfpt(a);
   // the watch follows the process it sees: twice the rate would halve the time
   EXPECT_GT(mean, 0.75 * expected);
+}
+
+TEST(Sleeping, AGustWatchWakesAtTheOuProcesssFirstPassage) {
+  {
+    SCOPED_TRACE("heavy ball, no crossing trajectories");
+    expect_first_passage(1000, 0.01, 0.1, false);
+  }
+  {
+    SCOPED_TRACE("hollow ball, crossing trajectories");
+    expect_first_passage(5, 1.0, 1.0, true);
+  }
 }
 
 // A sheet held by friction in a mean wind of 0.9 U* with a turbulence whose gusts can move it

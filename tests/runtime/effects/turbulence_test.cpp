@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <random>
@@ -185,6 +186,141 @@ TEST(Turbulence, EulerMaruyamaUpdateHasItsOwnBiasedVariance) {
   EXPECT_NEAR(m.c1, var * 0.5, 3 * m.se_c1);
   EXPECT_NEAR(m.cl, var * 0.25, 3 * m.se_cl);
   EXPECT_GT(m.var - sigma2, 10 * m.se_var);  // distinguishable from the exact update's
+}
+
+// Csanady's factors (effects/turbulence.h crossing_factors): b = sqrt(1 + beta^2 vd^2 / sigma2)
+// along the drift, b' = sqrt(1 + 4 beta^2 vd^2 / sigma2) across it, beta = 0.8; exactly 1 for a
+// tracer and where there is no turbulence
+TEST(CrossingTrajectories, FactorsAreCsanadys) {
+  double along, across;
+  crossing_factors(0.0, 0.04, &along, &across);
+  EXPECT_EQ(along, 1.0);
+  EXPECT_EQ(across, 1.0);
+  crossing_factors(0.09, 0.0, &along, &across);
+  EXPECT_EQ(along, 1.0);
+  EXPECT_EQ(across, 1.0);
+  crossing_factors(0.09, 0.04, &along, &across);  // vd / u' = 1.5
+  EXPECT_NEAR(along, std::sqrt(1 + 0.64 * 2.25), 1e-15);
+  EXPECT_NEAR(across, std::sqrt(1 + 4 * 0.64 * 2.25), 1e-15);
+  // the exact coefficients are the OU process's on alpha b and beta sqrt(b): the variance
+  // beta^2 / (2 alpha) is the same on both axes
+  const double alpha = 3.0, beta = 0.6, h = 0.01;
+  double d, n, da, na;
+  ou_crossing_exact_kernel<ScalarMath>(alpha, beta, 0.04, 0.09, h, &d, &n, &da, &na);
+  EXPECT_NEAR(d, std::exp(-alpha * across * h), 1e-15);
+  EXPECT_NEAR(da, std::exp(-alpha * along * h), 1e-15);
+  EXPECT_NEAR(n * n / (1 - d * d), beta * beta / (2 * alpha), 1e-12);
+  EXPECT_NEAR(na * na / (1 - da * da), beta * beta / (2 * alpha), 1e-12);
+  // without a drift: ou_exact's pair on both axes, to the bit
+  ou_crossing_exact_kernel<ScalarMath>(alpha, beta, 0.04, 0.0, h, &d, &n, &da, &na);
+  const OUStep ou = ou_exact(alpha, beta, h);
+  EXPECT_EQ(d, ou.decay);
+  EXPECT_EQ(n, ou.noise_std);
+  EXPECT_EQ(da, ou.decay);
+  EXPECT_EQ(na, ou.noise_std);
+}
+
+// Euler-Maruyama's pair with the factors: 1 - alpha b h and beta sqrt(b h), each factor capped
+// so the decay stays >= 0 where the tracer's is (alpha h <= 1), and never below the tracer's
+TEST(CrossingTrajectories, EulerFactorsKeepTheDecayNonNegative) {
+  const double alpha = 2.0, beta = 0.5, sigma2 = 0.01, vd2 = 1.0;  // vd / u' = 10
+  double along, across;
+  crossing_factors(vd2, sigma2, &along, &across);
+  for (const double h : {1e-3, 0.05, 0.4, 0.5}) {  // alpha h <= 1
+    double d, n, da, na;
+    ou_crossing_euler_kernel(alpha, beta, sigma2, vd2, h, &d, &n, &da, &na);
+    const double cap = 1 / (alpha * h);
+    const double b = std::min(across, cap), ba = std::min(along, cap);
+    EXPECT_NEAR(d, 1 - alpha * b * h, 1e-15) << h;
+    EXPECT_NEAR(da, 1 - alpha * ba * h, 1e-15) << h;
+    EXPECT_NEAR(n, beta * std::sqrt(b * h), 1e-15) << h;
+    EXPECT_NEAR(na, beta * std::sqrt(ba * h), 1e-15) << h;
+    EXPECT_GE(d, 0.0);
+    EXPECT_GE(da, 0.0);
+  }
+  // alpha h > 1: the tracer's own pair (the step is already coarser than T_L)
+  double d, n, da, na, dt, nt;
+  ou_crossing_euler_kernel(alpha, beta, sigma2, vd2, 0.75, &d, &n, &da, &na);
+  ou_euler_kernel(alpha, beta, 0.75, &dt, &nt);
+  EXPECT_EQ(d, dt);
+  EXPECT_EQ(da, dt);
+  EXPECT_EQ(n, nt);
+}
+
+// ou_update_crossing without a drift is ou_update to the bit (a tracer's path does not change);
+// with one, the component along the drift takes the along pair and the others the across pair
+TEST(CrossingTrajectories, UpdateActsOnTheAxesOfTheDrift) {
+  std::mt19937_64 g(7);
+  std::normal_distribution<double> normal(0, 1);
+  const double V[3] = {0.3, -0.2, 0.1}, gs[3] = {0.01, 0.02, -0.03}, h = 1e-3;
+  const double zero[3] = {0, 0, 0};
+  for (int trial = 0; trial < 200; ++trial) {
+    const double z[3] = {normal(g), normal(g), normal(g)};
+    const double u0[3] = {normal(g), normal(g), normal(g)};
+    double a[3] = {u0[0], u0[1], u0[2]}, b[3] = {u0[0], u0[1], u0[2]};
+    ou_update(1.0, 0.97, 0.05, 0.2, V, gs, z, h, a);
+    ou_update_crossing(1.0, 0.97, 0.05, 0.97, 0.05, zero, 0.2, V, gs, z, h, b);
+    for (int c = 0; c < 3; ++c) EXPECT_EQ(a[c], b[c]);
+    // a drift along (0, 0.6, 0.8): that component decays by 0.9 with noise 0.07, the rest as
+    // ou_update (no well-mixed drift here, to compare with the closed form)
+    const Vec3 d(0, 0.6, 0.8), u(u0[0], u0[1], u0[2]), zv(z[0], z[1], z[2]);
+    double w[3] = {u0[0], u0[1], u0[2]};
+    ou_update_crossing(0.0, 0.97, 0.05, 0.9, 0.07, d.data(), 0.2, V, gs, z, h, w);
+    const Vec3 ref = 0.97 * (u - u.dot(d) * d) + 0.05 * (zv - zv.dot(d) * d) +
+                     (0.9 * u.dot(d) + 0.07 * zv.dot(d)) * d;
+    EXPECT_TRUE(test::near(Vec3(w[0], w[1], w[2]), ref, 1e-14));
+  }
+}
+
+// The update's statistics with a drift along an oblique axis d, over 20 000 paths: the variance
+// along and across d stays sigma2 = beta^2 / (2 alpha), and the autocorrelation over 4 steps is
+// exp(-4 alpha b h) along d and exp(-4 alpha b' h) across it, within 3 standard errors
+TEST(CrossingTrajectories, EachAxisIsAnOuProcessOfItsOwnTimeScaleAndTheSameVariance) {
+  const double alpha = 2.0, beta = 0.4, sigma2 = beta * beta / (2 * alpha), h = 0.05;
+  const double vd2 = 2.25 * sigma2;  // vd / u' = 1.5
+  double bl, bc;
+  crossing_factors(vd2, sigma2, &bl, &bc);
+  double dc, nc, da, na;
+  ou_crossing_exact_kernel<ScalarMath>(alpha, beta, sigma2, vd2, h, &dc, &nc, &da, &na);
+  const Vec3 d = Vec3(1, 2, 2) / 3.0, e = Vec3(2, -1, 0) / std::sqrt(5.0);  // e across d
+  std::mt19937_64 g(99);
+  std::normal_distribution<double> normal(0, 1);
+  const double zero[3] = {0, 0, 0};
+  const int chains = 20000, burn = 60, lag = 4;
+  // per axis (0 along d, 1 across): sums of u0^2, u0 ul and of their squares
+  double s[2][2] = {{0, 0}, {0, 0}}, s2[2][2] = {{0, 0}, {0, 0}};
+  for (int c = 0; c < chains; ++c) {
+    double u[3] = {0, 0, 0};
+    auto step = [&] {
+      const double z[3] = {normal(g), normal(g), normal(g)};
+      ou_update_crossing(0.0, dc, nc, da, na, d.data(), sigma2, zero, zero, z, h, u);
+    };
+    for (int k = 0; k < burn; ++k) step();
+    const Vec3 u0(u[0], u[1], u[2]);
+    for (int k = 0; k < lag; ++k) step();
+    const Vec3 ul(u[0], u[1], u[2]);
+    const Vec3 ax[2] = {d, e};
+    for (int a = 0; a < 2; ++a) {
+      const double x0 = u0.dot(ax[a]), xl = ul.dot(ax[a]);
+      const double x[2] = {x0 * x0, x0 * xl};
+      for (int m = 0; m < 2; ++m) s[a][m] += x[m], s2[a][m] += x[m] * x[m];
+    }
+  }
+  const double rho[2] = {std::exp(-lag * alpha * bl * h), std::exp(-lag * alpha * bc * h)};
+  for (int a = 0; a < 2; ++a) {
+    double mean[2], se[2];
+    for (int m = 0; m < 2; ++m) {
+      mean[m] = s[a][m] / chains;
+      se[m] = std::sqrt((s2[a][m] / chains - mean[m] * mean[m]) / chains);
+    }
+    std::printf("%s the drift: <u'^2> = %.5f (%.5f), rho(4 h) = %.4f (%.4f)\n",
+                a == 0 ? "along" : "across", mean[0], sigma2, mean[1] / sigma2, rho[a]);
+    EXPECT_NEAR(mean[0], sigma2, 3 * se[0]) << a;
+    EXPECT_NEAR(mean[1], sigma2 * rho[a], 3 * se[1]) << a;
+  }
+  // the test tells the axes apart (and from a tracer's exp(-4 alpha h) = 0.67)
+  EXPECT_GT(rho[0] - rho[1], 0.1);
+  EXPECT_GT(std::exp(-lag * alpha * h) - rho[0], 0.1);
 }
 
 }  // namespace

@@ -305,7 +305,8 @@ TEST(BatchLanes, EachLanesNormalsAreTheScalarStepsForItsBodyAndStep) {
 
 // The OU update of a lane's seen fluctuation: us <- decay us + h (1/2 grad sigma^2 + us (V .
 // grad sigma^2) / (2 sigma^2)) + noise z with Thomson's drift, without it the same less the
-// drift; without the seen turbulence (factor 0) the identity, exactly, whatever the
+// drift; along a crossing-trajectory drift direction the along pair (decay_a, noise_a) in place
+// of (decay, noise); without the seen turbulence (factor 0) the identity, exactly, whatever the
 // coefficients.
 TEST(BatchLanes, TheOUUpdateOfALaneIsThomsonsAndTheIdentityWithoutSeenTurbulence) {
   Samples<double> lanes{};
@@ -316,15 +317,24 @@ TEST(BatchLanes, TheOUUpdateOfALaneIsThomsonsAndTheIdentityWithoutSeenTurbulence
   for (int a = 0; a < 3; ++a) lanes.gs[a][j] = gs[a], z[a][j] = z0[a];
   const double decay = 0.9, noise = 0.05, h = 0.01, u0[3] = {0.1, 0.2, -0.3};
   const double proj = (V[0] * gs[0] + V[1] * gs[1] + V[2] * gs[2]) / (2 * 0.04);
+  const double none[3] = {0, 0, 0}, down[3] = {0, 0, -1};
   for (const double wm : {1.0, 0.0}) {
     double us[3] = {u0[0], u0[1], u0[2]};
-    lane_ou_update(1.0, wm, decay, noise, h, lanes, z, j, V, us);
+    lane_ou_update(1.0, wm, decay, noise, decay, noise, none, h, lanes, z, j, V, us);
     for (int a = 0; a < 3; ++a)
       EXPECT_NEAR(us[a], decay * u0[a] + wm * h * (0.5 * gs[a] + u0[a] * proj) + noise * z0[a],
                   1e-15);
+    // a drift along -z: z takes 0.8 and 0.07
+    double ud[3] = {u0[0], u0[1], u0[2]};
+    lane_ou_update(1.0, wm, decay, noise, 0.8, 0.07, down, h, lanes, z, j, V, ud);
+    for (int a = 0; a < 3; ++a)
+      EXPECT_NEAR(ud[a],
+                  (a == 2 ? 0.8 : decay) * u0[a] + wm * h * (0.5 * gs[a] + u0[a] * proj) +
+                      (a == 2 ? 0.07 : noise) * z0[a],
+                  1e-15);
   }
   double us[3] = {u0[0], u0[1], u0[2]};
-  lane_ou_update(0.0, 1.0, decay, noise, h, lanes, z, j, V, us);
+  lane_ou_update(0.0, 1.0, decay, noise, 0.8, 0.07, down, h, lanes, z, j, V, us);
   for (int a = 0; a < 3; ++a) EXPECT_EQ(us[a], u0[a]);
 }
 

@@ -5,9 +5,11 @@
 
 #include <cmath>
 #include <cstdio>
+#include <string>
 #include <vector>
 
 #include "compile/compile_model.h"
+#include "effects/turbulence.h"
 #include "integrate/simulation.h"
 #include "support/fixture.h"
 
@@ -263,6 +265,116 @@ TEST(WellMixed, SeenFluctuationOfHeavyBodiesStaysBoundedInASteepGradient) {
     EXPECT_LT(worst, 6 * sigma_max) << integrator_name(scheme);
     EXPECT_GT(worst, 0.5 * sigma_max) << integrator_name(scheme);  // the turbulence acted
   }
+}
+
+// Crossing trajectories (effects/turbulence.h, docs/physics/langevin.md): glass spheres of
+// r = 20 um settling through uniform isotropic turbulence in air (u' = 0.1 m/s, no mean flow) at
+// about 1.1 u'. With a linear response the body's velocity is the seen velocity filtered by a
+// first-order lag of tau_p, which leaves the integral of its autocorrelation unchanged, so the
+// long-time diffusivity along each axis is the seen process's own, sigma2 T_L / b: b along the
+// drift, b' across it (the model's closed form). The displacement over a window dt of a
+// stationary run has Var = 2 sigma2 T / (T^2 - tau^2) [T (T dt - T^2 (1 - e^{-dt/T})) -
+// tau (tau dt - tau^2 (1 - e^{-dt/tau}))], T = T_L / b: checked within 3 Monte Carlo standard
+// errors across (x, y) and along (z), for every scheme and both steps; and with the correction
+// off, the tracer's time scale on both axes.
+struct Diffusion {
+  double var_across = 0, var_along = 0;  // of the displacement over the window, m^2
+  double se_across = 0, se_along = 0;
+  double expect_across = 0, expect_along = 0;
+};
+
+Diffusion settling_diffusion(Integrator scheme, bool batched, bool crossing) {
+  const int n = 2500;
+  Scene s = test::sphere_scene(20e-6, 2500, 1.2, 1.5e-5, n);
+  s.uniform_k = 0.015;  // sigma2 = 2k/3 = 0.01 m^2/s^2
+  s.uniform_epsilon = 0.005;
+  s.effects = test::effects({Effect::Gravity, Effect::Buoyancy, Effect::Drag, Effect::Turbulence});
+  s.turbulence_model = TurbulenceModel::Seen;
+  s.drift = Drift::Stationary;
+  s.crossing_trajectories = crossing;
+  s.integrator = scheme;
+  s.batched = batched;
+  s.dt = 2e-3;
+  const double window = 4.0;  // after a burn-in of the same length (> 5 T_L)
+  s.duration = 2 * window;
+  const Model m = test::compile(s);
+  const BodyType& t = m.types[0];
+  EXPECT_EQ(step_kind(m, t, nullptr) == StepKind::Batched, batched);
+  const LangevinCoefficients lc = langevin_coefficients(0.015, 0.005, 1.5e-5, Drift::Stationary);
+  State st = initial_state(m, s);
+  RunOptions opt;
+  opt.every = window;
+  std::vector<std::vector<Vec3>> x;
+  opt.on_output = [&](const State& y) { x.push_back(y.x); };
+  simulate(m, &st, opt);
+  EXPECT_EQ(x.size(), 3u);
+  Diffusion r;
+  if (x.size() != 3) return r;
+  // the sample variance of each component of the displacement
+  double var[3];
+  for (int c = 0; c < 3; ++c) {
+    double sum = 0, sum2 = 0;
+    for (int i = 0; i < n; ++i) {
+      const double d = x[2][i][c] - x[1][i][c];
+      sum += d;
+      sum2 += d * d;
+    }
+    var[c] = (sum2 - sum * sum / n) / (n - 1);
+  }
+  r.var_across = 0.5 * (var[0] + var[1]);
+  r.var_along = var[2];
+  r.se_across = r.var_across * std::sqrt(1.0 / n);  // two independent components
+  r.se_along = r.var_along * std::sqrt(2.0 / n);
+  // the drift the model gives the type, and its response time (its weight less buoyancy over
+  // the drift speed: the drag per speed at the drift)
+  Scene on = s;
+  on.crossing_trajectories = true;
+  const double vd = test::compile(on).types[0].drift_speed;
+  EXPECT_GT(vd, 0.05);
+  EXPECT_LT(vd, 0.2);
+  EXPECT_EQ(t.drift_speed, crossing ? vd : 0.0);
+  EXPECT_NEAR(t.drift_dir.z(), crossing ? -1.0 : 0.0, 1e-12);
+  const double F = (t.mass - 1.2 * t.volume) * 9.81;
+  const double tau = (t.mass + 0.5 * 1.2 * t.volume) * vd / F;
+  double along = 1, across = 1;
+  auto expect = [&](double b) {
+    const double T = 1.0 / (lc.alpha * b), w = window;
+    const double a = T * (T * w - T * T * -std::expm1(-w / T));
+    const double c = tau * (tau * w - tau * tau * -std::expm1(-w / tau));
+    return 2 * lc.sigma2 * T / (T * T - tau * tau) * (a - c);
+  };
+  if (crossing) crossing_factors(vd * vd, lc.sigma2, &along, &across);
+  r.expect_across = expect(across);
+  r.expect_along = expect(along);
+  return r;
+}
+
+TEST(CrossingTrajectories, SettlingSpheresReachTheModelsDiffusivitiesInEveryScheme) {
+  struct Case {
+    Integrator scheme;
+    bool batched;
+  };
+  Diffusion on;
+  for (const Case c : {Case{Integrator::Strang, true}, Case{Integrator::Splitting, true},
+                       Case{Integrator::Euler, true}, Case{Integrator::RK4, true},
+                       Case{Integrator::Strang, false}}) {
+    SCOPED_TRACE(std::string(integrator_name(c.scheme)) + (c.batched ? " batched" : " scalar"));
+    const Diffusion d = settling_diffusion(c.scheme, c.batched, true);
+    std::printf("%-9s %-7s: Var across %.5f (%.5f +- %.5f), along %.5f (%.5f +- %.5f) m^2\n",
+                integrator_name(c.scheme), c.batched ? "batched" : "scalar", d.var_across,
+                d.expect_across, d.se_across, d.var_along, d.expect_along, d.se_along);
+    EXPECT_NEAR(d.var_across, d.expect_across, 3 * d.se_across);
+    EXPECT_NEAR(d.var_along, d.expect_along, 3 * d.se_along);
+    if (c.scheme == Integrator::Strang && c.batched) on = d;
+  }
+  // off: the tracer's time scale on both axes, twice the spread across
+  const Diffusion off = settling_diffusion(Integrator::Strang, true, false);
+  std::printf("off      : Var across %.5f (%.5f +- %.5f), along %.5f (%.5f +- %.5f) m^2\n",
+              off.var_across, off.expect_across, off.se_across, off.var_along, off.expect_along,
+              off.se_along);
+  EXPECT_NEAR(off.var_across, off.expect_across, 3 * off.se_across);
+  EXPECT_NEAR(off.var_along, off.expect_along, 3 * off.se_along);
+  EXPECT_GT(off.var_across, 1.5 * on.var_across);
 }
 
 }  // namespace

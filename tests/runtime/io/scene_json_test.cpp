@@ -62,6 +62,10 @@ TEST(SceneJson, ReadsEveryKey) {
   EXPECT_EQ(s.ground_z, -1);
   EXPECT_EQ(s.turbulence_model, TurbulenceModel::Body);
   EXPECT_EQ(s.drift, Drift::Original);
+  EXPECT_TRUE(s.crossing_trajectories);  // the default
+  json j = valid_scene();
+  j["turbulence"]["crossing_trajectories"] = false;
+  EXPECT_FALSE(parse_scene(j.dump(), "/tmp/scene.json").crossing_trajectories);
   EXPECT_TRUE(s.effects.has(Effect::Drag));
   EXPECT_FALSE(s.effects.has(Effect::AddedMass));
   EXPECT_TRUE(s.output.csv);
@@ -228,6 +232,9 @@ INSTANTIATE_TEST_SUITE_P(
                 "output.formats[1]: must be \"csv\", \"pvd\" or \"glb\", got \"xls\""},
         BadCase{"turbulence model", [](json& j) { j["turbulence"]["model"] = "les"; },
                 "turbulence.model: must be \"body\" or \"seen\", got \"les\""},
+        BadCase{"crossing trajectories",
+                [](json& j) { j["turbulence"]["crossing_trajectories"] = "no"; },
+                "turbulence.crossing_trajectories"},
         BadCase{"schema version", [](json& j) { j["version"] = 2; },
                 "version: only schema version 1 is supported, got 2"}),
     [](const auto& info) {
