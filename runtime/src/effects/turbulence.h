@@ -43,6 +43,20 @@ LRIGID_LANE void ou_exact_kernel(double alpha, double beta, double h, double* de
                               : std::sqrt(h));
 }
 
+// The same with the rate alpha b and the amplitude beta sqrt(b) (the crossing trajectories'
+// axes), written so that b cancels under the root and one function call serves both: with
+// m = 1 - exp(-alpha b h), decay = 1 - m and 1 - exp(-2 alpha b h) = m (2 - m), so
+// noise = beta sqrt(m (2 - m) / (2 alpha)); precise for small alpha b h as m is.
+template <class Math = LaneMath>
+LRIGID_LANE void ou_exact_scaled_kernel(double alpha, double beta, double b, double h,
+                                        double* decay, double* noise) {
+  const double ah = alpha * b * h;
+  const double a_safe = alpha > 0 ? alpha : 1.0;
+  const double m = Math::one_minus_exp_neg(ah);
+  *decay = 1.0 - m;
+  *noise = beta * (ah > 1e-12 ? std::sqrt(m * (2.0 - m) / (2.0 * a_safe)) : std::sqrt(b * h));
+}
+
 // Euler-Maruyama's coefficients over h (the euler and rk4 steps): decay = 1 - alpha h,
 // noise = beta sqrt(h), m/s. Written once (integrators.cpp and the batched loops call it).
 template <typename T>
@@ -94,17 +108,24 @@ LRIGID_LANE void crossing_factors(T vd2, T sigma2, T* along, T* across) {
   *across = std::sqrt(T(1) + T(4) * b2 * r);
 }
 
-// The exact OU coefficients over h with the crossing factors (ou_exact_kernel on alpha b and
-// beta sqrt(b)): decay and noise across the drift, decay_a and noise_a along it. vd2 = 0: the
-// two pairs are ou_exact_kernel's (alpha, beta), to the bit.
+// The exact OU coefficients over h with the crossing factors (ou_exact_scaled_kernel): decay and
+// noise across the drift, decay_a and noise_a along it. vd2 = 0: both pairs are
+// ou_exact_kernel's (alpha, beta), to the bit (a branch: the batched loops call it only for a
+// type with a drift, batch_lanes.h ou_coefficients).
 template <class Math = LaneMath>
 LRIGID_LANE void ou_crossing_exact_kernel(double alpha, double beta, double sigma2, double vd2,
                                           double h, double* decay, double* noise,
                                           double* decay_a, double* noise_a) {
+  if (!(vd2 > 0)) {  // a tracer: the isotropic pair
+    ou_exact_kernel<Math>(alpha, beta, h, decay, noise);
+    *decay_a = *decay;
+    *noise_a = *noise;
+    return;
+  }
   double along, across;
   crossing_factors(vd2, sigma2, &along, &across);
-  ou_exact_kernel<Math>(alpha * across, beta * std::sqrt(across), h, decay, noise);
-  ou_exact_kernel<Math>(alpha * along, beta * std::sqrt(along), h, decay_a, noise_a);
+  ou_exact_scaled_kernel<Math>(alpha, beta, across, h, decay, noise);
+  ou_exact_scaled_kernel<Math>(alpha, beta, along, h, decay_a, noise_a);
 }
 
 // Euler-Maruyama's coefficients with the crossing factors (the euler and rk4 steps). Each factor
@@ -119,8 +140,11 @@ LRIGID_LANE void ou_crossing_euler_kernel(T alpha, T beta, T sigma2, T vd2, T h,
   const T cap = ah > T(1) ? T(1) : (ah > T(0) ? T(1) / ah : along + across);
   along = along < cap ? along : cap;
   across = across < cap ? across : cap;
-  ou_euler_kernel(alpha * across, beta * std::sqrt(across), h, decay, noise);
-  ou_euler_kernel(alpha * along, beta * std::sqrt(along), h, decay_a, noise_a);
+  // ou_euler_kernel on alpha b and beta sqrt(b), with one root per pair; b = 1: its values
+  *decay = T(1) - alpha * across * h;
+  *noise = beta * std::sqrt(across * h);
+  *decay_a = T(1) - alpha * along * h;
+  *noise_a = beta * std::sqrt(along * h);
 }
 
 // ou_update with the crossing trajectories: decay and noise (across the drift) act on every

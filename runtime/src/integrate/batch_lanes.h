@@ -411,16 +411,27 @@ template <typename T>
 LRIGID_MULTIVERSION void ou_coefficients(const FieldConsts& fc, Samples<T>* lanes, int lo = 0,
                                          int hi = kBatch) {
   const double hh = 0.5 * fc.h, vd2 = fc.vd2;
+  if (vd2 > 0) {
+LRIGID_IVDEP
+    for (int j = lo; j < hi; ++j) {
+      double decay, noise, decay_a, noise_a;
+      ou_crossing_exact_kernel(double(lanes->alpha[j]), double(lanes->beta[j]),
+                               double(lanes->sigma2[j]), vd2, hh, &decay, &noise, &decay_a,
+                               &noise_a);
+      lanes->decay[j] = T(decay);
+      lanes->noise[j] = T(noise);
+      lanes->decay_a[j] = T(decay_a);
+      lanes->noise_a[j] = T(noise_a);
+    }
+    return;
+  }
+  // no drift (tracers, or the correction off): one pair for every axis, computed once
 LRIGID_IVDEP
   for (int j = lo; j < hi; ++j) {
-    double decay, noise, decay_a, noise_a;
-    ou_crossing_exact_kernel(double(lanes->alpha[j]), double(lanes->beta[j]),
-                             double(lanes->sigma2[j]), vd2, hh, &decay, &noise, &decay_a,
-                             &noise_a);
-    lanes->decay[j] = T(decay);
-    lanes->noise[j] = T(noise);
-    lanes->decay_a[j] = T(decay_a);
-    lanes->noise_a[j] = T(noise_a);
+    double decay, noise;
+    ou_exact_kernel(double(lanes->alpha[j]), double(lanes->beta[j]), hh, &decay, &noise);
+    lanes->decay[j] = lanes->decay_a[j] = T(decay);
+    lanes->noise[j] = lanes->noise_a[j] = T(noise);
   }
 }
 
