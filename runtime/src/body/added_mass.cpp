@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
+#include <mutex>
+#include <vector>
 
 #include "body/bem.h"
 #include "body/mass_properties.h"
@@ -93,14 +96,74 @@ void check_density(double rho) {
 
 }  // namespace
 
+namespace {
+
+// The panel solutions this process has made, per unit fluid density: a scene compiled again
+// (the same shape in another scene, a Python session, a test) reuses the solve of the same
+// geometry and panel target, which is a pure function of them, so the result is the same to
+// the bit. Bounded: the oldest entry goes first.
+struct BemMemo {
+  struct Entry {
+    ShapeType type;
+    Vec3 half_extents;
+    int target;
+    std::shared_ptr<const TriangleMesh> mesh;  // meshes: compared by content
+    BemResult result;
+  };
+  std::mutex lock;
+  std::vector<Entry> entries;
+  int solves = 0;
+  static constexpr size_t kMaxEntries = 64;
+
+  static bool same_geometry(const Entry& e, const Shape& shape, int target) {
+    if (e.type != shape.type || e.target != target || e.half_extents != shape.half_extents)
+      return false;
+    if (shape.type != ShapeType::Mesh) return true;
+    if (!e.mesh || !shape.mesh) return false;
+    return e.mesh == shape.mesh || (e.mesh->vertices == shape.mesh->vertices &&
+                                    e.mesh->faces == shape.mesh->faces);
+  }
+  bool find(const Shape& shape, int target, BemResult* out) {
+    std::lock_guard<std::mutex> guard(lock);
+    for (const Entry& e : entries)
+      if (same_geometry(e, shape, target)) {
+        *out = e.result;
+        return true;
+      }
+    return false;
+  }
+  void add(const Shape& shape, int target, const BemResult& r) {
+    std::lock_guard<std::mutex> guard(lock);
+    ++solves;
+    if (entries.size() >= kMaxEntries) entries.erase(entries.begin());
+    entries.push_back({shape.type, shape.half_extents, target, shape.mesh, r});
+  }
+};
+
+BemMemo& bem_memo() {
+  static BemMemo memo;
+  return memo;
+}
+
+}  // namespace
+
+int bem_solve_count() {
+  std::lock_guard<std::mutex> guard(bem_memo().lock);
+  return bem_memo().solves;
+}
+
 AddedMass added_mass_bem(const Shape& shape, double fluid_density, int panels) {
   check_density(fluid_density);
   const int target = resolve_panels(panels);
-  const TriangleMesh mesh = tessellate(shape, target);
-  // tensor about the volume centroid of the shape (analytic shapes: the origin)
-  const Vec3 reference =
-      shape.type == ShapeType::Mesh ? mass_properties(shape).centroid : Vec3::Zero();
-  const BemResult r = bem_added_mass(mesh, reference);
+  BemResult r;
+  if (!bem_memo().find(shape, target, &r)) {
+    const TriangleMesh mesh = tessellate(shape, target);
+    // tensor about the volume centroid of the shape (analytic shapes: the origin)
+    const Vec3 reference =
+        shape.type == ShapeType::Mesh ? mass_properties(shape).centroid : Vec3::Zero();
+    r = bem_added_mass(mesh, reference);
+    bem_memo().add(shape, target, r);
+  }
   AddedMass am;
   am.tensor = fluid_density * r.tensor;
   am.method = "bem";

@@ -27,8 +27,13 @@ struct AddedMass {
 AddedMass added_mass(const Shape& shape, double fluid_density, int panels = 0);
 
 // Always the boundary element method, for any shape (spheres and ellipsoids are tessellated);
-// used to validate the panel method against the exact results.
+// used to validate the panel method against the exact results. A process keeps its last 64
+// panel solutions: the same geometry (type, extents, a mesh's vertices and faces) and panel
+// target again gives the same tensor without a new solve.
 AddedMass added_mass_bem(const Shape& shape, double fluid_density, int panels = 0);
+
+// How many panel solutions this process has made (the other calls reused one).
+int bem_solve_count();
 
 // Lamb's ellipsoid constants alpha0, beta0, gamma0 (sum 2) for semi-axes (a, b, c):
 // alpha0 = a b c int_0^inf dl / ((a^2 + l) sqrt((a^2 + l)(b^2 + l)(c^2 + l))), etc.

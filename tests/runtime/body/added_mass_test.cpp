@@ -6,7 +6,10 @@
 
 #include <cmath>
 
+#include <memory>
+
 #include "body/mass_properties.h"
+#include "body/tessellate.h"
 #include "util/error.h"
 
 namespace lrigid {
@@ -118,6 +121,46 @@ TEST(AddedMassBox, IsTheDiagonalOfThePanelSolution) {
       EXPECT_LE(std::abs(bem.tensor(i, j)), 1e-6 * std::sqrt(bem.tensor(i, i) * bem.tensor(j, j)))
           << i << "," << j;
     }
+}
+
+TEST(AddedMassBem, TheSameGeometryAgainReusesItsSolveAndAnotherGetsItsOwn) {
+  // the process keeps its panel solutions: a box or mesh compiled again costs no solve and
+  // gives the same tensor to the bit; any change of the geometry or the panel target solves anew
+  const Shape box = Shape::box(0.06, 0.04, 4e-4);
+  const int before = bem_solve_count();
+  const AddedMass first = added_mass(box, 1.2, 300);
+  EXPECT_EQ(bem_solve_count(), before + 1);
+  const AddedMass again = added_mass(box, 1000, 300);  // another fluid: the same solve, scaled
+  EXPECT_EQ(bem_solve_count(), before + 1);
+  EXPECT_TRUE(again.tensor.isApprox((1000 / 1.2) * first.tensor, 1e-14));
+  EXPECT_EQ(added_mass(box, 1.2, 300).tensor, first.tensor);
+  EXPECT_EQ(bem_solve_count(), before + 1);
+  added_mass(Shape::box(0.06, 0.04, 5e-4), 1.2, 300);  // another thickness
+  EXPECT_EQ(bem_solve_count(), before + 2);
+  added_mass(box, 1.2, 400);  // another panel target
+  EXPECT_EQ(bem_solve_count(), before + 3);
+
+  // meshes by their content: a copy of the mesh reuses the solve, a vertex moved within the
+  // same bounding box does not
+  TriangleMesh m = tessellate(Shape::box(0.05, 0.03, 0.01), 300);
+  const Shape a = Shape::from_mesh(std::make_shared<const TriangleMesh>(m), "a.obj");
+  const Shape copy = Shape::from_mesh(std::make_shared<const TriangleMesh>(m), "copy.obj");
+  const int meshes = bem_solve_count();
+  const AddedMass ma = added_mass(a, 1.2);
+  EXPECT_EQ(added_mass(copy, 1.2).tensor, ma.tensor);
+  EXPECT_EQ(bem_solve_count(), meshes + 1);
+  bool moved = false;
+  for (Vec3& v : m.vertices)
+    if (std::abs(v.z() - 0.005) < 1e-12 && std::abs(v.x()) < 0.02 && std::abs(v.y()) < 0.01) {
+      v.x() += 1e-4;  // in the top face: the bounding box stays
+      moved = true;
+      break;
+    }
+  ASSERT_TRUE(moved);
+  const Shape b = Shape::from_mesh(std::make_shared<const TriangleMesh>(m), "b.obj");
+  ASSERT_EQ(b.half_extents, a.half_extents);
+  added_mass(b, 1.2);
+  EXPECT_EQ(bem_solve_count(), meshes + 2);
 }
 
 TEST(AddedMass, RejectsBadArguments) {
