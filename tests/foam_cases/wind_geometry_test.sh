@@ -9,7 +9,8 @@
 #                checkMesh 'Mesh OK', the converged run's checks, and in the grid every point
 #                inside the building invalid, the points outside valid
 #   objYup       the same L building exported as a Y-up OBJ (as Blender does) gives the same
-#                grid as the Z-up STL of lBuilding (needs lBuilding's result: ctest fixture)
+#                case, file for file, as the Z-up STL (both written with --no-run: the solver and
+#                the converter then get the same input)
 #   sphere       a sphere sunk a little into the ground (--ground 0), wind along +x: end to end,
 #                geometry inside invalid, and the approach profile 1 H downstream of the inlet
 #                matches the log law within 5 % at 0.5 H, 1 H and 2 H
@@ -91,13 +92,45 @@ lBuilding)
     $CHECK inside lbuilding || fail "grid check"
     ;;
 objYup)
-    [ -f lbuilding/grid.vti ] || fail "needs the result of foam_wind.lBuilding"
+    # both cases written without running OpenFOAM (--no-run): what the solver and foam2grid get
+    # from the OBJ must be what they get from the STL, file for file
+    "$BIN/foamMakeGeometry" lbuilding lbuilding_z.stl || fail "foamMakeGeometry"
     "$BIN/foamMakeGeometry" lbuilding lbuilding.obj || fail "foamMakeGeometry"
-    head -n 3 lbuilding.obj | grep -q '^v ' || true
-    runCase lbuilding.obj lbuilding_obj --up y --direction 30 -np 2
-    cmp -s lbuilding/constant/triSurface/geometry.stl lbuilding_obj/constant/triSurface/geometry.stl \
-        || fail "the Y-up OBJ and the Z-up STL give different geometry.stl"
-    $CHECK same lbuilding/grid.vti lbuilding_obj/grid.vti 1e-6 || fail "grids differ"
+    rm -rf lbuilding_stl_case lbuilding_obj_case
+    "$BIN/foamWindCase" lbuilding_z.stl lbuilding_stl_case --direction 30 -np 2 --no-run \
+        > lbuilding_stl_case.out 2>&1 || { cat lbuilding_stl_case.out; fail "foamWindCase STL"; }
+    "$BIN/foamWindCase" lbuilding.obj lbuilding_obj_case --up y --direction 30 -np 2 --no-run \
+        > lbuilding_obj_case.out 2>&1 || { cat lbuilding_obj_case.out; fail "foamWindCase OBJ"; }
+    [ -s lbuilding_obj_case/constant/triSurface/geometry.stl ] || fail "no geometry.stl"
+    nfiles=0
+    while read -r f; do
+        nfiles=$((nfiles + 1))
+        [ -f "lbuilding_stl_case/$f" ] || fail "$f is in the OBJ's case only"
+        case $f in
+        ./system/caseParameters)  # the provenance line names the file and the time
+            diff <(grep -v '^// Written by' "lbuilding_obj_case/$f") \
+                 <(grep -v '^// Written by' "lbuilding_stl_case/$f") > /dev/null \
+                || fail "$f differs between the Y-up OBJ and the Z-up STL" ;;
+        ./windCase.json) ;;  # below
+        *) cmp -s "lbuilding_obj_case/$f" "lbuilding_stl_case/$f" \
+               || fail "$f differs between the Y-up OBJ and the Z-up STL" ;;
+        esac
+    done < <(cd lbuilding_obj_case && find . -type f | sort)
+    [ "$nfiles" -ge 15 ] || fail "only $nfiles files in the OBJ's case"
+    [ "$(cd lbuilding_stl_case && find . -type f | wc -l)" -eq "$nfiles" ] \
+        || fail "the STL's case has other files than the OBJ's"
+    # the domain, wind and geometry bounds are the same; the source file and its up axis differ
+    /usr/bin/python3 - lbuilding_obj_case/windCase.json lbuilding_stl_case/windCase.json <<'PY' \
+        || fail "windCase.json differs beyond the geometry file"
+import json, sys
+a, b = (json.load(open(p)) for p in sys.argv[1:3])
+assert a['up'] == 'y' and b['up'] == 'z', (a['up'], b['up'])
+for d in (a, b):
+    for key in ('geometry', 'up', 'timings'):
+        d.pop(key, None)
+assert a == b, sorted(k for k in set(a) | set(b) if a.get(k) != b.get(k))
+PY
+    note "the Y-up OBJ's case is the Z-up STL's, $nfiles files"
     ;;
 sphere)
     "$BIN/foamMakeGeometry" sphere sphere.stl || fail "foamMakeGeometry"

@@ -200,7 +200,7 @@ namespace {
 // 2k/3 for any dt (before, drag relaxed the fluctuation away within the step: ~beta^2 h / 2).
 TEST(OUStatistics, BodyModelWithDragKeepsTheFieldsKForAnyDt) {
   for (double dt : {1e-3, 1e-2}) {
-    const int n = 20000;
+    const int n = 10000;  // 4 standard errors are 3 % of 2k/3
     Scene s = ou_scene(TurbulenceModel::Body, Drift::Stationary, Integrator::Splitting, dt, n);
     s.effects.add(Effect::Drag);
     const Stats st = measure(s, 3.0, 0.1, false);
