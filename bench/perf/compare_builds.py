@@ -20,6 +20,11 @@ without them (OLD then stops bodies at the ground, as it always did). --contacts
 the scene with ground and walls in "stop" mode, so that a comparison of the physics steps is not
 confounded with the cost of the contacts (measured on its own in bench/contacts/).
 
+--new-without-crossing: NEW runs each scene with "turbulence": {"crossing_trajectories": false},
+the seen-velocity model of builds that predate the crossing-trajectory correction, so that a
+comparison with such a build weighs the step's code on the same physics (the correction's own
+cost is then the difference with a run without this flag).
+
 --icount: instead of CPU time, instructions per body-step under valgrind's callgrind (the
 difference of a 40-step and a 10-step run, so that setup cancels; N = --n). Repeatable to the
 instruction whatever else the machine does, so it works on a loaded machine; but valgrind has no
@@ -81,6 +86,24 @@ def contacts_stop(s):
     s["walls"] = {"contact": "stop"}
 
 
+def without_crossing(s):
+    t = s.get("turbulence")
+    if not isinstance(t, dict):
+        t = s["turbulence"] = {}
+    t["crossing_trajectories"] = False
+
+
+def combined(*edits):
+    edits = [e for e in edits if e is not None]
+    if not edits:
+        return None
+
+    def edit(s):
+        for e in edits:
+            e(s)
+    return edit
+
+
 def rate(lrigid, scene, n, integrator, body_steps):
     with tempfile.NamedTemporaryFile(suffix=".json") as out:
         subprocess.run([lrigid, "bench", scene, "--n", str(n), "--threads", "1",
@@ -120,6 +143,8 @@ def main():
                     help="NEW runs the scene as it is, or with ground and walls in stop mode")
     ap.add_argument("--old-without-contacts", action="store_true",
                     help="OLD runs a copy of each scene without the contact keys")
+    ap.add_argument("--new-without-crossing", action="store_true",
+                    help="NEW runs each scene without the crossing-trajectory correction")
     ap.add_argument("--icount", action="store_true",
                     help="body-steps per instruction under callgrind instead of per CPU-second")
     a = ap.parse_args()
@@ -134,7 +159,8 @@ def main():
             skipped.append(os.path.basename(scene))
             continue
         old_edit = without_contacts if a.old_without_contacts else None
-        new_edit = contacts_stop if a.contacts == "stop" else None
+        new_edit = combined(contacts_stop if a.contacts == "stop" else None,
+                            without_crossing if a.new_without_crossing else None)
         with scene_variant(scene, old_edit) as old_scene, \
                 scene_variant(scene, new_edit) as new_scene:
             for integ in a.integrators.split(","):
@@ -162,7 +188,8 @@ def main():
         print("skipped (field file missing): " + ", ".join(skipped))
     if a.json:
         json.dump({"n": a.n, "rounds": a.rounds, "icount": a.icount, "contacts": a.contacts,
-                   "old_without_contacts": a.old_without_contacts, "rows": rows,
+                   "old_without_contacts": a.old_without_contacts,
+                   "new_without_crossing": a.new_without_crossing, "rows": rows,
                    "skipped": skipped},
                   open(a.json, "w"), indent=1)
     return 0
