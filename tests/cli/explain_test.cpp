@@ -35,6 +35,21 @@ Result explain(const std::string& scene) {
   return r;
 }
 
+// explain of a scene given as text, written to a temporary folder removed afterwards
+Result explain_text(const std::string& scene) {
+  char tmpl[] = "/tmp/lrigid_explain_XXXXXX";
+  if (!mkdtemp(tmpl)) return Result{};
+  const std::string dir = tmpl, path = dir + "/scene.json";
+  FILE* f = fopen(path.c_str(), "w");
+  if (!f) return Result{};
+  fputs(scene.c_str(), f);
+  fclose(f);
+  const Result r = explain(path);
+  std::remove(path.c_str());
+  rmdir(dir.c_str());
+  return r;
+}
+
 // the "auto chooses" line and the cost estimate of each body type, in order
 struct TypeReport {
   std::string chooses;
@@ -210,30 +225,46 @@ TEST(CliExplain, CrossingTrajectoriesPrintTheDriftAndCsanadysFactors) {
 // generalized mass is not diagonal" nor "no batched kernels yet"
 TEST(CliExplain, MeshLeafTakesTheBatchedStep) {
   for (const std::string scheme : {"splitting", "strang", "euler", "rk4"}) {
-    char tmpl[] = "/tmp/lrigid_explain_XXXXXX";
-    ASSERT_NE(mkdtemp(tmpl), nullptr);
-    const std::string dir = tmpl, path = dir + "/scene.json";
-    FILE* f = fopen(path.c_str(), "w");
-    ASSERT_NE(f, nullptr);
     const std::string mesh = std::string(LRIGID_SOURCE_DIR) + "/tests/data/meshes/bent_leaf.obj";
-    fputs((R"({"version": 1, "fluid": {"density": 1.204, "kinematic_viscosity": 1.5e-5,
+    const Result r = explain_text(R"({"version": 1, "fluid": {"density": 1.204, "kinematic_viscosity": 1.5e-5,
       "uniform": {"U": [2, 0, 0], "k": 0.05, "epsilon": 0.02}}, "gravity": [0, 0, -9.81],
       "effects": ["gravity", "buoyancy", "added_mass", "drag", "lift", "mean_flow", "turbulence"],
       "integrator": {"scheme": ")" + scheme + R"(", "dt": 0.002}, "duration": 0.1, "seed": 1,
       "bodies": [{"name": "curled_leaf", "shape": {"type": "mesh", "file": ")" + mesh +
-           R"("}, "density": 600, "count": 10, "position": [0, 0, 5]}]})")
-              .c_str(),
-          f);
-    fclose(f);
-    const Result r = explain(path);
-    std::remove(path.c_str());
-    rmdir(dir.c_str());
+                                  R"("}, "density": 600, "count": 10, "position": [0, 0, 5]}]})");
     ASSERT_EQ(r.rc, 0) << scheme << ": " << r.out;
     // a curved leaf: its generalized mass couples every direction
     EXPECT_NE(r.out.find("step: batched (full M)"), std::string::npos)
         << scheme << ": " << r.out;
     EXPECT_EQ(r.out.find("not batched"), std::string::npos) << scheme << ": " << r.out;
   }
+}
+
+// an artist's single-sided leaf (open, quads, UVs) with a thickness: the thin leaf it stands
+// for, flat, on the batched step, with the mass of the closed leaf of the same thickness
+TEST(CliExplain, AnOpenLeafSurfaceWithItsThicknessIsTheClosedLeaf) {
+  const std::string meshes = std::string(LRIGID_SOURCE_DIR) + "/tests/data/meshes/";
+  auto explain_leaf = [&](const std::string& shape) {
+    return explain_text(R"({"version": 1, "fluid": {"density": 1.204, "kinematic_viscosity": 1.5e-5,
+      "uniform": {"U": [2, 0, 0], "k": 0.05, "epsilon": 0.02}}, "gravity": [0, 0, -9.81],
+      "effects": "auto", "integrator": {"scheme": "strang", "dt": 0.002}, "duration": 0.1,
+      "seed": 1, "bodies": [{"name": "leaf", "shape": )" +
+                        shape + R"(, "density": 600, "count": 10, "position": [0, 0, 5]}]})");
+  };
+  const Result open = explain_leaf(R"({"type": "mesh", "file": ")" + meshes +
+                                   R"(leaf_surface.obj", "thickness": 0.0004})");
+  ASSERT_EQ(open.rc, 0) << open.out;
+  EXPECT_NE(open.out.find("flat: yes"), std::string::npos) << open.out;
+  EXPECT_NE(open.out.find("step: batched (full M)"), std::string::npos) << open.out;
+  const Result closed =
+      explain_leaf(R"({"type": "mesh", "file": ")" + meshes + R"(bent_leaf.obj"})");
+  ASSERT_EQ(closed.rc, 0) << closed.out;
+  const std::regex mass("mass ([0-9.e+-]+) kg");
+  std::smatch a, b;
+  ASSERT_TRUE(std::regex_search(open.out, a, mass)) << open.out;
+  ASSERT_TRUE(std::regex_search(closed.out, b, mass)) << closed.out;
+  EXPECT_EQ(a[1].str(), b[1].str());  // to the digits printed
+  EXPECT_GT(std::stod(a[1].str()), 0.0);
 }
 
 // spheres take the batched step on every scheme, euler and rk4 too, and the estimate follows the schemes' measured costs: euler a little cheaper than

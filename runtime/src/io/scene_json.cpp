@@ -15,6 +15,7 @@
 #include "body/bem.h"
 #include "body/mass_properties.h"
 #include "body/shape_limits.h"
+#include "body/solidify.h"
 #include "effects/registry.h"
 #include "io/mesh_io.h"
 #include "util/error.h"
@@ -164,7 +165,8 @@ std::string resolved_against(const std::string& rel, const std::string& scene_fi
 }
 
 // the keys of a shape object (a body's "shape", and Python's lrigid.added_mass)
-constexpr Keys kShapeKeys = {"type", "radius", "semi_axes", "size", "file", "scale", "panels"};
+constexpr Keys kShapeKeys = {"type",  "radius", "semi_axes", "size",
+                             "file",  "scale",  "thickness", "panels"};
 
 // the shapes' lengths (body/shape_limits.h) as the messages state them
 const char* const kLengthRange = "in [1e-9, 1e6] m";
@@ -238,10 +240,35 @@ Shape read_shape(Obj o, BodySpec* b) {
         o.fail("scale", m.str());
       }
     }
+    // a single-sided surface (a leaf, a card) becomes the thin body it stands for
+    // (body/solidify.h); "thickness" is in m, as the coordinates after "scale"
+    const bool thick = o.has("thickness");
+    if (thick) {
+      const double t = o.positive("thickness");
+      if (!(t >= kMinShapeLength && t <= kMaxShapeLength))
+        o.fail("thickness", std::string("must be ") + kLengthRange + ", got " +
+                                Obj::dump(o.get("thickness")));
+      try {
+        *mesh = solidify_surface(*mesh, t, file);
+      } catch (const Error& e) {
+        o.fail("thickness", e.what());
+      }
+    }
     try {
       s = Shape::from_mesh(std::move(mesh), file);
     } catch (const Error& e) {
-      o.fail("file", e.what());
+      const std::string what = e.what();
+      // an open mesh without a thickness: most often a leaf or a card as a DCC tool exports it
+      const bool open = !thick && what.find("mesh is open") != std::string::npos;
+      const bool crossed = thick && what.find("intersects itself") != std::string::npos;
+      o.fail(thick ? "thickness" : "file",
+             what +
+                 (open ? "; a single-sided surface (a leaf, a card) needs its thickness: "
+                         "\"shape\": {\"type\": \"mesh\", \"file\": ..., \"thickness\": t} (m)"
+                       : "") +
+                 (crossed ? "; the thickness " + Obj::dump(o.get("thickness")) +
+                                " m is more than the surface's bends leave room for"
+                          : ""));
     }
   } else {
     o.fail("type", "must be sphere, ellipsoid, box or mesh, got \"" + type + "\"");

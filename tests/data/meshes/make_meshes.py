@@ -4,7 +4,9 @@
 Valid: box_ascii.stl, box_binary.stl (box 0.2 x 0.1 x 0.05 m centred at (1, 2, 3)),
 cube_quads.obj (unit cube from quads, with i/t/n indices), tetra.obj, bent_leaf.obj (a curled
 6 x 4 cm leaf 0.4 mm thick, 1696 triangles, turned 20 degrees about z: an artist's leaf, whose
-generalized mass is a full 6 x 6; tests/support/batch_compare.h bent_leaf builds the same).
+generalized mass is a full 6 x 6; tests/support/batch_compare.h bent_leaf builds the same),
+leaf_surface.obj (the mid-surface of that leaf alone, open and single-sided, in quads with UVs
+and a normal, as Blender exports a leaf: a body with a "thickness").
 Invalid (each has exactly one defect): open.obj, nonmanifold_edge.obj, nonmanifold_vertex.obj,
 inverted.obj, inconsistent.obj, degenerate.obj; syntax errors: bad_number.obj,
 bad_index.obj, truncated.stl.
@@ -79,6 +81,24 @@ def bent_leaf(nx=25, ny=17, length=0.06, width=0.04, thick=4e-4, sag=0.004, yaw_
     return v, f
 
 
+def leaf_surface(nx=25, ny=17, length=0.06, width=0.04, sag=0.004, yaw_deg=20.0):
+    """The mid-surface of bent_leaf: nx x ny vertices, (nx - 1)(ny - 1) quads wound
+    counter-clockwise seen from +z, UVs (i / (nx - 1), j / (ny - 1))."""
+    import math
+    c, s = math.cos(math.radians(yaw_deg)), math.sin(math.radians(yaw_deg))
+    v, uv = [], []
+    for i in range(nx):
+        for j in range(ny):
+            x = -length / 2 + length * i / (nx - 1)
+            y = -width / 2 + width * j / (ny - 1)
+            z = sag * (2 * x / length) ** 2
+            v.append((c * x - s * y, s * x + c * y, z))
+            uv.append((i / (nx - 1), j / (ny - 1)))
+    quads = [(i * ny + j, (i + 1) * ny + j, (i + 1) * ny + j + 1, i * ny + j + 1)
+             for i in range(nx - 1) for j in range(ny - 1)]
+    return v, uv, quads
+
+
 def main():
     v, f, quads = box(0.2, 0.1, 0.05, (1.0, 2.0, 3.0))
     with open(os.path.join(HERE, "box_ascii.stl"), "w") as out:
@@ -108,6 +128,18 @@ def main():
         out.write("vt 0 0\nvn 0 0 1\ns off\n")
         for q in cq:
             out.write("f " + " ".join("%d/1/1" % (i + 1) for i in q) + "\n")
+
+    sv, suv, sq = leaf_surface()
+    with open(os.path.join(HERE, "leaf_surface.obj"), "w") as out:
+        out.write("# mid-surface of bent_leaf.obj, open and single-sided, quads with UVs "
+                  "(make_meshes.py leaf_surface), m\nmtllib leaf.mtl\no Leaf\n")
+        for p in sv:
+            out.write("v %.17g %.17g %.17g\n" % p)
+        for t in suv:
+            out.write("vt %.6f %.6f\n" % t)
+        out.write("vn 0 0 1\ns 1\nusemtl leaf\n")
+        for q in sq:
+            out.write("f " + " ".join("%d/%d/1" % (i + 1, i + 1) for i in q) + "\n")
 
     lv, lf = bent_leaf()
     write_obj("bent_leaf.obj", lv, lf, "leaf 6 x 4 cm, 0.4 mm, curled 4 mm, turned 20 deg about z "
