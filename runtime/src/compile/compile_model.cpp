@@ -399,6 +399,15 @@ Model compile_model(const Scene& scene, FluidField field, const AddedMassProvide
   return m;
 }
 
+Vec3 initial_position(const Model& model, const BodySpec& spec, uint32_t id) {
+  if (!spec.spawn_in_box) return spec.position;
+  double u[4];
+  uniforms4(model.seed, id, 1, u);
+  Vec3 x;
+  for (int a = 0; a < 3; ++a) x[a] = spec.box_lo[a] + u[a] * (spec.box_hi[a] - spec.box_lo[a]);
+  return x;
+}
+
 State initial_state(const Model& model, const Scene& scene) {
   State s;
   const size_t n = model.body_count;
@@ -431,14 +440,7 @@ State initial_state(const Model& model, const Scene& scene) {
     for (size_t i = type.first_body; i < type.first_body + type.count; ++i) {
       const uint32_t id = static_cast<uint32_t>(i);
       s.type[i] = static_cast<uint16_t>(ti);
-      if (spec.spawn_in_box) {
-        double u[4];
-        uniforms4(model.seed, id, 1, u);
-        for (int a = 0; a < 3; ++a)
-          s.x[i][a] = spec.box_lo[a] + u[a] * (spec.box_hi[a] - spec.box_lo[a]);
-      } else {
-        s.x[i] = spec.position;
-      }
+      s.x[i] = initial_position(model, spec, id);
       if (spec.random_orientation) {
         // uniform on SO(3): a normalized 4D Gaussian (Shoemake's method is equivalent)
         NormalStream ns(model.seed, id, ~uint64_t(0));

@@ -66,7 +66,7 @@ std::vector<SanityFinding> check_scene(const Scene& scene, const Model& model) {
                 "(foam2grid --spacing, docs/converter.md)");
 
   std::vector<bool> seen(scene.bodies.size(), false);
-  size_t outside_bodies = 0, all_bodies = 0;
+  size_t outside_bodies = 0, solid_bodies = 0, all_bodies = 0;
   for (const BodyType& t : model.types) {
     if (t.spec >= scene.bodies.size() || seen[t.spec]) continue;
     seen[t.spec] = true;
@@ -130,6 +130,34 @@ std::vector<SanityFinding> check_scene(const Scene& scene, const Model& model) {
                 " (fluid.field), and bodies placed there stop (\"exited\") at t = 0; shrink it "
                 "to the grid's bounds");
       }
+      // inside the grid but where it has no flow (the walls and buildings of the flow's
+      // solids): those bodies stop ("exited") at t = 0 as well
+      size_t in_solid = 0;
+      if (in > 0)
+        for (const BodyType& same : model.types) {
+          if (same.spec != t.spec) continue;
+          for (size_t i = same.first_body; i < same.first_body + same.count; ++i) {
+            const Vec3 x = initial_position(model, spec, static_cast<uint32_t>(i));
+            FluidSample fs;
+            if ((x.array() >= glo.array()).all() && (x.array() <= ghi.array()).all() &&
+                !model.field.sample(x, 0.0, false, &fs))
+              ++in_solid;
+          }
+        }
+      const size_t entry = size_t(spec.count);
+      if (in_solid > 0 && in_solid == entry) {
+        solid_bodies += in_solid;
+        add("spawn_inside_solid", where_key,
+            what + " lies inside the flow's solids (fluid.field has no flow there: a building, "
+                   "a wall): all its " + std::to_string(entry) +
+                " bodies would stop (\"exited\") at t = 0; move it into the fluid");
+      } else if (in_solid > 0) {
+        solid_bodies += in_solid;
+        add("spawn_partly_inside_solid", where_key,
+            what + ": " + std::to_string(in_solid) + " of its " + std::to_string(entry) +
+                " bodies start inside the flow's solids (fluid.field has no flow there: a "
+                "building, a wall) and stop (\"exited\") at t = 0; move the box off them");
+      }
       // the whole spawn region within one cell: every body sees the same interpolated flow
       bool within_cell = spec.count > 1;
       for (int k = 0; k < 3 && within_cell; ++k)
@@ -174,6 +202,11 @@ std::vector<SanityFinding> check_scene(const Scene& scene, const Model& model) {
         "every body starts outside the grid " + box(glo, ghi) +
             " (fluid.field): the run would end at t = 0 with all of them \"exited\"; positions "
             "and spawn boxes are in metres in the grid's frame",
+        true);
+  else if (grid && all_bodies > 0 && solid_bodies > 0 && outside_bodies + solid_bodies >= all_bodies)
+    add("all_outside_fluid", "bodies",
+        "every body starts inside the flow's solids or outside the grid " + box(glo, ghi) +
+            " (fluid.field): the run would end at t = 0 with all of them \"exited\"",
         true);
   return out;
 }

@@ -4,12 +4,12 @@
 // key, its value, what looks wrong and what to check.
 //   - a body type whose size or mass is implausible for its fluid and grid
 //   - a density no material has
-//   - a spawn box or position outside the grid, or under the ground
+//   - a spawn box or position outside the grid, inside the flow's solids, or under the ground
 //   - a time step beyond what the chosen scheme was measured to handle (docs/stability.md)
 //   - a grid too coarse for the bodies (the bodies all start within one cell; a grid of fewer
 //     than 4 points along an axis)
-// Findings are warnings, except one: every body of the scene starting outside the grid is an
-// error (the run would end at t = 0). `lrigid run --strict` makes every warning an error.
+// Findings are warnings, except one: every body of the scene starting outside the grid or inside
+// its solids is an error (the run would end at t = 0). `lrigid run --strict` makes every warning an error.
 #pragma once
 #include <string>
 #include <vector>
@@ -24,8 +24,9 @@ namespace lrigid {
 
 struct SanityFinding {
   std::string check;    // which check: body_size, body_mass, density, spawn_outside_grid,
-                        // spawn_partly_outside_grid, spawn_below_ground, dt_stability,
-                        // grid_coarse, all_outside_grid
+                        // spawn_partly_outside_grid, spawn_inside_solid,
+                        // spawn_partly_inside_solid, spawn_below_ground, dt_stability,
+                        // grid_coarse, all_outside_grid, all_outside_fluid
   std::string key;      // the scene key, e.g. "bodies[0].shape"
   std::string message;  // the value, what looks wrong, what to check
   bool error = false;   // an error even without --strict

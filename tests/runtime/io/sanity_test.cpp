@@ -58,6 +58,12 @@ struct SanityChecks : ::testing::Test {
     ASSERT_TRUE(test::write_vti((dir / "coarse.vti").string(), coarse,
                                 [](int, const std::array<double, 3>&, float U[3], float* k,
                                    float* e) { U[0] = 1, *k = 0.1f, *e = 0.01f; }));
+    // the same cube with a solid block (a building: valid = 0) where x <= 5 and z <= 5
+    test::VtiGrid built = g;
+    built.solid = [](const std::array<double, 3>& x) { return x[0] <= 5 && x[2] <= 5; };
+    ASSERT_TRUE(test::write_vti((dir / "built.vti").string(), built,
+                                [](int, const std::array<double, 3>&, float U[3], float* k,
+                                   float* e) { U[0] = 1, *k = 0.1f, *e = 0.01f; }));
   }
   void TearDown() override { fs::remove_all(dir); }
 
@@ -166,6 +172,57 @@ TEST_F(SanityChecks, EveryBodyOutsideTheGridIsAnErrorEvenWithoutStrict) {
     EXPECT_EQ(e.code(), ExitCode::BadInput);
     EXPECT_NE(std::string(e.what()).find("s.json: bodies: every body starts outside the grid"),
               std::string::npos) << e.what();
+  }
+}
+
+TEST_F(SanityChecks, BodiesStartingInsideTheFlowsSolidsAreNamed) {
+  // a spawn box inside the building (its cells reach z = 7.5 where x < 7.5): all its bodies
+  // would stop at t = 0; one above it starts in the fluid; one across its edge:
+  // those inside are counted (the positions initial_state draws, not an estimate)
+  const std::string bodies =
+      "[" + sphere(0.005, 2500, R"("spawn_box": [[0.5, 0.5, 0.5], [3, 9, 3]])") + ", " +
+      sphere(0.005, 2500, R"("spawn_box": [[0.5, 0.5, 8], [9.5, 9.5, 9.5]])") + ", " +
+      sphere(0.005, 2500, R"("spawn_box": [[0.5, 0.5, 0.5], [9.5, 9.5, 3]])", 40) + "]";
+  const auto f = check(scene_text(grid("built.vti"), bodies));
+  const SanityFinding* inside = find(f, "spawn_inside_solid");
+  ASSERT_NE(inside, nullptr) << all(f);
+  EXPECT_EQ(inside->key, "bodies[0].spawn_box");
+  EXPECT_NE(inside->message.find("spawn_box [[0.5, 0.5, 0.5], [3, 9, 3]] lies inside the flow's "
+                                 "solids"),
+            std::string::npos)
+      << inside->message;
+  EXPECT_NE(inside->message.find("all its 10 bodies would stop (\"exited\") at t = 0"),
+            std::string::npos)
+      << inside->message;
+  EXPECT_FALSE(inside->error) << "other bodies start in the fluid: a warning";
+  const SanityFinding* part = find(f, "spawn_partly_inside_solid");
+  ASSERT_NE(part, nullptr) << all(f);
+  EXPECT_EQ(part->key, "bodies[2].spawn_box");
+  // the count is of the drawn positions: between the solid's share of the box, about 0.6, and
+  // the whole box
+  const size_t at = part->message.find(" of its 40 bodies start inside the flow's solids");
+  ASSERT_NE(at, std::string::npos) << part->message;
+  const int n = std::stoi(part->message.substr(part->message.rfind(' ', at - 1) + 1));
+  EXPECT_GT(n, 10) << part->message;
+  EXPECT_LT(n, 40) << part->message;
+  for (const auto& x : f) EXPECT_NE(x.key, "bodies[1].spawn_box") << x.message;  // in the fluid
+  EXPECT_EQ(find(f, "all_outside_fluid"), nullptr);
+
+  // only the box inside the building: the run would end at t = 0, an error without --strict
+  const auto g = check(scene_text(
+      grid("built.vti"), "[" + sphere(0.005, 2500, R"("spawn_box": [[0.5, 0.5, 0.5], [3, 9, 3]])") +
+                             "]"));
+  const SanityFinding* none = find(g, "all_outside_fluid");
+  ASSERT_NE(none, nullptr) << all(g);
+  EXPECT_TRUE(none->error);
+  try {
+    report_findings(g, "s.json", false, true);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("s.json: bodies: every body starts inside the flow's "
+                                         "solids or outside the grid"),
+              std::string::npos)
+        << e.what();
   }
 }
 
