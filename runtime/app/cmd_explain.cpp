@@ -42,6 +42,15 @@ void print_type(const json& t) {
   std::printf("  tau_p = %.3g s   St(k/eps) = %.3g   St(Kolmogorov) = %.3g   spin ratio = %.3g\n",
               num(t, "tau_p"), num(t, "stokes_k_eps"), num(t, "stokes_kolmogorov"),
               num(t, "spin_ratio"));
+  const json& sf = t["start_flow"];
+  if (sf.is_object() && sf["in_fluid"].get<size_t>() > 0)
+    std::printf("  flow where it starts (%zu of %zu positions in the fluid): |U| = %.3g m/s "
+                "(10-90 %%: %.3g-%.3g), u' = %.3g m/s\n",
+                sf["in_fluid"].get<size_t>(), sf["positions"].get<size_t>(), num(sf, "U_median"),
+                num(sf, "U_p10"), num(sf, "U_p90"), num(sf, "u_turb_median"));
+  else if (sf.is_object())
+    std::printf("  flow where it starts: none of its %zu positions is in the fluid\n",
+                sf["positions"].get<size_t>());
   const json& ct = t["crossing_trajectories"];
   if (ct["on"].get<bool>())
     std::printf("  crossing trajectories: drift %.3g m/s = %.3g u'; time scale of the velocity "

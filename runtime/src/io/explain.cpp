@@ -1,8 +1,10 @@
 #include "io/explain.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "compile/compile_model.h"
 #include "effects/registry.h"
@@ -25,6 +27,37 @@ const char* effect_name(Effect e) {
   for (const auto& info : all_effects())
     if (info.effect == e) return info.name;
   return "?";
+}
+
+// The flow where a body type's bodies start (their positions as initial_state draws them, at
+// most 4096 of them, evenly picked): the grid's medians describe the whole domain, which can be
+// far from the corner a scene releases its bodies in. Null on a uniform field.
+nlohmann::json start_flow(const Scene& scene, const Model& model, const BodyType& t) {
+  if (model.field.is_uniform() || t.count == 0) return nullptr;
+  const BodySpec& spec = scene.bodies[t.spec];
+  const size_t picks = std::min<size_t>(t.count, 4096);
+  std::vector<double> speed, u_turb;
+  for (size_t k = 0; k < picks; ++k) {
+    const size_t i = t.first_body + k * t.count / picks;
+    FluidSample fs;
+    if (!model.field.sample(initial_position(model, spec, static_cast<uint32_t>(i)), 0.0, false,
+                            &fs))
+      continue;
+    speed.push_back(fs.U.norm());
+    u_turb.push_back(std::sqrt(fs.sigma2));
+  }
+  nlohmann::json j = {{"positions", picks}, {"in_fluid", speed.size()}};
+  if (speed.empty()) return j;
+  auto quantile = [](std::vector<double> v, double q) {
+    const size_t at = std::min(v.size() - 1, static_cast<size_t>(q * double(v.size())));
+    std::nth_element(v.begin(), v.begin() + at, v.end());
+    return v[at];
+  };
+  j["U_median"] = quantile(speed, 0.5);
+  j["U_p10"] = quantile(speed, 0.1);
+  j["U_p90"] = quantile(speed, 0.9);
+  j["u_turb_median"] = quantile(u_turb, 0.5);
+  return j;
 }
 
 nlohmann::json body_type(const Scene& scene, const Model& model, const FlowScales& flow,
@@ -51,6 +84,7 @@ nlohmann::json body_type(const Scene& scene, const Model& model, const FlowScale
   j["stokes_k_eps"] = a.stokes_k_eps;
   j["stokes_kolmogorov"] = a.stokes_kolmogorov;
   j["spin_ratio"] = a.spin_ratio;
+  j["start_flow"] = start_flow(scene, model, t);
   // crossing trajectories at the representative flow (effects/turbulence.h): the drift against
   // the turbulent velocity u' = sqrt(2k/3), and the factors by which it shortens the time scale of
   // the velocity the body sees along and across the drift
