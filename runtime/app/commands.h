@@ -7,6 +7,7 @@ namespace lrigid::app {
 void add_run_command(CLI::App& app);         // cmd_run.cpp
 void add_added_mass_command(CLI::App& app);  // cmd_added_mass.cpp
 void add_explain_command(CLI::App& app);     // cmd_explain.cpp
+void add_info_command(CLI::App& app);        // cmd_info.cpp
 void add_export_gltf_command(CLI::App& app);  // cmd_export_gltf.cpp
 void add_render_command(CLI::App& app);       // cmd_render.cpp
 void add_bench_command(CLI::App& app);        // cmd_bench.cpp

@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
   lrigid::app::add_run_command(app);
   lrigid::app::add_added_mass_command(app);
   lrigid::app::add_explain_command(app);
+  lrigid::app::add_info_command(app);
   lrigid::app::add_export_gltf_command(app);
   lrigid::app::add_render_command(app);
   lrigid::app::add_bench_command(app);
