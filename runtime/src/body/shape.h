@@ -28,6 +28,9 @@ struct Shape {
   Vec3 half_extents = Vec3::Ones();
   std::shared_ptr<const TriangleMesh> mesh;  // Mesh only
   std::string source;                        // Mesh only: the file it came from
+  double scale = 1;      // Mesh only: the factor the file's coordinates were multiplied by
+  double thickness = 0;  // Mesh only: > 0: the file is a single-sided surface made into this
+                         // body of that thickness, m (body/solidify.h); 0: a closed mesh
 
   static Shape sphere(double radius);
   static Shape ellipsoid(double a, double b, double c);

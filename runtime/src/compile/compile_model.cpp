@@ -70,7 +70,10 @@ Shape scaled_shape(const Shape& s, double f) {
     case ShapeType::Mesh: {
       auto m = std::make_shared<TriangleMesh>(*s.mesh);
       for (Vec3& v : m->vertices) v *= f;
-      return Shape::from_mesh(std::move(m), s.source);
+      Shape r = Shape::from_mesh(std::move(m), s.source);
+      r.scale = f * s.scale;
+      r.thickness = f * s.thickness;
+      return r;
     }
   }
   return s;

@@ -13,6 +13,7 @@
 #include <iomanip>
 #include <sstream>
 
+#include "body/solidify.h"
 #include "body/tessellate.h"
 #include "effects/registry.h"
 #include "io/atomic_file.h"
@@ -489,6 +490,10 @@ void ResultWriter::finish(const State& st, const RunStats& stats, const nlohmann
             {t.shape.half_extents.x(), t.shape.half_extents.y(), t.shape.half_extents.z()}},
            {"source", t.shape.source}}},
          {"com", {t.com.x(), t.com.y(), t.com.z()}}});
+    if (t.shape.type == ShapeType::Mesh) {
+      types.back()["shape"]["scale"] = t.shape.scale;
+      types.back()["shape"]["thickness"] = t.shape.thickness;
+    }
   }
   s["body_types"] = types;
   s["integrator"] = integrator_name(model_.integrator);
@@ -562,12 +567,19 @@ Shape shape_from_summary(const nlohmann::json& j, const std::string& file, const
     if (type == "mesh") {
       const std::string src = j.at("source").get<std::string>();
       auto mesh = std::make_shared<TriangleMesh>(read_mesh(src));
-      // the scene may have scaled the mesh (uniformly): recover it from the extents
-      Vec3 lo = Vec3::Constant(1e300), hi = Vec3::Constant(-1e300);
-      for (const Vec3& v : mesh->vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
-      const double half = 0.5 * (hi - lo).maxCoeff();
-      const double scale = half > 0 ? he.maxCoeff() / half : 1.0;
+      // the scale the run applied (its scene's, times a variant's); results without it: from
+      // the extents
+      double scale = j.value("scale", 0.0);
+      if (!(scale > 0)) {
+        Vec3 lo = Vec3::Constant(1e300), hi = Vec3::Constant(-1e300);
+        for (const Vec3& v : mesh->vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
+        const double half = 0.5 * (hi - lo).maxCoeff();
+        scale = half > 0 ? he.maxCoeff() / half : 1.0;
+      }
       for (Vec3& v : mesh->vertices) v *= scale;
+      // a single-sided surface: the thin body the run simulated (body/solidify.h)
+      const double thickness = j.value("thickness", 0.0);
+      if (thickness > 0) *mesh = solidify_surface(*mesh, thickness, src);
       return Shape::from_mesh(std::move(mesh), src);
     }
     fail_input(file, key + ".type", "unknown shape type \"" + type + "\"");

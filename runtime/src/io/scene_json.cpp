@@ -256,6 +256,8 @@ Shape read_shape(Obj o, BodySpec* b) {
     }
     try {
       s = Shape::from_mesh(std::move(mesh), file);
+      s.scale = scale;
+      if (thick) s.thickness = o.number("thickness");
     } catch (const Error& e) {
       const std::string what = e.what();
       // an open mesh without a thickness: most often a leaf or a card as a DCC tool exports it

@@ -12,9 +12,11 @@
 #include <sstream>
 
 #include "compile/compile_model.h"
+#include "body/mass_properties.h"
 #include "integrate/simulation.h"
 #include "io/gltf_writer.h"
 #include "io/result_writer.h"
+#include "io/scene_json.h"
 #include "support/fixture.h"
 #include "util/error.h"
 
@@ -271,6 +273,35 @@ TEST(Gltf, ExportFromResultsFilesMatchesTrajectories) {
   EXPECT_EQ(r.frames.times.size(), 11u);
   write_gltf(dir + "/exported.glb", r.frames);
   expect_matches_csv(dir + "/exported.glb", dir + "/trajectories.csv", 2);
+  fs::remove_all(dir);
+}
+
+TEST(Gltf, ASingleSidedLeafIsReadBackAsTheBodyItWas) {
+  // a leaf surface scaled by 2 and given a thickness: render and export-gltf rebuild the thin
+  // body the run simulated (the summary's scale and thickness), not the open surface
+  const std::string dir = ::testing::TempDir() + "gltf_leaf_" + std::to_string(::getpid());
+  fs::remove_all(dir);
+  const std::string mesh = std::string(LRIGID_SOURCE_DIR) + "/tests/data/meshes/leaf_surface.obj";
+  const Scene scene = parse_scene(R"({"version": 1, "fluid": {"density": 1.2,
+      "kinematic_viscosity": 1.5e-5, "uniform": {"U": [1, 0, 0], "k": 0.01, "epsilon": 0.01}},
+      "gravity": [0, 0, -9.81], "effects": ["gravity", "drag"],
+      "integrator": {"scheme": "splitting", "dt": 0.01}, "duration": 0.1, "seed": 1,
+      "bodies": [{"name": "leaf", "shape": {"type": "mesh", "file": ")" + mesh + R"(",
+                  "scale": 2, "thickness": 0.0008}, "density": 600, "count": 3,
+                  "position": [0, 0, 1]}],
+      "output": {"dir": ")" + dir + R"(", "every": 0.05, "formats": ["csv", "glb"]}})",
+                                  dir + "/scene.json");
+  const Model model = test::compile(scene);
+  State st = initial_state(model, scene);
+  run_with_outputs(model, scene, dir, &st);
+  const Results r = read_results(dir, 320);
+  ASSERT_EQ(r.frames.types.size(), 1u);
+  const Shape back = Shape::from_mesh(
+      std::make_shared<const TriangleMesh>(r.frames.types[0].surface), "read back");
+  const double volume = mass_properties(back).volume;
+  EXPECT_NEAR(volume, model.types[0].volume, 1e-9 * model.types[0].volume);
+  // twice the 6 x 4 cm leaf, 0.8 mm thick
+  EXPECT_NEAR(volume, 0.12 * 0.08 * 8e-4, 0.02 * 0.12 * 0.08 * 8e-4);
   fs::remove_all(dir);
 }
 
