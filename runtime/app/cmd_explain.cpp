@@ -45,9 +45,9 @@ void print_type(const json& t) {
   const json& sf = t["start_flow"];
   if (sf.is_object() && sf["in_fluid"].get<size_t>() > 0)
     std::printf("  flow where it starts (%zu of %zu positions in the fluid): |U| = %.3g m/s "
-                "(10-90 %%: %.3g-%.3g), u' = %.3g m/s\n",
+                "(10-90 %%: %.3g-%.3g), k = %.3g m^2/s^2, u' = %.3g m/s\n",
                 sf["in_fluid"].get<size_t>(), sf["positions"].get<size_t>(), num(sf, "U_median"),
-                num(sf, "U_p10"), num(sf, "U_p90"), num(sf, "u_turb_median"));
+                num(sf, "U_p10"), num(sf, "U_p90"), num(sf, "k_median"), num(sf, "u_turb_median"));
   else if (sf.is_object())
     std::printf("  flow where it starts: none of its %zu positions is in the fluid\n",
                 sf["positions"].get<size_t>());

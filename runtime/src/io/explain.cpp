@@ -57,6 +57,8 @@ nlohmann::json start_flow(const Scene& scene, const Model& model, const BodyType
   j["U_p10"] = quantile(speed, 0.1);
   j["U_p90"] = quantile(speed, 0.9);
   j["u_turb_median"] = quantile(u_turb, 0.5);
+  // k from the Langevin variance sigma2 = 2k/3, as the grid's line above takes it
+  j["k_median"] = 1.5 * j["u_turb_median"].get<double>() * j["u_turb_median"].get<double>();
   return j;
 }
 

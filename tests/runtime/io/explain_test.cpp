@@ -60,6 +60,7 @@ TEST_F(ExplainStartFlow, IsTheFlowAtTheBodiesNotTheGridsMedian) {
   EXPECT_LT(sf["U_p10"].get<double>(), sf["U_p90"].get<double>());
   EXPECT_GT(grid_U, 3.0) << "the grid's median is of the whole domain";
   EXPECT_NEAR(sf["u_turb_median"].get<double>(), std::sqrt(2.0 / 3.0 * 0.06), 1e-3);
+  EXPECT_NEAR(sf["k_median"].get<double>(), 0.06, 1e-4);
 }
 
 TEST_F(ExplainStartFlow, CountsThePositionsInTheSolidsAndIsNullOnAUniformField) {
