@@ -99,7 +99,7 @@ void check_density(double rho) {
 namespace {
 
 // The panel solutions this process has made, per unit fluid density: a scene compiled again
-// (the same shape in another scene, a Python session, a test) reuses the solve of the same
+// (the same shape in another scene, a Python script, a test) reuses the solve of the same
 // geometry and panel target, which is a pure function of them, so the result is the same to
 // the bit. Bounded: the oldest entry goes first.
 struct BemMemo {
