@@ -16,6 +16,7 @@
 #include "effects/registry.h"
 #include "fluid/turbulence_coefficients.h"
 #include "util/error.h"
+#include "util/quantile.h"
 #include "util/rng.h"
 #include "util/rng_uniform.h"
 
@@ -29,13 +30,6 @@ Mat6 shift_tensor(const Mat6& K_centroid, const Vec3& r) {
   Mat6 T = Mat6::Identity();
   T.block<3, 3>(0, 3) = -skew(r);
   return T.transpose() * K_centroid * T;
-}
-
-double median(std::vector<double> v) {
-  if (v.empty()) return 0;
-  const size_t m = v.size() / 2;
-  std::nth_element(v.begin(), v.begin() + m, v.end());
-  return v[m];
 }
 
 // drag force on the body at relative speed U (quasi-steady, broadside for flat bodies), N

@@ -16,6 +16,7 @@
 #include "io/field_loader.h"
 #include "io/sanity.h"
 #include "model/model.h"
+#include "util/quantile.h"
 
 namespace lrigid {
 
@@ -48,11 +49,6 @@ nlohmann::json start_flow(const Scene& scene, const Model& model, const BodyType
   }
   nlohmann::json j = {{"positions", picks}, {"in_fluid", speed.size()}};
   if (speed.empty()) return j;
-  auto quantile = [](std::vector<double> v, double q) {
-    const size_t at = std::min(v.size() - 1, static_cast<size_t>(q * double(v.size())));
-    std::nth_element(v.begin(), v.begin() + at, v.end());
-    return v[at];
-  };
   j["U_median"] = quantile(speed, 0.5);
   j["U_p10"] = quantile(speed, 0.1);
   j["U_p90"] = quantile(speed, 0.9);

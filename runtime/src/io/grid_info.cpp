@@ -6,22 +6,16 @@
 #include <vector>
 
 #include "io/grid_reader.h"
+#include "util/quantile.h"
 
 namespace lrigid {
 
 namespace {
 
-double median(std::vector<double> v) {
-  if (v.empty()) return 0;
-  const size_t mid = v.size() / 2;
-  std::nth_element(v.begin(), v.begin() + mid, v.end());
-  return v[mid];
-}
-
 struct Solid {
   size_t points = 0;
   int lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};  // point indices
-  std::vector<size_t> around;                 // fluid points next to it
+  std::vector<size_t> around;                 // fluid points next to it, then kShell out
 };
 
 }  // namespace
@@ -33,9 +27,14 @@ nlohmann::json grid_info(const std::string& path, size_t max_solids) {
   const int nx = g.n[0], ny = g.n[1], nz = g.n[2];
   const size_t n = g.points();
   auto index = [&](int i, int j, int k) { return size_t(i) + size_t(nx) * (size_t(j) + size_t(ny) * k); };
+  // the point indices (i, j, k) of point p (x fastest)
+  auto indices = [&](size_t p, int* c) {
+    c[0] = int(p % nx), c[1] = int((p / nx) % ny), c[2] = int(p / (size_t(nx) * ny));
+  };
   // calls fn(r) for each neighbour r of point p along the axes, within the grid
   auto for_each_neighbour = [&](size_t p, auto&& fn) {
-    const int c[3] = {int(p % nx), int((p / nx) % ny), int(p / (size_t(nx) * ny))};
+    int c[3];
+    indices(p, c);
     for (int a = 0; a < 3; ++a)
       for (int d = -1; d <= 1; d += 2) {
         int q[3] = {c[0], c[1], c[2]};
@@ -67,15 +66,16 @@ nlohmann::json grid_info(const std::string& path, size_t max_solids) {
     const int id = static_cast<int>(solids.size());
     solids.emplace_back();
     Solid& s = solids.back();
-    const int si = int(start % nx), sj = int((start / nx) % ny), sk = int(start / (size_t(nx) * ny));
-    s.lo[0] = s.hi[0] = si, s.lo[1] = s.hi[1] = sj, s.lo[2] = s.hi[2] = sk;
+    indices(start, s.lo);
+    indices(start, s.hi);
     label[start] = id;
     stack.assign(1, start);
     while (!stack.empty()) {
       const size_t p = stack.back();
       stack.pop_back();
       ++s.points;
-      const int c[3] = {int(p % nx), int((p / nx) % ny), int(p / (size_t(nx) * ny))};
+      int c[3];
+      indices(p, c);
       for (int a = 0; a < 3; ++a) {
         s.lo[a] = std::min(s.lo[a], c[a]);
         s.hi[a] = std::max(s.hi[a], c[a]);
