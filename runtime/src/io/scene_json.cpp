@@ -14,6 +14,7 @@
 
 #include "body/bem.h"
 #include "body/mass_properties.h"
+#include "body/mesh_check.h"
 #include "body/shape_limits.h"
 #include "body/solidify.h"
 #include "effects/registry.h"
@@ -242,35 +243,33 @@ Shape read_shape(Obj o, BodySpec* b) {
     }
     // a single-sided surface (a leaf, a card) becomes the thin body it stands for
     // (body/solidify.h); "thickness" is in m, as the coordinates after "scale"
-    const bool thick = o.has("thickness");
-    if (thick) {
-      const double t = o.positive("thickness");
-      if (!(t >= kMinShapeLength && t <= kMaxShapeLength))
+    double thickness = 0;
+    if (o.has("thickness")) {
+      thickness = o.positive("thickness");
+      if (!(thickness >= kMinShapeLength && thickness <= kMaxShapeLength))
         o.fail("thickness", std::string("must be ") + kLengthRange + ", got " +
                                 Obj::dump(o.get("thickness")));
       try {
-        *mesh = solidify_surface(*mesh, t, file);
+        *mesh = solidify_surface(*mesh, thickness, file);
       } catch (const Error& e) {
         o.fail("thickness", e.what());
       }
     }
     try {
-      s = Shape::from_mesh(std::move(mesh), file);
+      s = Shape::from_mesh(mesh, file);
       s.scale = scale;
-      if (thick) s.thickness = o.number("thickness");
+      s.thickness = thickness;
     } catch (const Error& e) {
-      const std::string what = e.what();
-      // an open mesh without a thickness: most often a leaf or a card as a DCC tool exports it
-      const bool open = !thick && what.find("mesh is open") != std::string::npos;
-      const bool crossed = thick && what.find("intersects itself") != std::string::npos;
-      o.fail(thick ? "thickness" : "file",
-             what +
-                 (open ? "; a single-sided surface (a leaf, a card) needs its thickness: "
-                         "\"shape\": {\"type\": \"mesh\", \"file\": ..., \"thickness\": t} (m)"
-                       : "") +
-                 (crossed ? "; the thickness " + Obj::dump(o.get("thickness")) +
-                                " m is more than the surface's bends leave room for"
-                          : ""));
+      // what the user most likely meant: an open mesh without a thickness is a leaf or a card
+      // as a DCC tool exports it; a thick one that crosses itself is thicker than its bends
+      std::string hint;
+      if (thickness == 0 && boundary_edge_count(*mesh) > 0)
+        hint = "; a single-sided surface (a leaf, a card) needs its thickness: \"shape\": "
+               "{\"type\": \"mesh\", \"file\": ..., \"thickness\": t} (m)";
+      else if (thickness > 0 && check_mesh(*mesh).defect == MeshDefect::SelfIntersecting)
+        hint = "; the thickness " + Obj::dump(o.get("thickness")) +
+               " m is more than the surface's bends leave room for";
+      o.fail(thickness > 0 ? "thickness" : "file", e.what() + hint);
     }
   } else {
     o.fail("type", "must be sphere, ellipsoid, box or mesh, got \"" + type + "\"");
