@@ -3,25 +3,22 @@
 #include "io/explain.h"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
 #include <string>
 
 #include "io/scene_json.h"
+#include "support/temp_dir.h"
 #include "support/vti_writer.h"
 
-namespace fs = std::filesystem;
 
 namespace lrigid {
 namespace {
 
-struct ExplainStartFlow : ::testing::Test {
-  fs::path dir;
+struct ExplainStartFlow : test::TempDirTest {
   void SetUp() override {
-    dir = fs::temp_directory_path() / ("lrigid_explain_" + std::to_string(::getpid()));
-    fs::create_directories(dir);
+    TempDirTest::SetUp();
     // a 10 m cube, wind along x as fast as x (m/s), a solid block where x >= 8 and z <= 2
     test::VtiGrid g;
     g.dims = {11, 11, 11};
@@ -31,7 +28,6 @@ struct ExplainStartFlow : ::testing::Test {
                                 [](int, const std::array<double, 3>& x, float U[3], float* k,
                                    float* e) { U[0] = float(x[0]), *k = 0.06f, *e = 0.01f; }));
   }
-  void TearDown() override { fs::remove_all(dir); }
 
   nlohmann::json explain(const std::string& fluid, const std::string& spawn_box) {
     const std::string text =

@@ -3,26 +3,19 @@
 #include "io/grid_info.h"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <filesystem>
 #include <string>
 
+#include "support/temp_dir.h"
 #include "support/vti_writer.h"
 #include "util/error.h"
 
-namespace fs = std::filesystem;
 
 namespace lrigid {
 namespace {
 
-struct GridInfo : ::testing::Test {
-  fs::path dir;
-  void SetUp() override {
-    dir = fs::temp_directory_path() / ("lrigid_grid_info_" + std::to_string(::getpid()));
-    fs::create_directories(dir);
-  }
-  void TearDown() override { fs::remove_all(dir); }
+struct GridInfo : test::TempDirTest {
   // 21 x 11 x 11 points 1 m apart from the origin; wind 2 m/s along x, 1 m/s within 2 m of the
   // ground; k 0.1
   std::string write(const std::string& name, std::function<bool(const std::array<double, 3>&)> solid) {

@@ -10,6 +10,7 @@
 #include "io/field_loader.h"
 #include "io/sanity.h"
 #include "io/scene_json.h"
+#include "support/temp_dir.h"
 #include "support/vti_writer.h"
 #include "util/error.h"
 
@@ -38,13 +39,9 @@ std::string sphere(double radius, double density, const std::string& where,
          std::to_string(count) + ", " + where + "}";
 }
 
-struct SanityChecks : ::testing::Test {
-  fs::path dir;
+struct SanityChecks : test::TempDirTest {
   void SetUp() override {
-    dir = fs::temp_directory_path() /
-          ("lrigid_sanity_" + std::to_string(::getpid()) + "_" +
-           ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::create_directories(dir);
+    TempDirTest::SetUp();
     // a 10 m cube of air, 5 points per axis (2.5 m cells), wind 1 m/s along x
     test::VtiGrid g;
     g.dims = {5, 5, 5};
@@ -65,7 +62,6 @@ struct SanityChecks : ::testing::Test {
                                 [](int, const std::array<double, 3>&, float U[3], float* k,
                                    float* e) { U[0] = 1, *k = 0.1f, *e = 0.01f; }));
   }
-  void TearDown() override { fs::remove_all(dir); }
 
   std::vector<SanityFinding> check(const std::string& text) {
     const Scene s = parse_scene(text, (dir / "scene.json").string());
