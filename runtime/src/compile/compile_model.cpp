@@ -368,6 +368,7 @@ Model compile_model(const Scene& scene, FluidField field, const AddedMassProvide
       BodyType t = make_body_type(scene, b, scaled_shape(b.shape, f_size), f_rho * b.density,
                                   field, flow, added_mass, key);
       t.spec = i;
+      t.variant = j;
       t.first_body = first;
       t.count = size_t(b.count / nv + (j < b.count % nv ? 1 : 0));
       first += t.count;

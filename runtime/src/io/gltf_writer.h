@@ -20,6 +20,8 @@ namespace lrigid {
 struct GltfBodyType {
   std::string name;
   TriangleMesh surface;  // body frame (origin at the centre of mass), m
+  size_t entry = 0;      // index of the scene's body entry (Model BodyType::spec)
+  int variant = 0;       // index among that entry's variants ("variation"), 0 without
 };
 
 // Frame-major samples: entry [frame * nbody + body].
@@ -32,6 +34,9 @@ struct GltfAnimation {
   // (nframe * nbody) 1: the body is hidden (it left the grid with "outside": "remove"); may be
   // empty (none is)
   std::vector<uint8_t> hidden;
+  // (nframe * nbody) the body's state as State::state_code numbers it (flying, sliding, ...);
+  // may be empty (not recorded)
+  std::vector<uint8_t> state;
   bool hidden_at(size_t frame, size_t body) const {
     const size_t k = frame * bodies() + body;
     return k < hidden.size() && hidden[k] != 0;

@@ -144,7 +144,8 @@ ResultWriter::ResultWriter(const std::string& dir, const Model& model, const Out
                     need / (1 << 30), have / (1 << 30));
       throw Error(ExitCode::Resource, where(model_.scene_file, "output.formats", buf));
     }
-    for (const BodyType& t : model_.types) gltf_.types.push_back({t.name, body_surface(t, 320)});
+    for (const BodyType& t : model_.types)
+      gltf_.types.push_back({t.name, body_surface(t, 320), t.spec, t.variant});
   }
 }
 
@@ -256,6 +257,7 @@ void ResultWriter::save(BinaryOut& out) {
   out.vec(gltf_.x);
   out.vec(gltf_.q);
   out.vec(gltf_.hidden);
+  out.vec(gltf_.state);
 }
 
 void ResultWriter::restore(BinaryIn& in) {
@@ -284,6 +286,7 @@ void ResultWriter::restore(BinaryIn& in) {
   in.vec(&gltf_.x);
   in.vec(&gltf_.q);
   in.vec(&gltf_.hidden);
+  in.vec(&gltf_.state);
   // the output so far as the checkpoint counted it, before anything is changed
   const std::string again =
       ": the output so far differs from what the checkpoint counted (cut short, changed or "
@@ -407,6 +410,7 @@ void ResultWriter::write_frame(const State& st) {
     gltf_.q.insert(gltf_.q.end(), st.q.begin(), st.q.end());
     gltf_.hidden.insert(gltf_.hidden.end(), st.hidden.begin(), st.hidden.end());
     gltf_.hidden.resize(gltf_.x.size(), 0);
+    for (size_t i = 0; i < st.size(); ++i) gltf_.state.push_back(st.state_code(i));
   }
 }
 
@@ -473,6 +477,8 @@ void ResultWriter::finish(const State& st, const RunStats& stats, const nlohmann
     const StepKind kind = step_kind(model_, t, &why_not_batched);
     types.push_back(
         {{"name", t.name},
+         {"entry", t.spec},
+         {"variant", t.variant},
          {"count", t.count},
          {"mass", t.mass},
          {"volume", t.volume},
@@ -619,7 +625,8 @@ Results read_results(const std::string& dir, int target_faces) {
       bt.shape = shape_from_summary(t.at("shape"), sum_path, key + ".shape");
       const auto& c = t.at("com");
       bt.com = Vec3(c.at(0).get<double>(), c.at(1).get<double>(), c.at(2).get<double>());
-      a.types.push_back({bt.name, body_surface(bt, target_faces)});
+      a.types.push_back({bt.name, body_surface(bt, target_faces), t.value("entry", i),
+                         t.value("variant", 0)});
       names.push_back(bt.name);
       for (size_t k = 0; k < t.at("count").get<size_t>(); ++k) a.body_type.push_back(int(i));
     }
@@ -674,6 +681,9 @@ Results read_results(const std::string& dir, int target_faces) {
     a.q.emplace_back(v[4], v[5], v[6], v[7]);  // Eigen order w, x, y, z
     if (has_state) {
       const size_t c = line.rfind(',');
+      const int code = state_code_from_name(line.substr(c + 1));
+      if (code < 0) fail_input(csv, at, "unknown state \"" + line.substr(c + 1) + "\"");
+      a.state.push_back(uint8_t(code));
       a.hidden.push_back(removed[body] && line.compare(c + 1, std::string::npos, "exited") == 0);
     }
     ++row;

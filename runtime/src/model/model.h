@@ -90,6 +90,7 @@ struct BodyType {
   Vec3 half_extents = Vec3::Zero();   // of the shape's bounding box, m (ground contact)
   size_t first_body = 0, count = 0;   // bodies [first, first + count) are of this type
   size_t spec = 0;                    // index of the scene's body entry (variants share one)
+  int variant = 0;                    // index among that entry's variants, 0 without "variation"
   // flat bodies (thickness <= kFlatRatio x width of the equivalent ellipsoid): lift and the
   // Andersen-Pesavento-Wang drag and torque (effects/lift.h, effects/drag.h)
   bool flat = false;

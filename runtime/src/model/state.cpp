@@ -24,10 +24,15 @@ uint8_t State::state_code(size_t i) const {
   return 0;
 }
 
-const char* State::state_name(size_t i) const {
-  static const char* const names[7] = {"flying", "sliding", "resting", "sleeping",
-                                       "exited", "landed",  "failed"};
-  return names[state_code(i)];
+const char* const kStateNames[kStateCount] = {"flying", "sliding", "resting", "sleeping",
+                                              "exited", "landed",  "failed"};
+
+const char* State::state_name(size_t i) const { return kStateNames[state_code(i)]; }
+
+int state_code_from_name(const std::string& name) {
+  for (int c = 0; c < kStateCount; ++c)
+    if (name == kStateNames[c]) return c;
+  return -1;
 }
 
 }  // namespace lrigid

@@ -74,4 +74,10 @@ struct State {
   uint8_t state_code(size_t i) const;
 };
 
+// The names of the state codes, in code order (State::state_code).
+constexpr int kStateCount = 7;
+extern const char* const kStateNames[kStateCount];
+// The code of a state name; -1 for a name that is none.
+int state_code_from_name(const std::string& name);
+
 }  // namespace lrigid

@@ -233,6 +233,16 @@ TEST(Gltf, BodiesRemovedAtTheGridsEdgeAreHidden) {
     EXPECT_EQ(r.frames.hidden_at(fr, 1), gone) << "t = " << r.frames.times[fr];
     EXPECT_FALSE(r.frames.hidden_at(fr, 2));
   }
+  // each frame's state is read back from the state column, each type's body entry from the
+  // summary
+  ASSERT_EQ(r.frames.state.size(), nf * 3);
+  EXPECT_EQ(r.frames.state[0], state_code_from_name("flying"));
+  EXPECT_EQ(r.frames.state[(nf - 1) * 3 + 0], state_code_from_name("exited"));
+  EXPECT_EQ(r.frames.state[(nf - 1) * 3 + 2], state_code_from_name("flying"));
+  ASSERT_EQ(r.frames.types.size(), 2u);
+  EXPECT_EQ(r.frames.types[0].entry, 0u);
+  EXPECT_EQ(r.frames.types[1].entry, 1u);
+  EXPECT_EQ(r.frames.types[1].variant, 0);
   tinygltf::TinyGLTF loader;
   tinygltf::Model m;
   std::string err, warn;

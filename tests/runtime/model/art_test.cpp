@@ -64,6 +64,7 @@ TEST(Art, SizeAndDensityVariantsStayInRangeAndAreReproducible) {
     EXPECT_LE(t.density, 1200);
     EXPECT_EQ(t.first_body, total);
     EXPECT_EQ(t.spec, 0u);
+    EXPECT_EQ(t.variant, int(&t - m.types.data())) << "variants are numbered in order";
     total += t.count;
     r_lo = std::min(r_lo, f), r_hi = std::max(r_hi, f);
   }
