@@ -8,6 +8,7 @@
 #include <vtkDataArray.h>
 #include <vtkImageData.h>
 #include <vtkLineSource.h>
+#include <vtkLookupTable.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
@@ -16,6 +17,7 @@
 #include <vtkProperty.h>
 #include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
+#include <vtkScalarBarActor.h>
 #include <vtkSmartPointer.h>
 #include <vtkStreamTracer.h>
 #include <vtkTextActor.h>
@@ -23,6 +25,7 @@
 #include <vtkUnsignedCharArray.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -30,7 +33,9 @@
 
 #include "checks.h"
 #include "commands.h"
+#include "draw_style.h"
 #include "io/result_writer.h"
+#include "model/state.h"
 #include "util/error.h"
 #include "vtk_annotate.h"
 #include "vtk_draw.h"
@@ -49,13 +54,17 @@ struct RenderArgs {
   int width = 1280, height = 720;
   double time = -1;  // s; < 0: the last frame
   std::string context = "auto";
-  double body_scale = 0;  // 0: enlarge tiny bodies so they stay visible
+  PictureOptions pic;  // camera, colouring, enlargement (draw_style.h)
   bool quiet = false;
 };
 
-// all bodies of frame f as one surface, coloured by type
+using Rgb = std::array<unsigned char, 3>;
+
+// all visible bodies of frame f as one surface, body type t drawn scale[t] times its size and
+// body b in colour rgb[b]
 vtkSmartPointer<vtkPolyData> bodies_at(const GltfAnimation& a, size_t f,
-                                       const std::vector<double>& scale) {
+                                       const std::vector<double>& scale,
+                                       const std::vector<Rgb>& rgb) {
   const size_t nb = a.bodies();
   auto pts = vtkSmartPointer<vtkPoints>::New();
   auto polys = vtkSmartPointer<vtkCellArray>::New();
@@ -63,7 +72,7 @@ vtkSmartPointer<vtkPolyData> bodies_at(const GltfAnimation& a, size_t f,
   col->SetName("colour");
   col->SetNumberOfComponents(3);
   for (size_t b = 0; b < nb; ++b) {
-    if (a.hidden_at(f, b)) continue;  // removed at the grid's edge ("outside": "remove")
+    if (a.hidden_at(f, b)) continue;  // not released yet, or removed at the grid's edge
     const TriangleMesh& s = a.types[size_t(a.body_type[b])].surface;
     const Mat3 R = a.q[f * nb + b].normalized().toRotationMatrix();
     const Vec3& x = a.x[f * nb + b];
@@ -73,12 +82,10 @@ vtkSmartPointer<vtkPolyData> bodies_at(const GltfAnimation& a, size_t f,
       const Vec3 p = R * (k * v) + x;
       pts->InsertNextPoint(p.data());
     }
-    unsigned char rgb[3];
-    type_colour(size_t(a.body_type[b]), rgb);
     for (const auto& tri : s.faces) {
       const vtkIdType ids[3] = {p0 + tri[0], p0 + tri[1], p0 + tri[2]};
       polys->InsertNextCell(3, ids);
-      col->InsertNextTypedTuple(rgb);
+      col->InsertNextTypedTuple(rgb[b].data());
     }
   }
   auto poly = vtkSmartPointer<vtkPolyData>::New();
@@ -88,18 +95,78 @@ vtkSmartPointer<vtkPolyData> bodies_at(const GltfAnimation& a, size_t f,
   return poly;
 }
 
+// |v| of every body at frame f from its positions (m/s): the central difference over the
+// neighbouring frames, one-sided at the first and the last; 0 with a single frame
+std::vector<double> speeds_at(const GltfAnimation& a, size_t f) {
+  const size_t nb = a.bodies(), nf = a.times.size();
+  std::vector<double> v(nb, 0.0);
+  if (nf < 2) return v;
+  const size_t f0 = f == 0 ? 0 : f - 1, f1 = f + 1 < nf ? f + 1 : f;
+  const double dt = a.times[f1] - a.times[f0];
+  if (!(dt > 0)) return v;
+  for (size_t b = 0; b < nb; ++b) v[b] = (a.x[f1 * nb + b] - a.x[f0 * nb + b]).norm() / dt;
+  return v;
+}
+
 class Renderer {
  public:
-  Renderer(const RenderArgs& args, const Results& r) : args_(args), r_(r) {
+  // `frames`: the frames that will be drawn (what --frame ENTRY and the true-scale rule look at)
+  Renderer(const RenderArgs& args, const Results& r, const std::vector<size_t>& frames)
+      : args_(args), r_(r), by_(args.pic.colouring()) {
     const GltfAnimation& a = r.frames;
-    for (const Vec3& x : a.x) box_.add(x);
-    // per body type: keep at least ~5 pixels per body unless told otherwise
-    std::vector<const TriangleMesh*> surfaces;
-    for (const auto& t : a.types) surfaces.push_back(&t.surface);
-    double reach = 0;
-    scale_ = body_draw_scales(surfaces, box_.diag(), args.width, args.body_scale, &reach);
-    box_.lo -= Vec3::Constant(reach);
-    box_.hi += Vec3::Constant(reach);
+    const size_t nb = a.bodies();
+    // the body entries (a scene's `bodies`; an entry's variants are types of the same entry)
+    size_t ne = 0;
+    for (const auto& t : a.types) ne = std::max(ne, t.entry + 1);
+    entry_names_.assign(ne, "");
+    for (const auto& t : a.types)
+      if (entry_names_[t.entry].empty()) entry_names_[t.entry] = t.name;
+    std::vector<std::vector<double>> sizes(ne);
+    std::vector<std::vector<Vec3>> centres(ne);
+    std::vector<double> reach(ne, 0.0);  // half the largest body of each entry, m
+    std::vector<double> type_size;
+    for (const auto& t : a.types) {
+      type_size.push_back(largest_extent(t.surface));
+      reach[t.entry] = std::max(reach[t.entry], 0.5 * type_size.back());
+    }
+    for (size_t b = 0; b < nb; ++b)
+      sizes[a.types[size_t(a.body_type[b])].entry].push_back(type_size[size_t(a.body_type[b])]);
+    // the default view: every visible body over the whole run (the camera does not move)
+    for (size_t f = 0; f < a.times.size(); ++f)
+      for (size_t b = 0; b < nb; ++b)
+        if (!a.hidden_at(f, b)) box_.add(a.x[f * nb + b]);
+    EntryBoxes entries;
+    entries.names = entry_names_;
+    entries.boxes.resize(ne);
+    for (const size_t f : frames)
+      for (size_t b = 0; b < nb; ++b) {
+        if (a.hidden_at(f, b)) continue;
+        const size_t e = a.types[size_t(a.body_type[b])].entry;
+        entries.boxes[e].add(a.x[f * nb + b]);
+        centres[e].push_back(a.x[f * nb + b]);
+      }
+    const double widest = *std::max_element(reach.begin(), reach.end());
+    if (!box_.empty()) box_.lo -= Vec3::Constant(widest), box_.hi += Vec3::Constant(widest);
+    for (size_t e = 0; e < ne; ++e)
+      if (!entries.boxes[e].empty())
+        entries.boxes[e].lo -= Vec3::Constant(reach[e]), entries.boxes[e].hi += Vec3::Constant(reach[e]);
+
+    if (by_ == ColourBy::State && a.state.empty())
+      throw Error(ExitCode::Usage,
+                  where((fs::path(args.dir) / "trajectories.csv").string(), "state",
+                        "no state column (results of an older lrigid run): --color-by state "
+                        "needs the bodies' states; run the scene again, or use --color-by type "
+                        "or speed"));
+    std::vector<bool> states_shown(kStateCount, false);
+    double vmax = 0;
+    for (const size_t f : frames) {
+      const std::vector<double> v = speeds_at(a, f);
+      for (size_t b = 0; b < nb; ++b) {
+        if (a.hidden_at(f, b)) continue;
+        vmax = std::max(vmax, v[b]);
+        if (!a.state.empty()) states_shown[a.state[f * nb + b]] = true;
+      }
+    }
 
     ren_->GradientBackgroundOn();
     ren_->SetBackground(0.93, 0.94, 0.96);
@@ -108,10 +175,24 @@ class Renderer {
     win_->SetSize(args.width, args.height);
     win_->AddRenderer(ren_);
     add_context();
-    // which colour is which body type (and which are drawn enlarged)
-    std::vector<std::string> names;
-    for (const auto& t : a.types) names.push_back(t.name);
-    add_legend(ren_, names, scale_, args.width, args.height);
+    camera_ = choose_camera(args.pic, box_, entries, double(args.width) / args.height);
+    // one drawing factor per entry: true size unless its bodies would be too small to see
+    const std::vector<double> factor =
+        entry_factors(args.pic, camera_, args.height, sizes, centres);
+    for (const auto& t : a.types) scale_.push_back(factor[t.entry]);
+    const std::string note = enlargement_note(entry_names_, factor);
+    if (!note.empty() && args.pic.body_scale <= 0 && !args.quiet)
+      std::fprintf(stderr,
+                   "lrigid: render: %s (at true size their median body would span under %g "
+                   "pixels; --body-scale 1 draws true size)\n",
+                   note.c_str(), kMinBodyPixels);
+    add_legend(ren_, legend_entries(by_, entry_names_, factor, states_shown), args.width,
+               args.height);
+    if (by_ == ColourBy::Speed) {
+      speed_colours(lut_, vmax);
+      speed_bar(bar_, lut_, args.height / 3);
+      ren_->AddActor2D(bar_);
+    }
     body_mapper_->SetScalarModeToUseCellData();
     body_mapper_->SetColorModeToDirectScalars();
     body_actor_->SetMapper(body_mapper_);
@@ -122,19 +203,33 @@ class Renderer {
     text_->SetPosition(12, 10);
     ren_->AddActor2D(text_);
     // fixed camera over the whole run: bodies move, the view does not
-    aim_camera(ren_, box_);
+    apply_camera(ren_, camera_);
   }
 
   void draw(size_t f, const std::string& png) {
     const GltfAnimation& a = r_.frames;
-    body_mapper_->SetInputData(bodies_at(a, f, scale_));
+    const size_t nb = a.bodies();
+    std::vector<Rgb> rgb(nb);
+    const std::vector<double> v = by_ == ColourBy::Speed ? speeds_at(a, f) : std::vector<double>();
+    for (size_t b = 0; b < nb; ++b) {
+      if (by_ == ColourBy::Type) {
+        type_colour(a.types[size_t(a.body_type[b])].entry, rgb[b].data());
+      } else if (by_ == ColourBy::State) {
+        state_colour(a.state[f * nb + b], rgb[b].data());
+      } else {
+        const unsigned char* c = lut_->MapValue(v[b]);
+        rgb[b] = {c[0], c[1], c[2]};
+      }
+    }
+    body_mapper_->SetInputData(bodies_at(a, f, scale_, rgb));
     char buf[128];
     std::snprintf(buf, sizeof buf, "t = %.2f s   %zu bodies", a.times[f], a.bodies());
-    // the body types and their enlargement are in the legend; the caption says where we are
+    // the colours and the enlargement are in the legend; the caption says where we are
     const std::string label = buf + context_note_;
     text_->SetInput(label.c_str());
     text_->GetTextProperty()->SetFontSize(std::max(12, args_.height / 36));
     fit_caption(text_, ren_, args_.width, 12);
+    ren_->ResetCameraClippingRange();
     win_->Render();
     write_png(win_, png);
   }
@@ -216,13 +311,18 @@ class Renderer {
 
   const RenderArgs& args_;
   const Results& r_;
+  ColourBy by_;
   Bounds box_;
-  std::vector<double> scale_;  // (ntype) drawing scale of each body type
+  CameraPose camera_;
+  std::vector<std::string> entry_names_;  // (nentry) each body entry's name
+  std::vector<double> scale_;  // (ntype) drawing scale of each body type: its entry's factor
   vtkNew<vtkRenderer> ren_;
   vtkNew<vtkRenderWindow> win_;
   vtkSmartPointer<vtkImageData> grid_;  // kept alive for the streamlines' pipeline
   vtkNew<vtkPolyDataMapper> body_mapper_;
   vtkNew<vtkActor> body_actor_;
+  vtkNew<vtkLookupTable> lut_;  // speed colours
+  vtkNew<vtkScalarBarActor> bar_;
   vtkNew<vtkTextActor> text_;
   std::string context_note_;  // what the context shows, for the caption
 };
@@ -255,12 +355,23 @@ void render(RenderArgs a) {
       throw Error(ExitCode::Runtime, "--gif needs ImageMagick's convert (Debian package "
                                      "imagemagick; scripts/install-deps installs it)");
   }
+  check_picture_options(a.pic);
   require_display("render");
   const Results r = read_results(a.dir, 80);
-  Renderer ren(a, r);
   const auto& times = r.frames.times;
+  const size_t nf = times.size();
+  const int n = a.frames;
+  // the frames drawn: the PNG's, then the GIF's, evenly spread over the run
+  auto gif_frame = [&](int i) {
+    return nf == 1 ? size_t(0) : size_t(std::lround(double(i) * double(nf - 1) / (n - 1)));
+  };
+  std::vector<size_t> drawn;
+  if (!a.out.empty()) drawn.push_back(frame_at(times, a.time));
+  if (!a.gif.empty())
+    for (int i = 0; i < n; ++i) drawn.push_back(gif_frame(i));
+  Renderer ren(a, r, drawn);
   if (!a.out.empty()) {
-    ren.draw(frame_at(times, a.time), a.out);
+    ren.draw(drawn.front(), a.out);
     if (!a.quiet) std::fprintf(stderr, "lrigid: wrote %s\n", a.out.c_str());
   }
   if (!a.gif.empty()) {
@@ -275,10 +386,8 @@ void render(RenderArgs a) {
         fs::remove_all(d, e);
       }
     } cleanup{tmp_dir};
-    const int n = a.frames;
-    const size_t nf = times.size();
     for (int i = 0; i < n; ++i) {
-      const size_t f = nf == 1 ? 0 : size_t(std::lround(double(i) * double(nf - 1) / (n - 1)));
+      const size_t f = gif_frame(i);
       char name[32];
       std::snprintf(name, sizeof name, "frame_%05d.png", i);
       ren.draw(f, (fs::path(tmp_dir) / name).string());
@@ -323,9 +432,7 @@ void add_render_command(CLI::App& app) {
   cmd->add_option("--context", args->context,
                   "What to draw behind the bodies: auto (k slice for grid runs, else the "
                   "ground), k, streamlines, ground, none");
-  cmd->add_option("--body-scale", args->body_scale,
-                  "Draw bodies this many times larger (default: enlarge tiny ones to ~5 px)")
-      ->check(positive("a factor > 0"));
+  add_picture_options(cmd, &args->pic);
   cmd->add_flag("--quiet", args->quiet, "Print nothing but errors");
   cmd->callback([args] { render(*args); });
 }

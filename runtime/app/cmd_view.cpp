@@ -10,6 +10,7 @@
 #include <vtkGlyph3DMapper.h>
 #include <vtkImageData.h>
 #include <vtkInteractorStyleTrackballCamera.h>
+#include <vtkLegendBoxActor.h>
 #include <vtkLookupTable.h>
 #include <vtkNew.h>
 #include <vtkObjectFactory.h>
@@ -45,7 +46,9 @@
 #include "io/result_writer.h"
 #include "io/scene_json.h"
 #include "util/error.h"
+#include "draw_style.h"
 #include "view_sim.h"
+#include "vtk_annotate.h"
 #include "vtk_draw.h"
 
 namespace lrigid::app {
@@ -67,10 +70,9 @@ struct ViewArgs {
   std::string record_dir = "lrigid_frames";  // where `o` writes frames
   std::string shot_dir = ".";       // where `s` writes screenshots
   int width = 1280, height = 720;
-  std::string colour = "type";
   std::string slice = "none";
   double slice_z = NAN;             // m
-  double body_scale = 0;            // 0: enlarge tiny bodies to ~5 px
+  PictureOptions pic;               // camera, colouring, enlargement (draw_style.h)
   int multisamples = 0;             // OpenGL antialiasing samples (costly in software OpenGL)
   bool loop = false;
   bool hud = true;
@@ -87,7 +89,7 @@ const char* kControls =
     "  s          save a screenshot (--shot-dir)\n"
     "  o          start / stop writing every frame (--record-dir)\n"
     "  p          pace: realtime -> fast -> fixed\n"
-    "  c          colour by body type / by speed\n"
+    "  c          colour by body type -> state -> speed\n"
     "  q, Esc     quit\n"
     "  mouse      rotate (left), pan (middle), zoom (right, wheel)\n";
 
@@ -140,7 +142,7 @@ class Viewer {
                                          p + "\"");
       presses_.emplace(frame, key == "space" ? " " : key);
     }
-    colour_by_speed_ = a.colour == "speed";
+    by_ = a.pic.colouring();
     ren_->GradientBackgroundOn();
     ren_->SetBackground(0.93, 0.94, 0.96);
     ren_->SetBackground2(0.62, 0.68, 0.78);
@@ -208,6 +210,7 @@ class Viewer {
     // the bodies where they start, and where a uniform flow takes them in a few seconds
     const State s0 = initial_state(model, scene);
     for (const Vec3& x : s0.x) box_.add(x);
+    start_x_ = s0.x;
     if (scene.uniform_field && !box_.empty()) {
       const Vec3 drift = model.mean_flow_scale * scene.uniform_U * std::min(scene.duration, 3.0);
       box_.add(box_.lo + drift);
@@ -245,11 +248,42 @@ class Viewer {
     const int faces = std::min(320, shape_faces_for(model.body_count));
     std::vector<TriangleMesh> surfaces;
     for (const BodyType& t : model.types) surfaces.push_back(body_surface(t, faces));
-    std::vector<const TriangleMesh*> ptrs;
-    for (const auto& s : surfaces) ptrs.push_back(&s);
-    double reach = 0;
-    const std::vector<double> scale =
-        body_draw_scales(ptrs, box_.diag(), a_.width, a_.body_scale, &reach);
+    // the body entries (the scene's `bodies`; an entry's variants are types of the same entry)
+    size_t ne = 0;
+    for (const BodyType& t : model.types) ne = std::max(ne, t.spec + 1);
+    entry_names_.assign(ne, "");
+    entry_of_type_.clear();
+    std::vector<std::vector<double>> sizes(ne);
+    std::vector<std::vector<Vec3>> centres(ne);
+    std::vector<double> reach(ne, 0.0);  // half the largest body of each entry, m
+    EntryBoxes entries;
+    entries.boxes.resize(ne);
+    for (size_t i = 0; i < model.types.size(); ++i) {
+      const BodyType& t = model.types[i];
+      entry_of_type_.push_back(t.spec);
+      if (entry_names_[t.spec].empty()) entry_names_[t.spec] = t.name;
+      const double size = largest_extent(surfaces[i]);
+      reach[t.spec] = std::max(reach[t.spec], 0.5 * size);
+      // where the bodies start: what --frame ENTRY and the true-scale rule look at
+      for (size_t b = t.first_body; b < t.first_body + t.count && b < start_x_.size(); ++b) {
+        sizes[t.spec].push_back(size);
+        centres[t.spec].push_back(start_x_[b]);
+        entries.boxes[t.spec].add(start_x_[b]);
+      }
+    }
+    entries.names = entry_names_;
+    for (size_t e = 0; e < ne; ++e)
+      if (!entries.boxes[e].empty())
+        entries.boxes[e].lo -= Vec3::Constant(reach[e]), entries.boxes[e].hi += Vec3::Constant(reach[e]);
+    const double widest = *std::max_element(reach.begin(), reach.end());
+    box_.lo -= Vec3::Constant(widest);
+    box_.hi += Vec3::Constant(widest);
+    const CameraPose camera =
+        choose_camera(a_.pic, box_, entries, double(a_.width) / a_.height);
+    factors_ = entry_factors(a_.pic, camera, a_.height, sizes, centres);
+    enlarged_ = enlargement_note(entry_names_, factors_);
+    std::vector<double> scale;
+    for (const BodyType& t : model.types) scale.push_back(factors_[t.spec]);
     for (size_t i = 0; i < model.types.size(); ++i) {
       vtkNew<vtkPoints> pts;
       for (const Vec3& v : surfaces[i].vertices) {
@@ -265,15 +299,7 @@ class Viewer {
       src->SetPoints(pts);
       src->SetPolys(polys);
       glyphs_->SetSourceData(int(i), src);
-      if (scale[i] > 1.05) {
-        char b[96];
-        std::snprintf(b, sizeof b, "%s%s x%.2g", enlarged_.empty() ? "drawn enlarged: " : ", ",
-                      model.types[i].name.c_str(), scale[i]);
-        enlarged_ += b;
-      }
     }
-    box_.lo -= Vec3::Constant(reach);
-    box_.hi += Vec3::Constant(reach);
     q_->SetName("q");
     q_->SetNumberOfComponents(4);
     index_->SetName("type");
@@ -292,34 +318,33 @@ class Viewer {
     glyphs_->SetSourceIndexArray("type");
     glyphs_->ScalingOff();
     glyphs_->SetScalarModeToUsePointFieldData();
-    lut_->SetHueRange(0.66, 0.0);  // blue (slow) to red (fast)
-    lut_->Build();
+    speed_colours(lut_, 1);
     glyphs_->SetLookupTable(lut_);
-    set_colouring();
     body_actor_->SetMapper(glyphs_);
     body_actor_->GetProperty()->SetSpecular(0.2);
     ren_->AddActor(body_actor_);
-    speed_bar_->SetLookupTable(lut_);
-    speed_bar_->SetTitle("speed (m/s)");
-    speed_bar_->SetNumberOfLabels(4);
-    speed_bar_->SetMaximumWidthInPixels(80);
-    speed_bar_->SetMaximumHeightInPixels(a_.height / 3);
-    speed_bar_->SetPosition(0.9, 0.55);
-    speed_bar_->GetTitleTextProperty()->SetColor(0.1, 0.1, 0.15);
-    speed_bar_->GetLabelTextProperty()->SetColor(0.1, 0.1, 0.15);
+    speed_bar(speed_bar_, lut_, a_.height / 3);
     ren_->AddActor2D(speed_bar_);
-    aim_camera(ren_, box_);
+    set_colouring();
+    apply_camera(ren_, camera);
   }
 
+  // the glyphs' colours, the speed bar and the legend for the colouring by_
   void set_colouring() {
-    if (colour_by_speed_) {
+    const bool speed = by_ == ColourBy::Speed;
+    if (speed) {
       glyphs_->SelectColorArray("speed");
       glyphs_->SetColorModeToMapScalars();
     } else {
       glyphs_->SelectColorArray("colour");
       glyphs_->SetColorModeToDirectScalars();
     }
-    speed_bar_->SetVisibility(colour_by_speed_);
+    speed_bar_->SetVisibility(speed);
+    if (legend_) ren_->RemoveActor2D(legend_);
+    legend_ = add_legend(ren_, legend_entries(by_, entry_names_, factors_,
+                                              std::vector<bool>(kStateCount, true)),
+                         a_.width, a_.height);
+    if (frame_.x.size() == frame_.type.size() && !frame_.x.empty()) update_bodies(frame_);
   }
 
   // the bodies still in the domain (flying or resting) as glyph points
@@ -343,7 +368,8 @@ class Viewer {
       q_->SetTuple4(k, q.w(), q.x(), q.y(), q.z());
       index_->SetValue(k, f.type[i]);
       unsigned char c[3];
-      type_colour(f.type[i], c);
+      if (by_ == ColourBy::State && i < f.state.size()) state_colour(f.state[i], c);
+      else type_colour(entry_of_type_[f.type[i]], c);
       rgb_->SetTypedTuple(k, c);
       speed_->SetValue(k, f.speed[i]);
       vmax = std::max(vmax, f.speed[i]);
@@ -353,7 +379,7 @@ class Viewer {
     speed_max_ = std::max(double(vmax), 0.98 * speed_max_);
     const double range[2] = {0, std::max(speed_max_, 1e-3)};
     glyphs_->SetScalarRange(range);
-    lut_->SetTableRange(range);
+    speed_colours(lut_, range[1]);
     pts_->Modified();
     q_->Modified();
     index_->Modified();
@@ -401,6 +427,7 @@ class Viewer {
              std::chrono::duration<double>(draws_.back() - draws_.front()).count();
     const std::string line = hud_line(frame_);
     hud_->SetInput(line.c_str());
+    ren_->ResetCameraClippingRange();
     win_->Render();
     if (a_.log) std::printf("frame %d: %s\n", drawn_, line.substr(0, line.find('\n', line.find('\n') + 1)).c_str());
     if (recording_) {
@@ -469,7 +496,9 @@ class Viewer {
                      : frame_.pace == Pace::Fast   ? Pace::Fixed
                                                    : Pace::RealTime);
     else if (k == "c") {
-      colour_by_speed_ = !colour_by_speed_;
+      by_ = by_ == ColourBy::Type    ? ColourBy::State
+            : by_ == ColourBy::State ? ColourBy::Speed
+                                     : ColourBy::Type;
       set_colouring();
     } else if (k == "s") {
       // the next free lrigid_view_NNN.png
@@ -521,8 +550,13 @@ class Viewer {
   vtkNew<vtkScalarBarActor> speed_bar_;
   vtkNew<vtkActor> body_actor_;
   vtkNew<vtkTextActor> hud_;
-  std::string enlarged_;
-  bool colour_by_speed_ = false;
+  std::string enlarged_;          // which entries are drawn enlarged, for the heads-up text
+  ColourBy by_ = ColourBy::Type;
+  std::vector<Vec3> start_x_;     // (nbody) where the bodies start, m
+  std::vector<std::string> entry_names_;  // (nentry)
+  std::vector<size_t> entry_of_type_;     // (ntype) each body type's entry
+  std::vector<double> factors_;           // (nentry) drawing factor
+  vtkLegendBoxActor* legend_ = nullptr;   // held by the renderer
   double speed_max_ = 0;
   std::multimap<int, std::string> presses_;
   std::deque<Clock::time_point> draws_;
@@ -542,6 +576,7 @@ void view(const ViewArgs& a) {
   Scene scene = read_scene(a.scene);
   if (a.seed >= 0) scene.seed = static_cast<uint64_t>(a.seed);
   check_memory(scene);
+  check_picture_options(a.pic);
   require_display("view");
   FluidField field = load_field(scene, StreamMode::Auto, false);
   const Model model = compile_model(scene, std::move(field), cached_added_mass);
@@ -583,16 +618,12 @@ void add_view_command(CLI::App& app) {
   cmd->add_option("--shot-dir", args->shot_dir, "Where the s key writes screenshots (default .)");
   cmd->add_option("--width", args->width, "Window width, pixels")->check(CLI::Range(16, 8192));
   cmd->add_option("--height", args->height, "Window height, pixels")->check(CLI::Range(16, 8192));
-  cmd->add_option("--colour", args->colour, "Colour bodies by type or speed (key c toggles)")
-      ->check(CLI::IsMember({"type", "speed"}));
   cmd->add_option("--slice", args->slice,
                   "A horizontal slice of the grid under the bodies: none, U (|U|, m/s), k (m^2/s^2)")
       ->check(CLI::IsMember({"none", "U", "k"}));
   cmd->add_option("--slice-z", args->slice_z,
                   "Height of the slice, m (default: 4 % of the grid's height above its floor)");
-  cmd->add_option("--body-scale", args->body_scale,
-                  "Draw bodies this many times larger (default: enlarge tiny ones to ~5 px)")
-      ->check(positive("a factor > 0"));
+  add_picture_options(cmd, &args->pic);
   cmd->add_option("--multisamples", args->multisamples,
                   "OpenGL antialiasing samples per pixel (default 0: software OpenGL draws "
                   "several times slower with 8)")

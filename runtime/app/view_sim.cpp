@@ -170,8 +170,10 @@ void ViewSimulation::publish() {
   f.type = state_.type;
   f.status = state_.status;
   f.speed.resize(n);
+  f.state.resize(n);
   for (size_t i = 0; i < n; ++i) {
     f.speed[i] = float(state_.v[i].norm());
+    f.state[i] = state_.state_code(i);
     const BodyStatus s = state_.status[i];
     f.flying += s == BodyStatus::Moving;
     f.resting += s == BodyStatus::Landed || s == BodyStatus::Sleeping;

@@ -34,6 +34,7 @@ struct ViewFrame {
   std::vector<Quat> q;           // (nbody) body -> world
   std::vector<uint16_t> type;    // (nbody)
   std::vector<BodyStatus> status;  // (nbody)
+  std::vector<uint8_t> state;    // (nbody) State::state_code: flying, sliding, resting, ...
   std::vector<float> speed;      // (nbody) |v|, m/s
   size_t flying = 0, resting = 0, exited = 0;  // moving; landed; exited or failed
   double body_steps_per_second = 0;  // while integrating (over the last ~second)

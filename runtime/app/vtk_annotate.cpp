@@ -6,6 +6,9 @@
 #include <vtkNew.h>
 #include <vtkOutlineSource.h>
 #include <vtkPlaneSource.h>
+#include <vtkCellArray.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
 #include <vtkPolyDataMapper.h>
 #include <vtkProperty.h>
 #include <vtkRenderer.h>
@@ -13,34 +16,34 @@
 #include <vtkTextProperty.h>
 
 #include <algorithm>
-#include <cstdio>
 #include <string>
 
-#include "vtk_draw.h"
 
 namespace lrigid::app {
 
-void add_legend(vtkRenderer* ren, const std::vector<std::string>& names,
-                const std::vector<double>& scales, int width, int height) {
-  if (names.empty()) return;
+vtkLegendBoxActor* add_legend(vtkRenderer* ren, const std::vector<LegendEntry>& entries,
+                              int width, int height) {
+  if (entries.empty()) return nullptr;
   vtkNew<vtkLegendBoxActor> legend;
-  legend->SetNumberOfEntries(int(names.size()));
-  // a filled square swatch: drawn flat, in exactly the type's colour
+  legend->SetNumberOfEntries(int(entries.size()));
+  // a filled square swatch: drawn flat, in exactly the entry's colour
   vtkNew<vtkPlaneSource> square;
   square->Update();
+  // lines without a swatch: a single point (VTK refuses a null or empty symbol)
+  vtkNew<vtkPolyData> blank;
+  vtkNew<vtkPoints> dot;
+  dot->InsertNextPoint(0, 0, 0);
+  vtkNew<vtkCellArray> vert;
+  const vtkIdType first = 0;
+  vert->InsertNextCell(1, &first);
+  blank->SetPoints(dot);
+  blank->SetVerts(vert);
   size_t longest = 0;
-  for (size_t i = 0; i < names.size(); ++i) {
-    unsigned char rgb[3];
-    type_colour(i, rgb);
-    double c[3] = {rgb[0] / 255.0, rgb[1] / 255.0, rgb[2] / 255.0};
-    std::string label = names[i];
-    if (i < scales.size() && scales[i] > 1.05) {
-      char b[48];
-      std::snprintf(b, sizeof b, " (drawn %.2gx)", scales[i]);
-      label += b;
-    }
-    longest = std::max(longest, label.size());
-    legend->SetEntry(int(i), square->GetOutput(), label.c_str(), c);
+  for (size_t i = 0; i < entries.size(); ++i) {
+    const LegendEntry& e = entries[i];
+    double c[3] = {e.rgb[0] / 255.0, e.rgb[1] / 255.0, e.rgb[2] / 255.0};
+    longest = std::max(longest, e.label.size());
+    legend->SetEntry(int(i), e.swatch ? square->GetOutput() : blank.GetPointer(), e.label.c_str(), c);
   }
   legend->UseBackgroundOn();
   legend->SetBackgroundColor(1, 1, 1);
@@ -53,12 +56,13 @@ void add_legend(vtkRenderer* ren, const std::vector<std::string>& names,
   // longest label (a character is about 0.6 of the font size)
   const double line = std::max(14.0, height / 28.0);
   const double w = std::min(0.6, (1.8 * line + 0.6 * line * double(longest)) / width);
-  const double h = std::min(0.5, line * double(names.size()) * 1.3 / height);
+  const double h = std::min(0.5, line * double(entries.size()) * 1.3 / height);
   legend->GetPositionCoordinate()->SetCoordinateSystemToNormalizedViewport();
   legend->GetPositionCoordinate()->SetValue(0.01, 0.99 - h);
   legend->GetPosition2Coordinate()->SetCoordinateSystemToNormalizedViewport();
   legend->GetPosition2Coordinate()->SetValue(w, h);
   ren->AddActor2D(legend);
+  return legend;
 }
 
 void add_domain(vtkRenderer* ren, vtkImageData* grid, bool water) {

@@ -1,21 +1,24 @@
-// What makes a picture of `lrigid render` read at a glance: a legend of the body
-// types in their colours, a caption that fits the image, and the domain the bodies are in (the
+// What makes a picture of `lrigid render` and `lrigid view` read at a glance: a legend of the
+// colours, a caption that fits the image, and the domain the bodies are in (the
 // grid's outline; for water, the tank's walls and its surface). VTK; used by cmd_render.cpp.
 #pragma once
 #include <string>
 #include <vector>
 
+#include "draw_style.h"
+
 class vtkImageData;
+class vtkLegendBoxActor;
 class vtkRenderer;
 class vtkTextActor;
 
 namespace lrigid::app {
 
-// A legend box in the top-left corner: one entry per body type, a swatch in type_colour(i)
-// (vtk_draw.h) and the type's name, with " (drawn Nx)" where the type is drawn enlarged
-// (scales[i] > 1.05). Its text is sized for an image `height` pixels tall.
-void add_legend(vtkRenderer* ren, const std::vector<std::string>& names,
-                const std::vector<double>& scales, int width, int height);
+// A legend box in the top-left corner: one line per entry, a flat swatch in its colour (none
+// where !swatch) and its label (draw_style.h legend_entries). Its text is sized for an image
+// `height` pixels tall. Returns the legend (nullptr when there are no entries).
+vtkLegendBoxActor* add_legend(vtkRenderer* ren, const std::vector<LegendEntry>& entries,
+                              int width, int height);
 
 // The grid's box as dark lines; with `water`, also its side walls and floor as pale translucent
 // panels and the water surface (the grid's top) as a translucent blue sheet.

@@ -69,22 +69,6 @@ void type_colour(size_t i, unsigned char rgb[3]) {
   for (int k = 0; k < 3; ++k) rgb[k] = kPalette[i % 6][k];
 }
 
-std::vector<double> body_draw_scales(const std::vector<const TriangleMesh*>& surfaces,
-                                     double extent, int width, double fixed, double* reach) {
-  std::vector<double> scale;
-  *reach = 0;
-  extent = std::max(extent, 1e-9);
-  for (const TriangleMesh* s : surfaces) {
-    Bounds b;
-    for (const Vec3& v : s->vertices) b.add(v);
-    const double size = std::max(b.diag(), 1e-12);
-    const double k = fixed > 0 ? fixed : std::max(1.0, 5.0 * extent / (width * size));
-    scale.push_back(k);
-    *reach = std::max(*reach, 0.5 * k * size);
-  }
-  return scale;
-}
-
 std::string first_vti(const std::string& field, const std::string& key) {
   if (fs::path(field).extension() != ".pvd") return field;
   std::ifstream in(field);
@@ -205,16 +189,30 @@ bool add_slice(vtkRenderer* ren, vtkImageData* img, const std::string& array, do
   return true;
 }
 
-void aim_camera(vtkRenderer* ren, const Bounds& box) {
+void apply_camera(vtkRenderer* ren, const CameraPose& c) {
   vtkCamera* cam = ren->GetActiveCamera();
-  const Vec3 c = 0.5 * (box.lo + box.hi);
-  cam->SetFocalPoint(c.data());
-  const Vec3 eye = c + Vec3(0.9, -1.6, 0.8).normalized();
-  cam->SetPosition(eye.data());
-  cam->SetViewUp(0, 0, 1);
-  double b[6] = {box.lo.x(), box.hi.x(), box.lo.y(), box.hi.y(), box.lo.z(), box.hi.z()};
-  ren->ResetCamera(b);
-  cam->Zoom(1.3);
+  cam->SetFocalPoint(c.target.data());
+  cam->SetPosition(c.position.data());
+  cam->SetViewUp(c.up.data());
+  cam->SetViewAngle(c.fov_deg);
+  ren->ResetCameraClippingRange();
+}
+
+void speed_colours(vtkLookupTable* lut, double vmax) {
+  lut->SetHueRange(0.66, 0.0);  // blue (slow) to red (fast)
+  lut->SetTableRange(0, std::max(vmax, 1e-3));
+  lut->Build();
+}
+
+void speed_bar(vtkScalarBarActor* bar, vtkLookupTable* lut, int bar_height) {
+  bar->SetLookupTable(lut);
+  bar->SetTitle("speed (m/s)");
+  bar->SetNumberOfLabels(4);
+  bar->SetMaximumWidthInPixels(80);
+  bar->SetMaximumHeightInPixels(bar_height);
+  bar->SetPosition(0.9, 0.55);
+  bar->GetTitleTextProperty()->SetColor(0.1, 0.1, 0.15);
+  bar->GetLabelTextProperty()->SetColor(0.1, 0.1, 0.15);
 }
 
 void write_png(vtkRenderWindow* win, const std::string& png) {

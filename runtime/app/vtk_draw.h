@@ -10,10 +10,13 @@
 #include <vector>
 
 #include "body/shape.h"
+#include "camera.h"
 #include "util/types.h"
 
 class vtkImageData;
+class vtkLookupTable;
 class vtkRenderer;
+class vtkScalarBarActor;
 class vtkRenderWindow;
 
 namespace lrigid::app {
@@ -25,19 +28,6 @@ void require_display(const std::string& command);
 // Colour of body type i (a palette of 6 that stays readable over the context, no blue), RGB
 // 0..255.
 void type_colour(size_t i, unsigned char rgb[3]);
-
-struct Bounds {
-  Vec3 lo = Vec3::Constant(1e300), hi = Vec3::Constant(-1e300);
-  void add(const Vec3& p) { lo = lo.cwiseMin(p), hi = hi.cwiseMax(p); }
-  bool empty() const { return lo.x() > hi.x(); }
-  double diag() const { return empty() ? 0.0 : (hi - lo).norm(); }
-};
-
-// Drawing scale of each body type (surfaces in the body frame, m): `fixed` > 0 for all, else
-// enlarged so a body of the type covers about 5 pixels of a view `width` pixels wide over
-// `extent` m (never shrunk). Sets *reach to the largest drawn half size, m.
-std::vector<double> body_draw_scales(const std::vector<const TriangleMesh*>& surfaces,
-                                     double extent, int width, double fixed, double* reach);
 
 // The first (or only) .vti of a grid file: a .pvd names its files relative to itself. `key`
 // names where the path came from, for the error message.
@@ -61,8 +51,13 @@ bool add_slice(vtkRenderer* ren, vtkImageData* img, const std::string& array, do
                const std::string& title, int bar_height,
                double draw_z = std::numeric_limits<double>::quiet_NaN());
 
-// Looks at box from the front-left and above (Z up), the whole box in view.
-void aim_camera(vtkRenderer* ren, const Bounds& box);
+// Puts the renderer's camera at c (position, target, up, vertical field of view).
+void apply_camera(vtkRenderer* ren, const CameraPose& c);
+
+// The colours of speed, blue (slow) to red (fast), over [0, vmax] m/s, and its colour bar
+// ("speed (m/s)", no taller than `bar_height` pixels, on the right).
+void speed_colours(vtkLookupTable* lut, double vmax);
+void speed_bar(vtkScalarBarActor* bar, vtkLookupTable* lut, int bar_height);
 
 // Writes what the window shows to a PNG (temporary name, then rename). Throws
 // lrigid::Error(ExitCode::Output) naming the path when it cannot.
