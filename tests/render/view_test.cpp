@@ -81,11 +81,12 @@ size_t differing(const Image& a, const Image& b, int y0, int y1) {
 }
 
 // pixels in a body type's colour (shaded): cards orange, beads green (the background is
-// grey-blue; no body type is blue, the colour of the k slices)
+// grey-blue; no body type is blue, the colour of the k slices), outside the legend (top left)
 void count_bodies(const Image& im, size_t* orange, size_t* green) {
   *orange = *green = 0;
   for (int y = 0; y < im.h; ++y)
     for (int x = 0; x < im.w; ++x) {
+      if (x < im.w * 0.35 && y > im.h / 2) continue;  // the legend's swatches, top left
       const unsigned char* p = im.at(x, y);
       *orange += p[0] > p[1] + 40 && p[1] > p[2] + 20;
       *green += p[1] > p[0] + 40 && p[1] > p[2] + 40;
@@ -99,6 +100,31 @@ TEST_F(View, HelpListsTheControls) {
                         "restart", "screenshot", "start / stop writing", "--frames",
                         "--screenshot", "--write-frames", "--pace"})
     EXPECT_NE(out.find(s), std::string::npos) << "--help lacks \"" << s << "\":\n" << out;
+}
+
+TEST_F(View, TakesRendersCameraAndColourFlags) {
+  // the flags are render's (app/draw_style.cpp, tests/render/render_camera_test.cpp): at the
+  // start every body flies, so coloured by state the picture shows the flying colour (orange)
+  // and none of the entry colour of the beads (green)
+  const std::string png = dir_ + "/state.png";
+  std::string log;
+  ASSERT_EQ(sh(view(dir_ + "/scene.json", "--frames 1 --pace fixed --no-hud --frame bead "
+                                          "--color-by state --fov 40 --screenshot " + png),
+               &log),
+            0)
+      << log;
+  const Image im = read_png(png);
+  ASSERT_EQ(im.w, 320);
+  size_t orange = 0, green = 0;
+  count_bodies(im, &orange, &green);
+  EXPECT_GT(orange, 40u) << "no flying bodies";
+  EXPECT_LT(green, 5u) << "bodies in their entry's colour";
+  for (const auto& [flags, says] :
+       {std::pair<std::string, std::string>{"--fov 0", "--fov 0"},
+        {"--frame pebble", "the entries are: card, bead"}}) {
+    EXPECT_EQ(sh(view(dir_ + "/scene.json", "--frames 1 " + flags), &log), 2) << flags << log;
+    EXPECT_NE(log.find(says), std::string::npos) << flags << "\n" << log;
+  }
 }
 
 TEST_F(View, WindowOpensAndBodiesMoveInRealTime) {
