@@ -208,6 +208,35 @@ TEST_F(RenderCamera, StateColoursWhereTheBodiesAre) {
   EXPECT_EQ(still_high, 0u) << "resting colour up in the air";
 }
 
+TEST_F(RenderCamera, SpeedColoursFastBodiesWarmAndStillOnesBlue) {
+  ASSERT_EQ(run_status_, 0) << run_log_;
+  // the same side view: the beads fall at several m/s (the top of the scale: red to yellow), the
+  // stones lie still (its bottom: blue)
+  std::string log;
+  ASSERT_EQ(render("speed.png",
+                   "--color-by speed --camera-position 0.5 -4 1 --camera-target 0.5 0.5 1 "
+                   "--fov 50 --body-scale 3 --quiet",
+                   &log),
+            0)
+      << log;
+  const Image im = read_png(dir_ + "/speed.png");
+  ASSERT_EQ(im.w, 320);
+  size_t warm_low = 0, warm_high = 0, cold_low = 0, cold_high = 0;
+  for (int py = 0; py < im.h; ++py)
+    for (int px = 0; px < im.w; ++px) {
+      if (px < im.w * 0.4 && py > im.h * 0.55) continue;  // the legend
+      if (px > im.w * 0.85) continue;                       // the colour bar
+      const unsigned char* p = im.at(px, py);
+      const bool high = py > im.h / 2;
+      if (p[0] > p[2] + 60) (high ? warm_high : warm_low) += 1;
+      if (p[2] > p[0] + 60) (high ? cold_high : cold_low) += 1;
+    }
+  EXPECT_GT(warm_high, 20u) << "no fast (warm) bodies in the air";
+  EXPECT_EQ(cold_high, 0u) << "slow colour in the air";
+  EXPECT_GT(cold_low, 20u) << "no still (blue) bodies on the ground";
+  EXPECT_EQ(warm_low, 0u) << "fast colour on the ground";
+}
+
 TEST_F(RenderCamera, BadFlagsAreRefusedNamingFlagAndValue) {
   ASSERT_EQ(run_status_, 0) << run_log_;
   struct Case {
