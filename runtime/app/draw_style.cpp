@@ -40,8 +40,8 @@ bool frame_box(const std::vector<std::string>& frame, Bounds* box) {
   if (!(v[0] < v[1] && v[2] < v[3] && v[4] < v[5])) {
     std::string s;
     for (const auto& f : frame) s += (s.empty() ? "" : " ") + f;
-    throw Error(ExitCode::Usage, "--frame " + s +
-                                     ": the box is empty; give x0 < x1, y0 < y1, z0 < z1 (m)");
+    throw Error(ExitCode::Usage,
+                "--frame " + s + ": the box is empty; give x0 < x1, y0 < y1, z0 < z1 (m)");
   }
   return true;
 }
@@ -49,7 +49,7 @@ bool frame_box(const std::vector<std::string>& frame, Bounds* box) {
 }  // namespace
 
 ColourBy PictureOptions::colouring() const {
-  return colour_by == "state" ? ColourBy::State
+  return colour_by == "state"   ? ColourBy::State
          : colour_by == "speed" ? ColourBy::Speed
                                 : ColourBy::Type;
 }
@@ -62,8 +62,7 @@ void add_picture_options(CLI::App* cmd, PictureOptions* o) {
                   "Point the camera looks at (the picture's centre) X Y Z, m (default: the "
                   "framed box's centre)")
       ->expected(3);
-  cmd->add_option("--fov", o->fov_deg,
-                  "Vertical field of view, degrees, in (0, 180) (default 30)");
+  cmd->add_option("--fov", o->fov_deg, "Vertical field of view, degrees, in (0, 180) (default 30)");
   cmd->add_option("--frame", o->frame,
                   "Fit the view to a body entry's bodies (its name in the scene) or to a box "
                   "x0 x1 y0 y1 z0 z1, m")
@@ -115,12 +114,14 @@ CameraPose choose_camera(const PictureOptions& o, const Bounds& whole, const Ent
     if (e == entries.names.size()) {
       std::string names;
       for (const auto& n : entries.names) names += (names.empty() ? "" : ", ") + n;
-      throw Error(ExitCode::Usage, "--frame " + o.frame[0] + ": no body entry of that name; "
-                                   "the entries are: " + names);
+      throw Error(ExitCode::Usage, "--frame " + o.frame[0] +
+                                       ": no body entry of that name; "
+                                       "the entries are: " +
+                                       names);
     }
     if (entries.boxes[e].empty())
-      throw Error(ExitCode::Usage, "--frame " + o.frame[0] +
-                                       ": none of its bodies is visible in the frames drawn");
+      throw Error(ExitCode::Usage,
+                  "--frame " + o.frame[0] + ": none of its bodies is visible in the frames drawn");
     box = entries.boxes[e];
   }
   CameraPose c = fit_box(box, default_view_direction(), o.fov_deg, aspect);
@@ -171,8 +172,8 @@ void state_colour(int code, unsigned char rgb[3]) {
   // flying orange, sliding yellow, resting red, sleeping magenta, exited grey, landed green,
   // failed black: none blue (the slices), none pale (the ground, the background)
   static const unsigned char kState[kStateCount][3] = {
-      {235, 130, 30}, {240, 215, 40}, {215, 25, 35}, {200, 50, 200},
-      {110, 110, 110}, {40, 160, 60}, {15, 15, 15}};
+      {235, 130, 30},  {240, 215, 40}, {215, 25, 35}, {200, 50, 200},
+      {110, 110, 110}, {40, 160, 60},  {15, 15, 15}};
   const int c = code >= 0 && code < kStateCount ? code : kStateCount - 1;
   for (int k = 0; k < 3; ++k) rgb[k] = kState[c][k];
 }

@@ -91,8 +91,8 @@ class RenderCamera : public ::testing::Test {
   ],
   "output": { "every": 0.05, "formats": ["csv"] }
 })";
-    run_status_ = sh(kLrigid + " run " + dir_ + "/scene.json -o " + dir_ + "/out --quiet",
-                     &run_log_);
+    run_status_ =
+        sh(kLrigid + " run " + dir_ + "/scene.json -o " + dir_ + "/out --quiet", &run_log_);
     if (run_status_ == 0) last_ = last_frame(dir_ + "/out/trajectories.csv", kBodies);
   }
   static void TearDownTestSuite() { fs::remove_all(dir_); }
@@ -100,8 +100,8 @@ class RenderCamera : public ::testing::Test {
   // lrigid render of the run at 320 x 240 with `flags`; its exit status and output in *log
   static int render(const std::string& png, const std::string& flags, std::string* log,
                     const std::string& results = "out") {
-    return sh("xvfb-run -a " + kLrigid + " render " + dir_ + "/" + results + " -o " + dir_ +
-                  "/" + png + " --width 320 --height 240 " + flags,
+    return sh("xvfb-run -a " + kLrigid + " render " + dir_ + "/" + results + " -o " + dir_ + "/" +
+                  png + " --width 320 --height 240 " + flags,
               log);
   }
 
@@ -225,7 +225,7 @@ TEST_F(RenderCamera, SpeedColoursFastBodiesWarmAndStillOnesBlue) {
   for (int py = 0; py < im.h; ++py)
     for (int px = 0; px < im.w; ++px) {
       if (px < im.w * 0.4 && py > im.h * 0.55) continue;  // the legend
-      if (px > im.w * 0.85) continue;                       // the colour bar
+      if (px > im.w * 0.85) continue;                     // the colour bar
       const unsigned char* p = im.at(px, py);
       const bool high = py > im.h / 2;
       if (p[0] > p[2] + 60) (high ? warm_high : warm_low) += 1;

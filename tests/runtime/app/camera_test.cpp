@@ -56,8 +56,7 @@ TEST(Camera, AFittedBoxIsInViewAndItsSphereTouchesTheNarrowerEdge) {
     EXPECT_NEAR((c.position - c.target).norm(), 0.5 * box.diag() / std::sin(half), 1e-9);
     // fill < 1 comes closer by that factor
     const CameraPose near = fit_box(box, Vec3(1, -2, 1), 40, aspect, 0.77);
-    EXPECT_NEAR((near.position - near.target).norm(), 0.77 * (c.position - c.target).norm(),
-                1e-9);
+    EXPECT_NEAR((near.position - near.target).norm(), 0.77 * (c.position - c.target).norm(), 1e-9);
   }
 }
 
@@ -84,8 +83,8 @@ TEST(Camera, TrueScaleUnlessTheMedianBodyWouldSpanUnderFourPixels) {
   // at 1 m a 8 cm leaf spans about 107 pixels: true size
   EXPECT_EQ(true_scale_factor(c, height, sizes, {Vec3(1, 0, 0), Vec3(1, 0.1, 0)}), 1.0);
   // at 100 m about 1.07 pixels: one factor that makes the median body span 4 pixels
-  const double f = true_scale_factor(c, height, sizes, {Vec3(90, 0, 0), Vec3(100, 0, 0),
-                                                        Vec3(110, 5, 0)});
+  const double f =
+      true_scale_factor(c, height, sizes, {Vec3(90, 0, 0), Vec3(100, 0, 0), Vec3(110, 5, 0)});
   EXPECT_NEAR(f * 0.08 * k1 / 100, kMinBodyPixels, 1e-9);
   EXPECT_GT(f, 3.5);
   // bodies behind the camera do not count; none in front: true size
