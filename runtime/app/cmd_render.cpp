@@ -116,40 +116,28 @@ class Renderer {
     const GltfAnimation& a = r.frames;
     const size_t nb = a.bodies();
     // the body entries (a scene's `bodies`; an entry's variants are types of the same entry)
-    size_t ne = 0;
-    for (const auto& t : a.types) ne = std::max(ne, t.entry + 1);
-    entry_names_.assign(ne, "");
-    for (const auto& t : a.types)
-      if (entry_names_[t.entry].empty()) entry_names_[t.entry] = t.name;
-    std::vector<std::vector<double>> sizes(ne);
-    std::vector<std::vector<Vec3>> centres(ne);
-    std::vector<double> reach(ne, 0.0);  // half the largest body of each entry, m
+    std::vector<size_t> type_entry;
+    std::vector<std::string> type_name;
     std::vector<double> type_size;
     for (const auto& t : a.types) {
+      type_entry.push_back(t.entry);
+      type_name.push_back(t.name);
       type_size.push_back(largest_extent(t.surface));
-      reach[t.entry] = std::max(reach[t.entry], 0.5 * type_size.back());
     }
-    for (size_t b = 0; b < nb; ++b)
-      sizes[a.types[size_t(a.body_type[b])].entry].push_back(type_size[size_t(a.body_type[b])]);
+    EntryTally tally(type_entry, type_name, type_size);
+    for (size_t b = 0; b < nb; ++b) tally.add_body(size_t(a.body_type[b]));
+    for (const size_t f : frames)
+      for (size_t b = 0; b < nb; ++b)
+        if (!a.hidden_at(f, b)) tally.add_seen(size_t(a.body_type[b]), a.x[f * nb + b]);
+    entry_names_ = tally.names();
     // the default view: every visible body over the whole run (the camera does not move)
     for (size_t f = 0; f < a.times.size(); ++f)
       for (size_t b = 0; b < nb; ++b)
         if (!a.hidden_at(f, b)) box_.add(a.x[f * nb + b]);
-    EntryBoxes entries;
-    entries.names = entry_names_;
-    entries.boxes.resize(ne);
-    for (const size_t f : frames)
-      for (size_t b = 0; b < nb; ++b) {
-        if (a.hidden_at(f, b)) continue;
-        const size_t e = a.types[size_t(a.body_type[b])].entry;
-        entries.boxes[e].add(a.x[f * nb + b]);
-        centres[e].push_back(a.x[f * nb + b]);
-      }
-    const double widest = *std::max_element(reach.begin(), reach.end());
-    if (!box_.empty()) box_.lo -= Vec3::Constant(widest), box_.hi += Vec3::Constant(widest);
-    for (size_t e = 0; e < ne; ++e)
-      if (!entries.boxes[e].empty())
-        entries.boxes[e].lo -= Vec3::Constant(reach[e]), entries.boxes[e].hi += Vec3::Constant(reach[e]);
+    if (!box_.empty()) {
+      box_.lo -= Vec3::Constant(tally.widest());
+      box_.hi += Vec3::Constant(tally.widest());
+    }
 
     if (by_ == ColourBy::State && a.state.empty())
       throw Error(ExitCode::Usage,
@@ -175,10 +163,9 @@ class Renderer {
     win_->SetSize(args.width, args.height);
     win_->AddRenderer(ren_);
     add_context();
-    camera_ = choose_camera(args.pic, box_, entries, double(args.width) / args.height);
+    camera_ = choose_camera(args.pic, box_, tally.boxes(), double(args.width) / args.height);
     // one drawing factor per entry: true size unless its bodies would be too small to see
-    const std::vector<double> factor =
-        entry_factors(args.pic, camera_, args.height, sizes, centres);
+    const std::vector<double> factor = tally.factors(args.pic, camera_, args.height);
     for (const auto& t : a.types) scale_.push_back(factor[t.entry]);
     const std::string note = enlargement_note(entry_names_, factor);
     if (!note.empty() && args.pic.body_scale <= 0 && !args.quiet)

@@ -249,38 +249,29 @@ class Viewer {
     std::vector<TriangleMesh> surfaces;
     for (const BodyType& t : model.types) surfaces.push_back(body_surface(t, faces));
     // the body entries (the scene's `bodies`; an entry's variants are types of the same entry)
-    size_t ne = 0;
-    for (const BodyType& t : model.types) ne = std::max(ne, t.spec + 1);
-    entry_names_.assign(ne, "");
+    std::vector<std::string> type_name;
+    std::vector<double> type_size;
     entry_of_type_.clear();
-    std::vector<std::vector<double>> sizes(ne);
-    std::vector<std::vector<Vec3>> centres(ne);
-    std::vector<double> reach(ne, 0.0);  // half the largest body of each entry, m
-    EntryBoxes entries;
-    entries.boxes.resize(ne);
+    for (size_t i = 0; i < model.types.size(); ++i) {
+      entry_of_type_.push_back(model.types[i].spec);
+      type_name.push_back(model.types[i].name);
+      type_size.push_back(largest_extent(surfaces[i]));
+    }
+    EntryTally tally(entry_of_type_, type_name, type_size);
+    // where the bodies start: what --frame ENTRY and the true-scale rule look at
     for (size_t i = 0; i < model.types.size(); ++i) {
       const BodyType& t = model.types[i];
-      entry_of_type_.push_back(t.spec);
-      if (entry_names_[t.spec].empty()) entry_names_[t.spec] = t.name;
-      const double size = largest_extent(surfaces[i]);
-      reach[t.spec] = std::max(reach[t.spec], 0.5 * size);
-      // where the bodies start: what --frame ENTRY and the true-scale rule look at
       for (size_t b = t.first_body; b < t.first_body + t.count && b < start_x_.size(); ++b) {
-        sizes[t.spec].push_back(size);
-        centres[t.spec].push_back(start_x_[b]);
-        entries.boxes[t.spec].add(start_x_[b]);
+        tally.add_body(i);
+        tally.add_seen(i, start_x_[b]);
       }
     }
-    entries.names = entry_names_;
-    for (size_t e = 0; e < ne; ++e)
-      if (!entries.boxes[e].empty())
-        entries.boxes[e].lo -= Vec3::Constant(reach[e]), entries.boxes[e].hi += Vec3::Constant(reach[e]);
-    const double widest = *std::max_element(reach.begin(), reach.end());
-    box_.lo -= Vec3::Constant(widest);
-    box_.hi += Vec3::Constant(widest);
+    entry_names_ = tally.names();
+    box_.lo -= Vec3::Constant(tally.widest());
+    box_.hi += Vec3::Constant(tally.widest());
     const CameraPose camera =
-        choose_camera(a_.pic, box_, entries, double(a_.width) / a_.height);
-    factors_ = entry_factors(a_.pic, camera, a_.height, sizes, centres);
+        choose_camera(a_.pic, box_, tally.boxes(), double(a_.width) / a_.height);
+    factors_ = tally.factors(a_.pic, camera, a_.height);
     enlarged_ = enlargement_note(entry_names_, factors_);
     std::vector<double> scale;
     for (const BodyType& t : model.types) scale.push_back(factors_[t.spec]);

@@ -1,5 +1,6 @@
 #include "draw_style.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -146,13 +147,54 @@ double largest_extent(const TriangleMesh& surface) {
   return b.empty() ? 0.0 : (b.hi - b.lo).maxCoeff();
 }
 
-std::vector<double> entry_factors(const PictureOptions& o, const CameraPose& c, int height,
-                                  const std::vector<std::vector<double>>& sizes,
-                                  const std::vector<std::vector<Vec3>>& centres) {
-  std::vector<double> f(sizes.size(), o.body_scale);
+EntryTally::EntryTally(const std::vector<size_t>& type_entry,
+                       const std::vector<std::string>& type_name,
+                       const std::vector<double>& type_size)
+    : type_entry_(type_entry), type_size_(type_size) {
+  size_t ne = 0;
+  for (size_t e : type_entry) ne = std::max(ne, e + 1);
+  names_.assign(ne, "");
+  reach_.assign(ne, 0.0);
+  sizes_.resize(ne);
+  seen_.resize(ne);
+  boxes_.resize(ne);
+  for (size_t t = 0; t < type_entry.size(); ++t) {
+    const size_t e = type_entry[t];
+    if (names_[e].empty()) names_[e] = type_name[t];
+    reach_[e] = std::max(reach_[e], 0.5 * type_size[t]);
+  }
+}
+
+void EntryTally::add_body(size_t type) { sizes_[type_entry_[type]].push_back(type_size_[type]); }
+
+void EntryTally::add_seen(size_t type, const Vec3& x) {
+  seen_[type_entry_[type]].push_back(x);
+  boxes_[type_entry_[type]].add(x);
+}
+
+EntryBoxes EntryTally::boxes() const {
+  EntryBoxes out;
+  out.names = names_;
+  out.boxes = boxes_;
+  for (size_t e = 0; e < out.boxes.size(); ++e) {
+    if (out.boxes[e].empty()) continue;
+    out.boxes[e].lo -= Vec3::Constant(reach_[e]);
+    out.boxes[e].hi += Vec3::Constant(reach_[e]);
+  }
+  return out;
+}
+
+double EntryTally::widest() const {
+  double w = 0;
+  for (double r : reach_) w = std::max(w, r);
+  return w;
+}
+
+std::vector<double> EntryTally::factors(const PictureOptions& o, const CameraPose& c,
+                                        int height) const {
+  std::vector<double> f(names_.size(), o.body_scale);
   if (o.body_scale > 0) return f;
-  for (size_t e = 0; e < sizes.size(); ++e)
-    f[e] = true_scale_factor(c, height, sizes[e], centres[e]);
+  for (size_t e = 0; e < f.size(); ++e) f[e] = true_scale_factor(c, height, sizes_[e], seen_[e]);
   return f;
 }
 

@@ -52,11 +52,35 @@ CameraPose choose_camera(const PictureOptions& o, const Bounds& whole, const Ent
 // true-scale rule.
 double largest_extent(const TriangleMesh& surface);
 
-// The drawing factor of each body entry: --body-scale for all when given, else the true-scale
-// rule (camera.h true_scale_factor) on the entry's body sizes (m) and centres (m).
-std::vector<double> entry_factors(const PictureOptions& o, const CameraPose& c, int height,
-                                  const std::vector<std::vector<double>>& sizes,
-                                  const std::vector<std::vector<Vec3>>& centres);
+// The body entries as the picture sees them, gathered from the body types and from the bodies
+// where they are drawn: their names, the boxes --frame ENTRY fits, and what the true-scale rule
+// weighs (each body's size, where the bodies are).
+class EntryTally {
+ public:
+  // per body type: the entry it belongs to, its name and its size (m, largest_extent)
+  EntryTally(const std::vector<size_t>& type_entry, const std::vector<std::string>& type_name,
+             const std::vector<double>& type_size);
+  void add_body(size_t type);                 // a body of the type: its size counts once
+  void add_seen(size_t type, const Vec3& x);  // a body of the type drawn at x (m)
+  size_t entry_of(size_t type) const { return type_entry_[type]; }
+  const std::vector<std::string>& names() const { return names_; }
+  // the entries' boxes, each widened by half its largest body
+  EntryBoxes boxes() const;
+  // half the largest body of all, m
+  double widest() const;
+  // the drawing factor of each entry: --body-scale for all when given, else the true-scale rule
+  // (camera.h true_scale_factor)
+  std::vector<double> factors(const PictureOptions& o, const CameraPose& c, int height) const;
+
+ private:
+  std::vector<size_t> type_entry_;
+  std::vector<double> type_size_;
+  std::vector<std::string> names_;          // (nentry)
+  std::vector<double> reach_;               // (nentry) half the largest body, m
+  std::vector<std::vector<double>> sizes_;  // (nentry) each body's size, m
+  std::vector<std::vector<Vec3>> seen_;     // (nentry) where its bodies are drawn, m
+  std::vector<Bounds> boxes_;               // (nentry) of seen_
+};
 
 // "drawn enlarged: leaf x2.3, paper x1.5" for the entries drawn larger than true (factor > 1.05),
 // empty when none is.
