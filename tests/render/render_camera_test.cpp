@@ -171,6 +171,14 @@ TEST_F(RenderCamera, FrameEntryFillsThePictureWithItsBodies) {
   // away)
   EXPECT_TRUE(w1 >= 128 || h1 >= 96) << w1 << " x " << h1 << " pixels";
   EXPECT_GT(w1, 1.5 * w0) << w0 << " -> " << w1;
+  // their spawn box given as numbers frames them too: the box spans about half the picture and
+  // the 12 stones most of the box (their own box is smaller: framed it spreads them more)
+  ASSERT_EQ(render("box.png", "--frame 0 1 0 1 0 0.05 --quiet", &log), 0) << log;
+  int w2 = 0, h2 = 0;
+  extent(read_png(dir_ + "/box.png"), &w2, &h2);
+  EXPECT_TRUE(w2 >= 80 || h2 >= 60) << w2 << " x " << h2 << " pixels";
+  EXPECT_LE(w2, w1 + 2) << "a box larger than the stones' own spreads them over more";
+  EXPECT_GT(w2, 1.5 * w0) << w0 << " -> " << w2;
 }
 
 TEST_F(RenderCamera, StateColoursWhereTheBodiesAre) {
