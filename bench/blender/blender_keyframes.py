@@ -104,7 +104,7 @@ for k in range(frames + 1):
             sim.push(i, [0.0, 0.0, 0.5 * m])
         v_after = sim.velocities[pushed, 2]
     t1 = time.perf_counter()
-    x, q = sim.positions, sim.orientations
+    x, q = sim.positions.copy(), sim.orientations  # positions is a view that follows the run
     for i, o in enumerate(objs):
         o.location = x[i]
         o.rotation_quaternion = q[i]

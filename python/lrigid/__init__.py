@@ -7,6 +7,9 @@ foam2grid (``Grid``). Units are SI everywhere. Bad input raises ``lrigid.Error``
 ``ValueError``) with the command's message, naming the file (or dict), key and value.
 """
 import json as _json
+import os as _os
+
+import numpy as _np
 
 from . import _lrigid
 
@@ -16,10 +19,18 @@ Error.__module__ = "lrigid"
 Error.__doc__ = ("Bad input (scene, shape, grid, arguments): the message names the file or "
                  "dict, the key and the value, as the lrigid command's does.")
 
-# status codes of Simulation.status (as in bodies.pvd's "status" array)
-# SLEEPING: resting on a surface where the flow cannot move it (docs/contacts.md)
+# status codes of Simulation.status (as in bodies.pvd's "status" array): MOVING stepped
+# (flying, sliding or resting), LANDED stopped at a "stop" ground, EXITED left the grid or stopped
+# at a "stop" wall, FAILED a non-finite state, SLEEPING resting on a surface where the flow cannot
+# move it, not stepped until a gust wakes it (docs/contacts.md)
 MOVING, LANDED, EXITED, FAILED, SLEEPING = 0, 1, 2, 3, 4
 STATUS_NAMES = ("moving", "landed", "exited", "failed", "sleeping")
+
+# the names of Simulation.state_codes in code order, as the outputs write a body's state
+# (trajectories.csv's "state" column, bodies.pvd's "state" array): flying, sliding, resting,
+# sleeping, exited, landed, failed, ... (from the library: a state it gains appears here)
+STATE_NAMES = tuple(_lrigid.STATE_NAMES)
+_STATE_NAMES_ARRAY = _np.array(STATE_NAMES)
 
 
 def _dumps(d, what):
@@ -63,33 +74,63 @@ class Scene:
 class Simulation(_lrigid.Simulation):
     """A run of a scene, stepped exactly as ``lrigid run`` steps it.
 
-    ``Simulation(scene, seed=None, threads=None)``: ``seed`` overrides the scene's (as
-    ``lrigid run --seed``), ``threads`` the thread count (default: all cores; results do not
-    depend on it). Same seed: the same bits as ``lrigid run`` (tests/python/test_same_bits.py).
+    ``Simulation(scene, seed=None, threads=None, output_dir=None)``: ``seed`` overrides the
+    scene's (as ``lrigid run --seed``), ``threads`` the thread count (default: all cores; results
+    do not depend on it). Same seed: the same bits as ``lrigid run``
+    (tests/python/test_same_bits.py).
+
+    Recording: with ``output_dir`` the run writes the scene's outputs ("output.formats") into
+    that folder as ``lrigid run -o output_dir`` does, frames at the scene's output times with
+    pushes and edits included. The results are committed, all at once, when the run reaches the
+    scene's duration (``run()`` with no argument); until then nothing appears under its final
+    name. ``close()`` (or leaving a ``with`` block, or the object's end) before that abandons
+    the recording: no result, the folder as it was. ``recording`` says whether a recording is
+    under way, ``output_dir`` where it goes (None without one). The folder is refused as
+    ``lrigid run`` refuses it (a result's name taken by a file lrigid did not write), and while
+    another Simulation of this process records into it.
 
     Stepping: ``step(n=1)`` takes n steps of ``dt``; ``run(until=None)`` steps to the time
     ``until`` (s, rounded to a whole step; default the scene's duration). ``t`` (s) and
     ``n_steps`` say where the run is; stepping past the scene's duration is allowed.
 
-    State (NumPy arrays, copies; one row per body, in the order of trajectories.csv):
-    ``positions`` (N, 3) centre of mass, m; ``orientations`` (N, 4) body -> world quaternion
-    w, x, y, z; ``velocities`` (N, 3) m/s and ``angular_velocities`` (N, 3) rad/s in world axes
-    (as trajectories.csv); ``status`` (N,) uint8 (MOVING, LANDED, EXITED, FAILED, SLEEPING); ``types``
-    (N,) index into ``type_names``; ``stop_times`` (s) and ``reasons`` of stopped bodies.
+    State (NumPy arrays, one row per body, in the order of trajectories.csv). Read-only views
+    of the run's own arrays, no copy, that follow the run (take ``.copy()`` to keep a value):
+    ``positions`` (N, 3) float centre of mass, m; ``status`` (N,) uint8 (MOVING, LANDED,
+    EXITED, FAILED, SLEEPING); ``types`` (N,) uint16 index into ``type_names``. Copies, made
+    at each read: ``orientations`` (N, 4) body -> world quaternion w, x, y, z; ``velocities``
+    (N, 3) m/s and ``angular_velocities`` (N, 3) rad/s in world axes (as trajectories.csv);
+    ``states`` (N,) str, each body's state as the outputs name it (``STATE_NAMES``: flying,
+    sliding, resting, sleeping, exited, landed, failed) and ``state_codes`` (N,) uint8 its
+    index in ``STATE_NAMES``; ``stop_times`` (s) and ``reasons`` of stopped bodies.
 
     Changing the state between steps: assign a whole array, e.g.
-    ``v = sim.velocities; v[3] += (0, 0, 1); sim.velocities = v`` (orientations are
+    ``v = sim.velocities; v[3] += (0, 0, 1); sim.velocities = v`` or
+    ``p = sim.positions.copy(); p[0, 2] = 1.0; sim.positions = p`` (orientations are
     normalized; world-frame velocities are stored in the body frame). ``push(body, impulse,
     angular_impulse=None, at=None)`` applies an impulse (N s, world frame) at the world point
     ``at`` (default the centre of mass) and an angular impulse (N m s): the body's generalized
     momentum, with its added mass, gains them; a landed body pushed moves again.
     """
 
-    def __init__(self, scene, seed=None, threads=None):
+    def __init__(self, scene, seed=None, threads=None, output_dir=None):
         if not isinstance(scene, Scene):
             raise Error("Simulation: scene must be an lrigid.Scene (Scene.load or "
                         "Scene.from_dict), got %s" % type(scene).__name__)
-        super().__init__(scene._s, seed, threads)
+        if output_dir is not None:
+            output_dir = _os.fspath(output_dir)
+        super().__init__(scene._s, seed, threads, output_dir)
+
+    @property
+    def states(self):
+        """(N,) str: each body's state as the outputs name it (``STATE_NAMES``), a copy."""
+        return _STATE_NAMES_ARRAY[self.state_codes]
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+        return False
 
 
 def added_mass(shape, fluid_density, details=False):
@@ -137,4 +178,4 @@ class Grid(_lrigid.Grid):
 
 
 __all__ = ["Error", "Scene", "Simulation", "Grid", "added_mass", "explain", "MOVING", "LANDED",
-           "EXITED", "FAILED", "SLEEPING", "STATUS_NAMES"]
+           "EXITED", "FAILED", "SLEEPING", "STATUS_NAMES", "STATE_NAMES"]

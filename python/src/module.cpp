@@ -8,6 +8,7 @@
 #include <pybind11/stl.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <memory>
 #include <string>
@@ -22,6 +23,9 @@
 #include "io/field_loader.h"
 #include "io/grid_reader.h"
 #include "io/result_writer.h"
+#include "io/results_dir.h"
+#include "io/run_recorder.h"
+#include "io/sanity.h"
 #include "io/scene_json.h"
 #include "model/state.h"
 #include "util/error.h"
@@ -88,11 +92,29 @@ struct PyScene {
   Scene scene;
 };
 
+// A read-only NumPy view of `rows` x `cols` values of type T at `data`, kept alive by `owner`
+// (the Python Simulation): no copy; valid as long as the vector holding them is not resized
+template <class T>
+py::array readonly_view(const void* data, size_t rows, py::ssize_t cols, py::handle owner) {
+  const auto item = py::ssize_t(sizeof(T));
+  std::vector<py::ssize_t> shape{py::ssize_t(rows)}, strides{item * cols};
+  if (cols > 1) {
+    shape.push_back(cols);
+    strides.push_back(item);
+  }
+  py::array a(py::dtype::of<T>(), shape, strides, data, owner);
+  a.attr("setflags")(py::arg("write") = false);
+  return a;
+}
+
 // A run in progress: the compiled Model, the State, stepped with simulate() exactly as
-// `lrigid run` steps them (same seed: same bits).
+// `lrigid run` steps them (same seed: same bits). With an output folder it records as
+// `lrigid run -o DIR` does (io/run_recorder.h): frames at the scene's output times, committed
+// when the run reaches the scene's duration.
 class Simulation {
  public:
-  Simulation(const PyScene& s, py::object seed, py::object threads) : scene_(s.scene) {
+  Simulation(const PyScene& s, py::object seed, py::object threads, py::object output_dir)
+      : scene_(s.scene) {
     if (!seed.is_none()) {
       const long long v = seed.cast<long long>();
       if (v < 0) bad_value("seed must be >= 0, got " + std::to_string(v));
@@ -103,10 +125,26 @@ class Simulation {
       if (threads_ < 1 || threads_ > 1024)
         bad_value("threads must be in [1, 1024], got " + std::to_string(threads_));
     }
+    if (!output_dir.is_none()) {
+      scene_.output.dir = output_dir.cast<std::string>();
+      if (scene_.output.dir.empty()) bad_value("output_dir: an empty name; give a directory");
+    }
     py::gil_scoped_release release;
-    model_ = std::make_unique<Model>(compile_model(
-        scene_, load_field(scene_, StreamMode::Auto, false), cached_added_mass));
+    const auto load0 = std::chrono::steady_clock::now();
+    FluidField field = load_field(scene_, StreamMode::Auto, false);
+    const double load_seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - load0).count();
+    model_ = std::make_unique<Model>(compile_model(scene_, std::move(field), cached_added_mass));
     state_ = initial_state(*model_, scene_);
+    viewed_ = viewed();
+    if (!output_dir.is_none()) {
+      // as `lrigid run -o DIR`: a finish interrupted there is completed first, the names the
+      // run writes must be free or lrigid's own, and the summary has the same facts
+      complete_interrupted_finish(scene_.output.dir);
+      recorder_ = std::make_unique<RunRecorder>(
+          scene_, *model_, RunFacts{threads_, check_scene(scene_, *model_), load_seconds, 1});
+      output_dir_ = scene_.output.dir;
+    }
   }
 
   // advances n steps of dt
@@ -119,8 +157,12 @@ class Simulation {
     const double t = until.is_none() ? scene_.duration : until.cast<double>();
     if (!std::isfinite(t)) bad_value("run: until must be finite");
     const double steps = std::llround(t / model_->dt);
-    if (steps > double(state_.step)) advance_to(static_cast<uint64_t>(steps));
+    advance_to(steps > double(state_.step) ? static_cast<uint64_t>(steps) : state_.step);
   }
+  // an unfinished recording abandoned: its temporaries removed, the folder as it was
+  void close() { recorder_.reset(); }
+  bool recording() const { return recorder_ != nullptr; }
+  const std::string& output_dir() const { return output_dir_; }
 
   size_t size() const { return state_.size(); }
   const Model& model() const { return *model_; }
@@ -128,9 +170,6 @@ class Simulation {
   State& state() { return state_; }
   const RunStats& stats() const { return stats_; }
 
-  py::array_t<double> positions() const {
-    return per_body(3, [&](size_t i, double* r) { std::copy_n(state_.x[i].data(), 3, r); });
-  }
   py::array_t<double> orientations() const {
     return per_body(4, [&](size_t i, double* r) {
       const Quat& q = state_.q[i];
@@ -149,14 +188,23 @@ class Simulation {
       std::copy_n(w.data(), 3, r);
     });
   }
-  py::array_t<uint8_t> status() const {
-    py::array_t<uint8_t> a{py::ssize_t(size())};
-    for (size_t i = 0; i < size(); ++i) a.mutable_data()[i] = uint8_t(state_.status[i]);
-    return a;
+  // views (no copy): Vec3 is 3 doubles without padding, BodyStatus one byte
+  static_assert(sizeof(Vec3) == 3 * sizeof(double) && sizeof(BodyStatus) == 1);
+  py::array positions_view(py::handle self) const {
+    return readonly_view<double>(state_.x.data(), size(), 3, self);
   }
-  py::array_t<int> types() const {
-    py::array_t<int> a{py::ssize_t(size())};
-    for (size_t i = 0; i < size(); ++i) a.mutable_data()[i] = state_.type[i];
+  py::array status_view(py::handle self) const {
+    return readonly_view<uint8_t>(state_.status.data(), size(), 1, self);
+  }
+  py::array types_view(py::handle self) const {
+    return readonly_view<uint16_t>(state_.type.data(), size(), 1, self);
+  }
+  std::array<const void*, 3> viewed() const {
+    return {state_.x.data(), state_.status.data(), state_.type.data()};
+  }
+  py::array_t<uint8_t> state_codes() const {
+    py::array_t<uint8_t> a{py::ssize_t(size())};
+    for (size_t i = 0; i < size(); ++i) a.mutable_data()[i] = state_.state_code(i);
     return a;
   }
 
@@ -228,18 +276,45 @@ class Simulation {
   // Runs to step `last` in chunks of about 50 ms without the GIL; between chunks, at a step
   // boundary, it takes the GIL back and checks for signals, so Ctrl-C stops a long run() or
   // step(n) within a fraction of a second with KeyboardInterrupt and the state at the steps done.
+  // A recording stops each chunk at the scene's duration, where it commits its results.
   void advance_to(uint64_t last) {
     uint64_t chunk = 1;
     while (last > state_.step) {
-      const uint64_t to = state_.step + std::min<uint64_t>(chunk, last - state_.step);
+      uint64_t to = state_.step + std::min<uint64_t>(chunk, last - state_.step);
+      if (recorder_ && state_.step < recorder_->last_step())
+        to = std::min(to, recorder_->last_step());
       const auto t0 = std::chrono::steady_clock::now();
       advance_chunk(to);
+      commit_at_duration();
       const double dt_wall =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       if (PyErr_CheckSignals() != 0) throw py::error_already_set();
       // aim at 50 ms a chunk: doubling while faster, halving while slower
       if (dt_wall < 0.025 && chunk < (uint64_t(1) << 40)) chunk *= 2;
       else if (dt_wall > 0.1 && chunk > 1) chunk /= 2;
+    }
+    commit_at_duration();  // a run of no steps
+  }
+
+  // a recording that reached the scene's duration: its last frame, then every result committed
+  void commit_at_duration() {
+    if (!recorder_ || state_.step != recorder_->last_step()) return;
+    py::gil_scoped_release release;
+    record([&] {
+      recorder_->frame(state_);  // written already, unless the run has no steps
+      recorder_->finish(state_, stats_);
+    });
+    recorder_.reset();
+  }
+
+  // a recording that fails is abandoned (no result, the folder as it was) before the error
+  template <class F>
+  void record(F&& f) {
+    try {
+      f();
+    } catch (...) {
+      recorder_.reset();
+      throw;
     }
   }
 
@@ -250,22 +325,39 @@ class Simulation {
     RunOptions opt;
     opt.every = static_cast<double>(last + 1) * model_->dt;  // no output on the way
     opt.threads = threads_;
+    opt.output_at_start = false;
+    if (recorder_) {
+      // frames at the scene's output times (the recorder skips the chunks' other ends); the one
+      // at t = 0 when the first step is taken, so that it shows what was set before
+      opt.every = scene_.output.every;
+      opt.on_output = [this](const State& st) { recorder_->frame(st); };
+    }
     RunStats s;
     {
       py::gil_scoped_release release;
-      s = simulate(*model_, &state_, opt);
+      if (recorder_) record([&] { recorder_->frame(state_); });
+      record([&] { s = simulate(*model_, &state_, opt); });
+      model_->duration = scene_.duration;  // as the recorder's summary reports it
     }
+    if (viewed() != viewed_)
+      throw Error(ExitCode::Runtime, "the state's arrays moved: views taken before are invalid");
     stats_.body_steps += s.body_steps;
+    stats_.scalar_handoffs += s.scalar_handoffs;
+    stats_.newton_steps += s.newton_steps;
     stats_.steps = s.steps;
     stats_.wall_seconds += s.wall_seconds;
     stats_.landed = s.landed, stats_.exited = s.exited, stats_.failed = s.failed;
+    stats_.resting = s.resting;
   }
 
   Scene scene_;
   int threads_ = 0;
   std::unique_ptr<Model> model_;
   State state_;
+  std::array<const void*, 3> viewed_{};  // where the views point: these arrays never move
   RunStats stats_;
+  std::string output_dir_;
+  std::unique_ptr<RunRecorder> recorder_;  // while recording: after the model it refers to
 };
 
 // A grid file read whole; samples the raw U, k, epsilon (trilinear, as foam2grid wrote them).
@@ -394,6 +486,9 @@ PYBIND11_MODULE(_lrigid, m) {
   // lrigid::Error (bad input, with the command's message) -> lrigid.Error, a ValueError
   py::register_exception<Error>(m, "Error", PyExc_ValueError);
   m.attr("__version__") = LRIGID_VERSION;
+  // the names of Simulation.state_codes, in code order (model/state.h)
+  m.attr("STATE_NAMES") =
+      py::tuple(py::cast(std::vector<std::string>(kStateNames, kStateNames + kStateCount)));
 
   py::class_<PyScene>(m, "Scene")
       .def_static("load", [](const std::string& path) { return PyScene{read_scene(path)}; },
@@ -416,8 +511,9 @@ PYBIND11_MODULE(_lrigid, m) {
       });
 
   py::class_<Simulation>(m, "Simulation")
-      .def(py::init<const PyScene&, py::object, py::object>(), py::arg("scene"),
-           py::arg("seed") = py::none(), py::arg("threads") = py::none())
+      .def(py::init<const PyScene&, py::object, py::object, py::object>(), py::arg("scene"),
+           py::arg("seed") = py::none(), py::arg("threads") = py::none(),
+           py::arg("output_dir") = py::none())
       .def("step", &Simulation::step, py::arg("n") = 1, "Advances n steps of dt.")
       .def("run", &Simulation::run, py::arg("until") = py::none(),
            "Advances to the time `until` (s, nearest whole step; default: the scene's duration).")
@@ -431,13 +527,28 @@ PYBIND11_MODULE(_lrigid, m) {
       .def_property_readonly("duration", [](const Simulation& s) { return s.scene().duration; })
       .def_property_readonly("seed", [](const Simulation& s) { return s.model().seed; })
       .def("__len__", &Simulation::size)
-      .def_property("positions", &Simulation::positions, &Simulation::set_positions)
+      .def_property(
+          "positions",
+          [](py::object self) { return self.cast<const Simulation&>().positions_view(self); },
+          [](Simulation& s, const py::handle& a) { s.set_positions(a); })
       .def_property("orientations", &Simulation::orientations, &Simulation::set_orientations)
       .def_property("velocities", &Simulation::velocities, &Simulation::set_velocities)
       .def_property("angular_velocities", &Simulation::angular_velocities,
                     &Simulation::set_angular_velocities)
-      .def_property_readonly("status", &Simulation::status)
-      .def_property_readonly("types", &Simulation::types)
+      .def_property_readonly(
+          "status",
+          [](py::object self) { return self.cast<const Simulation&>().status_view(self); })
+      .def_property_readonly(
+          "types", [](py::object self) { return self.cast<const Simulation&>().types_view(self); })
+      .def_property_readonly("state_codes", &Simulation::state_codes)
+      .def("close", &Simulation::close,
+           "Abandons an unfinished recording: its temporaries removed, the folder as it was.")
+      .def_property_readonly("recording", &Simulation::recording)
+      .def_property_readonly("output_dir",
+                             [](const Simulation& s) -> py::object {
+                               if (s.output_dir().empty()) return py::none();
+                               return py::str(s.output_dir());
+                             })
       .def_property_readonly("type_names",
                              [](const Simulation& s) {
                                std::vector<std::string> r;

@@ -23,6 +23,7 @@
 #include "io/progress.h"
 #include "io/result_writer.h"
 #include "io/results_dir.h"
+#include "io/run_recorder.h"
 #include "io/sanity.h"
 #include "io/scene_json.h"
 #include "io/tolerance_table.h"
@@ -110,10 +111,12 @@ void run(const RunArgs& a, const Ranks& ranks) {
   if (!a.resume.empty()) resume_tag = cps.resume_tag();
   else if (checkpoints) cps.refuse_to_overwrite();
   // with several MPI ranks, rank 0 alone writes, after gathering every rank's bodies
-  std::unique_ptr<ResultWriter> writer;
+  std::unique_ptr<RunRecorder> recorder;
   if (ranks.root())
-    writer = std::make_unique<ResultWriter>(scene.output.dir, model, scene.output, resume_tag,
-                                            a.force);
+    recorder = std::make_unique<RunRecorder>(
+        scene, model, RunFacts{a.threads, findings, load_seconds, ranks.size()}, resume_tag,
+        a.force);
+  ResultWriter* const writer = recorder ? recorder->writer() : nullptr;
   if (writer && checkpoints) writer->set_checkpoint_dir("checkpoint");
   // what a failure from here on leaves, said after the error (lrigid::Error only: exit codes 3-5)
   auto say_what_is_left = [&] {
@@ -132,7 +135,7 @@ void run(const RunArgs& a, const Ranks& ranks) {
   try {
     RunStats live;
     if (!a.resume.empty()) {
-      cps.load(&state, &live, writer.get());
+      cps.load(&state, &live, writer);
       if (!a.quiet && ranks.root())
         std::fprintf(stderr, "lrigid: resuming %s at t = %.6g s (step %llu)\n",
                      scene.output.dir.c_str(), state.t, (unsigned long long)state.step);
@@ -146,8 +149,8 @@ void run(const RunArgs& a, const Ranks& ranks) {
     ranks.share(state.size(), &opt.body_begin, &opt.body_end);
     if (ranks.size() > 1) opt.on_sync = [&](State& s, bool last) { ranks.gather(&s, last); };
     opt.on_output = [&](const State& s) {
-      if (writer) writer->write_frame(s);
-      cps.maybe_save(s, live, writer.get());  // collective: every rank calls it
+      if (recorder) recorder->frame(s);
+      cps.maybe_save(s, live, writer);  // collective: every rank calls it
     };
     const bool quiet = a.quiet || !ranks.root();
     Progress progress("lrigid", quiet ? Progress::Mode::Quiet : Progress::Mode::Auto);
@@ -176,23 +179,8 @@ void run(const RunArgs& a, const Ranks& ranks) {
     progress.finish();
     stats.body_steps = ranks.sum(stats.body_steps);
     stats.wall_seconds = ranks.max(stats.wall_seconds);
-    if (!writer) return;
-    nlohmann::json extra;
-    extra["threads"] = a.threads;
-    extra["warnings"] = findings_json(findings);
-    extra["fluid_density"] = scene.fluid_density;  // kg/m^3; lrigid render draws water as a tank
-    if (ranks.size() > 1) extra["ranks"] = ranks.size();
-    if (!scene.uniform_field) {
-      extra["field"] = scene.field_path;  // for render and ParaView
-      extra["field_load_seconds"] = load_seconds;
-    }
-    if (model.field.is_streamed()) {
-      const StreamStats ss = model.field.stream_stats();
-      extra["field_stream"] = {{"frames_read", ss.loads},
-                               {"max_resident_frames", ss.max_resident},
-                               {"read_seconds", ss.load_seconds}};
-    }
-    writer->finish(state, stats, extra);
+    if (!recorder) return;
+    recorder->finish(state, stats);
     cps.remove();
     if (!a.quiet) {
       std::fprintf(stderr,

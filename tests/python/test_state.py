@@ -38,7 +38,7 @@ def test_push_gives_the_analytic_velocities():
     V = 4 / 3 * math.pi * A ** 3
     m_eff = (RHO_B + RHO_F / 2) * V       # body plus Lamb's added mass
     inertia = 0.4 * RHO_B * V * A ** 2    # no rotational added mass for a sphere
-    x = sim.positions[1]
+    x = sim.positions[1].copy()           # a view follows the run: keep a copy
     J = np.array([0.01, -0.02, 0.005])    # N s
     r = np.array([0, 0, A])               # pushed at the top of the sphere
     sim.push(1, J, at=x + r)
@@ -56,7 +56,7 @@ def test_push_gives_the_analytic_velocities():
 
 def test_writing_the_state_between_steps():
     sim = lrigid.Simulation(sphere_scene(["gravity"], gravity=(0, 0, -9.81)))
-    p = sim.positions
+    p = sim.positions.copy()              # a read-only view: change a copy
     p[:] = [[0, 0, 10], [1, 0, 10], [2, 0, 10]]
     sim.positions = p
     v = sim.velocities
@@ -95,3 +95,63 @@ def test_bad_state_input_raises():
         lrigid.Simulation(sphere_scene(["added_mass"]), seed=-1)
     with pytest.raises(lrigid.Error, match="n must be >= 0"):
         sim.step(-1)
+
+
+def test_views_follow_the_run_and_refuse_writes():
+    sim = lrigid.Simulation(sphere_scene(["gravity"], gravity=(0, 0, -9.81)))
+    x, status, types = sim.positions, sim.status, sim.types
+    for view in (x, status, types):
+        assert not view.flags.writeable and not view.flags.owndata and view.base is not None
+    assert types.dtype == np.uint16 and status.dtype == np.uint8
+    before = x.copy()
+    sim.step(10)
+    # the view taken before the steps holds the new positions: free fall, 10 steps of 1 ms
+    assert np.array_equal(x, sim.positions)
+    assert np.allclose(x[:, 2], before[:, 2] - 9.81 * 0.01 ** 2 / 2, rtol=0, atol=1e-12)
+    with pytest.raises(ValueError, match="read-only"):
+        x[0, 2] = 5.0
+    with pytest.raises(ValueError, match="read-only"):
+        status[0] = lrigid.LANDED
+    # orientations are a copy (the run keeps x, y, z, w): writing one changes nothing
+    q = sim.orientations
+    q[0] = [0.0, 1.0, 0.0, 0.0]
+    assert not np.array_equal(sim.orientations[0], q[0])
+    # a view keeps its run alive
+    last = x.copy()
+    del sim
+    assert np.array_equal(x, last)
+
+
+def resting_scene(tmp_path):
+    """two glass beads dropped 5 mm onto the ground in still water (they rest, then sleep after
+    0.5 s of rest) and one released 50 m up (still falling)"""
+    bead = {"name": "glass", "shape": {"type": "sphere", "radius": A}, "density": RHO_B}
+    return lrigid.Scene.from_dict({
+        "version": 1,
+        "fluid": {"density": RHO_F, "kinematic_viscosity": 1e-6,
+                  "uniform": {"U": [0, 0, 0], "k": 0, "epsilon": 0}},
+        "gravity": [0, 0, -9.81], "effects": ["gravity", "buoyancy", "added_mass", "drag"],
+        "integrator": {"scheme": "strang", "dt": 0.001}, "duration": 1.0, "seed": 3,
+        "ground": {"z": 0.0},
+        "bodies": [dict(bead, count=2, spawn_box=[[0, 0, A + 0.005], [1, 1, A + 0.005]]),
+                   dict(bead, name="high", count=1, position=[0, 0, 50])],
+        "output": {"every": 0.25, "formats": ["csv"]}}, name=str(tmp_path / "scene.json"))
+
+
+def test_states_are_the_outputs_states(tmp_path):
+    out = tmp_path / "out"
+    sim = lrigid.Simulation(resting_scene(tmp_path), output_dir=out)
+    status = sim.status
+    assert list(sim.states) == ["flying"] * 3
+    sim.run()
+    states = sim.states
+    assert states.dtype.kind == "U" and sim.state_codes.dtype == np.uint8
+    assert list(states) == [lrigid.STATE_NAMES[c] for c in sim.state_codes]
+    assert list(states) == ["sleeping", "sleeping", "flying"]
+    assert list(status) == [lrigid.SLEEPING, lrigid.SLEEPING, lrigid.MOVING]
+    # the names are the ones trajectories.csv writes for the last frame
+    with open(out / "trajectories.csv") as f:
+        last = [line.rstrip("\n").split(",")[-1] for line in f.readlines()[-3:]]
+    assert last == list(states)
+    assert {"flying", "sliding", "resting", "sleeping", "exited", "landed",
+            "failed"} <= set(lrigid.STATE_NAMES)
