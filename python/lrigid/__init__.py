@@ -17,9 +17,10 @@ Error.__doc__ = ("Bad input (scene, shape, grid, arguments): the message names t
                  "dict, the key and the value, as the lrigid command's does.")
 
 # status codes of Simulation.status (as in bodies.pvd's "status" array)
-# SLEEPING: resting on a surface where the flow cannot move it (docs/contacts.md)
-MOVING, LANDED, EXITED, FAILED, SLEEPING = 0, 1, 2, 3, 4
-STATUS_NAMES = ("moving", "landed", "exited", "failed", "sleeping")
+# SLEEPING: resting on a surface where the flow cannot move it (docs/contacts.md); UNRELEASED:
+# waiting for its release time (the scene's bodies[i].release), not stepped until then
+MOVING, LANDED, EXITED, FAILED, SLEEPING, UNRELEASED = 0, 1, 2, 3, 4, 5
+STATUS_NAMES = ("moving", "landed", "exited", "failed", "sleeping", "unreleased")
 
 
 def _dumps(d, what):
@@ -74,8 +75,9 @@ class Simulation(_lrigid.Simulation):
     State (NumPy arrays, copies; one row per body, in the order of trajectories.csv):
     ``positions`` (N, 3) centre of mass, m; ``orientations`` (N, 4) body -> world quaternion
     w, x, y, z; ``velocities`` (N, 3) m/s and ``angular_velocities`` (N, 3) rad/s in world axes
-    (as trajectories.csv); ``status`` (N,) uint8 (MOVING, LANDED, EXITED, FAILED, SLEEPING); ``types``
-    (N,) index into ``type_names``; ``stop_times`` (s) and ``reasons`` of stopped bodies.
+    (as trajectories.csv); ``status`` (N,) uint8 (MOVING, LANDED, EXITED, FAILED, SLEEPING,
+    UNRELEASED); ``types`` (N,) index into ``type_names``; ``stop_times`` (s) and ``reasons``
+    of stopped bodies.
 
     Changing the state between steps: assign a whole array, e.g.
     ``v = sim.velocities; v[3] += (0, 0, 1); sim.velocities = v`` (orientations are
