@@ -517,8 +517,8 @@ void ResultWriter::finish(const State& st, const RunStats& stats, const nlohmann
   // contacts (docs/contacts.md): each body's state at the end, the contact events (touches
   // after flying) and the first touchdowns on the ground, bodies removed at the grid's edge
   {
-    json states = {{"flying", 0}, {"sliding", 0}, {"resting", 0}, {"sleeping", 0},
-                   {"exited", 0}, {"landed", 0},  {"failed", 0}};
+    json states = json::object();
+    for (const char* name : kStateNames) states[name] = 0;
     uint64_t events = 0;
     size_t touched = 0, hidden = 0, released = 0;
     for (size_t i = 0; i < st.size(); ++i) {
