@@ -22,9 +22,10 @@ Error.__doc__ = ("Bad input (scene, shape, grid, arguments): the message names t
 # status codes of Simulation.status (as in bodies.pvd's "status" array): MOVING stepped
 # (flying, sliding or resting), LANDED stopped at a "stop" ground, EXITED left the grid or stopped
 # at a "stop" wall, FAILED a non-finite state, SLEEPING resting on a surface where the flow cannot
-# move it, not stepped until a gust wakes it (docs/contacts.md)
-MOVING, LANDED, EXITED, FAILED, SLEEPING = 0, 1, 2, 3, 4
-STATUS_NAMES = ("moving", "landed", "exited", "failed", "sleeping")
+# move it, not stepped until a gust wakes it (docs/contacts.md), UNRELEASED waiting for its
+# release time (the scene's bodies[i].release), not stepped until then
+MOVING, LANDED, EXITED, FAILED, SLEEPING, UNRELEASED = 0, 1, 2, 3, 4, 5
+STATUS_NAMES = ("moving", "landed", "exited", "failed", "sleeping", "unreleased")
 
 # the names of Simulation.state_codes in code order, as the outputs write a body's state
 # (trajectories.csv's "state" column, bodies.pvd's "state" array): flying, sliding, resting,
@@ -96,12 +97,12 @@ class Simulation(_lrigid.Simulation):
     State (NumPy arrays, one row per body, in the order of trajectories.csv). Read-only views
     of the run's own arrays, no copy, that follow the run (take ``.copy()`` to keep a value):
     ``positions`` (N, 3) float centre of mass, m; ``status`` (N,) uint8 (MOVING, LANDED,
-    EXITED, FAILED, SLEEPING); ``types`` (N,) uint16 index into ``type_names``. Copies, made
-    at each read: ``orientations`` (N, 4) body -> world quaternion w, x, y, z; ``velocities``
+    EXITED, FAILED, SLEEPING, UNRELEASED); ``types`` (N,) uint16 index into ``type_names``.
+    Copies, made at each read: ``orientations`` (N, 4) body -> world quaternion w, x, y, z; ``velocities``
     (N, 3) m/s and ``angular_velocities`` (N, 3) rad/s in world axes (as trajectories.csv);
     ``states`` (N,) str, each body's state as the outputs name it (``STATE_NAMES``: flying,
-    sliding, resting, sleeping, exited, landed, failed) and ``state_codes`` (N,) uint8 its
-    index in ``STATE_NAMES``; ``stop_times`` (s) and ``reasons`` of stopped bodies.
+    sliding, resting, sleeping, exited, landed, failed, unreleased) and ``state_codes`` (N,)
+    uint8 its index in ``STATE_NAMES``; ``stop_times`` (s) and ``reasons`` of stopped bodies.
 
     Changing the state between steps: assign a whole array, e.g.
     ``v = sim.velocities; v[3] += (0, 0, 1); sim.velocities = v`` or

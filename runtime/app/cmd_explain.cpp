@@ -51,6 +51,7 @@ void print_type(const json& t) {
   else if (sf.is_object())
     std::printf("  flow where it starts: none of its %zu positions is in the fluid\n",
                 sf["positions"].get<size_t>());
+  std::printf("  released: %s\n", t["release"]["text"].get<std::string>().c_str());
   const json& ct = t["crossing_trajectories"];
   if (ct["on"].get<bool>())
     std::printf("  crossing trajectories: drift %.3g m/s = %.3g u'; time scale of the velocity "

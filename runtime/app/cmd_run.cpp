@@ -156,7 +156,7 @@ void run(const RunArgs& a, const Ranks& ranks) {
     Progress progress("lrigid", quiet ? Progress::Mode::Quiet : Progress::Mode::Auto);
     if (!quiet)
       opt.on_progress = [&](const State& s, double f) {
-        size_t moving = 0, landed = 0, exited = 0, resting = 0;
+        size_t moving = 0, landed = 0, exited = 0, resting = 0, waiting = 0;
         for (size_t i = 0; i < s.size(); ++i) {
           const BodyStatus b = s.status[i];
           // each body counted once: moving (flying or sliding), resting on a surface or asleep
@@ -168,11 +168,15 @@ void run(const RunArgs& a, const Ranks& ranks) {
           moving += b == BodyStatus::Moving && !rests;
           landed += b == BodyStatus::Landed;
           exited += b == BodyStatus::Exited || b == BodyStatus::Failed;
+          waiting += b == BodyStatus::Unreleased;
         }
-        char buf[200];
-        std::snprintf(buf, sizeof buf,
-                      "t = %.3f / %.3f s, moving %zu, resting %zu, landed %zu, stopped %zu", s.t,
-                      model.duration, moving, resting, landed, exited);
+        char buf[240];
+        const int len = std::snprintf(
+            buf, sizeof buf, "t = %.3f / %.3f s, moving %zu, resting %zu, landed %zu, stopped %zu",
+            s.t, model.duration, moving, resting, landed, exited);
+        // bodies not released yet (bodies[i].release)
+        if (waiting > 0 && len > 0 && size_t(len) < sizeof buf)
+          std::snprintf(buf + len, sizeof buf - size_t(len), ", waiting %zu", waiting);
         progress.update(f, buf);
       };
     RunStats stats = simulate(model, &state, opt);

@@ -109,6 +109,30 @@ TEST(CliExplain, SpunBallGetsMagnus) {
     EXPECT_EQ(t[i].chooses.find("magnus"), std::string::npos) << "petal " << i;
 }
 
+// each body type says when its entry's bodies are released: all at t = 0, by rate, or in bursts
+TEST(CliExplain, SaysWhenEachEntrysBodiesAreReleased) {
+  const std::string ball = R"("shape": {"type": "sphere", "radius": 0.005}, "density": 2500,
+      "position": [0, 0, 1])";
+  const Result r = explain_text(R"({"version": 1,
+    "fluid": {"density": 1.2, "kinematic_viscosity": 1.5e-5,
+              "uniform": {"U": [1, 0, 0], "k": 0.1, "epsilon": 0.01}},
+    "gravity": [0, 0, -9.81], "effects": "auto", "integrator": {"scheme": "strang", "dt": 0.002},
+    "duration": 10, "seed": 1, "bodies": [
+      {"name": "now", )" + ball + R"(, "count": 3},
+      {"name": "rate", )" + ball + R"(, "count": 10, "release": {"rate": 4, "start": 0.5}},
+      {"name": "bursts", )" + ball + R"(, "count": 10, "release": {"times": [1, 2, 3]}}]})");
+  ASSERT_EQ(r.rc, 0) << r.out;
+  EXPECT_NE(r.out.find("released: all at t = 0\n"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("released: 4 bodies per second from t = 0.5 s: body k of the entry at "
+                       "0.5 + k / 4 s, the last (k = 9) at 2.75 s\n"),
+            std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("released: in 3 bursts from t = 1 s to 3 s: 3 bodies each, 4 in the "
+                       "first 1 of them\n"),
+            std::string::npos)
+      << r.out;
+}
+
 // each body type starts with one plain sentence, and the sentence agrees with the
 // numbers printed under it: the settling speed, falls or rises, the turbulence response
 TEST(CliExplain, EachBodyTypeStartsWithAPlainSentenceThatMatchesItsNumbers) {

@@ -33,6 +33,28 @@ def test_shapes_and_initial_state():
     assert np.all((sim.positions >= 0) & (sim.positions <= 1))
 
 
+def test_a_body_waits_unreleased_until_its_release_time():
+    d = {"version": 1,
+         "fluid": {"density": RHO_F, "kinematic_viscosity": 1e-6,
+                   "uniform": {"U": [0, 0, 0], "k": 0, "epsilon": 0}},
+         "gravity": [0, 0, -9.81], "effects": ["gravity"],
+         "integrator": {"scheme": "splitting", "dt": 0.001}, "duration": 1.0, "seed": 3,
+         "bodies": [{"name": "glass", "shape": {"type": "sphere", "radius": A},
+                     "density": RHO_B, "count": 3, "spawn_box": [[0, 0, 0], [1, 1, 1]],
+                     "release": {"times": [0, 0.25]}}]}  # bodies 0, 1 at 0; body 2 at 0.25 s
+    sim = lrigid.Simulation(lrigid.Scene.from_dict(d))
+    assert list(sim.status) == [lrigid.MOVING, lrigid.MOVING, lrigid.UNRELEASED]
+    assert lrigid.STATUS_NAMES[lrigid.UNRELEASED] == "unreleased"
+    start = sim.positions.copy()
+    sim.step(200)  # 0.2 s
+    assert sim.status[2] == lrigid.UNRELEASED
+    assert np.array_equal(sim.positions[2], start[2]), "not stepped before its release"
+    assert sim.positions[0][2] < start[0][2], "the others fall"
+    sim.step(100)  # 0.3 s: body 2 falling for 0.05 s
+    assert sim.status[2] == lrigid.MOVING
+    assert sim.positions[2][2] < start[2][2], "falls from its release on"
+
+
 def test_push_gives_the_analytic_velocities():
     sim = lrigid.Simulation(sphere_scene(["added_mass"]))
     V = 4 / 3 * math.pi * A ** 3

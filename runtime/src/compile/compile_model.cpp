@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
+#include <sstream>
 
 #include <Eigen/Eigenvalues>
 
@@ -15,6 +17,7 @@
 #include "effects/plate.h"
 #include "effects/registry.h"
 #include "fluid/turbulence_coefficients.h"
+#include "model/release.h"
 #include "util/error.h"
 #include "util/quantile.h"
 #include "util/rng.h"
@@ -377,7 +380,46 @@ Model compile_model(const Scene& scene, FluidField field, const AddedMassProvide
   }
   if (m.types.size() > 65535) fail_input(scene.file, "bodies", "more than 65535 body variants");
   m.body_count = first;
+  // release over time: body k of an entry counts from the entry's first body (its variants are
+  // contiguous)
+  bool any_release = false;
+  for (const BodySpec& b : scene.bodies) any_release = any_release || b.released_over_time();
+  if (any_release) {
+    m.release_step.assign(m.body_count, 0);
+    std::vector<size_t> entry_first(scene.bodies.size(), ~size_t(0));
+    for (const BodyType& t : m.types)
+      entry_first[t.spec] = std::min(entry_first[t.spec], t.first_body);
+    for (const BodyType& t : m.types)
+      for (size_t i = t.first_body; i < t.first_body + t.count; ++i)
+        m.release_step[i] = first_step_at(
+            release_time(scene.bodies[t.spec], static_cast<int>(i - entry_first[t.spec])), m.dt);
+  }
   m.field = std::move(field);
+  // the solids' surface an entry spawns on (fluid/solid_surface.h)
+  m.spawn_sites.resize(scene.bodies.size());
+  for (size_t e = 0; e < scene.bodies.size(); ++e) {
+    const BodySpec& b = scene.bodies[e];
+    if (!b.spawn_on_solids) continue;
+    const std::string key = "bodies[" + std::to_string(e) + "].spawn";
+    if (m.field.is_uniform())
+      fail_input(scene.file, key, "spawns on the grid's solids, but the flow is uniform (no grid, "
+                                  "no solids): give fluid.field or a spawn_box");
+    const double inf = std::numeric_limits<double>::infinity();
+    const Vec3 lo = b.spawn_surface_box ? b.box_lo : Vec3::Constant(-inf);
+    const Vec3 hi = b.spawn_surface_box ? b.box_hi : Vec3::Constant(inf);
+    m.spawn_sites[e] = solid_surface_sites(m.field, lo, hi);
+    if (m.spawn_sites[e].empty()) {
+      std::ostringstream msg;
+      msg << "no surface of the grid's solids lies ";
+      if (b.spawn_surface_box)
+        msg << "in the box [[" << lo.x() << ", " << lo.y() << ", " << lo.z() << "], [" << hi.x()
+            << ", " << hi.y() << ", " << hi.z() << "]] (m)";
+      else
+        msg << "in the grid: every point has flow";
+      msg << "; lrigid info GRID lists the solids and their boxes";
+      fail_input(scene.file, b.spawn_surface_box ? key + ".box" : key, msg.str());
+    }
+  }
   m.field.set_walls_collide(m.walls_contact == ContactMode::Collide);
   // a colliding ground at (or just below) the grid's bottom
   m.field.set_floor_clamp(m.ground_collides() && !m.field.is_uniform() &&
@@ -397,9 +439,30 @@ Model compile_model(const Scene& scene, FluidField field, const AddedMassProvide
   return m;
 }
 
-Vec3 initial_position(const Model& model, const BodySpec& spec, uint32_t id) {
-  if (!spec.spawn_in_box) return spec.position;
+// the purposes of uniforms4 for a body's start: 1 its place in the spawn box, 2 its spin,
+// 16 to 47 its draws on the solids' surface
+constexpr uint32_t kSurfaceDraws = 16;
+
+Vec3 initial_position(const Model& model, const BodySpec& spec, size_t entry, uint32_t id) {
   double u[4];
+  if (spec.spawn_on_solids) {
+    // a site of the solids' surface and a place on its face; drawn again (up to 32 times) where
+    // the place is not in the fluid (a solid beyond the offset, a corner the interpolation
+    // takes as outside), else the site's fluid point itself
+    const std::vector<SurfaceSite>& sites = model.spawn_sites[entry];
+    const GridGeometry& g = model.field.geometry();
+    auto site = [&]() -> const SurfaceSite& {
+      return sites[std::min(sites.size() - 1, size_t(u[0] * double(sites.size())))];
+    };
+    FluidSample fs;
+    for (uint32_t draw = 0; draw < 32; ++draw) {
+      uniforms4(model.seed, id, kSurfaceDraws + draw, u);
+      const Vec3 x = surface_site_position(g, site(), spec.spawn_offset, u[1], u[2]);
+      if (model.field.sample(x, 0.0, false, &fs)) return x;
+    }
+    return surface_site_position(g, site(), 0.5 * g.spacing[site().axis], 0.5, 0.5);
+  }
+  if (!spec.spawn_in_box) return spec.position;
   uniforms4(model.seed, id, 1, u);
   Vec3 x;
   for (int a = 0; a < 3; ++a) x[a] = spec.box_lo[a] + u[a] * (spec.box_hi[a] - spec.box_lo[a]);
@@ -438,7 +501,11 @@ State initial_state(const Model& model, const Scene& scene) {
     for (size_t i = type.first_body; i < type.first_body + type.count; ++i) {
       const uint32_t id = static_cast<uint32_t>(i);
       s.type[i] = static_cast<uint16_t>(ti);
-      s.x[i] = initial_position(model, spec, id);
+      if (!model.release_step.empty() && model.release_step[i] > 0) {
+        s.status[i] = BodyStatus::Unreleased;  // simulate() releases it (model/release.h)
+        s.hidden[i] = 1;
+      }
+      s.x[i] = initial_position(model, spec, type.spec, id);
       if (spec.random_orientation) {
         // uniform on SO(3): a normalized 4D Gaussian (Shoemake's method is equivalent)
         NormalStream ns(model.seed, id, ~uint64_t(0));

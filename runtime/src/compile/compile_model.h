@@ -56,8 +56,8 @@ Model compile_model(const Scene& scene, FluidField field, const AddedMassProvide
 // Basset history from the relative velocity at t = 0.
 State initial_state(const Model& model, const Scene& scene);
 
-// Where body `id` of the entry `spec` starts (its position, or its draw in the spawn box), as
-// initial_state places it.
-Vec3 initial_position(const Model& model, const BodySpec& spec, uint32_t id);
+// Where body `id` of the entry `spec` (scene.bodies[entry]) starts (its position, its draw in
+// the spawn box or on the solids' surface), as initial_state places it.
+Vec3 initial_position(const Model& model, const BodySpec& spec, size_t entry, uint32_t id);
 
 }  // namespace lrigid

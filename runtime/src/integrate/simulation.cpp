@@ -113,6 +113,24 @@ WorkList work_list(const Model& model, const State& st, const std::vector<StepKi
   return w;
 }
 
+// Bodies of [n0, n) whose release step (Model::release_step) has come join the run: moving and
+// shown from `step` on, in the state initial_state gave them. Returns the next step a body of
+// the range waits for (~0: none), where a stretch of steps ends so that it joins on time.
+uint64_t release_due(const Model& model, State& st, int64_t n0, int64_t n, uint64_t step) {
+  uint64_t next = ~uint64_t(0);
+  if (model.release_step.empty()) return next;
+  for (int64_t i = n0; i < n; ++i) {
+    if (st.status[i] != BodyStatus::Unreleased) continue;
+    if (model.release_step[i] <= step) {
+      st.status[i] = BodyStatus::Moving;
+      st.hidden[i] = 0;
+    } else {
+      next = std::min(next, model.release_step[i]);
+    }
+  }
+  return next;
+}
+
 }  // namespace
 
 StepKind step_kind(const Model& model, const BodyType& type, std::string* why_not_batched) {
@@ -146,10 +164,11 @@ RunStats simulate(const Model& model, State* state, const RunOptions& options) {
   const uint64_t total_steps =
       static_cast<uint64_t>(std::llround(model.duration / model.dt));
   const uint64_t stride = output_stride(model, options.every);
-  if (options.on_output && options.output_at_start) options.on_output(st);
   const int threads = options.threads > 0 ? options.threads : omp_get_max_threads();
   const auto n = static_cast<int64_t>(std::min(st.size(), options.body_end));
   const auto n0 = static_cast<int64_t>(std::min(st.size(), options.body_begin));
+  uint64_t next_release = release_due(model, st, n0, n, st.step);
+  if (options.on_output && options.output_at_start) options.on_output(st);
   double wall = stats.wall_seconds;
   // body types that take the batched step (integrate/rigid_batch.h)
   std::vector<StepKind> kinds(model.types.size());
@@ -160,7 +179,8 @@ RunStats simulate(const Model& model, State* state, const RunOptions& options) {
     const uint64_t first = st.step;
     const uint64_t next_output = (first / stride + 1) * stride;
     const uint64_t last = stream_stretch_end(
-        model, first, std::min({total_steps, next_output, first + kStretchSteps}));
+        model, first,
+        std::min({total_steps, next_output, first + kStretchSteps, next_release}));
     model.field.prepare(static_cast<double>(first) * model.dt, stream_window_end(model, last));
     uint64_t body_steps = 0, handoffs = 0, newton = 0;
     const auto t0 = std::chrono::steady_clock::now();
@@ -195,6 +215,7 @@ RunStats simulate(const Model& model, State* state, const RunOptions& options) {
     stats.newton_steps += newton;
     st.step = last;
     st.t = static_cast<double>(last) * model.dt;
+    if (next_release <= last) next_release = release_due(model, st, n0, n, last);
     if (options.live_stats) {
       *options.live_stats = stats;
       options.live_stats->steps = last;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <string>
 #include <utility>
 #include <vector>
@@ -16,6 +17,7 @@
 #include "io/field_loader.h"
 #include "io/sanity.h"
 #include "model/model.h"
+#include "model/release.h"
 #include "util/quantile.h"
 
 namespace lrigid {
@@ -41,8 +43,8 @@ nlohmann::json start_flow(const Scene& scene, const Model& model, const BodyType
   for (size_t k = 0; k < picks; ++k) {
     const size_t i = t.first_body + k * t.count / picks;
     FluidSample fs;
-    if (!model.field.sample(initial_position(model, spec, static_cast<uint32_t>(i)), 0.0, false,
-                            &fs))
+    if (!model.field.sample(initial_position(model, spec, t.spec, static_cast<uint32_t>(i)), 0.0,
+                            false, &fs))
       continue;
     speed.push_back(fs.U.norm());
     u_turb.push_back(std::sqrt(fs.sigma2));
@@ -55,6 +57,40 @@ nlohmann::json start_flow(const Scene& scene, const Model& model, const BodyType
   j["u_turb_median"] = quantile(u_turb, 0.5);
   // k from the Langevin variance sigma2 = 2k/3, as the grid's line above takes it
   j["k_median"] = 1.5 * j["u_turb_median"].get<double>() * j["u_turb_median"].get<double>();
+  return j;
+}
+
+// When the entry's bodies are released (model/release.h): its rate or times, the first and last
+// body's time, and the same in words.
+nlohmann::json release(const BodySpec& spec) {
+  char buf[200];
+  nlohmann::json j;
+  const double first = release_time(spec, 0), last = release_time(spec, spec.count - 1);
+  j["first"] = first;
+  j["last"] = last;
+  if (spec.release_rate > 0) {
+    j["rate"] = spec.release_rate;
+    j["start"] = spec.release_start;
+    std::snprintf(buf, sizeof buf,
+                  "%.6g bodies per second from t = %.6g s: body k of the entry at %.6g + k / "
+                  "%.6g s, the last (k = %d) at %.6g s",
+                  spec.release_rate, spec.release_start, spec.release_start, spec.release_rate,
+                  spec.count - 1, last);
+  } else if (!spec.release_times.empty()) {
+    j["times"] = spec.release_times;
+    const size_t n = spec.release_times.size();
+    const int q = spec.count / int(n), r = spec.count % int(n);
+    std::snprintf(buf, sizeof buf, "in %zu bursts from t = %.6g s to %.6g s: %d bodies each",
+                  n, spec.release_times.front(), spec.release_times.back(), q);
+    std::string text = buf;
+    if (r > 0)
+      text += ", " + std::to_string(q + 1) + " in the first " + std::to_string(r) + " of them";
+    j["text"] = text;
+    return j;
+  } else {
+    std::snprintf(buf, sizeof buf, "all at t = 0");
+  }
+  j["text"] = buf;
   return j;
 }
 
@@ -83,6 +119,7 @@ nlohmann::json body_type(const Scene& scene, const Model& model, const FlowScale
   j["stokes_kolmogorov"] = a.stokes_kolmogorov;
   j["spin_ratio"] = a.spin_ratio;
   j["start_flow"] = start_flow(scene, model, t);
+  j["release"] = release(scene.bodies[t.spec]);
   // crossing trajectories at the representative flow (effects/turbulence.h): the drift against
   // the turbulent velocity u' = sqrt(2k/3), and the factors by which it shortens the time scale of
   // the velocity the body sees along and across the drift

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "fluid/solid_surface.h"
 #include "io/grid_reader.h"
 #include "util/quantile.h"
 
@@ -28,9 +29,7 @@ nlohmann::json grid_info(const std::string& path, size_t max_solids) {
   const size_t n = g.points();
   auto index = [&](int i, int j, int k) { return size_t(i) + size_t(nx) * (size_t(j) + size_t(ny) * k); };
   // the point indices (i, j, k) of point p (x fastest)
-  auto indices = [&](size_t p, int* c) {
-    c[0] = int(p % nx), c[1] = int((p / nx) % ny), c[2] = int(p / (size_t(nx) * ny));
-  };
+  auto indices = [&](size_t p, int* c) { grid_point_indices(g, p, c); };
   // calls fn(r) for each neighbour r of point p along the axes, within the grid
   auto for_each_neighbour = [&](size_t p, auto&& fn) {
     int c[3];

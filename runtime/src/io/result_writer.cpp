@@ -367,6 +367,9 @@ void ResultWriter::write_frame(const State& st) {
       csv_line_.append(b, r.ptr);
     };
     for (size_t i = 0; i < st.size(); ++i) {
+      // a body waiting for its release has no row (read_results: a frame lists the bodies
+      // released by then)
+      if (st.status[i] == BodyStatus::Unreleased) continue;
       const Mat3 R = st.q[i].toRotationMatrix();
       const Vec3 v = body_velocity(model_, st, i, R), w = R * st.w[i];
       const Quat& q = st.q[i];
@@ -514,17 +517,20 @@ void ResultWriter::finish(const State& st, const RunStats& stats, const nlohmann
   // contacts (docs/contacts.md): each body's state at the end, the contact events (touches
   // after flying) and the first touchdowns on the ground, bodies removed at the grid's edge
   {
-    json states = {{"flying", 0}, {"sliding", 0}, {"resting", 0}, {"sleeping", 0},
-                   {"exited", 0}, {"landed", 0},  {"failed", 0}};
+    json states = json::object();
+    for (const char* name : kStateNames) states[name] = 0;
     uint64_t events = 0;
-    size_t touched = 0, hidden = 0;
+    size_t touched = 0, hidden = 0, released = 0;
     for (size_t i = 0; i < st.size(); ++i) {
       states[st.state_name(i)] = states[st.state_name(i)].get<size_t>() + 1;
       if (i < st.impacts.size()) events += st.impacts[i];
       if (i < st.t_touch.size()) touched += !std::isnan(st.t_touch[i]);
-      if (i < st.hidden.size()) hidden += st.hidden[i];
+      if (i < st.hidden.size()) hidden += st.hidden[i] && st.status[i] == BodyStatus::Exited;
+      released += st.status[i] != BodyStatus::Unreleased;
     }
     s["states"] = states;
+    // bodies released by the end (bodies[i].release; all of them without it)
+    s["released"] = released;
     s["contacts"] = {{"ground", model_.has_ground ? contact_mode_name(model_.ground_contact)
                                                   : "none"},
                      {"walls", contact_mode_name(model_.walls_contact)},
@@ -656,17 +662,25 @@ Results read_results(const std::string& dir, int target_faces) {
         if (e.value("reason", "") != "left the grid" && e.value("body", nb) < nb)
           removed[e.value("body", nb)] = 0;
   }
-  size_t row = 0;
+  // Rows go frame by frame, bodies in increasing order (a body number not above the one before
+  // starts a frame). A frame lists every body released by then (bodies[i].release), so a body is
+  // missing only from the frames before its first row: there it is unreleased and hidden, at its
+  // first recorded pose.
+  const uint8_t unreleased = uint8_t(state_code_from_name("unreleased"));
+  std::vector<uint8_t> has_row;  // (nframe * nbody)
+  size_t line_no = 1;
+  long prev_body = -1;
   while (std::getline(in, line)) {
+    ++line_no;
     if (line.empty()) continue;
-    const std::string at = "line " + std::to_string(row + 2);
+    const std::string at = "line " + std::to_string(line_no);
     const char* p = line.c_str();
     char* end = nullptr;
     const unsigned long body = std::strtoul(p, &end, 10);
     if (end == p || *end != ',') fail_input(csv, at, "malformed row \"" + line + "\"");
-    if (body != row % nb)
-      fail_input(csv, at, "body " + std::to_string(body) + " where body " +
-                              std::to_string(row % nb) + " was expected (rows go frame by frame)");
+    if (body >= nb)
+      fail_input(csv, at, "body " + std::to_string(body) + " of " + std::to_string(nb) +
+                              " bodies (summary.json)");
     p = std::strchr(end + 1, ',');  // skip the type name
     if (!p) fail_input(csv, at, "malformed row \"" + line + "\"");
     double v[8];
@@ -676,22 +690,57 @@ Results read_results(const std::string& dir, int target_faces) {
         fail_input(csv, at, "malformed number in \"" + line + "\"");
       p = end;
     }
-    if (row % nb == 0) a.times.push_back(v[0]);
-    a.x.emplace_back(v[1], v[2], v[3]);
-    a.q.emplace_back(v[4], v[5], v[6], v[7]);  // Eigen order w, x, y, z
+    if (long(body) <= prev_body || a.times.empty()) {
+      // a new frame: every body waiting until its row says otherwise
+      a.times.push_back(v[0]);
+      a.x.resize(a.x.size() + nb, Vec3::Zero());
+      a.q.resize(a.q.size() + nb, Quat::Identity());
+      has_row.resize(has_row.size() + nb, 0);
+      if (has_state) {
+        a.state.resize(a.state.size() + nb, unreleased);
+        a.hidden.resize(a.hidden.size() + nb, 1);
+      }
+    } else if (v[0] != a.times.back()) {
+      fail_input(csv, at, "t = " + std::to_string(v[0]) + " in the frame of t = " +
+                              std::to_string(a.times.back()) + " (rows go frame by frame)");
+    }
+    prev_body = long(body);
+    const size_t k = (a.times.size() - 1) * nb + body;
+    has_row[k] = 1;
+    a.x[k] = Vec3(v[1], v[2], v[3]);
+    a.q[k] = Quat(v[4], v[5], v[6], v[7]);  // Eigen order w, x, y, z
     if (has_state) {
       const size_t c = line.rfind(',');
       const int code = state_code_from_name(line.substr(c + 1));
       if (code < 0) fail_input(csv, at, "unknown state \"" + line.substr(c + 1) + "\"");
-      a.state.push_back(uint8_t(code));
-      a.hidden.push_back(removed[body] && line.compare(c + 1, std::string::npos, "exited") == 0);
+      a.state[k] = uint8_t(code);
+      a.hidden[k] = removed[body] && line.compare(c + 1, std::string::npos, "exited") == 0;
     }
-    ++row;
   }
-  if (nb == 0 || row == 0) fail_input(csv, "", "no rows");
-  if (row % nb != 0)
-    fail_input(csv, "", std::to_string(row) + " rows is not a whole number of frames of " +
-                            std::to_string(nb) + " bodies (summary.json)");
+  if (nb == 0 || a.times.empty()) fail_input(csv, "", "no rows");
+  const size_t nf = a.times.size();
+  size_t released = 0;  // bodies with rows
+  for (size_t b = 0; b < nb; ++b) {
+    size_t first = 0;
+    while (first < nf && !has_row[first * nb + b]) ++first;
+    if (first > 0 && !has_state)
+      fail_input(csv, "", "body " + std::to_string(b) + " has no row before " +
+                              (first == nf ? std::string("the end")
+                                           : "t = " + std::to_string(a.times[first])));
+    if (first == nf) continue;  // never released in the run
+    ++released;
+    for (size_t f = first; f < nf; ++f)
+      if (!has_row[f * nb + b])
+        fail_input(csv, "", "body " + std::to_string(b) + " has no row at t = " +
+                                std::to_string(a.times[f]) + " after its first one");
+    for (size_t f = 0; f < first; ++f) {
+      a.x[f * nb + b] = a.x[first * nb + b];
+      a.q[f * nb + b] = a.q[first * nb + b];
+    }
+  }
+  if (released != r.summary.value("released", nb))
+    fail_input(csv, "", std::to_string(released) + " bodies have rows where summary.json says " +
+                            std::to_string(r.summary.value("released", nb)) + " were released");
   return r;
 }
 

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <string>
 
+#include "model/release.h"
 #include "util/error.h"
 
 namespace lrigid {
@@ -112,6 +113,12 @@ std::vector<SanityFinding> check_scene(const Scene& scene, const Model& model) {
       lo = spec.box_lo, hi = spec.box_hi;
       where_key = key + ".spawn_box";
       what = "spawn_box " + box(lo, hi);
+    } else if (spec.spawn_on_solids) {
+      // the sites' fluid points lie in the grid and the box (compile_model refuses none)
+      lo = spec.spawn_surface_box ? Vec3(spec.box_lo.cwiseMax(glo)) : glo;
+      hi = spec.spawn_surface_box ? Vec3(spec.box_hi.cwiseMin(ghi)) : ghi;
+      where_key = key + ".spawn";
+      what = "spawn on the solids' surface in " + box(lo, hi);
     }
     all_bodies += size_t(spec.count);
     if (grid) {
@@ -137,7 +144,7 @@ std::vector<SanityFinding> check_scene(const Scene& scene, const Model& model) {
         for (const BodyType& same : model.types) {
           if (same.spec != t.spec) continue;
           for (size_t i = same.first_body; i < same.first_body + same.count; ++i) {
-            const Vec3 x = initial_position(model, spec, static_cast<uint32_t>(i));
+            const Vec3 x = initial_position(model, spec, t.spec, static_cast<uint32_t>(i));
             FluidSample fs;
             if ((x.array() >= glo.array()).all() && (x.array() <= ghi.array()).all() &&
                 !model.field.sample(x, 0.0, false, &fs))
@@ -173,6 +180,18 @@ std::vector<SanityFinding> check_scene(const Scene& scene, const Model& model) {
       add("spawn_below_ground", where_key,
           what + " lies below the ground (ground.z = " + g3(model.ground_z) +
               " m): its bodies land at t = 0; check ground.z and the box's z");
+
+    // bodies released after the run ends never move (model/release.h)
+    if (spec.released_over_time()) {
+      int late = 0;
+      for (int k = 0; k < spec.count; ++k) late += release_time(spec, k) > scene.duration;
+      if (late > 0)
+        add("release_after_end", key + ".release",
+            who + ": " + std::to_string(late) + " of its " + std::to_string(spec.count) +
+                " bodies are released after the run ends (duration = " + g3(scene.duration) +
+                " s, the last at " + g3(release_time(spec, spec.count - 1)) +
+                " s): they never appear; check the release times or the duration");
+    }
 
     // the time step against the scheme's measured limit (docs/stability.md section 2)
     if (a.tau_p > 0 && std::isfinite(a.tau_p)) {

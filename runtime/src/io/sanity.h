@@ -6,6 +6,7 @@
 //   - a density no material has
 //   - a spawn box or position outside the grid, inside the flow's solids, or under the ground
 //   - a time step beyond what the chosen scheme was measured to handle (docs/stability.md)
+//   - bodies released after the run ends (bodies[i].release)
 //   - a grid too coarse for the bodies (the bodies all start within one cell; a grid of fewer
 //     than 4 points along an axis)
 // Findings are warnings, except one: every body of the scene starting outside the grid or inside
@@ -26,7 +27,8 @@ struct SanityFinding {
   std::string check;    // which check: body_size, body_mass, density, spawn_outside_grid,
                         // spawn_partly_outside_grid, spawn_inside_solid,
                         // spawn_partly_inside_solid, spawn_below_ground, dt_stability,
-                        // grid_coarse, all_outside_grid, all_outside_fluid
+                        // grid_coarse, release_after_end, all_outside_grid,
+                        // all_outside_fluid
   std::string key;      // the scene key, e.g. "bodies[0].shape"
   std::string message;  // the value, what looks wrong, what to check
   bool error = false;   // an error even without --strict

@@ -288,7 +288,48 @@ Shape read_shape(Obj o, BodySpec* b) {
 
 constexpr Keys kBodyKeys = {"name",     "shape",    "density",     "mass_offset",
                             "count",    "position", "spawn_box",   "orientation",
-                            "velocity", "angular_velocity", "variation", "contact"};
+                            "velocity", "angular_velocity", "variation", "contact",
+                            "release",  "spawn"};
+
+// The latest release time a scene may give, s: far beyond any run, and its step count stays
+// an integer the step counter holds.
+constexpr double kMaxReleaseTime = 1e9;
+
+// "release": {"rate": R, "start": t} or {"times": [t0, t1, ...]} (model/release.h)
+void read_release(Obj r, BodySpec* b) {
+  const bool rate = r.has("rate"), times = r.has("times");
+  if (rate == times)
+    r.fail("", std::string("needs exactly one of \"rate\" (bodies per second) or \"times\" (s)") +
+                   (rate ? ", got both" : ""));
+  if (rate) {
+    b->release_rate = r.positive("rate");
+    if (r.has("start")) {
+      b->release_start = r.number("start");
+      if (!(b->release_start >= 0 && b->release_start <= kMaxReleaseTime))
+        r.fail("start", "must be in [0, 1e9] s, got " + Obj::dump(r.get("start")));
+    }
+    // the last body's time stays within the same bound
+    if (!(b->release_start + double(b->count - 1) / b->release_rate <= kMaxReleaseTime))
+      r.fail("rate", "releases the last of " + std::to_string(b->count) +
+                         " bodies after 1e9 s, got " + Obj::dump(r.get("rate")));
+  } else {
+    if (r.has("start")) r.fail("start", "applies to \"rate\" only (the times are absolute)");
+    const json& t = r.get("times");
+    if (!t.is_array() || t.empty())
+      r.fail("times", "must be a non-empty list of times in s, got " + Obj::dump(t));
+    for (size_t i = 0; i < t.size(); ++i) {
+      const std::string key = "times[" + std::to_string(i) + "]";
+      const double ti = r.as_number(t[i], key);
+      if (!(ti >= 0 && ti <= kMaxReleaseTime))
+        r.fail(key, "must be in [0, 1e9] s, got " + Obj::dump(t[i]));
+      if (i > 0 && !(ti > b->release_times.back()))
+        r.fail(key, "must be greater than the time before it (" +
+                        Obj::dump(t[i - 1]) + "): times increase, got " + Obj::dump(t[i]));
+      b->release_times.push_back(ti);
+    }
+  }
+  r.finish();
+}
 
 // A "contact" object (a body type's, or the scene's defaults): restitution in [0, 1],
 // friction >= 0 and rolling_resistance >= 0, each optional; *given says which were.
@@ -380,9 +421,33 @@ BodySpec read_body(Obj o) {
     if (c.get<long long>() > 100000000LL) o.fail("count", "more than 1e8 bodies is not supported");
     b.count = c.get<int>();
   }
-  const bool pos = o.has("position"), box = o.has("spawn_box");
-  if (pos == box) o.fail("", "needs exactly one of \"position\" or \"spawn_box\"");
-  if (pos) {
+  const bool pos = o.has("position"), box = o.has("spawn_box"), surf = o.has("spawn");
+  if (int(pos) + int(box) + int(surf) != 1)
+    o.fail("", "needs exactly one of \"position\", \"spawn_box\" or \"spawn\"");
+  if (surf) {
+    // {"surface": "solids", "box": [[x0,y0,z0],[x1,y1,z1]], "offset": m}
+    Obj sp = o.object("spawn", {"surface", "box", "offset"});
+    const json& kind = sp.get("surface");
+    if (!kind.is_string() || kind.get<std::string>() != "solids")
+      sp.fail("surface", "must be \"solids\" (the grid's solids), got " + Obj::dump(kind));
+    b.spawn_on_solids = true;
+    if (sp.has("box")) {
+      const json& sb = sp.get("box");
+      if (!sb.is_array() || sb.size() != 2)
+        sp.fail("box", "must be [[x0,y0,z0],[x1,y1,z1]], got " + Obj::dump(sb));
+      b.spawn_surface_box = true;
+      b.box_lo = sp.as_bounded_vec3(sb[0], "box[0]", kMaxCoordinate, kCoordinateRange);
+      b.box_hi = sp.as_bounded_vec3(sb[1], "box[1]", kMaxCoordinate, kCoordinateRange);
+      for (int a = 0; a < 3; ++a)
+        if (!(b.box_hi[a] >= b.box_lo[a])) sp.fail("box", "upper corner below lower corner");
+    }
+    if (sp.has("offset")) {
+      b.spawn_offset = sp.number("offset");
+      if (!(b.spawn_offset >= 0 && b.spawn_offset <= kMaxCoordinate))
+        sp.fail("offset", "must be in [0, 1e9] m, got " + Obj::dump(sp.get("offset")));
+    }
+    sp.finish();
+  } else if (pos) {
     b.position = o.bounded_vec3("position", kMaxCoordinate, kCoordinateRange);
   } else {
     const json& sb = o.get("spawn_box");
@@ -470,6 +535,7 @@ BodySpec read_body(Obj o) {
   if (o.has("contact"))
     read_contact(o.object("contact", kContactKeys), &b.contact, &b.restitution_given,
                  &b.friction_given, &b.rolling_given);
+  if (o.has("release")) read_release(o.object("release", {"rate", "start", "times"}), &b);
   o.finish();
   return b;
 }

@@ -10,6 +10,7 @@
 
 #include "body/added_mass.h"
 #include "fluid/field.h"
+#include "fluid/solid_surface.h"
 #include "model/scene.h"
 
 namespace lrigid {
@@ -165,6 +166,12 @@ struct Model {
   double turbulence_scale = 1;   // art direction: u' seen by the bodies is scaled by this
   std::vector<BodyType> types;
   size_t body_count = 0;
+  // (nbody, or empty when every body starts at t = 0) the step body i is released at
+  // (bodies[i].release, model/release.h); before it the body waits, unstepped and hidden
+  std::vector<uint64_t> release_step;
+  // (scene entries) the sites of the solids' surface an entry spawns on (bodies[i].spawn);
+  // empty for the other entries
+  std::vector<std::vector<SurfaceSite>> spawn_sites;
   EffectSet union_effects() const;
 };
 

@@ -55,6 +55,12 @@ struct BodySpec {
   bool spawn_in_box = false;
   Vec3 position = Vec3::Zero();           // centre of mass, world, m (when !spawn_in_box)
   Vec3 box_lo = Vec3::Zero(), box_hi = Vec3::Zero();  // spawn box corners, world, m
+  // spawn on the surface of the grid's solids (key "spawn", fluid/solid_surface.h): its sites
+  // with the fluid point in [box_lo, box_hi] (the whole grid without a box), `spawn_offset`
+  // into the fluid
+  bool spawn_on_solids = false;
+  bool spawn_surface_box = false;         // a box limits the sites
+  double spawn_offset = 0;                // m
   bool random_orientation = false;
   Quat orientation = Quat::Identity();    // body -> world
   Vec3 velocity = Vec3::Zero();           // world, m/s
@@ -70,6 +76,12 @@ struct BodySpec {
   // contact material; a key the body does not give comes from the scene's "contact"
   ContactSpec contact;
   bool restitution_given = false, friction_given = false, rolling_given = false;
+  // release over time (key "release", model/release.h): by rate (bodies per second from
+  // release_start) or at the listed times (the count split in bursts); neither: all at t = 0
+  double release_rate = 0;                // 1/s; 0: not by rate
+  double release_start = 0;               // s
+  std::vector<double> release_times;      // s, increasing
+  bool released_over_time() const { return release_rate > 0 || !release_times.empty(); }
 };
 
 struct OutputSpec {

@@ -9,6 +9,7 @@ const char* body_status_name(BodyStatus s) {
     case BodyStatus::Exited: return "exited";
     case BodyStatus::Failed: return "failed";
     case BodyStatus::Sleeping: return "sleeping";
+    case BodyStatus::Unreleased: return "unreleased";
   }
   return "?";
 }
@@ -20,12 +21,13 @@ uint8_t State::state_code(size_t i) const {
     case BodyStatus::Exited: return 4;
     case BodyStatus::Landed: return 5;
     case BodyStatus::Failed: return 6;
+    case BodyStatus::Unreleased: return 7;
   }
   return 0;
 }
 
 const char* const kStateNames[kStateCount] = {"flying", "sliding", "resting", "sleeping",
-                                              "exited", "landed",  "failed"};
+                                              "exited", "landed",  "failed",  "unreleased"};
 
 const char* State::state_name(size_t i) const { return kStateNames[state_code(i)]; }
 

@@ -12,8 +12,12 @@ namespace lrigid {
 // Moving: stepped (flying, sliding or resting: ContactState); Sleeping: resting where the flow
 // cannot move it, not stepped until it changes (contact/sleep.h); Landed: stopped at the
 // ground (ground.contact "stop"); Exited: left the grid (hidden from then on with "outside":
-// "remove") or stopped at a solid (walls.contact "stop"); Failed: a non-finite state.
-enum class BodyStatus : uint8_t { Moving = 0, Landed = 1, Exited = 2, Failed = 3, Sleeping = 4 };
+// "remove") or stopped at a solid (walls.contact "stop"); Failed: a non-finite state;
+// Unreleased: waiting for its release time (bodies[i].release, Model::release_step), not
+// stepped and hidden until then.
+enum class BodyStatus : uint8_t {
+  Moving = 0, Landed = 1, Exited = 2, Failed = 3, Sleeping = 4, Unreleased = 5
+};
 const char* body_status_name(BodyStatus s);
 // How a moving body meets the surfaces after its last step (contact/pass.h).
 enum class ContactState : uint8_t { Flying = 0, Sliding = 1, Resting = 2 };
@@ -54,7 +58,8 @@ struct State {
                                       // than Model::rest_speed
   std::vector<double> t_touch;        // (nbody) first touchdown on the ground, s (NaN: none)
   std::vector<Vec3> x_touch;          // (nbody) where (centre of mass), world, m
-  std::vector<uint8_t> hidden;        // (nbody) 1: left the grid, "outside" is "remove"
+  std::vector<uint8_t> hidden;        // (nbody) 1: left the grid, "outside" is "remove"; or
+                                      // not released yet
   std::vector<GustWatch> watch;       // (nbody, or 0 without contacts) sleeping bodies' gust
                                       // watches
   // Basset history (effects/basset.h), only for body types with the effect:
@@ -66,16 +71,16 @@ struct State {
   }
   static constexpr size_t kNoHistory = ~size_t(0);
   size_t size() const { return x.size(); }
-  // What the outputs call the body's state: flying, sliding, resting, sleeping, exited, landed
-  // or failed.
+  // What the outputs call the body's state: flying, sliding, resting, sleeping, exited, landed,
+  // failed or unreleased.
   const char* state_name(size_t i) const;
   // the same as a number for the .pvd: 0 flying, 1 sliding, 2 resting, 3 sleeping, 4 exited,
-  // 5 landed, 6 failed
+  // 5 landed, 6 failed, 7 unreleased
   uint8_t state_code(size_t i) const;
 };
 
 // The names of the state codes, in code order (State::state_code).
-constexpr int kStateCount = 7;
+constexpr int kStateCount = 8;
 extern const char* const kStateNames[kStateCount];
 // The code of a state name; -1 for a name that is none.
 int state_code_from_name(const std::string& name);

@@ -4,8 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "support/fixture.h"
 #include "util/error.h"
@@ -51,6 +53,74 @@ TEST(CompileModel, OtherErrorsOfTheProviderKeepTheirCodeAndNameTheKey) {
     EXPECT_NE(std::string(e.what()).find("scene.json: bodies[0].shape: out of memory"),
               std::string::npos) << e.what();
   }
+}
+
+// "spawn": {"surface": "solids", "box": ..., "offset": m}: every body starts in the fluid, within
+// offset + one grid spacing of a solid point, inside the box widened by the same; the places
+// follow from the seed; a box without solids and a uniform flow are refused naming the key.
+TEST(CompileModel, ASpawnOnTheSolidsSurfacePlacesBodiesNextToThemInTheFluid) {
+  const GridGeometry g = test::grid_geometry(12, 10, 8, Vec3::Zero(), Vec3::Constant(0.5));
+  auto solid = [](const Vec3& x) {
+    return x.x() >= 2 && x.x() <= 3.5 && x.y() >= 1.5 && x.y() <= 3 && x.z() <= 1.5;
+  };
+  const RawGridFrame f = test::grid_frame(g, [&](const Vec3& x, Vec3* U, double* k, double* e) {
+    *U = Vec3(1, 0, 0);
+    *k = 0.1;
+    *e = 0.05;
+    return !solid(x);
+  });
+  const FluidField field = FluidField::grid(g, {f}, 1.5e-5, Drift::Stationary, TimeMode::Clamp);
+  std::vector<Vec3> solid_points;
+  for (size_t p = 0; p < g.points(); ++p)
+    if (!f.valid[p]) {
+      int c[3];
+      grid_point_indices(g, p, c);
+      solid_points.push_back(Vec3(c[0], c[1], c[2]) * 0.5);
+    }
+  Scene s = test::sphere_scene(0.01, 500, 1.2, 1.5e-5, 300);
+  s.uniform_field = false;
+  s.bodies[0].spawn_on_solids = true;
+  s.bodies[0].spawn_surface_box = true;
+  s.bodies[0].box_lo = Vec3(0, 0, 0);
+  s.bodies[0].box_hi = Vec3(6, 2.2, 5);  // the block's sides facing -x, -y, +x and its top
+  for (const double offset : {0.0, 0.1, 0.4}) {
+    s.bodies[0].spawn_offset = offset;
+    const Model m = test::compile(s, field);
+    const State st = initial_state(m, s);
+    size_t top = 0;
+    for (size_t i = 0; i < st.size(); ++i) {
+      const Vec3& x = st.x[i];
+      FluidSample fs;
+      EXPECT_TRUE(m.field.sample(x, 0.0, false, &fs)) << "in the fluid: " << x.transpose();
+      double nearest = 1e30;
+      for (const Vec3& p : solid_points) nearest = std::min(nearest, (x - p).norm());
+      EXPECT_LE(nearest, offset + 0.5) << "offset " << offset << ": " << x.transpose();
+      EXPECT_LE(x.y(), 2.2 + 0.25 + 1e-12) << "within the box and half a spacing";
+      top += x.z() > 1.5;
+    }
+    EXPECT_GT(top, 0u) << "some on the top face";
+    EXPECT_LT(top, st.size()) << "some on the sides";
+    // the same seed, the same places; another, others
+    EXPECT_EQ(initial_state(m, s).x, st.x);
+    Scene other = s;
+    other.seed = s.seed + 1;
+    EXPECT_NE(initial_state(test::compile(other, field), other).x, st.x);
+  }
+  Scene empty = s;
+  empty.bodies[0].box_lo = Vec3(4.5, 4, 0);
+  empty.bodies[0].box_hi = Vec3(5.5, 4.5, 3);
+  try {
+    test::compile(empty, field);
+    ADD_FAILURE() << "a box without solids was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("bodies[0].spawn.box: no surface of the grid's solids"),
+              std::string::npos)
+        << e.what();
+    EXPECT_EQ(e.code(), ExitCode::BadInput);
+  }
+  Scene uniform = s;
+  uniform.uniform_field = true;
+  EXPECT_THROW(test::compile(uniform), Error) << "a uniform flow has no solids";
 }
 
 }  // namespace

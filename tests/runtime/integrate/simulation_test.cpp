@@ -211,6 +211,107 @@ TEST(Simulation, AResumedRunEndsWhereTheWholeRunEnds) {
   }
 }
 
+// wind_scene's beads released at 50 per second from 0.1 s (model/release.h): the last at 0.88 s
+Scene release_scene(int n) {
+  Scene s = wind_scene(n);
+  s.bodies[0].release_rate = 50;
+  s.bodies[0].release_start = 0.1;
+  return s;
+}
+
+// Body k is unreleased (not stepped, hidden) until the first step at or after 0.1 + k / 50 s;
+// the output there shows it where it starts, the next one has moved it. The run's body steps
+// are those of the released bodies only.
+TEST(Simulation, ARateReleasePutsBodyKInFlightFromStartPlusKOverRate) {
+  const Scene s = release_scene(40);
+  const Model m = test::compile(s);
+  State st = initial_state(m, s);
+  const State start = st;
+  std::vector<long> shown(st.size(), -1);  // the first output step each body is released at
+  std::vector<Vec3> x_shown(st.size()), x_next(st.size());
+  RunOptions opt;
+  opt.every = m.dt;
+  opt.on_output = [&](const State& now) {
+    for (size_t i = 0; i < now.size(); ++i) {
+      const bool waiting = now.status[i] == BodyStatus::Unreleased;
+      EXPECT_EQ(now.hidden[i], waiting ? 1 : 0) << "body " << i << " at step " << now.step;
+      if (waiting) {
+        EXPECT_EQ(now.x[i], start.x[i]) << "an unreleased body is not stepped";
+        continue;
+      }
+      if (shown[i] < 0) {
+        shown[i] = long(now.step);
+        x_shown[i] = now.x[i];
+      } else if (long(now.step) == shown[i] + 1) {
+        x_next[i] = now.x[i];
+      }
+    }
+  };
+  const RunStats stats = simulate(m, &st, opt);
+  uint64_t expected_steps = 0;
+  for (size_t k = 0; k < st.size(); ++k) {
+    const double t_release = 0.1 + double(k) / 50;
+    ASSERT_GE(shown[k], 0) << "body " << k << " released before the end";
+    const double t = double(shown[k]) * m.dt;
+    EXPECT_GE(t, t_release - 1e-9) << "body " << k << " not before its time";
+    EXPECT_LT(t - m.dt, t_release) << "body " << k << " at the first step of its time";
+    EXPECT_EQ(x_shown[k], start.x[k]) << "body " << k << " starts where initial_state put it";
+    EXPECT_NE(x_next[k], start.x[k]) << "body " << k << " moves from its release on";
+    expected_steps += 1000 - uint64_t(shown[k]);
+  }
+  EXPECT_EQ(stats.body_steps, expected_steps) << "unreleased bodies cost no steps";
+}
+
+// An entry released over time changes nothing of the other entries' bodies, to the bit (no
+// draws of its own, no steps before its release).
+TEST(Simulation, AReleasedEntryLeavesTheOthersBodiesAsTheyWere) {
+  const Scene alone = wind_scene(20);
+  Scene both = alone;
+  both.bodies.push_back(release_scene(20).bodies[0]);
+  both.bodies[1].name = "later";
+  const Model ma = test::compile(alone), mb = test::compile(both);
+  State a = initial_state(ma, alone), b = initial_state(mb, both);
+  simulate(ma, &a, RunOptions{});
+  simulate(mb, &b, RunOptions{});
+  for (size_t i = 0; i < a.size(); ++i)
+    EXPECT_TRUE(simulated_same_body(a, b, i)) << "body " << i;
+  for (size_t i = a.size(); i < b.size(); ++i)
+    EXPECT_EQ(b.status[i], BodyStatus::Moving) << "body " << i << " released by 1 s";
+}
+
+// With a release, a run resumed between two releases ends bitwise where the whole run ends, on
+// one thread or two, batched or scalar.
+TEST(Simulation, AResumedRunWithAReleaseEndsWhereTheWholeRunEnds) {
+  const Scene s = release_scene(40);
+  for (const bool batched : {true, false}) {
+    Model m = test::compile(s);
+    m.batched = batched;
+    State whole = initial_state(m, s), resumed = whole, two = whole;
+    const RunStats all = simulate(m, &whole, RunOptions{});
+    RunOptions on_two;
+    on_two.threads = 2;
+    simulate(m, &two, on_two);
+    EXPECT_TRUE(identical(whole, two)) << "1 and 2 threads, batched " << batched;
+    Model half = m;
+    half.duration = 0.5;
+    RunStats live;
+    RunOptions first;
+    first.live_stats = &live;
+    simulate(half, &resumed, first);
+    size_t waiting = 0;
+    for (BodyStatus b : resumed.status) waiting += b == BodyStatus::Unreleased;
+    EXPECT_GT(waiting, 0u) << "some bodies still wait at 0.5 s";
+    EXPECT_LT(waiting, resumed.size()) << "some are released by 0.5 s";
+    RunOptions second;
+    second.output_at_start = false;
+    second.live_stats = &live;
+    const RunStats rest = simulate(m, &resumed, second);
+    EXPECT_TRUE(identical(whole, resumed)) << "batched " << batched;
+    EXPECT_EQ(whole.status, resumed.status);
+    EXPECT_EQ(rest.body_steps, all.body_steps);
+  }
+}
+
 State run(int threads, uint64_t seed) {
   Scene s = test::sphere_scene(0.002, 300, 1.2, 1.5e-5, 301);
   s.uniform_U = Vec3(2, 0.5, 0);

@@ -3,6 +3,11 @@
 #include <gtest/gtest.h>
 #include <tiny_gltf.h>
 #include <unistd.h>
+#include <vtkDataArray.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkPolyData.h>
+#include <vtkXMLPolyDataReader.h>
 
 #include <algorithm>
 #include <cstring>
@@ -260,6 +265,89 @@ TEST(Gltf, BodiesRemovedAtTheGridsEdgeAreHidden) {
     EXPECT_EQ(k[3 * (nf - 1)], 0.f);
   }
   EXPECT_EQ(scale_channels, 2u);
+  fs::remove_all(dir);
+}
+
+// bodies[i].release (model/release.h): a body waiting for its release has no row in
+// trajectories.csv, is unreleased and hidden in what read_results gives (lrigid render,
+// export-gltf) at its first recorded pose, scaled to 0 until its release in animation.glb, and
+// has the state 7 (unreleased) in bodies.pvd; summary.json counts the released bodies.
+TEST(Gltf, UnreleasedBodiesAreLeftOutOrHiddenUntilTheirRelease) {
+  const std::string dir = (fs::temp_directory_path() / ("lrigid_gltf_release_" +
+                                                        std::to_string(::getpid()))).string();
+  fs::remove_all(dir);
+  Scene s = tumbling_scene(dir);
+  s.bodies[1].release_times = {0.35, 0.75};  // the 4 cards, 2 at each time
+  const Model model = test::compile(s);
+  State st = initial_state(model, s);
+  run_with_outputs(model, s, dir, &st);
+  // released at the outputs of 0.4 s (cards 3, 4) and 0.8 s (cards 5, 6)
+  auto released_at = [](size_t body, double t) {
+    return body < 3 || (body < 5 ? t > 0.35 : t > 0.75);
+  };
+  {
+    std::ifstream csv(dir + "/trajectories.csv");
+    std::string line;
+    std::getline(csv, line);
+    std::map<double, std::vector<size_t>> rows;  // time -> bodies with a row
+    while (std::getline(csv, line)) {
+      std::stringstream f(line);
+      std::string body, type, t;
+      std::getline(f, body, ',');
+      std::getline(f, type, ',');
+      std::getline(f, t, ',');
+      rows[std::stod(t)].push_back(std::stoul(body));
+    }
+    ASSERT_EQ(rows.size(), 11u);
+    for (const auto& [t, bodies] : rows) {
+      std::vector<size_t> expected;
+      for (size_t b = 0; b < 7; ++b)
+        if (released_at(b, t)) expected.push_back(b);
+      EXPECT_EQ(bodies, expected) << "t = " << t;
+    }
+  }
+  const Results r = read_results(dir, 80);
+  EXPECT_EQ(r.summary["released"], 7);
+  EXPECT_EQ(r.summary["contacts"]["removed"], 0);
+  const size_t nf = r.frames.times.size();
+  ASSERT_EQ(nf, 11u);
+  const int unreleased = state_code_from_name("unreleased");
+  for (size_t fr = 0; fr < nf; ++fr)
+    for (size_t b = 0; b < 7; ++b) {
+      const double t = r.frames.times[fr];
+      EXPECT_EQ(r.frames.hidden_at(fr, b), !released_at(b, t)) << "body " << b << " t = " << t;
+      EXPECT_EQ(r.frames.state[fr * 7 + b] == unreleased, !released_at(b, t))
+          << "body " << b << " t = " << t;
+    }
+  EXPECT_EQ(r.frames.x[0 * 7 + 5], r.frames.x[8 * 7 + 5]) << "its first recorded pose before it";
+  EXPECT_NE(r.frames.x[8 * 7 + 5], r.frames.x[9 * 7 + 5]) << "and it moves from its release on";
+
+  tinygltf::TinyGLTF loader;
+  tinygltf::Model m;
+  std::string err, warn;
+  ASSERT_TRUE(loader.LoadBinaryFromFile(&m, &err, &warn, dir + "/animation.glb")) << err;
+  size_t scale_channels = 0;
+  for (const auto& ch : m.animations.at(0).channels) {
+    if (ch.target_path != "scale") continue;
+    ++scale_channels;
+    const tinygltf::AnimationSampler& sm = m.animations[0].samplers[size_t(ch.sampler)];
+    EXPECT_EQ(sm.interpolation, "STEP");
+    const auto k = accessor_data<float>(m, sm.output, 3);
+    ASSERT_EQ(k.size(), 3 * nf);
+    EXPECT_EQ(k[0], 0.f) << "hidden at t = 0";
+    EXPECT_EQ(k[3 * 3], 0.f) << "and at t = 0.3 s";
+    EXPECT_EQ(k[3 * (nf - 1)], 1.f) << "shown at the end";
+  }
+  EXPECT_EQ(scale_channels, 4u) << "the four cards";
+
+  vtkNew<vtkXMLPolyDataReader> points;
+  points->SetFileName((dir + "/bodies/bodies_000000.vtp").c_str());
+  points->Update();
+  vtkDataArray* state = points->GetOutput()->GetPointData()->GetArray("state");
+  ASSERT_NE(state, nullptr);
+  ASSERT_EQ(state->GetNumberOfTuples(), 7);
+  for (vtkIdType b = 0; b < 7; ++b)
+    EXPECT_EQ(state->GetComponent(b, 0) == unreleased, b >= 3) << "body " << b;
   fs::remove_all(dir);
 }
 

@@ -249,6 +249,24 @@ TEST_F(SanityChecks, SpawnBoxUnderTheGround) {
   EXPECT_NE(g->message.find("check ground.z and the box's z"), std::string::npos);
 }
 
+// bodies released after the run's end (duration 1 s) are named with their count; a release
+// within the run is not
+TEST_F(SanityChecks, ABodyReleasedAfterTheEndIsNamed) {
+  const std::string where = R"("position": [5, 5, 5], "release": )";
+  auto f = check(scene_text(grid(), "[" + sphere(0.005, 2500, where + R"({"rate": 4})") + "]"));
+  const SanityFinding* late = find(f, "release_after_end");
+  ASSERT_NE(late, nullptr) << all(f);  // bodies 5 to 9 at 1.25 to 2.25 s
+  EXPECT_EQ(late->key, "bodies[0].release");
+  EXPECT_FALSE(late->error);
+  EXPECT_NE(late->message.find("body type \"ball\": 5 of its 10 bodies are released after the "
+                               "run ends (duration = 1 s, the last at 2.25 s)"),
+            std::string::npos)
+      << late->message;
+  f = check(scene_text(grid(), "[" + sphere(0.005, 2500, where + R"({"times": [0, 0.5, 1]})") +
+                                   "]"));
+  EXPECT_EQ(find(f, "release_after_end"), nullptr) << all(f);
+}
+
 TEST_F(SanityChecks, TimeStepBeyondTheExplicitSchemesMeasuredLimit) {
   // a 50 um glass bead in air: tau_p = rho_b d^2 / (18 mu) = 0.019 s; euler: dt <= 2 tau_p
   const std::string b = "[" + sphere(2.5e-5, 2500, R"("spawn_box": [[0, 0, 6], [1, 1, 9]])") + "]";

@@ -198,7 +198,7 @@ INSTANTIATE_TEST_SUITE_P(
                 [](json& j) {
                   j["bodies"][0]["spawn_box"] = {{0, 0, 0}, {1, 1, 1}};
                 },
-                "bodies[0]: needs exactly one of \"position\" or \"spawn_box\""},
+                "bodies[0]: needs exactly one of \"position\", \"spawn_box\" or \"spawn\""},
         BadCase{"short vector",
                 [](json& j) {
                   j["gravity"] = {0, -9.81};
@@ -368,6 +368,55 @@ TEST(SceneJson, BadArtDirectionNamesTheKey) {
       << error_of(j);
 }
 
+// "release": by rate (from an optional start) or at listed times; without it every body starts
+// at t = 0
+TEST(SceneJson, ReleaseByRateOrTimes) {
+  json j = valid_scene();
+  EXPECT_FALSE(parse_scene(j.dump(), "/tmp/scene.json").bodies[0].released_over_time());
+  j["bodies"][0]["release"] = {{"rate", 20}, {"start", 0.5}};
+  BodySpec b = parse_scene(j.dump(), "/tmp/scene.json").bodies[0];
+  EXPECT_TRUE(b.released_over_time());
+  EXPECT_EQ(b.release_rate, 20);
+  EXPECT_EQ(b.release_start, 0.5);
+  EXPECT_TRUE(b.release_times.empty());
+  j["bodies"][0]["release"] = {{"rate", 4}};
+  EXPECT_EQ(parse_scene(j.dump(), "/tmp/scene.json").bodies[0].release_start, 0);
+  j["bodies"][0]["release"] = {{"times", {0, 0.25, 1}}};
+  b = parse_scene(j.dump(), "/tmp/scene.json").bodies[0];
+  EXPECT_EQ(b.release_rate, 0);
+  EXPECT_EQ(b.release_times, (std::vector<double>{0, 0.25, 1}));
+}
+
+TEST(SceneJson, BadReleaseNamesTheKeyAndValue) {
+  const std::vector<std::pair<json, std::string>> cases = {
+      {{{"rate", 0}}, "bodies[0].release.rate: must be > 0, got 0"},
+      {{{"rate", -2}}, "bodies[0].release.rate: must be > 0, got -2"},
+      {{{"rate", 1}, {"start", -1}}, "bodies[0].release.start: must be in [0, 1e9] s, got -1"},
+      {{{"times", {0.5, -1}}}, "bodies[0].release.times[1]: must be in [0, 1e9] s, got -1"},
+      {{{"times", {0.5, 0.5}}},
+       "bodies[0].release.times[1]: must be greater than the time before it (0.5)"},
+      {{{"times", {1, 0.5}}},
+       "bodies[0].release.times[1]: must be greater than the time before it (1)"},
+      {{{"times", json::array()}}, "bodies[0].release.times: must be a non-empty list"},
+      {{{"times", {0, 1}}, {"start", 1}}, "bodies[0].release.start: applies to \"rate\" only"},
+      {{{"rate", 1}, {"times", {0}}},
+       "bodies[0].release: needs exactly one of \"rate\" (bodies per second) or \"times\" "
+       "(s), got both"},
+      {json::object(), "bodies[0].release: needs exactly one of \"rate\""},
+      {{{"rat", 1}}, "bodies[0].release: unknown key \"rat\" (did you mean \"rate\"?)"},
+      {{{"time", {1}}}, "bodies[0].release: unknown key \"time\" (did you mean \"times\"?)"},
+  };
+  for (const auto& [release, message] : cases) {
+    json j = valid_scene();
+    j["bodies"][0]["release"] = release;
+    ExitCode code = ExitCode::Ok;
+    const std::string m = error_of(j, &code);
+    EXPECT_NE(m.find("/tmp/scene.json: " + message), std::string::npos)
+        << release.dump() << " -> " << m;
+    EXPECT_EQ(code, ExitCode::BadInput) << release.dump();
+  }
+}
+
 TEST(SceneJson, MissingFileSaysSo) {
   try {
     read_scene("/nonexistent/scene.json");
@@ -456,6 +505,7 @@ TEST(SceneJson, ATypoInAnyKeyIsNamed) {
   b["shape"]["panels"] = 200;
   b["variation"] = {{"size", {0.9, 1.1}}, {"density", {0.9, 1.1}}, {"spin", {0, 1}},
                     {"variants", 4}};
+  b["release"] = {{"rate", 10}, {"start", 0.5}};
   ASSERT_EQ(error_of(full), "");
   expect_every_typo_named(full);
 
@@ -466,6 +516,7 @@ TEST(SceneJson, ATypoInAnyKeyIsNamed) {
   other["bodies"][0].erase("position");
   other["bodies"][0]["spawn_box"] = {{0, 0, 0}, {1, 1, 1}};
   other["bodies"][0]["shape"] = {{"type", "mesh"}, {"file", mesh}, {"scale", 0.01}};
+  other["bodies"][0]["release"] = {{"times", {0, 1}}};
   ASSERT_EQ(error_of(other), "");
   expect_every_typo_named(other);
 
