@@ -25,7 +25,10 @@ void export_gltf(const ExportArgs& a) {
   const auto t0 = std::chrono::steady_clock::now();
   const Results r = read_results(a.dir, a.faces);
   const std::string out =
-      a.out.empty() ? (std::filesystem::path(a.dir) / "animation.glb").string() : a.out;
+      a.out.empty() ? (std::filesystem::path(a.dir) /
+                       (a.instanced ? "animation_instanced.glb" : "animation.glb"))
+                          .string()
+                    : a.out;
   write_gltf(out, r.frames, a.instanced ? GltfLayout::Instanced : GltfLayout::Animated);
   if (!a.quiet) {
     const double s =
@@ -45,7 +48,8 @@ void add_export_gltf_command(CLI::App& app) {
   cmd->add_option("results", args->dir, "Results directory of lrigid run")
       ->required()
       ->check(CLI::ExistingDirectory);
-  cmd->add_option("-o,--output", args->out, "Output .glb (default RESULTS/animation.glb)");
+  cmd->add_option("-o,--output", args->out, "Output .glb (default RESULTS/animation.glb, with --instanced "
+                  "RESULTS/animation_instanced.glb)");
   cmd->add_option("--faces", args->faces, "Triangles per body type mesh, about (default 320)")
       ->check(CLI::Range(1, 1000000));
   cmd->add_flag("--instanced", args->instanced,

@@ -232,7 +232,7 @@ TEST_F(DccFiles, HiddenBodiesStayHiddenInEveryCache) {
     const auto id = data_of<float>(
         mi, n.extensions.at("EXT_mesh_gpu_instancing").Get("attributes").Get("_ID").GetNumberAsInt(),
         1);
-    EXPECT_EQ(id, f == 0 ? std::vector<float>{0, 1} : std::vector<float>{0});
+    EXPECT_EQ(id, (f == 0 ? std::vector<float>{0, 1} : std::vector<float>{0}));
   }
   // Houdini: the hidden body's rows are left out
   std::ifstream h(d + "/h.csv");

@@ -8,7 +8,8 @@
 #include <cmath>
 #include <fstream>
 #include <map>
-#include <regex>
+#include <cctype>
+#include <cstdlib>
 #include <sstream>
 
 #include "io/usd_writer.h"
@@ -20,21 +21,35 @@ namespace {
 
 // the numbers of a value, in order ("[(1, 2), (3, 4)]" -> 1 2 3 4)
 std::vector<double> numbers(const std::string& v) {
-  static const std::regex num(R"([-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?)");
   std::vector<double> out;
-  for (auto it = std::sregex_iterator(v.begin(), v.end(), num); it != std::sregex_iterator(); ++it)
-    out.push_back(std::stod(it->str()));
+  for (size_t i = 0; i < v.size();) {
+    const bool sign = (v[i] == '-' || v[i] == '+') && i + 1 < v.size() && std::isdigit(v[i + 1]);
+    if (!std::isdigit(static_cast<unsigned char>(v[i])) && !sign) {
+      ++i;
+      continue;
+    }
+    char* end = nullptr;
+    out.push_back(std::strtod(v.c_str() + i, &end));
+    i = size_t(end - v.c_str());
+  }
   return out;
 }
 
-// a layer read back: attributes by their prim path and name, each a default value
-// and/or time samples (the text of each value), the layer's metadata
+// a layer read back: attributes by their prim path and name, each a default value and/or time
+// samples (the text of each value), the layer's metadata, the prims' types
 struct UsdLayer {
   std::map<std::string, std::string> meta;
-  std::map<std::string, std::string> values;                         // "path.attr" -> text
-  std::map<std::string, std::map<double, std::string>> samples;      // "path.attr" -> samples
-  std::map<std::string, std::string> prims;                          // path -> type
+  std::map<std::string, std::string> values;                     // "path.attr" -> text
+  std::map<std::string, std::map<double, std::string>> samples;  // "path.attr" -> samples
+  std::map<std::string, std::string> prims;                      // path -> type
 };
+
+std::string trimmed(const std::string& s) {
+  const size_t a = s.find_first_not_of(' ');
+  return a == std::string::npos ? "" : s.substr(a);
+}
+
+bool starts(const std::string& s, const std::string& p) { return s.rfind(p, 0) == 0; }
 
 UsdLayer parse_usda(const std::string& text) {
   UsdLayer l;
@@ -46,49 +61,66 @@ UsdLayer parse_usda(const std::string& text) {
   std::string pending;  // a prim whose "{" comes next
   bool in_meta = false;
   std::string samples_of;
-  static const std::regex def(R"(^\s*def (\w+) "(\w+)"( \($)?$)");
-  static const std::regex attr(R"(^\s*(uniform )?([\w\[\]]+) ([\w:]+)(\.timeSamples)? = (.*)$)");
-  static const std::regex rel(R"(^\s*rel ([\w:]+) = (.*)$)");
-  static const std::regex sample(R"(^\s*([-\d.e+]+): (.*),$)");
-  static const std::regex meta(R"(^\s*(\w+) = (.*)$)");
-  std::smatch m;
   auto here = [&] {
     std::string p;
     for (const auto& s : path) p += "/" + s;
     return p;
   };
   while (std::getline(in, line)) {
-    if (line == "(") { in_meta = true; continue; }
+    const std::string t = trimmed(line);
+    if (line == "(") {
+      in_meta = true;
+      continue;
+    }
+    const size_t eq = t.find(" = ");
     if (in_meta) {
       if (line == ")") in_meta = false;
-      else if (std::regex_match(line, m, meta)) l.meta[m[1]] = m[2];
+      else if (eq != std::string::npos) l.meta[t.substr(0, eq)] = t.substr(eq + 3);
       continue;
     }
     if (!samples_of.empty()) {
-      if (std::regex_match(line, m, sample)) l.samples[samples_of][std::stod(m[1])] = m[2];
-      else if (line.find('}') != std::string::npos) samples_of.clear();
-      else ADD_FAILURE() << "in time samples: " << line;
+      const size_t colon = t.find(": ");
+      if (t == "}") samples_of.clear();
+      else if (colon != std::string::npos && t.back() == ',')
+        l.samples[samples_of][std::stod(t.substr(0, colon))] =
+            t.substr(colon + 2, t.size() - colon - 3);
+      else ADD_FAILURE() << "in time samples: " << t.substr(0, 80);
       continue;
     }
-    if (std::regex_match(line, m, def)) {
-      pending = m[2];
-      l.prims[here() + "/" + pending] = m[1];
-    } else if (line.find_first_not_of(' ') != std::string::npos &&
-               line[line.find_first_not_of(' ')] == '{') {
+    if (starts(t, "def ")) {
+      // def Type "name" or def Type "name" (
+      const size_t q1 = t.find('"'), q2 = t.find('"', q1 + 1);
+      EXPECT_NE(q2, std::string::npos) << t;
+      const std::string type = t.substr(4, q1 - 5);
+      pending = t.substr(q1 + 1, q2 - q1 - 1);
+      EXPECT_EQ(pending.find_first_not_of(
+                    "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_"),
+                std::string::npos)
+          << "prim name " << pending;
+      EXPECT_TRUE(q2 + 1 == t.size() || t.substr(q2 + 1) == " (") << t;
+      l.prims[here() + "/" + pending] = type;
+    } else if (t == "{") {
       path.push_back(pending);
-    } else if (line.find_first_not_of(' ') != std::string::npos &&
-               line[line.find_first_not_of(' ')] == '}') {
+    } else if (t == "}") {
       if (path.empty()) {
         ADD_FAILURE() << "unbalanced }";
         break;
       }
       path.pop_back();
-    } else if (std::regex_match(line, m, attr)) {
-      const std::string key = here() + "." + std::string(m[3]);
-      if (m[4].matched) samples_of = key;
-      else l.values[key] = m[5];
-    } else if (std::regex_match(line, m, rel)) {
-      l.values[here() + "." + std::string(m[1])] = m[2];
+    } else if (eq != std::string::npos) {
+      // [uniform] type name[.timeSamples] = value, or rel name = target
+      std::string lhs = t.substr(0, eq);
+      if (starts(lhs, "uniform ")) lhs = lhs.substr(8);
+      const size_t sp = lhs.find(' ');
+      if (sp == std::string::npos) continue;  // metadata inside a prim's ( )
+      std::string name = lhs.substr(sp + 1);
+      const size_t ts = name.find(".timeSamples");
+      if (ts != std::string::npos) {
+        samples_of = here() + "." + name.substr(0, ts);
+        EXPECT_EQ(t.substr(eq + 3), "{");
+      } else {
+        l.values[here() + "." + name] = t.substr(eq + 3);
+      }
     }
   }
   EXPECT_TRUE(path.empty()) << "unclosed prim " << (path.empty() ? "" : path.back());
@@ -170,8 +202,9 @@ TEST_F(UsdCache, PointInstancerIsTheTrajectoriesAtEveryTimeCode) {
     EXPECT_EQ(numbers(l.values.at(p + ".faceVertexCounts")).size() * 3, corners);
     EXPECT_EQ(numbers(l.values.at(p + ".normals")).size(), 3 * corners);
     EXPECT_EQ(l.values.count(p + ".primvars:st"), std::string(t) == "pebble" ? 0u : 1u);
-    if (std::string(t) != "pebble")
+    if (std::string(t) != "pebble") {
       EXPECT_EQ(numbers(l.values.at(p + ".primvars:st")).size(), 2 * corners);
+    }
     EXPECT_EQ(l.values.at(p + ".material:binding"),
               std::string("</lrigid/Materials/") + (std::string(t) == "pebble" ? "pebble" : "leaf") + ">");
   }
