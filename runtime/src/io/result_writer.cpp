@@ -432,11 +432,12 @@ void ResultWriter::write_frame(const State& st) {
     gltf_.hidden.insert(gltf_.hidden.end(), st.hidden.begin(), st.hidden.end());
     gltf_.hidden.resize(gltf_.x.size(), 0);
     for (size_t i = 0; i < st.size(); ++i) gltf_.state.push_back(st.state_code(i));
-    for (size_t i = 0; keeps_velocities() && i < st.size(); ++i) {
-      const Mat3 R = st.q[i].toRotationMatrix();
-      gltf_.v.push_back(body_velocity(model_, st, i, R));
-      gltf_.w.push_back(R * st.w[i]);
-    }
+    if (keeps_velocities())
+      for (size_t i = 0; i < st.size(); ++i) {
+        const Mat3 R = st.q[i].toRotationMatrix();
+        gltf_.v.push_back(body_velocity(model_, st, i, R));
+        gltf_.w.push_back(R * st.w[i]);
+      }
   }
 }
 
