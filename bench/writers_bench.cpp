@@ -4,7 +4,8 @@
 //   csv     trajectories.csv rows (io/result_writer.h, "csv" only)
 //   bodies  bodies_NNNNNN.vtp (io/vtp_frames.h)      } together: "pvd"
 //   shapes  shapes_NNNNNN.vtp (io/vtp_frames.h)      }
-//   glb     the frame kept in memory, plus animation.glb written at the end, shared out per frame
+//   glb, glb_instanced, houdini, usd   the caches for DCC tools (io/dcc_cache.h), each alone:
+//           the frame kept in memory, plus its file written at the end, shared out per frame
 // then runs it again with lrigid run's own writer (csv + pvd, the .vtp frames on a thread of
 // their own) and times what the run's thread pays for it. Prints, per writer, CPU and wall time per frame and per body per frame, and bytes per frame,
 // next to the simulation's time for the steps between two frames. CPU time is this process's
@@ -18,13 +19,16 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <memory>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "compile/compile_model.h"
 #include "integrate/simulation.h"
 #include "io/added_mass_cache.h"
+#include "io/dcc_cache.h"
 #include "io/field_loader.h"
 #include "io/result_writer.h"
 #include "io/scene_json.h"
@@ -113,19 +117,29 @@ int main(int argc, char** argv) {
                                       cached_added_mass);
     State state = initial_state(model, scene);
 
-    OutputSpec csv_spec = scene.output, glb_spec = scene.output;
-    csv_spec.csv = true, csv_spec.pvd = false, csv_spec.glb = false;
-    glb_spec.csv = false, glb_spec.pvd = false, glb_spec.glb = true;
-    for (const char* d : {"csv", "glb", "bodies", "shapes"}) fs::create_directories(fs::path(dir) / d);
+    OutputSpec csv_spec = scene.output;
+    csv_spec.csv = true, csv_spec.pvd = false;
+    for (const DccFormat& d : kDccFormats) csv_spec.*d.enabled = false;
+    for (const char* d : {"csv", "bodies", "shapes"}) fs::create_directories(fs::path(dir) / d);
     ResultWriter csv((fs::path(dir) / "csv").string(), model, csv_spec);
-    ResultWriter glb((fs::path(dir) / "glb").string(), model, glb_spec);
+    // one writer per cache for DCC tools, each in a folder of its own
+    std::vector<std::unique_ptr<ResultWriter>> caches;
+    for (const DccFormat& d : kDccFormats) {
+      OutputSpec spec = csv_spec;
+      spec.csv = false;
+      spec.*d.enabled = true;
+      fs::create_directories(fs::path(dir) / d.format);
+      caches.push_back(
+          std::make_unique<ResultWriter>((fs::path(dir) / d.format).string(), model, spec));
+    }
+    std::vector<Clock> c_caches(caches.size());
     BodiesFrames bodies(model, comp);
     std::vector<TriangleMesh> surfaces;
     for (const BodyType& t : model.types)
       surfaces.push_back(series_surface(t, shape_faces_for(model.body_count)));
     ShapesFrames shapes(std::move(surfaces), comp);
 
-    Clock c_csv, c_bodies, c_shapes, c_glb, c_all;
+    Clock c_csv, c_bodies, c_shapes, c_all;
     size_t frames = 0;
     RunOptions opt;
     opt.every = scene.output.every;
@@ -138,7 +152,8 @@ int main(int argc, char** argv) {
         c_bodies.time([&] { bodies.write(s, (fs::path(dir) / name).string()); });
         std::snprintf(name, sizeof name, "shapes/shapes_%06zu.vtp", frames);
         c_shapes.time([&] { shapes.write(s, (fs::path(dir) / name).string()); });
-        c_glb.time([&] { glb.write_frame(s); });
+        for (size_t k = 0; k < caches.size(); ++k)
+          c_caches[k].time([&] { caches[k]->write_frame(s); });
       });
       ++frames;
     };
@@ -146,14 +161,16 @@ int main(int argc, char** argv) {
     RunStats stats;
     total.time([&] { stats = simulate(model, &state, opt); });
     c_csv.time([&] { csv.finish(state, stats, nlohmann::json::object()); });
-    c_glb.time([&] { glb.finish(state, stats, nlohmann::json::object()); });
+    for (size_t k = 0; k < caches.size(); ++k)
+      c_caches[k].time([&] { caches[k]->finish(state, stats, nlohmann::json::object()); });
     const double sim_cpu = total.cpu - c_all.cpu, sim_wall = total.wall - c_all.wall;
 
     // pass 2: what lrigid run pays on its own thread with the default formats (csv + pvd, the
     // .vtp frames written on the frames' thread, io/vtp_frames.h FramesThread)
     State state2 = initial_state(model, scene);
     OutputSpec run_spec = scene.output;
-    run_spec.csv = true, run_spec.pvd = true, run_spec.glb = false;
+    run_spec.csv = true, run_spec.pvd = true;
+    for (const DccFormat& d : kDccFormats) run_spec.*d.enabled = false;
     fs::create_directories(fs::path(dir) / "run");
     Clock c_run, total2;
     {
@@ -182,11 +199,13 @@ int main(int argc, char** argv) {
       const Clock& c;
       uintmax_t bytes;
     };
-    const Row rows[] = {
+    std::vector<Row> rows = {
         {"csv", c_csv, bytes_under(fs::path(dir) / "csv" / "trajectories.csv")},
         {"bodies", c_bodies, bytes_under(fs::path(dir) / "bodies")},
-        {"shapes", c_shapes, bytes_under(fs::path(dir) / "shapes")},
-        {"glb", c_glb, bytes_under(fs::path(dir) / "glb" / "animation.glb")}};
+        {"shapes", c_shapes, bytes_under(fs::path(dir) / "shapes")}};
+    for (size_t k = 0; k < caches.size(); ++k)
+      rows.push_back({kDccFormats[k].format, c_caches[k],
+                      bytes_under(fs::path(dir) / kDccFormats[k].format / kDccFormats[k].file)});
     for (const Row& r : rows)
       j["writers"][r.name] = {{"cpu_ms_per_frame", 1e3 * r.c.cpu / nf},
                               {"wall_ms_per_frame", 1e3 * r.c.wall / nf},

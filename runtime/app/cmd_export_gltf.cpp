@@ -1,4 +1,4 @@
-// lrigid export-gltf RESULTS_DIR [-o out.glb] [--faces N]
+// lrigid export-gltf RESULTS_DIR [-o out.glb] [--faces N] [--instanced]
 // Bakes a finished run (trajectories.csv + summary.json) into a glTF 2.0 binary for DCC tools.
 #include <chrono>
 #include <cstdio>
@@ -17,6 +17,7 @@ struct ExportArgs {
   std::string dir;
   std::string out;
   int faces = 320;
+  bool instanced = false;
   bool quiet = false;
 };
 
@@ -24,8 +25,11 @@ void export_gltf(const ExportArgs& a) {
   const auto t0 = std::chrono::steady_clock::now();
   const Results r = read_results(a.dir, a.faces);
   const std::string out =
-      a.out.empty() ? (std::filesystem::path(a.dir) / "animation.glb").string() : a.out;
-  write_gltf(out, r.frames);
+      a.out.empty() ? (std::filesystem::path(a.dir) /
+                       (a.instanced ? "animation_instanced.glb" : "animation.glb"))
+                          .string()
+                    : a.out;
+  write_gltf(out, r.frames, a.instanced ? GltfLayout::Instanced : GltfLayout::Animated);
   if (!a.quiet) {
     const double s =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -44,9 +48,13 @@ void add_export_gltf_command(CLI::App& app) {
   cmd->add_option("results", args->dir, "Results directory of lrigid run")
       ->required()
       ->check(CLI::ExistingDirectory);
-  cmd->add_option("-o,--output", args->out, "Output .glb (default RESULTS/animation.glb)");
+  cmd->add_option("-o,--output", args->out, "Output .glb (default RESULTS/animation.glb, with --instanced "
+                  "RESULTS/animation_instanced.glb)");
   cmd->add_option("--faces", args->faces, "Triangles per body type mesh, about (default 320)")
       ->check(CLI::Range(1, 1000000));
+  cmd->add_flag("--instanced", args->instanced,
+                "One node per output frame with the bodies as EXT_mesh_gpu_instancing instances "
+                "(docs/outputs.md)");
   cmd->add_flag("--quiet", args->quiet, "Print nothing but errors");
   cmd->callback([args] { export_gltf(*args); });
 }

@@ -264,7 +264,7 @@ def layout(b):
         raw('writer.frame%d.t' % k, 8); s('writer.frame%d.name' % k)
     vec('writer.frame_sums', 32)
     for name, item in (('gltf.body_type', 4), ('gltf.times', 8), ('gltf.x', 24), ('gltf.q', 32),
-                       ('gltf.hidden', 1)):
+                       ('gltf.hidden', 1), ('gltf.state', 1), ('gltf.v', 24), ('gltf.w', 24)):
         vec(name, item)
     raw('checksum', 8)
     if at != len(b):

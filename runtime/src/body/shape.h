@@ -19,6 +19,10 @@ const char* shape_type_name(ShapeType t);
 struct TriangleMesh {
   std::vector<Vec3> vertices;             // (nvert) m
   std::vector<std::array<int, 3>> faces;  // (nface) vertex indices
+  // (nface) or empty: the texture coordinates (u, v) of each face's corners, in the faces'
+  // order (an OBJ's "vt"); carried for the DCC outputs, never read by the physics
+  std::vector<std::array<Vec2, 3>> uv;
+  bool has_uv() const { return !uv.empty() && uv.size() == faces.size(); }
 };
 
 struct Shape {

@@ -134,6 +134,20 @@ TriangleMesh solidify_surface(const TriangleMesh& s, double thickness,
     out.faces.push_back({b, a, nv + a});
     out.faces.push_back({b, nv + a, nv + b});
   }
+  if (s.has_uv()) {
+    // texture coordinates: both sides as the surface's (a texture seen from either side), the
+    // walls those of the edge's ends
+    std::vector<Vec2> at(static_cast<size_t>(nv), Vec2::Zero());
+    for (size_t i = 0; i < s.faces.size(); ++i)
+      for (int k = 0; k < 3; ++k) at[static_cast<size_t>(s.faces[i][k])] = s.uv[i][k];
+    out.uv = s.uv;
+    for (const auto& t : s.uv) out.uv.push_back({t[0], t[2], t[1]});
+    for (const Edge& e : boundary) {
+      const Vec2 &ta = at[static_cast<size_t>(e.first)], &tb = at[static_cast<size_t>(e.second)];
+      out.uv.push_back({tb, ta, ta});
+      out.uv.push_back({tb, ta, tb});
+    }
+  }
   return out;  // a vertex no face uses stays unused, as in the surface
 }
 

@@ -145,12 +145,22 @@ TriangleMesh subdivide(const TriangleMesh& mesh) {
     mid.emplace(key, id);
     return id;
   };
-  for (const auto& f : mesh.faces) {
+  const bool uv = mesh.has_uv();
+  for (size_t i = 0; i < mesh.faces.size(); ++i) {
+    const auto& f = mesh.faces[i];
     const int ab = midpoint(f[0], f[1]), bc = midpoint(f[1], f[2]), ca = midpoint(f[2], f[0]);
     out.faces.push_back({f[0], ab, ca});
     out.faces.push_back({ab, f[1], bc});
     out.faces.push_back({ca, bc, f[2]});
     out.faces.push_back({ab, bc, ca});
+    if (uv) {  // the texture coordinates split the same way
+      const auto& t = mesh.uv[i];
+      const Vec2 tab = 0.5 * (t[0] + t[1]), tbc = 0.5 * (t[1] + t[2]), tca = 0.5 * (t[2] + t[0]);
+      out.uv.push_back({t[0], tab, tca});
+      out.uv.push_back({tab, t[1], tbc});
+      out.uv.push_back({tca, tbc, t[2]});
+      out.uv.push_back({tab, tbc, tca});
+    }
   }
   return out;
 }

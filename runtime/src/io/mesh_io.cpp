@@ -58,15 +58,29 @@ class VertexWelder {
   std::map<std::array<double, 3>, int> index_;
 };
 
+// a 1-based or negative OBJ index among `count` records so far, made 0-based into *out (may
+// be out of range); false if it is not an index
+bool obj_index(const std::string& text, long count, long* out) {
+  char* end = nullptr;
+  const long v = std::strtol(text.c_str(), &end, 10);
+  if (text.empty() || end != text.c_str() + text.size() || v == 0) return false;
+  *out = v > 0 ? v - 1 : count + v;
+  return true;
+}
+
 TriangleMesh read_obj(const std::string& path) {
   std::ifstream in(path);
   if (!in) bad(path, "cannot open for reading");
   TriangleMesh m;
+  std::vector<Vec2> vt;             // the "vt" records
+  std::vector<std::array<int, 3>> face_vt;  // each face's corners' "vt" index, -1: none
   std::string line;
   int lineno = 0;
   long max_index = -1;  // largest 0-based vertex index used, and where
   int max_index_line = 0;
   std::string max_index_text;
+  long max_vt = -1;     // the same for the "vt" indices
+  int max_vt_line = 0;
   while (std::getline(in, line)) {
     ++lineno;
     if (!line.empty() && line.back() == '\r') line.pop_back();
@@ -82,34 +96,53 @@ TriangleMesh read_obj(const std::string& path) {
           bad(path, "vertex coordinate '" + tok + "' is not a finite number", lineno);
       }
       m.vertices.push_back(p);
+    } else if (tag == "vt") {
+      Vec2 t;
+      std::string tok;
+      for (int k = 0; k < 2; ++k) {
+        if (!(s >> tok)) bad(path, "texture coordinate (vt) needs u and v", lineno);
+        if (!parse_double(tok, t[k]))
+          bad(path, "texture coordinate '" + tok + "' is not a finite number", lineno);
+      }
+      vt.push_back(t);
     } else if (tag == "f") {
-      std::vector<int> poly;
+      std::vector<int> poly, poly_vt;
       std::string tok;
       while (s >> tok) {
-        const std::string idx = tok.substr(0, tok.find('/'));
-        char* end = nullptr;
-        const long v = std::strtol(idx.c_str(), &end, 10);
-        if (idx.empty() || end != idx.c_str() + idx.size() || v == 0)
-          bad(path, "face index '" + tok + "' is not a vertex number (1-based or negative)",
-              lineno);
+        const size_t slash = tok.find('/');
+        const std::string idx = tok.substr(0, slash);
         // negative: relative to the vertices so far; positive: may refer forward, checked at
         // the end of the file
-        const long n = static_cast<long>(m.vertices.size());
-        const long zero_based = v > 0 ? v - 1 : n + v;
+        long zero_based = 0;
+        if (!obj_index(idx, static_cast<long>(m.vertices.size()), &zero_based))
+          bad(path, "face index '" + tok + "' is not a vertex number (1-based or negative)",
+              lineno);
         if (zero_based < 0 || zero_based > std::numeric_limits<int>::max())
-          bad(path, "face index " + std::to_string(v) + " is out of range", lineno);
+          bad(path, "face index " + idx + " is out of range", lineno);
         if (zero_based >= max_index) {
           max_index = zero_based;
           max_index_line = lineno;
           max_index_text = tok;
         }
         poly.push_back(static_cast<int>(zero_based));
+        // "i/t" or "i/t/n": the corner's texture coordinate
+        const std::string t =
+            slash == std::string::npos ? "" : tok.substr(slash + 1, tok.find('/', slash + 1) - slash - 1);
+        long ti = -1;
+        if (!t.empty()) {
+          if (!obj_index(t, static_cast<long>(vt.size()), &ti) || ti < 0 || ti > std::numeric_limits<int>::max())
+            bad(path, "texture index '" + t + "' in '" + tok + "' is out of range", lineno);
+          if (ti >= max_vt) max_vt = ti, max_vt_line = lineno;
+        }
+        poly_vt.push_back(static_cast<int>(ti));
       }
       if (poly.size() < 3) bad(path, "face needs at least 3 vertices", lineno);
-      for (size_t k = 1; k + 1 < poly.size(); ++k)
+      for (size_t k = 1; k + 1 < poly.size(); ++k) {
         m.faces.push_back({poly[0], poly[k], poly[k + 1]});
+        face_vt.push_back({poly_vt[0], poly_vt[k], poly_vt[k + 1]});
+      }
     }
-    // vt, vn, o, g, s, usemtl, mtllib, l, ...: not needed for the geometry
+    // vn, o, g, s, usemtl, mtllib, l, ...: not needed
   }
   if (m.faces.empty()) bad(path, "no faces ('f' lines) found");
   if (max_index >= static_cast<long>(m.vertices.size()))
@@ -117,6 +150,19 @@ TriangleMesh read_obj(const std::string& path) {
         "face index " + max_index_text + " refers to vertex " + std::to_string(max_index + 1) +
             " but the file has " + std::to_string(m.vertices.size()) + " vertices",
         max_index_line);
+  if (max_vt >= static_cast<long>(vt.size()))
+    bad(path,
+        "texture index " + std::to_string(max_vt + 1) + " but the file has " +
+            std::to_string(vt.size()) + " texture coordinates (vt)",
+        max_vt_line);
+  // texture coordinates when every corner has one (a file that leaves some out has none)
+  const bool all = std::all_of(face_vt.begin(), face_vt.end(), [](const std::array<int, 3>& f) {
+    return f[0] >= 0 && f[1] >= 0 && f[2] >= 0;
+  });
+  if (all) {
+    m.uv.reserve(face_vt.size());
+    for (const auto& f : face_vt) m.uv.push_back({vt[f[0]], vt[f[1]], vt[f[2]]});
+  }
   return m;
 }
 

@@ -9,7 +9,8 @@ namespace lrigid {
 
 // Reads `path` by its extension (.obj or .stl, any case). OBJ: "v x y z" and "f i j k ..." lines
 // (polygons are fan-triangulated; "i/t/n", negative and forward indices accepted; other records
-// ignored). STL: binary if the size matches the triangle count in the header, else ASCII
+// ignored); "vt u v" texture coordinates become TriangleMesh::uv when every face corner names
+// one. STL: binary if the size matches the triangle count in the header, else ASCII
 // ("solid ... facet ... vertex x y z ... endsolid"); facet normals are ignored (the vertex order
 // defines the orientation) and identical vertices are merged so the surface is connected.
 // Only parses: validity (closed, manifold, ...) is checked by Shape::from_mesh.

@@ -20,6 +20,7 @@
 #include "io/results_dir.h"
 #include "integrate/simulation.h"
 #include "io/checkpoint.h"
+#include "io/dcc_cache.h"
 #include "io/mesh_io.h"
 #include "util/error.h"
 
@@ -131,22 +132,37 @@ ResultWriter::ResultWriter(const std::string& dir, const Model& model, const Out
     for (const BodyType& t : model_.types) surfaces.push_back(series_surface(t, faces));
     vtp_ = std::make_unique<FramesThread>(model_, std::move(surfaces));
   }
-  if (spec_.glb) {
-    // the animation keeps every frame in memory until the end (x and q, 56 bytes a sample)
+  if (keeps_frames()) {
+    // the caches for DCC tools keep every frame in memory until the end (x and q, 56 bytes a
+    // sample; 48 more with the velocities)
     const double frames = std::floor(model_.duration / spec_.every + 1e-9) + 2;
-    const double need = frames * double(model_.body_count) * (sizeof(Vec3) + sizeof(Quat));
+    const double sample = sizeof(Vec3) + sizeof(Quat) + (keeps_velocities() ? 2 * sizeof(Vec3) : 0);
+    const double need = frames * double(model_.body_count) * sample;
     const double have = double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGE_SIZE));
     if (need > 0.5 * have) {
-      char buf[240];
+      char buf[280];
       std::snprintf(buf, sizeof buf,
-                    "\"glb\" would keep %.1f GiB of frames in memory (%.1f GiB here); drop it and "
-                    "bake afterwards with lrigid export-gltf, or raise output.every",
+                    "the caches for DCC tools (\"glb\", \"glb_instanced\", \"houdini\", \"usd\") "
+                    "would keep %.1f GiB of frames in memory (%.1f GiB here); drop them and bake "
+                    "afterwards with lrigid export-gltf, or raise output.every",
                     need / (1 << 30), have / (1 << 30));
       throw Error(ExitCode::Resource, where(model_.scene_file, "output.formats", buf));
     }
     for (const BodyType& t : model_.types)
       gltf_.types.push_back({t.name, body_surface(t, 320), t.spec, t.variant});
   }
+}
+
+bool ResultWriter::keeps_frames() const {
+  for (const DccFormat& d : kDccFormats)
+    if (spec_.*d.enabled) return true;
+  return false;
+}
+
+bool ResultWriter::keeps_velocities() const {
+  for (const DccFormat& d : kDccFormats)
+    if (spec_.*d.enabled && d.velocities) return true;
+  return false;
 }
 
 std::vector<ResultItem> ResultWriter::planned() const {
@@ -159,7 +175,8 @@ std::vector<ResultItem> ResultWriter::planned() const {
     v.push_back({"shapes", true, ""});
     v.push_back({"shapes.pvd", false, ""});
   }
-  if (spec_.glb) v.push_back({"animation.glb", false, ""});
+  for (const DccFormat& d : kDccFormats)
+    if (spec_.*d.enabled) v.push_back({d.file, false, ""});
   v.push_back({"summary.json", false, ""});
   return v;
 }
@@ -258,6 +275,8 @@ void ResultWriter::save(BinaryOut& out) {
   out.vec(gltf_.q);
   out.vec(gltf_.hidden);
   out.vec(gltf_.state);
+  out.vec(gltf_.v);
+  out.vec(gltf_.w);
 }
 
 void ResultWriter::restore(BinaryIn& in) {
@@ -287,6 +306,8 @@ void ResultWriter::restore(BinaryIn& in) {
   in.vec(&gltf_.q);
   in.vec(&gltf_.hidden);
   in.vec(&gltf_.state);
+  in.vec(&gltf_.v);
+  in.vec(&gltf_.w);
   // the output so far as the checkpoint counted it, before anything is changed
   const std::string again =
       ": the output so far differs from what the checkpoint counted (cut short, changed or "
@@ -405,7 +426,7 @@ void ResultWriter::write_frame(const State& st) {
                 (fs::path(shapes_tmp_dir_) / frame_name("shapes", i)).string());
     frames_.emplace_back(st.t, frame_name("bodies", i));
   }
-  if (spec_.glb) {
+  if (keeps_frames()) {
     if (gltf_.body_type.empty())
       for (size_t i = 0; i < st.size(); ++i) gltf_.body_type.push_back(st.type[i]);
     gltf_.times.push_back(st.t);
@@ -414,6 +435,12 @@ void ResultWriter::write_frame(const State& st) {
     gltf_.hidden.insert(gltf_.hidden.end(), st.hidden.begin(), st.hidden.end());
     gltf_.hidden.resize(gltf_.x.size(), 0);
     for (size_t i = 0; i < st.size(); ++i) gltf_.state.push_back(st.state_code(i));
+    if (keeps_velocities())
+      for (size_t i = 0; i < st.size(); ++i) {
+        const Mat3 R = st.q[i].toRotationMatrix();
+        gltf_.v.push_back(body_velocity(model_, st, i, R));
+        gltf_.w.push_back(R * st.w[i]);
+      }
   }
 }
 
@@ -465,7 +492,8 @@ void ResultWriter::finish(const State& st, const RunStats& stats, const nlohmann
       shape_frames[i].second = frame_name("shapes", i);
     write_pvd(staged("shapes.pvd"), "shapes/", shape_frames);
   }
-  if (spec_.glb) write_gltf(staged("animation.glb"), gltf_);
+  for (const DccFormat& d : kDccFormats)
+    if (spec_.*d.enabled) d.write(staged(d.file), gltf_);
   json s;
   s["bodies"] = st.size();
   s["body_steps"] = stats.body_steps;
@@ -554,7 +582,8 @@ void ResultWriter::finish(const State& st, const RunStats& stats, const nlohmann
   json outputs = json::array();
   if (spec_.csv) outputs.push_back("trajectories.csv");
   if (spec_.pvd) outputs.insert(outputs.end(), {"bodies.pvd", "shapes.pvd"});
-  if (spec_.glb) outputs.push_back("animation.glb");
+  for (const DccFormat& d : kDccFormats)
+    if (spec_.*d.enabled) outputs.push_back(d.file);
   s["outputs"] = outputs;
   s["field"] = nullptr;  // the grid (.vti/.pvd) the run sampled; cmd_run fills it in
   s["ground_z"] = model_.has_ground ? json(model_.ground_z) : json(nullptr);
@@ -652,6 +681,8 @@ Results read_results(const std::string& dir, int target_faces) {
     fail_input(csv, "line 1", "unexpected header \"" + line + "\"");
   // the state column (newer runs): bodies removed at the grid's edge ("outside": "remove") are
   // hidden from their exit on; a body exited otherwise (stopped at a solid) stays visible
+  const bool has_velocities =
+      line.rfind("body,type,t,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz", 0) == 0;
   const bool has_state = line.size() >= 6 && line.compare(line.size() - 6, 6, ",state") == 0;
   std::vector<uint8_t> removed(nb, 0);
   if (has_state && r.summary.contains("contacts") &&
@@ -683,8 +714,9 @@ Results read_results(const std::string& dir, int target_faces) {
                               " bodies (summary.json)");
     p = std::strchr(end + 1, ',');  // skip the type name
     if (!p) fail_input(csv, at, "malformed row \"" + line + "\"");
-    double v[8];
-    for (double& x : v) {
+    double v[14] = {};
+    for (int i = 0; i < (has_velocities ? 14 : 8); ++i) {
+      double& x = v[i];
       x = std::strtod(p + 1, &end);
       if (end == p + 1 || (*end != ',' && *end != '\0'))
         fail_input(csv, at, "malformed number in \"" + line + "\"");
@@ -696,6 +728,10 @@ Results read_results(const std::string& dir, int target_faces) {
       a.x.resize(a.x.size() + nb, Vec3::Zero());
       a.q.resize(a.q.size() + nb, Quat::Identity());
       has_row.resize(has_row.size() + nb, 0);
+      if (has_velocities) {
+        a.v.resize(a.v.size() + nb, Vec3::Zero());
+        a.w.resize(a.w.size() + nb, Vec3::Zero());
+      }
       if (has_state) {
         a.state.resize(a.state.size() + nb, unreleased);
         a.hidden.resize(a.hidden.size() + nb, 1);
@@ -709,6 +745,10 @@ Results read_results(const std::string& dir, int target_faces) {
     has_row[k] = 1;
     a.x[k] = Vec3(v[1], v[2], v[3]);
     a.q[k] = Quat(v[4], v[5], v[6], v[7]);  // Eigen order w, x, y, z
+    if (has_velocities) {
+      a.v[k] = Vec3(v[8], v[9], v[10]);
+      a.w[k] = Vec3(v[11], v[12], v[13]);
+    }
     if (has_state) {
       const size_t c = line.rfind(',');
       const int code = state_code_from_name(line.substr(c + 1));

@@ -4,6 +4,8 @@
 //   shapes.pvd + shapes/shapes_NNNNNN.vtp   the same frames as surfaces: each body's shape
 //                      (tessellated, coarser for many bodies) placed at (x, q); with "pvd"
 //   animation.glb      glTF 2.0 baked animation for DCC tools (io/gltf_writer.h); with "glb"
+//   animation_instanced.glb, houdini_points.csv, bodies.usda   the other caches for DCC tools
+//                      (io/dcc_cache.h kDccFormats); with "glb_instanced", "houdini", "usd"
 //   landings.csv       body,type,t,x,y,z of bodies that reached the ground (scenes with ground)
 //   summary.json       counts, timing, effects, stopped bodies and why
 // Nothing appears under its final name until the run completed: files are written under
@@ -96,6 +98,8 @@ class ResultWriter {
   void write_partial_pvds() const;
   void remove_stale_temporaries() const;
   std::vector<ResultItem> planned() const;
+  bool keeps_frames() const;      // a cache for DCC tools is written (io/dcc_cache.h)
+  bool keeps_velocities() const;  // one of them needs the velocities
 
   std::string dir_;
   const Model& model_;
@@ -108,7 +112,7 @@ class ResultWriter {
   std::string shapes_tmp_dir_;
   std::unique_ptr<FramesThread> vtp_;  // the two series' frames (io/vtp_frames.h)
   std::chrono::steady_clock::time_point partial_written_;  // the partial .pvd's last rewrite
-  GltfAnimation gltf_;                  // frames kept for animation.glb
+  GltfAnimation gltf_;                  // frames kept for the caches for DCC tools
   std::vector<std::pair<double, std::string>> frames_;
   std::vector<ResultItem> staged_;      // complete temporaries waiting for commit_results
   // checkpoints: the trajectories checksummed (and fsync'ed) so far, and each frame's files

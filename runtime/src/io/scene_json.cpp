@@ -18,6 +18,7 @@
 #include "body/shape_limits.h"
 #include "body/solidify.h"
 #include "effects/registry.h"
+#include "io/dcc_cache.h"
 #include "io/mesh_io.h"
 #include "util/error.h"
 #include "util/suggest.h"
@@ -769,15 +770,20 @@ Scene parse_scene_unchecked(const std::string& text, const std::string& path) {
                                        Obj::dump(o.get("checkpoint_every")));
     }
     if (const json* f = o.find("formats")) {
-      if (!f->is_array()) o.fail("formats", "must be a list of \"csv\", \"pvd\", \"glb\"");
-      s.output.csv = s.output.pvd = s.output.glb = false;
+      std::string names = "\"csv\", \"pvd\"";
+      for (const DccFormat& d : kDccFormats) names += std::string(", \"") + d.format + "\"";
+      if (!f->is_array()) o.fail("formats", "must be a list of " + names);
+      s.output.csv = s.output.pvd = false;
+      for (const DccFormat& d : kDccFormats) s.output.*d.enabled = false;
       for (size_t i = 0; i < f->size(); ++i) {
         const std::string k = (*f)[i].is_string() ? (*f)[i].get<std::string>() : "";
+        const DccFormat* d = std::find_if(std::begin(kDccFormats), std::end(kDccFormats),
+                                          [&](const DccFormat& x) { return k == x.format; });
         if (k == "csv") s.output.csv = true;
         else if (k == "pvd") s.output.pvd = true;
-        else if (k == "glb") s.output.glb = true;
+        else if (d != std::end(kDccFormats)) s.output.*d->enabled = true;
         else o.fail("formats[" + std::to_string(i) + "]",
-                    "must be \"csv\", \"pvd\" or \"glb\", got " + Obj::dump((*f)[i]));
+                    "must be one of " + names + ", got " + Obj::dump((*f)[i]));
       }
     }
     o.finish();

@@ -90,6 +90,9 @@ struct OutputSpec {
   bool csv = true;
   bool pvd = true;
   bool glb = false;                       // animation.glb (glTF 2.0, docs/outputs.md)
+  bool glb_instanced = false;             // animation_instanced.glb (EXT_mesh_gpu_instancing)
+  bool houdini = false;                   // houdini_points.csv (Houdini's attribute names)
+  bool usd = false;                       // bodies.usda (a USD PointInstancer)
   double checkpoint_every = 300;          // s of wall time between checkpoints; 0: none
 };
 

@@ -117,6 +117,50 @@ TEST(MeshIo, ObjForwardAndNegativeIndices) {
   EXPECT_NEAR(mass_properties(m).volume, 1.0 / 6.0, 1e-15);
 }
 
+// "vt" texture coordinates become each face corner's uv, fan-triangulated with the faces; the
+// physics' vertices and faces are those of the file without them
+TEST(MeshIo, ObjTextureCoordinatesFollowTheFaces) {
+  const fs::path f =
+      fs::temp_directory_path() / ("lrigid_vt_" + std::to_string(::getpid()) + ".obj");
+  const std::string quad = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n";
+  {
+    std::ofstream out(f);
+    out << quad << "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvn 0 0 1\nf 1/1/1 2/2/1 3/3/1 4/-1/1\n";
+  }
+  TriangleMesh m = read_mesh(f.string());
+  ASSERT_EQ(m.faces.size(), 2u);
+  ASSERT_TRUE(m.has_uv());
+  EXPECT_EQ(m.uv[1][0], Vec2(0, 0));
+  EXPECT_EQ(m.uv[1][1], Vec2(1, 1));
+  EXPECT_EQ(m.uv[1][2], Vec2(0, 1));  // -1: the last vt so far
+  // a face without texture coordinates: the mesh has none
+  { std::ofstream(f) << quad << "vt 0 0\nf 1/1 2/1 3/1\nf 1 3 4\n"; }
+  m = read_mesh(f.string());
+  EXPECT_EQ(m.faces.size(), 2u);
+  EXPECT_FALSE(m.has_uv());
+  // an index past the vt records: refused, naming the file, the line and the count
+  { std::ofstream(f) << quad << "vt 0 0\nf 1/1 2/1 3/5\n"; }
+  std::string e;
+  try {
+    read_mesh(f.string());
+  } catch (const Error& err) {
+    e = err.what();
+  }
+  EXPECT_NE(e.find(f.string() + ": line 6: texture index 5 but the file has 1 texture "
+                               "coordinates (vt)"), std::string::npos) << e;
+  fs::remove(f);
+  // the leaf of the tests, as Blender exports it: every corner has its coordinates, in [0, 1]
+  const TriangleMesh leaf = read_mesh(std::string(LRIGID_SOURCE_DIR) +
+                                      "/tests/data/meshes/leaf_surface.obj");
+  ASSERT_TRUE(leaf.has_uv());
+  for (const auto& face : leaf.uv)
+    for (const Vec2& t : face) EXPECT_TRUE(t.minCoeff() >= 0 && t.maxCoeff() <= 1);
+  // subdividing splits them with the faces
+  const TriangleMesh fine = subdivide(leaf);
+  ASSERT_TRUE(fine.has_uv());
+  EXPECT_EQ(fine.uv[3][0], 0.5 * (leaf.uv[0][0] + leaf.uv[0][1]));
+}
+
 TEST(MeshIo, WriteAndReadBack) {
   const fs::path dir = fs::temp_directory_path() / ("lrigid_mesh_io_" + std::to_string(::getpid()));
   fs::create_directories(dir);

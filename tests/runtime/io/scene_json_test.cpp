@@ -230,7 +230,14 @@ INSTANTIATE_TEST_SUITE_P(
                 [](json& j) {
                   j["output"]["formats"] = {"csv", "xls"};
                 },
-                "output.formats[1]: must be \"csv\", \"pvd\" or \"glb\", got \"xls\""},
+                "output.formats[1]: must be one of \"csv\", \"pvd\", \"glb\", \"glb_instanced\", "
+                "\"houdini\", \"usd\", got \"xls\""},
+        BadCase{"misspelt cache format",
+                [](json& j) {
+                  j["output"]["formats"] = {"csv", "glb_instance"};
+                },
+                "output.formats[1]: must be one of \"csv\", \"pvd\", \"glb\", \"glb_instanced\", "
+                "\"houdini\", \"usd\", got \"glb_instance\""},
         BadCase{"turbulence model", [](json& j) { j["turbulence"]["model"] = "les"; },
                 "turbulence.model: must be \"body\" or \"seen\", got \"les\""},
         BadCase{"crossing trajectories",
