@@ -3,7 +3,8 @@
 #       animation.glb trajectories.csv leaf.obj animation_instanced.glb
 # Imports the glTF with Blender's own importer and checks what a user relies on: one object per
 # body, the mesh's UV layer holding the OBJ's texture coordinates, keyframes at the output
-# times, one material per body entry, the body's attributes as custom properties. Then says
+# times, one material per body entry, the body's attributes as custom properties, the bodies
+# sharing their type's mesh, a body released later hidden (scale 0) until its release. Then says
 # whether this Blender imports the instanced file (EXT_mesh_gpu_instancing).
 import csv
 import sys
@@ -30,12 +31,13 @@ bpy.ops.wm.read_factory_settings(use_empty=True)
 bpy.ops.import_scene.gltf(filepath=glb)
 
 # the run's bodies and output times
-times, bodies, entries = set(), set(), set()
+times, bodies, entries, rows = set(), set(), set(), []
 with open(trajectories) as f:
     for row in csv.DictReader(f):
         times.add(float(row["t"]))
         bodies.add(int(row["body"]))
         entries.add(row["type"])
+        rows.append((row["t"], int(row["body"])))
 times = sorted(times)
 
 # the OBJ's texture coordinates
@@ -83,6 +85,26 @@ for o in objects:
 
 for e in entries:
     check(e in bpy.data.materials, f"material {e}")
+
+# instanced the way Blender instances: the leaves are linked duplicates of one mesh
+meshes = {o.data.name for o in objects}
+check(len(meshes) == len(entries), f"{len(objects)} leaves use meshes {sorted(meshes)}")
+
+# a leaf released later (the scene's release rate) is hidden until its release: scale 0 at the
+# first output time, its own size at the last
+for o in objects:
+    first_row = min(float(t) for t, b in rows if b == int(o["id"]))
+    ad = o.animation_data
+    scale = [fc for fc in ad.action.fcurves if fc.data_path == "scale"] if ad and ad.action else []
+    if first_row > times[0]:
+        check(scale, f"{o.name}: released at {first_row} s but no scale channel")
+        if scale:
+            ks = scale[0].keyframe_points
+            check(ks[0].co[1] == 0 and ks[-1].co[1] == 1,
+                  f"{o.name}: scale {ks[0].co[1]} at the start, {ks[-1].co[1]} at the end")
+released_late = sum(1 for o in objects
+                    if min(float(t) for t, b in rows if b == int(o["id"])) > times[0])
+check(released_late >= 1, "a leaf released after the first output time")
 
 # the instanced file: imported, or refused for its required extension
 bpy.ops.wm.read_factory_settings(use_empty=True)

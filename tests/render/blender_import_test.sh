@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# A short run of a leaf OBJ with texture coordinates, its animation.glb imported by Blender
+# A short run of a leaf OBJ with texture coordinates, released one leaf every 0.1 s, its
+# animation.glb imported by Blender
 # (headless, its own glTF importer): tests/render/blender_import.py checks the objects, UVs,
 # keyframes, materials and attributes, and whether Blender imports the instanced file
 # (EXT_mesh_gpu_instancing; Blender 3.4's importer refuses it, not knowing the extension).
@@ -15,11 +16,12 @@ cat > "$work/scene.json" <<JSON
   "fluid": { "density": 1.2, "kinematic_viscosity": 1.5e-5,
              "uniform": { "U": [1, 0, 0], "k": 0.01, "epsilon": 0.01 } },
   "gravity": [0, 0, -9.81], "effects": ["gravity", "drag"],
-  "integrator": { "scheme": "splitting", "dt": 0.01 }, "duration": 0.2, "seed": 1,
+  "integrator": { "scheme": "splitting", "dt": 0.01 }, "duration": 0.3, "seed": 1,
   "bodies": [ { "name": "leaf",
                 "shape": { "type": "mesh", "file": "$src/tests/data/meshes/leaf_surface.obj",
                            "scale": 2, "thickness": 0.0008 },
-                "density": 600, "count": 3, "position": [0, 0, 1] } ],
+                "density": 600, "count": 3, "position": [0, 0, 1],
+                "release": { "rate": 10 } } ],
   "output": { "dir": "$work/out", "every": 0.05, "formats": ["csv", "glb", "glb_instanced"] } }
 JSON
 "$lrigid" run "$work/scene.json" --quiet >/dev/null
