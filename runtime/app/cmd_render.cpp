@@ -210,7 +210,14 @@ class Renderer {
     }
     body_mapper_->SetInputData(bodies_at(a, f, scale_, rgb));
     char buf[128];
-    std::snprintf(buf, sizeof buf, "t = %.2f s   %zu bodies", a.times[f], a.bodies());
+    // the bodies drawn: not those hidden (removed at the grid's edge, or not released yet)
+    size_t shown = 0;
+    for (size_t b = 0; b < nb; ++b) shown += a.hidden_at(f, b) ? 0 : 1;
+    if (shown == nb)
+      std::snprintf(buf, sizeof buf, "t = %.2f s   %zu bodies", a.times[f], nb);
+    else
+      std::snprintf(buf, sizeof buf, "t = %.2f s   %zu of %zu bodies shown", a.times[f], shown,
+                    nb);
     // the colours and the enlargement are in the legend; the caption says where we are
     const std::string label = buf + context_note_;
     text_->SetInput(label.c_str());
