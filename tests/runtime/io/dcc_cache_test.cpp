@@ -18,6 +18,7 @@
 #include "io/usd_writer.h"
 #include "model/state.h"
 #include "support/dcc_run.h"
+#include "support/gltf_read.h"
 #include "support/temp_dir.h"
 #include "util/error.h"
 
@@ -27,15 +28,7 @@ namespace {
 namespace fs = std::filesystem;
 using test::TrajectoryRow;
 
-template <typename T>
-std::vector<T> data_of(const tinygltf::Model& m, int index, int comps) {
-  const tinygltf::Accessor& a = m.accessors[size_t(index)];
-  const tinygltf::BufferView& v = m.bufferViews[size_t(a.bufferView)];
-  const unsigned char* p = m.buffers[size_t(v.buffer)].data.data() + v.byteOffset + a.byteOffset;
-  std::vector<T> out(a.count * size_t(comps));
-  std::memcpy(out.data(), p, out.size() * sizeof(T));
-  return out;
-}
+using test::accessor_data;
 
 tinygltf::Model load(const std::string& path) {
   tinygltf::TinyGLTF loader;
@@ -83,9 +76,9 @@ TEST_F(DccCaches, GltfMeshesHaveSplitNormalsTextureCoordinatesAndAMaterialPerEnt
   for (const auto& mesh : m.meshes) {
     const auto& prim = mesh.primitives.at(0);
     EXPECT_EQ(m.materials[size_t(prim.material)].name, mesh.name.substr(0, mesh.name.find('.')));
-    const auto p = data_of<float>(m, prim.attributes.at("POSITION"), 3);
-    const auto n = data_of<float>(m, prim.attributes.at("NORMAL"), 3);
-    const auto idx = data_of<uint32_t>(m, prim.indices, 1);
+    const auto p = accessor_data<float>(m, prim.attributes.at("POSITION"), 3);
+    const auto n = accessor_data<float>(m, prim.attributes.at("NORMAL"), 3);
+    const auto idx = accessor_data<uint32_t>(m, prim.indices, 1);
     ASSERT_EQ(n.size(), p.size());
     // unit normals on the side the triangle faces, within the smoothing angle of its own
     size_t corners = 0;
@@ -110,7 +103,7 @@ TEST_F(DccCaches, GltfMeshesHaveSplitNormalsTextureCoordinatesAndAMaterialPerEnt
       continue;
     }
     // the OBJ's coordinates, all of them (both sides of the leaf), with glTF's t = 1 - v
-    const auto t = data_of<float>(m, prim.attributes.at("TEXCOORD_0"), 2);
+    const auto t = accessor_data<float>(m, prim.attributes.at("TEXCOORD_0"), 2);
     ASSERT_EQ(t.size() / 2, p.size() / 3);
     std::set<std::pair<long, long>> got;
     for (size_t i = 0; i < t.size(); i += 2)
@@ -161,17 +154,17 @@ TEST_F(DccCaches, InstancedGltfHoldsEachFramesBodiesAndShowsOneFrameAtATime) {
     // shown (1) from its own time, hidden (0) from the next frame's and before
     const auto* s = scale_of.at(fn);
     EXPECT_EQ(s->interpolation, "STEP");
-    const auto t = data_of<float>(m, s->input, 1);
-    const auto v = data_of<float>(m, s->output, 3);
+    const auto t = accessor_data<float>(m, s->input, 1);
+    const auto v = accessor_data<float>(m, s->output, 3);
     for (size_t k = 0; k < t.size(); ++k)
       EXPECT_EQ(v[3 * k], std::abs(t[k] - row(f, 0).t) < 1e-6 ? 1.f : 0.f) << f << " " << k;
     std::set<size_t> seen;
     for (int child : m.nodes[size_t(fn)].children) {
       const tinygltf::Node& n = m.nodes[size_t(child)];
       const tinygltf::Value& a = n.extensions.at("EXT_mesh_gpu_instancing").Get("attributes");
-      const auto x = data_of<float>(m, a.Get("TRANSLATION").GetNumberAsInt(), 3);
-      const auto q = data_of<float>(m, a.Get("ROTATION").GetNumberAsInt(), 4);
-      const auto id = data_of<float>(m, a.Get("_ID").GetNumberAsInt(), 1);
+      const auto x = accessor_data<float>(m, a.Get("TRANSLATION").GetNumberAsInt(), 3);
+      const auto q = accessor_data<float>(m, a.Get("ROTATION").GetNumberAsInt(), 4);
+      const auto id = accessor_data<float>(m, a.Get("_ID").GetNumberAsInt(), 1);
       for (size_t i = 0; i < id.size(); ++i) {
         const TrajectoryRow& r = row(f, size_t(id[i]));
         seen.insert(size_t(id[i]));
@@ -219,7 +212,7 @@ TEST_F(DccFiles, HiddenBodiesStayHiddenInEveryCache) {
     if (c.target_path == "scale") {
       ++scales;
       EXPECT_EQ(c.target_node, 2);
-      const auto v = data_of<float>(m, m.animations[0].samplers[size_t(c.sampler)].output, 3);
+      const auto v = accessor_data<float>(m, m.animations[0].samplers[size_t(c.sampler)].output, 3);
       EXPECT_EQ(v, (std::vector<float>{1, 1, 1, 0, 0, 0, 0, 0, 0}));
     }
   EXPECT_EQ(scales, 1u);
@@ -229,7 +222,7 @@ TEST_F(DccFiles, HiddenBodiesStayHiddenInEveryCache) {
     const auto& fn = mi.nodes[size_t(mi.nodes[0].children[f])];
     ASSERT_EQ(fn.children.size(), 1u);
     const auto& n = mi.nodes[size_t(fn.children[0])];
-    const auto id = data_of<float>(
+    const auto id = accessor_data<float>(
         mi, n.extensions.at("EXT_mesh_gpu_instancing").Get("attributes").Get("_ID").GetNumberAsInt(),
         1);
     EXPECT_EQ(id, (f == 0 ? std::vector<float>{0, 1} : std::vector<float>{0}));

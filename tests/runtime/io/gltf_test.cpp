@@ -23,6 +23,7 @@
 #include "io/result_writer.h"
 #include "io/scene_json.h"
 #include "support/fixture.h"
+#include "support/gltf_read.h"
 #include "util/error.h"
 
 namespace lrigid {
@@ -56,15 +57,7 @@ std::map<int, std::vector<Row>> read_csv(const std::string& path) {
   return rows;
 }
 
-template <typename T>
-std::vector<T> accessor_data(const tinygltf::Model& m, int index, int comps) {
-  const tinygltf::Accessor& a = m.accessors[size_t(index)];
-  const tinygltf::BufferView& v = m.bufferViews[size_t(a.bufferView)];
-  const unsigned char* p = m.buffers[size_t(v.buffer)].data.data() + v.byteOffset + a.byteOffset;
-  std::vector<T> out(a.count * size_t(comps));
-  std::memcpy(out.data(), p, out.size() * sizeof(T));
-  return out;
-}
+using test::accessor_data;
 
 // a free-flight run of spheres and boxes, tumbling (no effects: x = x0 + v t, torque-free spin)
 Scene tumbling_scene(const std::string& dir) {
