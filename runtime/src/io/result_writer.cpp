@@ -379,14 +379,9 @@ void ResultWriter::cleanup() {
 
 void ResultWriter::write_frame(const State& st) {
   if (csv_) {
-    // the frame's rows built in memory with std::to_chars (the same digits as printf's %.9g,
-    // a few times faster), then one write
+    // the frame's rows built in memory with std::to_chars (append_number: the same digits as
+    // printf's %.9g, a few times faster), then one write
     csv_line_.clear();
-    auto num = [&](double x) {
-      char b[32];
-      const auto r = std::to_chars(b, b + sizeof b, x, std::chars_format::general, 9);
-      csv_line_.append(b, r.ptr);
-    };
     for (size_t i = 0; i < st.size(); ++i) {
       // a body waiting for its release has no row (read_results: a frame lists the bodies
       // released by then)
@@ -401,7 +396,7 @@ void ResultWriter::write_frame(const State& st) {
       for (const double x : {st.t, st.x[i].x(), st.x[i].y(), st.x[i].z(), q.w(), q.x(), q.y(),
                              q.z(), v.x(), v.y(), v.z(), w.x(), w.y(), w.z()}) {
         csv_line_ += ',';
-        num(x);
+        append_number(&csv_line_, x);
       }
       csv_line_ += ',';
       csv_line_ += st.state_name(i);
