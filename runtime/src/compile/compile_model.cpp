@@ -1,6 +1,7 @@
 #include "compile/compile_model.h"
 
 #include "contact/points.h"
+#include "contact/pair_geometry.h"
 
 #include <algorithm>
 #include <cmath>
@@ -346,6 +347,7 @@ Model compile_model(const Scene& scene, FluidField field, const AddedMassProvide
   m.ground_contact = scene.ground_contact;
   m.walls_contact = scene.walls_contact;
   m.outside = scene.outside;
+  m.body_contact = scene.body_contact;
   // an impact slower than what gravity adds in a few steps does not bounce (no jitter at rest)
   m.rest_speed = std::max(0.02, 4 * scene.gravity.norm() * scene.dt);
   m.mean_flow_scale = scene.mean_flow_scale;
@@ -435,6 +437,7 @@ Model compile_model(const Scene& scene, FluidField field, const AddedMassProvide
     k->rest_speed = m.rest_speed;
     t.contact = std::move(k);
     t.reach = t.half_extents.norm() + t.com.norm();
+    if (m.body_contact) t.pair = pair_shape(t.shape, t.com);
   }
   return m;
 }

@@ -349,6 +349,52 @@ int contact_rest(const ContactParams& k, const T* M, T* v, T* w, int m, const T*
   return 0;
 }
 
+// One point's share of a projected Gauss-Seidel sweep, written once for a body against a surface
+// (contact_resolve) and for two bodies against each other (contact/island.h): the normal impulse
+// that brings the point's normal velocity to `target`, the accumulated normal impulse *Jn kept
+// >= 0 (points never pull); then roll(*Jn), the rolling resistance's share (returns its impulse
+// change, N s); then the friction impulse along the slip that would stop it (effective mass
+// 1 / t.K t), the accumulated tangential impulse Jt[3] kept within the cone |Jt| <= mu Jn.
+// K: the point's 3x3 velocity change per unit impulse; inv_knn = 1 / n.K n. vel(vc) gives the
+// point's (relative) velocity now, apply(J) applies the impulse J at the point. *scale becomes
+// at least the new normal impulse; returns the largest impulse change of the point.
+template <typename T, class Vel, class Apply, class Roll>
+T contact_point_sweep(const T* K, const T* n, T target, T inv_knn, T mu, T* Jn, T* Jt, T* scale,
+                      Vel vel, Apply apply, Roll roll) {
+  T vc[3];
+  vel(vc);
+  const T jn_new = std::max(T(0), *Jn + (target - dot3(vc, n)) * inv_knn);
+  T J[3];
+  for (int a = 0; a < 3; ++a) J[a] = (jn_new - *Jn) * n[a];
+  T change = std::abs(jn_new - *Jn);
+  *scale = std::max(*scale, jn_new);
+  *Jn = jn_new;
+  apply(J);
+  change = std::max(change, roll(*Jn));
+  vel(vc);
+  const T vn = dot3(vc, n);
+  T vt[3];
+  for (int a = 0; a < 3; ++a) vt[a] = vc[a] - vn * n[a];
+  const T slip = std::sqrt(dot3(vt, vt));
+  if (!(slip > T(0))) return change;
+  T t[3], Kt[3];
+  for (int a = 0; a < 3; ++a) t[a] = vt[a] / slip;
+  mul(K, t, Kt);
+  const T jt = -slip / dot3(t, Kt);
+  T Jt_new[3];
+  for (int a = 0; a < 3; ++a) Jt_new[a] = Jt[a] + jt * t[a];
+  const T norm = std::sqrt(dot3(Jt_new, Jt_new)), cap = mu * *Jn;
+  const T clip = norm > cap ? cap / norm : T(1);
+  for (int a = 0; a < 3; ++a) {
+    Jt_new[a] *= clip;
+    J[a] = Jt_new[a] - Jt[a];
+    Jt[a] = Jt_new[a];
+  }
+  change = std::max(change, std::sqrt(dot3(J, J)));
+  apply(J);
+  return change;
+}
+
 // Several contact points touching at once (a box flat on the ground, a plate across a roof
 // edge): projected Gauss-Seidel on the accumulated impulses (Catto's sequential impulses),
 // at most `passes` sweeps over the points (fewer once converged, kContactTolerance). Each sweep gives point i first the normal impulse change
@@ -548,42 +594,12 @@ int contact_resolve(const ContactParams& k, const T* Minv, T* v, T* w, int count
     T change = T(0), scale = T(0);
     for (int i = 0; i < m; ++i) {
       if (!(depth[i] >= T(0)) && !(depth[i] < T(0) && horizon > T(0))) continue;
-      const T *ri = r + 3 * i, *ni = n + 3 * i;
-      // the normal impulse: the point's normal velocity to its target, never pulling
-      T vc[3];
-      point_velocity(ri, vc);
-      const T jn_new = std::max(T(0), Jn[i] + (target[i] - dot3(vc, ni)) * inv_knn[i]);
-      T J[3];
-      for (int a = 0; a < 3; ++a) J[a] = (jn_new - Jn[i]) * ni[a];
-      change = std::max(change, std::abs(jn_new - Jn[i]));
-      scale = std::max(scale, jn_new);
-      Jn[i] = jn_new;
-      apply(ri, J);
-      // rolling resistance: the angular impulse against the rolling, within mu_r |r_i| Jn
-      if (rolls) change = std::max(change, roll(i, Jn[i]));
-      // friction: along the slip, the impulse that stops it (effective mass t.K t), the
-      // accumulated tangential impulse kept within the cone |J_t| <= mu J_n
-      point_velocity(ri, vc);
-      const T vn = dot3(vc, ni);
-      T vt[3];
-      for (int a = 0; a < 3; ++a) vt[a] = vc[a] - vn * ni[a];
-      const T slip = std::sqrt(dot3(vt, vt));
-      if (!(slip > T(0))) continue;
-      T t[3], Kt[3];
-      for (int a = 0; a < 3; ++a) t[a] = vt[a] / slip;
-      mul(K[i], t, Kt);
-      const T jt = -slip / dot3(t, Kt);
-      T Jt_new[3];
-      for (int a = 0; a < 3; ++a) Jt_new[a] = Jt[i][a] + jt * t[a];
-      const T norm = std::sqrt(dot3(Jt_new, Jt_new)), cap = mu * Jn[i];
-      const T clip = norm > cap ? cap / norm : T(1);
-      for (int a = 0; a < 3; ++a) {
-        Jt_new[a] *= clip;
-        J[a] = Jt_new[a] - Jt[i][a];
-        Jt[i][a] = Jt_new[a];
-      }
-      change = std::max(change, std::sqrt(dot3(J, J)));
-      apply(ri, J);
+      const T* ri = r + 3 * i;
+      change = std::max(
+          change, contact_point_sweep(
+                      K[i], n + 3 * i, target[i], inv_knn[i], mu, &Jn[i], Jt[i], &scale,
+                      [&](T* vc) { point_velocity(ri, vc); }, [&](const T* J) { apply(ri, J); },
+                      [&](T jn) { return rolls ? roll(i, jn) : T(0); }));
     }
     if (change <= T(kContactTolerance) * scale) break;
   }

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <string>
 
+#include "contact/bodies.h"
 #include "contact/sleep.h"
 #include "integrate/integrators.h"
 #include "integrate/rigid_batch.h"
@@ -165,8 +166,13 @@ RunStats simulate(const Model& model, State* state, const RunOptions& options) {
       static_cast<uint64_t>(std::llround(model.duration / model.dt));
   const uint64_t stride = output_stride(model, options.every);
   const int threads = options.threads > 0 ? options.threads : omp_get_max_threads();
-  const auto n = static_cast<int64_t>(std::min(st.size(), options.body_end));
-  const auto n0 = static_cast<int64_t>(std::min(st.size(), options.body_begin));
+  // with contacts between bodies every process steps every body (a pair may span two ranks'
+  // shares): the same results as one process
+  const auto n = static_cast<int64_t>(
+      model.body_contact ? st.size() : std::min(st.size(), options.body_end));
+  const auto n0 = static_cast<int64_t>(
+      model.body_contact ? 0 : std::min(st.size(), options.body_begin));
+  BodyContactScratch pair_scratch;
   uint64_t next_release = release_due(model, st, n0, n, st.step);
   if (options.on_output && options.output_at_start) options.on_output(st);
   double wall = stats.wall_seconds;
@@ -180,20 +186,25 @@ RunStats simulate(const Model& model, State* state, const RunOptions& options) {
     const uint64_t next_output = (first / stride + 1) * stride;
     const uint64_t last = stream_stretch_end(
         model, first,
-        std::min({total_steps, next_output, first + kStretchSteps, next_release}));
+        std::min({total_steps, next_output,
+                  first + (model.body_contact ? 1 : kStretchSteps), next_release}));
+    if (model.body_contact) pair_scratch.rest_before = st.rest_steps;
     model.field.prepare(static_cast<double>(first) * model.dt, stream_window_end(model, last));
     uint64_t body_steps = 0, handoffs = 0, newton = 0;
     const auto t0 = std::chrono::steady_clock::now();
     // sleeping bodies: woken by a changed flow or their gust watch, the watches advanced (each
     // body's own, so chunks of bodies go to the threads)
     constexpr int64_t kWakeChunk = 256;
-#pragma omp parallel for num_threads(threads) schedule(dynamic, 1)
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 1) if (n - n0 > kWakeChunk)
     for (int64_t c = n0; c < n; c += kWakeChunk)
       wake_bodies(model, &st, size_t(c), size_t(std::min(n, c + kWakeChunk)), first, last);
     const WorkList work = work_list(model, st, kinds, n0, n, last);
     const auto nblocks = static_cast<int64_t>(work.blocks.size());
     const auto nscalar = static_cast<int64_t>(work.scalar.size());
-#pragma omp parallel num_threads(threads) reduction(+ : body_steps, handoffs, newton)
+    // (one thread for a single unit of work: a stretch of one step, with contacts between
+    // bodies, would otherwise wake the threads for nothing)
+#pragma omp parallel num_threads(threads) reduction(+ : body_steps, handoffs, newton) \
+    if (nblocks + nscalar > 1)
     {
 #pragma omp for schedule(dynamic, 4) nowait
       for (int64_t k = 0; k < nblocks; ++k) {
@@ -215,6 +226,15 @@ RunStats simulate(const Model& model, State* state, const RunOptions& options) {
     stats.newton_steps += newton;
     st.step = last;
     st.t = static_cast<double>(last) * model.dt;
+    if (model.body_contact) {
+      // the contacts between bodies, after every body has taken the step (contact/bodies.h)
+      const auto tp = std::chrono::steady_clock::now();
+      const BodyContactStats pc =
+          body_contacts(model, &st, &pair_scratch, size_t(n0), size_t(n), threads);
+      wall += std::chrono::duration<double>(std::chrono::steady_clock::now() - tp).count();
+      stats.pair_steps += pc.touching;
+      stats.pair_wakes += pc.woken;
+    }
     if (next_release <= last) next_release = release_due(model, st, n0, n, last);
     if (options.live_stats) {
       *options.live_stats = stats;

@@ -20,6 +20,10 @@ struct RunStats {
   uint64_t steps = 0;          // time steps
   double wall_seconds = 0;     // integration only (no output)
   size_t landed = 0, exited = 0, failed = 0;
+  // contacts between bodies (Model::body_contact): touching pairs summed over the steps, and
+  // sleeping bodies a contact woke
+  uint64_t pair_steps = 0;
+  uint64_t pair_wakes = 0;
   // at the end: bodies resting on a surface or asleep there (contact/sleep.h)
   size_t resting = 0;
 };

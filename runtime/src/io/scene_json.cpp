@@ -398,6 +398,12 @@ void read_scene_contacts(Obj& top, Scene* s) {
     else if (m == "stop") s->outside = OutsideMode::Stop;
     else top.fail("outside", "must be \"remove\" or \"stop\", got \"" + m + "\"");
   }
+  if (top.has("body_contact")) {
+    const std::string m = top.string("body_contact");
+    if (m == "collide") s->body_contact = true;
+    else if (m == "off") s->body_contact = false;
+    else top.fail("body_contact", "must be \"collide\" or \"off\", got \"" + m + "\"");
+  }
 }
 
 BodySpec read_body(Obj o) {
@@ -609,7 +615,7 @@ Scene parse_scene_unchecked(const std::string& text, const std::string& path) {
   }
   Scene s;
   s.file = path;
-  Obj top(j, "", path, {"version", "fluid", "gravity", "effects", "integrator", "duration", "seed", "bodies", "ground", "turbulence", "art", "output", "contact", "walls", "outside"});
+  Obj top(j, "", path, {"version", "fluid", "gravity", "effects", "integrator", "duration", "seed", "bodies", "ground", "turbulence", "art", "output", "contact", "walls", "outside", "body_contact"});
   if (const json* v = top.find("version")) {
     if (!v->is_number_integer() || v->get<int>() != 1)
       top.fail("version", "only schema version 1 is supported, got " + Obj::dump(*v));

@@ -20,6 +20,7 @@ namespace lrigid {
 struct EffectContext;  // effects/context.h
 struct EffectParams;   // effects/plan.h: the kernels' Params of the body type
 struct ContactParams;  // contact/points.h: restitution, friction, the shape's contact points
+struct PairShape;      // contact/pair_geometry.h: the convex shape of contacts between bodies
 using WrenchTerm = Vec6 (*)(const EffectContext&);
 struct EffectPlan {
   std::vector<WrenchTerm> terms;   // evaluation order of all_effects()
@@ -108,6 +109,9 @@ struct BodyType {
   // and from the walls cannot touch them (the one comparison bodies far from surfaces pay)
   std::shared_ptr<const ContactParams> contact;
   double reach = 0;
+  // contacts between bodies (Model::body_contact): the convex shape the narrow phase takes
+  // (contact/pair_geometry.h), built once by compile_model; null without body contacts
+  std::shared_ptr<const PairShape> pair;
   // crossing trajectories of the seen model (effects/turbulence.h): the body's drift through the
   // fluid, its settling (or rising) velocity in still fluid under the weight and buoyancy it
   // simulates, as a unit direction (world) and a speed (m/s); zero for tracers, without the seen
@@ -154,6 +158,9 @@ struct Model {
     return walls_contact == ContactMode::Collide && field.has_wall_distance();
   }
   bool contacts() const { return ground_collides() || walls_collide(); }
+  // bodies collide with each other (scene key body_contact "collide"; contact/bodies.h): the
+  // bodies are stepped together, one step at a time, and the pair contacts follow each step
+  bool body_contact = false;
   // Thomson's well-mixed drift for the seen model; off only to show what it prevents
   bool well_mixed_correction = true;
   // crossing trajectories in the seen model (effects/turbulence.h): the drift of heavy and light

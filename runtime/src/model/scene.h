@@ -122,6 +122,9 @@ struct Scene {
   ContactMode ground_contact = ContactMode::Collide;
   ContactMode walls_contact = ContactMode::Collide;
   OutsideMode outside = OutsideMode::Remove;
+  // body_contact "collide": bodies collide with each other (contact/bodies.h); "off" (the
+  // default): they pass through each other
+  bool body_contact = false;
   TurbulenceModel turbulence_model = TurbulenceModel::Seen;
   Drift drift = Drift::Stationary;
   bool crossing_trajectories = true;      // seen model: Csanady's correction (docs/physics/langevin.md)

@@ -1,0 +1,403 @@
+#include "contact/bodies.h"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include "contact/island.h"
+#include "contact/pair_geometry.h"
+#include "contact/pass.h"
+#include "contact/sleep.h"
+#include "contact/solver.h"
+#include "contact/touching.h"
+#include "model/body_state.h"
+
+namespace lrigid {
+
+PairMaterial pair_material(const ContactParams& a, const ContactParams& b) {
+  return {std::max(a.restitution, b.restitution), std::sqrt(a.friction * b.friction),
+          std::max(a.rolling_resistance, b.rolling_resistance)};
+}
+
+namespace {
+
+// Sweeps of the projected Gauss-Seidel over an island's points: a stack passes its weight down
+// one body per sweep, so more than a body alone takes (kContactPasses)
+constexpr int kIslandPasses = 48;
+
+// a body taking part in the stage
+struct Cand {
+  uint32_t body;
+  bool dynamic;  // moving (not sleeping)
+  PairPose pose;
+  Vec3 lo, hi;   // bounding box widened by the margin
+  double margin; // what it closes in one step, m
+  Vec3 vw, ww;   // world velocity and spin
+};
+
+// The pairs (a < b, indices into c) whose boxes overlap: sweep and prune along x, sorted by
+// their bodies' indices.
+std::vector<std::pair<int, int>> overlapping_pairs(const std::vector<Cand>& c) {
+  std::vector<int> order(c.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](int a, int b) {
+    return c[a].lo.x() < c[b].lo.x() || (c[a].lo.x() == c[b].lo.x() && a < b);
+  });
+  std::vector<std::pair<int, int>> pairs;
+  std::vector<int> active;
+  for (const int k : order) {
+    const double x0 = c[k].lo.x();
+    size_t keep = 0;
+    for (const int a : active)
+      if (c[a].hi.x() >= x0) active[keep++] = a;
+    active.resize(keep);
+    for (const int a : active) {
+      const bool overlap = c[a].lo.y() <= c[k].hi.y() && c[k].lo.y() <= c[a].hi.y() &&
+                           c[a].lo.z() <= c[k].hi.z() && c[k].lo.z() <= c[a].hi.z();
+      if (overlap) pairs.emplace_back(std::min(a, k), std::max(a, k));
+    }
+    active.push_back(k);
+  }
+  std::sort(pairs.begin(), pairs.end());
+  return pairs;
+}
+
+Cand make_cand(const Model& model, const State& st, size_t i) {
+  Cand c;
+  c.body = static_cast<uint32_t>(i);
+  c.dynamic = st.status[i] == BodyStatus::Moving;
+  const BodyType& type = model.types[st.type[i]];
+  c.pose.x = st.x[i];
+  c.pose.R = st.q[i].toRotationMatrix();
+  c.vw = c.pose.R * st.v[i];
+  c.ww = c.pose.R * st.w[i];
+  c.margin = kPairSkin;
+  if (c.dynamic) c.margin += (c.vw.norm() + c.ww.norm() * type.reach) * model.dt;
+  pair_aabb(*type.pair, c.pose, &c.lo, &c.hi);
+  c.lo.array() -= c.margin;
+  c.hi.array() += c.margin;
+  return c;
+}
+
+bool takes_part(const State& st, size_t i) {
+  const BodyStatus s = st.status[i];
+  return (s == BodyStatus::Moving || s == BodyStatus::Sleeping) && !st.hidden[i];
+}
+
+int find(std::vector<int>& parent, int a) {
+  while (parent[a] != a) a = parent[a] = parent[parent[a]];
+  return a;
+}
+
+}  // namespace
+
+BodyContactStats body_contacts(const Model& model, State* state, BodyContactScratch* scratch,
+                               size_t n0, size_t n, int threads) {
+  BodyContactStats stats;
+  State& st = *state;
+  const double h = model.dt;
+  const double t_end = static_cast<double>(st.step) * h;
+  std::vector<Cand> cand;
+  for (size_t i = n0; i < n; ++i)
+    if (takes_part(st, i)) cand.push_back(make_cand(model, st, i));
+  const std::vector<std::pair<int, int>> pairs = overlapping_pairs(cand);
+  stats.pairs = pairs.size();
+  if (pairs.empty()) return stats;
+  // the narrow phase of the pairs with a moving body
+  std::vector<PairManifold> mf(pairs.size());
+  std::vector<uint8_t> done(pairs.size(), 0);
+  auto narrow = [&](size_t p) {
+    const Cand &a = cand[pairs[p].first], &b = cand[pairs[p].second];
+    collide(*model.types[st.type[a.body]].pair, a.pose, *model.types[st.type[b.body]].pair,
+            b.pose, a.margin + b.margin, &mf[p]);
+    done[p] = 1;
+  };
+  const auto np = static_cast<int64_t>(pairs.size());
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 64) if (np > 64)
+  for (int64_t p = 0; p < np; ++p)
+    if (cand[pairs[p].first].dynamic || cand[pairs[p].second].dynamic) narrow(size_t(p));
+
+  // waking: a sleeping body touched by a moving body that is not resting (it was not resting
+  // before this step, or a point approaches faster than the resting speed) wakes, with the
+  // sleeping bodies that touch it
+  std::vector<std::vector<int>> adj(cand.size());
+  for (size_t p = 0; p < pairs.size(); ++p) {
+    adj[pairs[p].first].push_back(int(p));
+    adj[pairs[p].second].push_back(int(p));
+  }
+  std::vector<int> woken;
+  auto wake = [&](int s) {
+    std::vector<int> stack{s};
+    cand[s].dynamic = true;
+    while (!stack.empty()) {
+      const int k = stack.back();
+      stack.pop_back();
+      const uint32_t i = cand[k].body;
+      st.u_seen[i] = wake_sleeper(&st, i);
+      woken.push_back(k);
+      for (const int p : adj[k]) {
+        const int o = pairs[p].first == k ? pairs[p].second : pairs[p].first;
+        if (cand[o].dynamic) continue;
+        if (!done[p]) narrow(size_t(p));
+        if (mf[p].count == 0) continue;
+        cand[o].dynamic = true;
+        stack.push_back(o);
+      }
+    }
+  };
+  for (size_t p = 0; p < pairs.size(); ++p) {
+    if (!done[p] || mf[p].count == 0) continue;
+    const int a = pairs[p].first, b = pairs[p].second;
+    if (cand[a].dynamic == cand[b].dynamic) continue;
+    const int mover = cand[a].dynamic ? a : b, sleeper = cand[a].dynamic ? b : a;
+    const uint32_t i = cand[mover].body;
+    bool hits = scratch->rest_before.size() > i ? scratch->rest_before[i] == 0 : true;
+    for (int k = 0; k < mf[p].count && !hits; ++k) {
+      const PairPoint& q = mf[p].pts[k];
+      const Vec3 vc = cand[mover].vw + cand[mover].ww.cross(q.p - cand[mover].pose.x);
+      const Vec3 nn = mover == a ? q.n : Vec3(-q.n);
+      hits = vc.dot(nn) < -model.rest_speed;
+    }
+    if (hits) wake(sleeper);
+  }
+  stats.woken = woken.size();
+  // pairs a wake made dynamic on both sides and not yet tested
+  for (size_t p = 0; p < pairs.size(); ++p)
+    if (!done[p] && (cand[pairs[p].first].dynamic || cand[pairs[p].second].dynamic)) narrow(p);
+
+  // islands: moving bodies joined by touching pairs
+  std::vector<int> parent(cand.size());
+  std::iota(parent.begin(), parent.end(), 0);
+  std::vector<uint8_t> in_island(cand.size(), 0);
+  for (size_t p = 0; p < pairs.size(); ++p) {
+    if (!done[p] || mf[p].count == 0) continue;
+    const int a = pairs[p].first, b = pairs[p].second;
+    ++stats.touching;
+    in_island[a] |= cand[a].dynamic;
+    in_island[b] |= cand[b].dynamic;
+    if (cand[a].dynamic && cand[b].dynamic) {
+      const int ra = find(parent, a), rb = find(parent, b);
+      if (ra != rb) parent[std::max(ra, rb)] = std::min(ra, rb);
+    }
+  }
+  // each island's bodies (in body order) and pairs (in pair order)
+  std::vector<int> root_island(cand.size(), -1);
+  std::vector<std::vector<int>> ibodies, ipairs;
+  for (size_t k = 0; k < cand.size(); ++k) {
+    if (!in_island[k]) continue;
+    const int r = find(parent, int(k));
+    if (root_island[r] < 0) {
+      root_island[r] = int(ibodies.size());
+      ibodies.emplace_back();
+      ipairs.emplace_back();
+    }
+    ibodies[root_island[r]].push_back(int(k));
+  }
+  for (size_t p = 0; p < pairs.size(); ++p) {
+    if (!done[p] || mf[p].count == 0) continue;
+    const int a = pairs[p].first, b = pairs[p].second;
+    const int k = cand[a].dynamic ? a : b;
+    ipairs[root_island[find(parent, k)]].push_back(int(p));
+  }
+  stats.islands = ibodies.size();
+  std::vector<double> deepest(ibodies.size(), 0.0);
+
+  const auto nis = static_cast<int64_t>(ibodies.size());
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 1) if (nis > 1)
+  for (int64_t is = 0; is < nis; ++is) {
+    const std::vector<int>& members = ibodies[is];
+    const int nm = static_cast<int>(members.size());
+    std::vector<IslandBody> bodies(members.size());
+    auto local_of = [&](int k) {
+      return int(std::lower_bound(members.begin(), members.end(), k) - members.begin());
+    };
+    for (int m = 0; m < nm; ++m) {
+      const Cand& c = cand[members[m]];
+      const BodyType& type = model.types[st.type[c.body]];
+      world_inverse_mass(type.M_inv, c.pose.R, bodies[m].W);
+      for (int a = 0; a < 3; ++a) bodies[m].v[a] = c.vw[a], bodies[m].w[a] = c.ww[a];
+    }
+    std::vector<IslandPoint> pts;
+    for (const int p : ipairs[is]) {
+      int a = pairs[p].first, b = pairs[p].second;
+      double sign = 1;
+      if (!cand[a].dynamic) std::swap(a, b), sign = -1;
+      const ContactParams& ka = *model.types[st.type[cand[a].body]].contact;
+      const ContactParams& kb = *model.types[st.type[cand[b].body]].contact;
+      const PairMaterial mat = pair_material(ka, kb);
+      for (int k = 0; k < mf[p].count; ++k) {
+        const PairPoint& q = mf[p].pts[k];
+        IslandPoint ip;
+        ip.a = local_of(a);
+        ip.b = cand[b].dynamic ? local_of(b) : -1;
+        const Vec3 ra = q.p - cand[a].pose.x, rb = q.p - cand[b].pose.x;
+        for (int e = 0; e < 3; ++e) ip.ra[e] = ra[e], ip.rb[e] = rb[e], ip.n[e] = sign * q.n[e];
+        ip.depth = q.depth;
+        ip.restitution = mat.restitution;
+        ip.friction = mat.friction;
+        ip.rolling = mat.rolling;
+        ip.rest_speed = std::max(ka.rest_speed, kb.rest_speed);
+        pts.push_back(ip);
+      }
+    }
+    // the members' points on the ground and the walls, solved with the pairs
+    if (model.contacts()) {
+      for (int m = 0; m < nm; ++m) {
+        const Cand& c = cand[members[m]];
+        const BodyType& type = model.types[st.type[c.body]];
+        const BodyState b = load_body(st, c.body);
+        Touching t;
+        gather(model, type, b, c.pose.R, t_end, 0.0, &t, nullptr, 0.0, h);
+        for (int k = 0; k < t.count; ++k) {
+          IslandPoint ip;
+          ip.a = m;
+          const Vec3 r = c.pose.R * Vec3(t.r[3 * k], t.r[3 * k + 1], t.r[3 * k + 2]);
+          const Vec3 nn = c.pose.R * Vec3(t.n[3 * k], t.n[3 * k + 1], t.n[3 * k + 2]);
+          for (int e = 0; e < 3; ++e) ip.ra[e] = r[e], ip.n[e] = nn[e];
+          ip.depth = t.depth[k];
+          ip.restitution = type.contact->restitution;
+          ip.friction = type.contact->friction;
+          ip.rolling = type.contact->rolling_resistance;
+          ip.rest_speed = type.contact->rest_speed;
+          pts.push_back(ip);
+        }
+      }
+    }
+    const std::vector<IslandBody> before = bodies;
+    island_resolve(bodies.data(), pts.data(), int(pts.size()), kIslandPasses, h);
+    // positions: the step's update with the velocity change, then what remains of each
+    // penetration, split by the effective masses along the normal
+    const double cw = model.integrator == Integrator::Euler ? 0.0 : 0.5 * h;
+    std::vector<Vec3> up(members.size(), Vec3::Zero()), down(members.size(), Vec3::Zero());
+    double deep = 0;
+    for (const IslandPoint& ip : pts) {
+      if (!(ip.depth > 0)) continue;
+      double vc0[3], vc1[3];
+      island_point_velocity(before.data(), ip, vc0);
+      island_point_velocity(bodies.data(), ip, vc1);
+      double dvn = 0;
+      for (int e = 0; e < 3; ++e) dvn += (vc1[e] - vc0[e]) * ip.n[e];
+      const double left = ip.depth - cw * dvn;
+      if (ip.b >= 0) deep = std::max(deep, ip.depth);
+      if (!(left > 0)) continue;
+      double share = 1;
+      if (ip.b >= 0) {
+        double c[3], dv[3], dw[3];
+        contact_response(bodies[ip.a].W, ip.ra, ip.n, c, dv, dw);
+        const double ka = dot3(c, ip.n);
+        contact_response(bodies[ip.b].W, ip.rb, ip.n, c, dv, dw);
+        const double kb = dot3(c, ip.n);
+        share = ka / (ka + kb);
+      }
+      const Vec3 nn(ip.n[0], ip.n[1], ip.n[2]);
+      auto add = [&](int m, const Vec3& d) {
+        up[m] = up[m].cwiseMax(d);
+        down[m] = down[m].cwiseMin(d);
+      };
+      add(ip.a, share * left * nn);
+      if (ip.b >= 0) add(ip.b, -(1 - share) * left * nn);
+    }
+    deepest[is] = deep;
+    const double still = kRestFraction * model.rest_speed;
+    std::vector<uint8_t> rests(members.size(), 1);
+    for (const IslandPoint& ip : pts) {
+      double vc[3];
+      island_point_velocity(bodies.data(), ip, vc);
+      if (!(ip.depth >= 0)) continue;
+      const bool moves = std::sqrt(dot3(vc, vc)) >= still;
+      if (moves) {
+        rests[ip.a] = 0;
+        if (ip.b >= 0) rests[ip.b] = 0;
+      }
+    }
+    bool all_rested = true;
+    for (int m = 0; m < nm; ++m) {
+      const Cand& c = cand[members[m]];
+      const uint32_t i = c.body;
+      const BodyType& type = model.types[st.type[i]];
+      const Vec3 v(bodies[m].v[0], bodies[m].v[1], bodies[m].v[2]);
+      const Vec3 w(bodies[m].w[0], bodies[m].w[1], bodies[m].w[2]);
+      const Vec3 v0(before[m].v[0], before[m].v[1], before[m].v[2]);
+      const Vec3 w0(before[m].w[0], before[m].w[1], before[m].w[2]);
+      st.x[i] += cw * (v - v0) + up[m] + down[m];
+      st.q[i] = rotate_body(st.q[i], cw * (c.pose.R.transpose() * (w - w0)));
+      st.v[i] = c.pose.R.transpose() * v;
+      st.w[i] = c.pose.R.transpose() * w;
+      const bool r = rests[m] && w.norm() * type.reach < still;
+      const uint32_t before_rest =
+          i < scratch->rest_before.size() ? scratch->rest_before[i] : st.rest_steps[i];
+      st.contact[i] = r ? ContactState::Resting : ContactState::Sliding;
+      st.rest_steps[i] = r ? before_rest + 1 : 0;
+      all_rested = all_rested && double(st.rest_steps[i]) * h >= model.sleep_time;
+    }
+    if (!all_rested) continue;
+    // the island sleeps when the flow as it is moves none of its bodies
+    std::vector<BodyState> saved(members.size());
+    std::vector<double> t_stop(members.size());
+    int slept = 0;
+    for (; slept < nm; ++slept) {
+      const uint32_t i = cand[members[slept]].body;
+      const BodyType& type = model.types[st.type[i]];
+      // the normal of the body's deepest point, from what it lies on into the body
+      Vec3 base(0, 0, 1);
+      double dmax = -HUGE_VAL;
+      for (const IslandPoint& ip : pts) {
+        const bool on_a = ip.a == slept, on_b = ip.b == slept;
+        if ((!on_a && !on_b) || !(ip.depth > dmax)) continue;
+        dmax = ip.depth;
+        base = (on_a ? 1.0 : -1.0) * Vec3(ip.n[0], ip.n[1], ip.n[2]);
+      }
+      saved[slept] = load_body(st, i);
+      t_stop[slept] = st.t_stop[i];
+      BodyState b = saved[slept];
+      if (!fall_asleep(model, type, i, t_end, base, &b, &st)) break;
+      store_body(b, i, &st);
+    }
+    if (slept == nm) continue;
+    // one of them stays awake: the island does, and is asked again after another sleep_time
+    for (int m = 0; m < nm; ++m) {
+      const uint32_t i = cand[members[m]].body;
+      if (m < slept) {
+        store_body(saved[m], i, &st);
+        st.status[i] = BodyStatus::Moving;
+        st.t_stop[i] = t_stop[m];
+        if (i < st.watch.size()) st.watch[i].valid = 0;
+      }
+      st.rest_steps[i] = 0;
+    }
+  }
+  for (const double d : deepest) stats.deepest = std::max(stats.deepest, d);
+  return stats;
+}
+
+double deepest_pair_overlap(const Model& model, const State& st, int* i_out, int* j_out) {
+  std::vector<Cand> cand;
+  for (size_t i = 0; i < st.size(); ++i) {
+    if (!takes_part(st, i)) continue;
+    Cand c = make_cand(model, st, i);
+    c.dynamic = false;
+    const BodyType& type = model.types[st.type[i]];
+    pair_aabb(*type.pair, c.pose, &c.lo, &c.hi);
+    c.margin = 0;
+    cand.push_back(c);
+  }
+  double deepest = 0;
+  if (i_out) *i_out = -1;
+  if (j_out) *j_out = -1;
+  for (const auto& [a, b] : overlapping_pairs(cand)) {
+    PairManifold m;
+    collide(*model.types[st.type[cand[a].body]].pair, cand[a].pose,
+            *model.types[st.type[cand[b].body]].pair, cand[b].pose, 0.0, &m);
+    for (int k = 0; k < m.count; ++k)
+      if (m.pts[k].depth > deepest) {
+        deepest = m.pts[k].depth;
+        if (i_out) *i_out = int(cand[a].body);
+        if (j_out) *j_out = int(cand[b].body);
+      }
+  }
+  return deepest;
+}
+
+}  // namespace lrigid

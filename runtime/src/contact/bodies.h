@@ -1,0 +1,66 @@
+// Contacts between bodies (scene key body_contact "collide"; docs/contacts.md "Bodies against
+// each other"): after each step of every body, one stage finds the pairs that touch and solves
+// them with the contacts against the ground and the walls, island by island.
+//
+//   broad phase   sweep and prune along x over each body's bounding box (pair_aabb) widened by
+//                 what the body closes in one step, and the narrow phase (contact/pair_geometry.h
+//                 collide) on the overlapping pairs
+//   waking        a sleeping body touched by one that is not resting wakes, with every sleeping
+//                 body that touches it (its island); a sleeping body otherwise is a static surface
+//   islands       bodies joined by touching pairs; each island's points (pairs, and each body's
+//                 points on the ground and the walls, contact/touching.h gather) go to one
+//                 projected Gauss-Seidel (contact/island.h island_resolve)
+//   positions     the step's position update takes the velocity change as contact_pass does;
+//                 what remains of a pair's penetration is split by the two bodies' effective
+//                 masses along its normal (positions only: no energy is added)
+//   resting       a body whose every point stands still rests; an island whose bodies have all
+//                 rested for Model::sleep_time, and that the flow as it is cannot move, sleeps
+//
+// The bodies' state is all there is: nothing is carried from one step to the next but what the
+// state holds, so a resumed run and any thread count give the same results.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "model/model.h"
+#include "model/state.h"
+
+namespace lrigid {
+
+// The pair's material from the two bodies' "contact": the larger restitution, the geometric mean
+// of the frictions, the larger rolling resistance (Box2D's mixing rules; docs/contacts.md).
+struct PairMaterial {
+  double restitution, friction, rolling;
+};
+PairMaterial pair_material(const ContactParams& a, const ContactParams& b);
+
+// A point off a body by less than this (m) still counts as touching for waking and resting
+// bodies and as a speculative point for one at rest.
+constexpr double kPairSkin = 1e-4;
+
+struct BodyContactStats {
+  uint64_t pairs = 0;         // pairs whose bounding boxes overlapped
+  uint64_t touching = 0;      // of them, pairs with contact points
+  uint64_t islands = 0;       // islands solved
+  uint64_t woken = 0;         // sleeping bodies woken by a contact
+  double deepest = 0;         // the deepest pair penetration after the stage, m
+};
+
+// What the stage keeps between steps that is not state: the bodies' rest counts before the
+// step (the step's own contact pass restarts them for bodies off the ground), and scratch.
+struct BodyContactScratch {
+  std::vector<uint32_t> rest_before;
+};
+
+// The stage after every body has taken step `step` - 1 (so that the state is at time step * dt).
+// Bodies [n0, n) that are moving or sleeping take part; threads for the narrow phase and the
+// islands (results do not depend on it).
+BodyContactStats body_contacts(const Model& model, State* st, BodyContactScratch* scratch,
+                               size_t n0, size_t n, int threads);
+
+// The deepest penetration (m) between any two bodies of the state that are not stopped or
+// hidden, and the pair (i < j) where it is (-1: none touch). For tests and studies.
+double deepest_pair_overlap(const Model& model, const State& st, int* i_out = nullptr,
+                            int* j_out = nullptr);
+
+}  // namespace lrigid

@@ -1,0 +1,48 @@
+// The contact problem of an island of bodies touching each other (docs/contacts.md, "Bodies
+// against each other"): projected Gauss-Seidel on the accumulated impulses of every contact
+// point between two bodies and between a body and a static surface (the ground, a wall of the
+// grid's solids, a sleeping body), each point through the generalized 6x6 inverse masses (body
+// plus added mass) of both bodies. The per-point update is contact_point_sweep, the one the
+// contacts of a body against surfaces take (contact/solver.h contact_resolve). World frame.
+#pragma once
+#include <vector>
+
+#include "util/types.h"
+
+namespace lrigid {
+
+struct IslandBody {
+  double W[36] = {};  // generalized inverse mass [v; w], world frame, row-major; 0: static
+  double v[3] = {};   // velocity of the centre of mass, world, m/s
+  double w[3] = {};   // angular velocity, world, rad/s
+};
+
+struct IslandPoint {
+  int a = 0, b = -1;     // bodies of the island; b < 0: a static surface
+  double ra[3] = {}, rb[3] = {};  // the point from each body's centre of mass, world, m
+  double n[3] = {};      // unit normal from b towards a, world
+  double depth = 0;      // m; >= 0 touching, < 0 a speculative point off by -depth
+  double restitution = 0, friction = 0, rolling = 0;  // the pair's material
+  double rest_speed = 0; // m/s: a point approaching slower does not bounce
+  // set by island_resolve: the normal and tangential impulses it carries on a, N s
+  double jn = 0;
+  double jt[3] = {};
+};
+
+// The velocity of point p of a on a relative to b, world (m/s).
+void island_point_velocity(const IslandBody* bodies, const IslandPoint& p, double* vc);
+
+// Resolves the island's points (at most `passes` sweeps, fewer once no impulse changes by more
+// than kContactTolerance of the largest): each point's normal velocity to its target (-e v_n
+// approaching faster than rest_speed, 0 slower; a speculative point -gap / horizon), never
+// pulling, and Coulomb friction within mu J_n (a speculative point approaching faster than
+// rest_speed that closes its gap within the step takes -e v_n too: the impact); with rolling > 0 the rolling resistance's angular
+// impulse against the relative rotation, at most rolling |r| J_n. Velocities are updated in
+// place. Returns the points that carry a normal impulse.
+int island_resolve(IslandBody* bodies, IslandPoint* pts, int count, int passes, double horizon);
+
+// The generalized inverse mass in the world frame: blockdiag(R, R) Minv blockdiag(R, R)^T, Minv
+// the body frame's (symmetric), row-major out.
+void world_inverse_mass(const Mat6& Minv_body, const Mat3& R, double* W);
+
+}  // namespace lrigid

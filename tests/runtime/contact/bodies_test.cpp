@@ -1,0 +1,236 @@
+// Contacts between bodies (contact/bodies.h, island.h) against closed forms: two spheres head-on
+// and off-centre with restitution e, Newton's cradle, a stack of boxes standing, a block sliding
+// on a block, a heap of spheres on the ground; the same results for any thread count.
+#include "contact/bodies.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "compile/compile_model.h"
+#include "contact/island.h"
+#include "contact/pair_geometry.h"
+#include "integrate/simulation.h"
+#include "support/contact_scenes.h"
+#include "support/fixture.h"
+
+namespace lrigid {
+namespace {
+
+using test::kG;
+
+BodySpec sphere_body(const std::string& name, double r, double density, const Vec3& x,
+                     const Vec3& v, double e, double mu) {
+  BodySpec b;
+  b.name = name;
+  b.shape = Shape::sphere(r);
+  b.density = density;
+  b.position = x;
+  b.velocity = v;
+  b.contact.restitution = e;
+  b.contact.friction = mu;
+  return b;
+}
+
+// bodies in still air under the given gravity, no fluid forces, body contacts on
+Scene pair_scene(std::vector<BodySpec> bodies, const Vec3& g, double dt, double duration) {
+  Scene s = test::sphere_scene(0.01, 1000, 1.2, 1.5e-5);
+  s.bodies = std::move(bodies);
+  s.effects = test::effects({Effect::Gravity});
+  s.gravity = g;
+  s.dt = dt;
+  s.duration = duration;
+  s.body_contact = true;
+  return s;
+}
+
+State run(const Model& m, const Scene& s, int threads = 1) {
+  State st = initial_state(m, s);
+  RunOptions o;
+  o.threads = threads;
+  simulate(m, &st, o);
+  return st;
+}
+
+TEST(BodyContact, PairMaterialIsBox2dsMixingRule) {
+  ContactParams a, b;
+  a.restitution = 0.2, a.friction = 0.9, a.rolling_resistance = 0.01;
+  b.restitution = 0.5, b.friction = 0.4, b.rolling_resistance = 0.05;
+  const PairMaterial m = pair_material(a, b);
+  EXPECT_DOUBLE_EQ(m.restitution, 0.5);
+  EXPECT_DOUBLE_EQ(m.friction, std::sqrt(0.9 * 0.4));
+  EXPECT_DOUBLE_EQ(m.rolling, 0.05);
+}
+
+// Head-on: u1' = (m1 u1 + m2 u2 - m2 e (u1 - u2)) / (m1 + m2), and the same for u2'.
+TEST(BodyContact, TwoSpheresHeadOnLeaveWithNewtonsRestitution) {
+  for (const double e : {0.0, 0.5, 1.0}) {
+    for (const double rho2 : {1000.0, 3000.0}) {
+      const double r = 0.01, u1 = 1.0, u2 = -0.5;
+      Scene s = pair_scene({sphere_body("a", r, 1000, Vec3(-0.03, 0, 0), Vec3(u1, 0, 0), e, 0.3),
+                            sphere_body("b", r, rho2, Vec3(0.03, 0, 0), Vec3(u2, 0, 0), e, 0.3)},
+                           Vec3::Zero(), 1e-4, 0.05);
+      const Model m = test::compile(s);
+      const State st = run(m, s);
+      const double m1 = m.types[0].mass, m2 = m.types[1].mass;
+      const double a = (m1 * u1 + m2 * u2 - m2 * e * (u1 - u2)) / (m1 + m2);
+      const double b = (m1 * u1 + m2 * u2 + m1 * e * (u1 - u2)) / (m1 + m2);
+      EXPECT_NEAR(st.v[0].x(), a, 0.01 * std::abs(u1 - u2)) << "e " << e << " rho2 " << rho2;
+      EXPECT_NEAR(st.v[1].x(), b, 0.01 * std::abs(u1 - u2)) << "e " << e << " rho2 " << rho2;
+      // momentum exactly, no spin, no sideways motion
+      EXPECT_NEAR(m1 * st.v[0].x() + m2 * st.v[1].x(), m1 * u1 + m2 * u2, 1e-9);
+      EXPECT_LT(st.w[0].norm() + st.w[1].norm(), 1e-9);
+      EXPECT_LT(std::abs(st.v[0].y()) + std::abs(st.v[0].z()), 1e-9);
+      // they never sank into each other by more than one step's travel
+      EXPECT_LT(deepest_pair_overlap(m, st), 1e-9);
+    }
+  }
+}
+
+// Off-centre, frictionless: along the line of centres at contact the head-on rule, across it the
+// velocities are unchanged. Sphere a moves along x towards b, which sits off its line by `off` in
+// y; the contact normal from b to a is n = (-sqrt(4r^2 - off^2), -off, 0) / 2r.
+TEST(BodyContact, OffCentreFrictionlessSpheresExchangeTheNormalPartOnly) {
+  for (const double e : {0.3, 1.0}) {
+    const double r = 0.01, off = 0.01, u = 1.0;
+    Scene s = pair_scene({sphere_body("a", r, 1000, Vec3(-0.03, 0, 0), Vec3(u, 0, 0), e, 0.0),
+                          sphere_body("b", r, 1000, Vec3(0.0, off, 0), Vec3::Zero(), e, 0.0)},
+                         Vec3::Zero(), 1e-4, 0.05);
+    const Model m = test::compile(s);
+    const State st = run(m, s);
+    const Vec3 n = Vec3(-std::sqrt(4 * r * r - off * off), -off, 0) / (2 * r);  // b towards a
+    const Vec3 ua(u, 0, 0);
+    const double un = ua.dot(n);  // < 0: approaching
+    const Vec3 va = ua - (1 + e) / 2 * un * n, vb = (1 + e) / 2 * un * n;
+    const Vec3 ga = st.q[0] * st.v[0], gb = st.q[1] * st.v[1];
+    EXPECT_NEAR((ga - va).norm(), 0, 0.01 * u) << "e " << e << ": " << ga.transpose();
+    EXPECT_NEAR((gb - vb).norm(), 0, 0.01 * u) << "e " << e << ": " << gb.transpose();
+  }
+}
+
+// Newton's cradle: three equal spheres 1 mm apart in a row (the sequential-collision
+// idealization), e = 1, no friction: the first one's momentum passes to the last.
+TEST(BodyContact, NewtonsCradlePassesTheMomentumToTheLast) {
+  const double r = 0.01, u = 0.5, gap = 0.001;
+  Scene s = pair_scene(
+      {sphere_body("a", r, 1000, Vec3(-(2 * r + gap), 0, 0), Vec3(u, 0, 0), 1, 0),
+       sphere_body("b", r, 1000, Vec3(0, 0, 0), Vec3::Zero(), 1, 0),
+       sphere_body("c", r, 1000, Vec3(2 * r + gap, 0, 0), Vec3::Zero(), 1, 0)},
+      Vec3::Zero(), 1e-4, 0.05);
+  const Model m = test::compile(s);
+  const State st = run(m, s);
+  EXPECT_NEAR(st.v[0].x(), 0, 0.01 * u);
+  EXPECT_NEAR(st.v[1].x(), 0, 0.01 * u);
+  EXPECT_NEAR(st.v[2].x(), u, 0.01 * u);
+}
+
+// 60 spheres dropped into a heap on the ground: no overlap deeper than 1 mm at any output, at
+// rest at the end; the same run on 1 and 2 threads gives the same state bitwise.
+TEST(BodyContact, AHeapOfSpheresRestsWithoutOverlapAndAnyThreadCountGivesTheSameRun) {
+  BodySpec b = sphere_body("ball", 0.01, 1000, Vec3::Zero(), Vec3::Zero(), 0.2, 0.5);
+  // gravel-like rolling resistance: with less, a ball resting on two others rolls them apart (the
+  // wedge pushes each with 0.29 of its weight, the resistance holds mu_r times 1.5 of it)
+  b.contact.rolling_resistance = 0.3;
+  b.count = 60;
+  b.spawn_in_box = true;
+  b.box_lo = Vec3(-0.03, -0.03, 0.02);
+  b.box_hi = Vec3(0.03, 0.03, 0.3);
+  Scene s = pair_scene({b}, Vec3(0, 0, -kG), 1e-3, 3.0);
+  s.has_ground = true;
+  s.ground_z = 0;
+  s.ground_contact = ContactMode::Collide;
+  const Model m = test::compile(s);
+  State st = initial_state(m, s);
+  // in layers of 3 x 3, 2 mm apart, each layer shifted so that they fall onto each other
+  for (size_t i = 0; i < st.size(); ++i) {
+    const double layer = double(i / 9), shift = 0.005 * (i / 9 % 2 == 0 ? 1 : -1);
+    st.x[i] = Vec3(-0.022 + 0.022 * double(i % 3) + shift, -0.022 + 0.022 * double(i / 3 % 3),
+                   0.011 + 0.025 * layer);
+  }
+  State st2 = st;
+  double worst = 0;
+  RunOptions o;
+  o.every = 0.05;
+  o.threads = 1;
+  o.on_output = [&](const State& x) { worst = std::max(worst, deepest_pair_overlap(m, x)); };
+  simulate(m, &st, o);
+  EXPECT_LT(worst, 1e-3);
+  size_t still = 0;
+  std::string moving;
+  for (size_t i = 0; i < st.size(); ++i) {
+    const bool s_i = st.status[i] == BodyStatus::Sleeping || st.contact[i] == ContactState::Resting;
+    still += s_i;
+    if (!s_i)
+      moving += " " + std::to_string(i) + ": z " + std::to_string(st.x[i].z()) + " v " +
+                std::to_string(st.v[i].norm()) + " w " + std::to_string(st.w[i].norm()) + ";";
+  }
+  EXPECT_EQ(still, st.size()) << "not at rest:" << moving;
+  double zmax = 0;
+  for (size_t i = 0; i < st.size(); ++i) zmax = std::max(zmax, st.x[i].z());
+  EXPECT_GT(zmax, 0.02) << "a heap, not one layer";
+  // the first 0.5 s again on 1 and 2 threads
+  State st1 = st2;
+  Scene s2 = s;
+  s2.duration = 0.5;
+  const Model m2 = test::compile(s2);
+  RunOptions o1;
+  o1.threads = 1;
+  simulate(m2, &st1, o1);
+  RunOptions o2;
+  o2.threads = 2;
+  simulate(m2, &st2, o2);
+  for (size_t i = 0; i < st.size(); ++i) {
+    EXPECT_EQ(st1.x[i], st2.x[i]) << i;
+    EXPECT_EQ(st1.v[i], st2.v[i]) << i;
+  }
+}
+
+TEST(BodyContact, IslandPointsNeverPullAndEnergyDoesNotGrow) {
+  // two spheres touching with random velocities and a random normal: after island_resolve the
+  // normal velocity is >= its target and the kinetic energy is not larger
+  Mat6 Minv = Mat6::Zero();
+  Minv.diagonal() << 1, 1, 1, 2.5, 2.5, 2.5;
+  uint64_t seed = 7;
+  auto rnd = [&]() {
+    seed = seed * 6364136223846793005ULL + 1442695040888963407ULL;
+    return double(seed >> 11) / double(1ULL << 53) * 2 - 1;
+  };
+  for (int c = 0; c < 500; ++c) {
+    IslandBody b[2];
+    world_inverse_mass(Minv, Mat3::Identity(), b[0].W);
+    world_inverse_mass(Minv, Mat3::Identity(), b[1].W);
+    for (int a = 0; a < 3; ++a)
+      b[0].v[a] = rnd(), b[0].w[a] = rnd(), b[1].v[a] = rnd(), b[1].w[a] = rnd();
+    Vec3 n(rnd(), rnd(), rnd());
+    n.normalize();
+    IslandPoint p;
+    p.a = 0, p.b = 1;
+    for (int a = 0; a < 3; ++a) p.n[a] = n[a], p.ra[a] = -0.5 * n[a], p.rb[a] = 0.5 * n[a];
+    p.depth = 0;
+    p.restitution = 0.5 * (rnd() + 1);
+    p.friction = rnd() + 1;
+    p.rest_speed = 0.01;
+    auto energy = [&]() {
+      double E = 0;
+      for (const IslandBody& x : b)
+        E += 0.5 * (dot3(x.v, x.v) + dot3(x.w, x.w) / 2.5);
+      return E;
+    };
+    const double E0 = energy();
+    double vc[3];
+    island_point_velocity(b, p, vc);
+    const double vn0 = dot3(vc, p.n);
+    island_resolve(b, &p, 1, 48, 1e-3);
+    island_point_velocity(b, p, vc);
+    const double vn1 = dot3(vc, p.n);
+    EXPECT_GE(p.jn, 0);
+    if (vn0 < -0.01) EXPECT_NEAR(vn1, -p.restitution * vn0, 1e-6 * std::abs(vn0));
+    else EXPECT_GE(vn1, -1e-9);
+    EXPECT_LE(energy(), E0 * (1 + 1e-9) + 1e-12);
+    EXPECT_LE(std::sqrt(dot3(p.jt, p.jt)), p.friction * p.jn * (1 + 1e-9) + 1e-15);
+  }
+}
+
+}  // namespace
+}  // namespace lrigid
