@@ -320,6 +320,64 @@ void minimise_overlap(const PairShape& a, const PairPose& pa, const PairShape& b
   }
 }
 
+// The least overlap with the contact normal on one edge's arc of the polytope's Gauss map (its
+// outward normals from face f0's to face f1's; `sign` turns them into contact normals, world):
+// Newton's method in the arc's angle, g'' = n'^T H n' - g, kept on the arc.
+void minimise_on_arc(const PairShape& a, const PairPose& pa, const PairShape& b,
+                     const PairPose& pb, const Vec3& n0, const Vec3& n1, Vec3* n, Overlap* o) {
+  const double end = std::acos(std::clamp(n0.dot(n1), -1.0, 1.0));
+  if (!(end > 1e-12)) return;
+  const Vec3 u = (n1 - n0 * n0.dot(n1)).normalized();
+  const auto on_arc = [&](double th) { return Vec3(n0 * std::cos(th) + u * std::sin(th)); };
+  double th = 0.5 * end;
+  Vec3 m = on_arc(th);
+  Overlap om = overlap(a, pa, b, pb, m);
+  for (int it = 0; it < 20; ++it) {
+    const Vec3 dm = u * std::cos(th) - n0 * std::sin(th);
+    const double d1 = dm.dot(om.sb - om.sa);
+    const Mat3 H = support_hessian(b, pb, m) + support_hessian(a, pa, -m);
+    const double d2 = dm.dot(H * dm) - om.g;
+    double step = d2 > 0 ? -d1 / d2 : (d1 > 0 ? -0.25 * end : 0.25 * end);
+    bool moved = false;
+    for (int half = 0; half < 20 && !moved; ++half, step *= 0.5) {
+      const double t = std::clamp(th + step, 0.0, end);
+      if (t == th) break;
+      const Vec3 mt = on_arc(t);
+      const Overlap ot = overlap(a, pa, b, pb, mt);
+      if (ot.g < om.g) th = t, m = mt, om = ot, moved = true;
+    }
+    if (!moved || std::abs(step) < 1e-14) break;
+  }
+  if (om.g < o->g) *n = m, *o = om;
+}
+
+// A polytope's faces (exact for an ellipsoid on a face) and the edges at the best vertex and
+// around the best face (exact for an ellipsoid across an edge): each gives an upper bound on the
+// depth, the least is kept
+void polytope_candidates(const PairShape& a, const PairPose& pa, const PairShape& b,
+                         const PairPose& pb, Vec3* n, Overlap* o) {
+  const bool b_poly = b.kind == Kind::Polytope;
+  const PairShape& s = b_poly ? b : a;
+  const PairPose& p = b_poly ? pb : pa;
+  const double sign = b_poly ? 1 : -1;  // P's outward normal -> contact normal
+  int best_face = -1;
+  for (size_t f = 0; f < s.faces.size(); ++f) {
+    const Vec3 m = p.R * s.faces[f].n * sign;
+    const Overlap om = overlap(a, pa, b, pb, m);
+    if (om.g < o->g) *n = m, *o = om, best_face = int(f);
+  }
+  const Vec3 d = p.R.transpose() * *n * sign;
+  const Vec3 v = polytope_support(s, d);
+  for (const PairShape::Edge& e : s.edges) {
+    const bool at_vertex = s.vertices[size_t(e.v0)] == v || s.vertices[size_t(e.v1)] == v;
+    if (!at_vertex && e.f0 != best_face && e.f1 != best_face) continue;
+    minimise_on_arc(a, pa, b, pb, p.R * s.faces[size_t(e.f0)].n * sign,
+                    p.R * s.faces[size_t(e.f1)].n * sign, n, o);
+  }
+  // then the vertex nearest the least found: Newton with its point fixed
+  minimise_overlap(a, pa, b, pb, std::min(a.radius, b.radius), n, o);
+}
+
 void ccd_support(const void* obj, const ccd_vec3_t* dir, ccd_vec3_t* out);
 void ccd_center(const void* obj, ccd_vec3_t* out);
 
@@ -358,15 +416,7 @@ int convex_pair(const PairShape& a, const PairPose& pa, const PairShape& b, cons
   Vec3 n = -Vec3(ccdVec3X(&dir), ccdVec3Y(&dir), ccdVec3Z(&dir)).normalized();
   Overlap o = overlap(a, pa, b, pb, n);
   minimise_overlap(a, pa, b, pb, scale, &n, &o);
-  for (int side = 0; side < 2; ++side) {
-    const PairShape& s = side ? b : a;
-    if (s.kind != Kind::Polytope) continue;
-    for (const PairShape::Face& f : s.faces) {
-      const Vec3 m = side ? Vec3(pb.R * f.n) : Vec3(pa.R * -f.n);
-      const Overlap om = overlap(a, pa, b, pb, m);
-      if (om.g < o.g) n = m, o = om;
-    }
-  }
+  if (a.kind == Kind::Polytope || b.kind == Kind::Polytope) polytope_candidates(a, pa, b, pb, &n, &o);
   const double depth = o.g;
   if (-depth >= margin) return 0;
   // the contact point from the smooth shapes' support points (unique, unlike a polytope's)
@@ -401,8 +451,9 @@ void ccd_center(const void* obj, ccd_vec3_t* out) {
 // The edges of A and B (in A's frame) whose Gauss-map arcs cross form a face of the Minkowski
 // difference, and only those give edge-edge axes (Gregorius, "The separating axis test between
 // convex polyhedra", GDC 2013). a, b: A's face normals at the edge; c, d: B's.
-inline bool minkowski_face(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
-  const Vec3 bxa = b.cross(a), dxc = d.cross(c);
+// bxa = b x a, dxc = d x c.
+inline bool minkowski_face(const Vec3& a, const Vec3& b, const Vec3& bxa, const Vec3& c,
+                           const Vec3& d, const Vec3& dxc) {
   const double cba = c.dot(bxa), dba = d.dot(bxa), adc = a.dot(dxc), bdc = b.dot(dxc);
   return cba * dba < 0 && adc * bdc < 0 && cba * bdc > 0;
 }
@@ -411,6 +462,7 @@ struct Scratch {
   std::vector<Vec3> vb, nb;  // B's vertices and face normals in A's frame
   std::vector<double> db;    // B's face offsets in A's frame
   std::vector<Vec3> poly, tmp;
+  std::vector<Vec3> ec, ed, edxc;  // B's edges: -(face normals), their cross product, A's frame
   std::vector<PairPoint> pts;
 };
 
@@ -463,17 +515,24 @@ int polytope_pair(const PairShape& a, const PairPose& pa, const PairShape& b,
   int edge_a = -1, edge_b = -1;
   Vec3 axis_e = Vec3::Zero();
   const Vec3 ca = a.interior;
+  s.ec.resize(b.edges.size());
+  s.ed.resize(b.edges.size());
+  s.edxc.resize(b.edges.size());
+  for (size_t j = 0; j < b.edges.size(); ++j) {
+    s.ec[j] = -s.nb[size_t(b.edges[j].f0)];
+    s.ed[j] = -s.nb[size_t(b.edges[j].f1)];
+    s.edxc[j] = s.ed[j].cross(s.ec[j]);
+  }
   for (size_t i = 0; i < a.edges.size(); ++i) {
     const PairShape::Edge& ea = a.edges[i];
     const Vec3& n1 = a.faces[size_t(ea.f0)].n;
     const Vec3& n2 = a.faces[size_t(ea.f1)].n;
     const Vec3& p1 = a.vertices[size_t(ea.v0)];
     const Vec3 e1 = a.vertices[size_t(ea.v1)] - p1;
+    const Vec3 n2xn1 = n2.cross(n1);
     for (size_t j = 0; j < b.edges.size(); ++j) {
+      if (!minkowski_face(n1, n2, n2xn1, s.ec[j], s.ed[j], s.edxc[j])) continue;
       const PairShape::Edge& eb = b.edges[j];
-      const Vec3& m1 = s.nb[size_t(eb.f0)];
-      const Vec3& m2 = s.nb[size_t(eb.f1)];
-      if (!minkowski_face(n1, n2, -m1, -m2)) continue;
       const Vec3& p2 = s.vb[size_t(eb.v0)];
       const Vec3 e2 = s.vb[size_t(eb.v1)] - p2;
       Vec3 axis = e1.cross(e2);
