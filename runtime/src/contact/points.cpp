@@ -1,50 +1,16 @@
 #include "contact/points.h"
 
-extern "C" {
-#include <libqhull_r/qhull_ra.h>
-}
-
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <sstream>
 
+#include "contact/hull.h"
 #include "model/model.h"
 #include "util/error.h"
 
 namespace lrigid {
 
 namespace {
-
-// The indices of the vertices of the convex hull of `pts` (Qhull, reentrant); empty when Qhull
-// finds no 3D hull (fewer than 4 points, or all in a plane).
-std::vector<int> hull_vertices(const std::vector<Vec3>& pts) {
-  if (pts.size() < 4) return {};
-  std::vector<coordT> coords(3 * pts.size());
-  for (size_t i = 0; i < pts.size(); ++i)
-    for (int a = 0; a < 3; ++a) coords[3 * i + a] = pts[i][a];
-  qhT qh_storage;
-  qhT* qh = &qh_storage;
-  // Qhull's messages go to a memory buffer, not to the user's terminal
-  char* buffer = nullptr;
-  size_t size = 0;
-  FILE* err = open_memstream(&buffer, &size);
-  qh_zero(qh, err);
-  char flags[] = "qhull Qt";
-  const int code = qh_new_qhull(qh, 3, int(pts.size()), coords.data(), False, flags, nullptr, err);
-  std::vector<int> ids;
-  if (code == 0) {
-    vertexT* vertex;
-    FORALLvertices ids.push_back(qh_pointid(qh, vertex->point));
-  }
-  qh_freeqhull(qh, !qh_ALL);
-  int curlong = 0, totlong = 0;
-  qh_memfreeshort(qh, &curlong, &totlong);
-  if (err) std::fclose(err);
-  std::free(buffer);
-  std::sort(ids.begin(), ids.end());
-  return ids;
-}
 
 void add_point(ContactParams* k, const Vec3& p, int end0 = ContactParams::kNotOnEdge,
                int end1 = ContactParams::kNotOnEdge) {
@@ -113,7 +79,7 @@ ContactParams contact_params(const Shape& shape, const Vec3& com, double restitu
     }
     case ShapeType::Mesh: {
       const std::vector<Vec3>& v = shape.mesh->vertices;
-      std::vector<int> ids = hull_vertices(v);
+      std::vector<int> ids = convex_hull(v).vertices;
       if (ids.empty())
         for (size_t i = 0; i < v.size(); ++i) ids.push_back(int(i));
       for (int i : ids) add_point(&k, v[size_t(i)] - com);
