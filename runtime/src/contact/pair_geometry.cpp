@@ -228,7 +228,7 @@ int sphere_polytope(const PairShape& a, const PairPose& pa, const PairShape& b,
     if (s > top_s) top_s = s, top = int(f);
   }
   if (top_s - r >= margin) return 0;
-  Vec3 q, n;  // closest point of B and normal from B towards the centre, B's frame
+  Vec3 q = Vec3::Zero(), n = Vec3::UnitZ();  // closest point of B and normal from B towards the centre, B's frame
   double dist;
   if (top_s <= 0) {  // centre inside: out through the nearest face
     n = b.faces[size_t(top)].n;

@@ -186,6 +186,64 @@ TEST(BodyContact, AHeapOfSpheresRestsWithoutOverlapAndAnyThreadCountGivesTheSame
   }
 }
 
+BodySpec box_body(const std::string& name, const Vec3& size, double density, const Vec3& x,
+                  const Vec3& v, double e, double mu) {
+  BodySpec b;
+  b.name = name;
+  b.shape = Shape::box(size.x(), size.y(), size.z());
+  b.density = density;
+  b.position = x;
+  b.velocity = v;
+  b.contact.restitution = e;
+  b.contact.friction = mu;
+  return b;
+}
+
+// Five boxes stacked on the ground stand: after 10 s no box has moved by 0.1 mm.
+TEST(BodyContact, AStackOfFiveBoxesStands) {
+  std::vector<BodySpec> boxes;
+  for (int k = 0; k < 5; ++k)
+    boxes.push_back(box_body("box" + std::to_string(k), Vec3(0.04, 0.03, 0.02), 1000,
+                             Vec3(0, 0, 0.01 + 0.02 * k), Vec3::Zero(), 0.0, 0.5));
+  Scene s = pair_scene(boxes, Vec3(0, 0, -kG), 1e-3, 10.0);
+  s.has_ground = true;
+  s.ground_z = 0;
+  s.ground_contact = ContactMode::Collide;
+  const Model m = test::compile(s);
+  State st = initial_state(m, s);
+  const std::vector<Vec3> x0 = st.x;
+  double worst = 0;
+  RunOptions o;
+  o.every = 0.1;
+  o.on_output = [&](const State& x) {
+    for (size_t i = 0; i < x.size(); ++i) worst = std::max(worst, (x.x[i] - x0[i]).norm());
+  };
+  simulate(m, &st, o);
+  EXPECT_LT(worst, 1e-4);
+  for (size_t i = 0; i < st.size(); ++i) EXPECT_EQ(st.status[i], BodyStatus::Sleeping) << i;
+}
+
+// A block sliding on a heavier block that the ground holds: it decelerates at mu g and stops
+// after v0^2 / (2 mu g); the lower block stays where it is.
+TEST(BodyContact, ABlockSlidingOnABlockStopsAfterV0SquaredOverTwoMuG) {
+  const double mu = 0.4, v0 = 0.5;
+  Scene s = pair_scene(
+      {box_body("base", Vec3(0.12, 0.1, 0.02), 5000, Vec3(0, 0, 0.01), Vec3::Zero(), 0, mu),
+       box_body("slider", Vec3(0.04, 0.04, 0.02), 1000, Vec3(-0.03, 0, 0.03), Vec3(v0, 0, 0), 0,
+                mu)},
+      Vec3(0, 0, -kG), 1e-3, 0.5);
+  s.has_ground = true;
+  s.ground_z = 0;
+  s.ground_contact = ContactMode::Collide;
+  const Model m = test::compile(s);
+  State st = initial_state(m, s);
+  simulate(m, &st, RunOptions{});
+  const double d = v0 * v0 / (2 * mu * kG);
+  EXPECT_NEAR(st.x[1].x() - (-0.03), d, 0.02 * d);
+  EXPECT_NEAR(st.x[1].z(), 0.03, 1e-4);
+  EXPECT_LT((st.x[0] - Vec3(0, 0, 0.01)).norm(), 1e-4);
+}
+
 TEST(BodyContact, IslandPointsNeverPullAndEnergyDoesNotGrow) {
   // two spheres touching with random velocities and a random normal: after island_resolve the
   // normal velocity is >= its target and the kinetic energy is not larger
