@@ -116,7 +116,8 @@ if [ "$DO_MUJOCO" = 1 ]; then
     MJ_COMMON="--poses $OUT/pile_mujoco/poses.csv $MJ_FLAGS"
   fi
   # shellcheck disable=SC2086
-  "$H" $MJ_COMMON $MUJOCO_ARGS > "$OUT/mujoco.json"
+  # in OUTDIR: MuJoCo writes its warnings to MUJOCO_LOG.TXT in the working directory
+  (cd "$OUT" && "$H" $MJ_COMMON $MUJOCO_ARGS > "$OUT/mujoco.json")
 fi
 
 LOAD_END=$(cut -d' ' -f1-3 /proc/loadavg)
