@@ -10,20 +10,18 @@ namespace lrigid {
 
 double plate_chord(const BodyType& type, const Vec3& d) {
   const int i1 = (type.normal_axis + 1) % 3, i2 = (type.normal_axis + 2) % 3;
-  if (type.shape.type == ShapeType::Box) {
-    // rectangle: the chord through the centre along d
-    const Vec3& h = type.half_extents;
-    return 2.0 * std::min(h[i1] / std::max(std::abs(d[i1]), 1e-300),
-                          h[i2] / std::max(std::abs(d[i2]), 1e-300));
-  }
-  const double a = d[i1] / type.ell[i1], b = d[i2] / type.ell[i2];
-  return 2.0 / std::sqrt(a * a + b * b);
+  const Planform& p = type.planform;
+  // the chord through the centre along d of the planform's rectangle and of its ellipse
+  const double rect = 2.0 * std::min(p.c1 / std::max(std::abs(d[i1]), 1e-300),
+                                     p.c2 / std::max(std::abs(d[i2]), 1e-300));
+  const double a = d[i1] / p.a1, b = d[i2] / p.a2;
+  const double ell = 2.0 / std::sqrt(a * a + b * b);
+  return p.w * rect + (1.0 - p.w) * ell;
 }
 
 double plate_width(const BodyType& type) {
-  const int i1 = (type.normal_axis + 1) % 3, i2 = (type.normal_axis + 2) % 3;
-  const Vec3& h = type.shape.type == ShapeType::Box ? type.half_extents : type.ell;
-  return 2.0 * std::min(h[i1], h[i2]);
+  const Planform& p = type.planform;
+  return p.w * 2.0 * std::min(p.c1, p.c2) + (1.0 - p.w) * 2.0 * std::min(p.a1, p.a2);
 }
 
 double circulation_factor(double re) { return circulation_gate(re); }

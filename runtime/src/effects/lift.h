@@ -28,10 +28,12 @@ constexpr double kLiftRotational = M_PI;    // C_R, APW 2005 (2D; a plate's: Pla
 constexpr double kLiftReCritical = 200.0;
 constexpr int kLiftReExponent = 4;
 
-// chord of the plate's planform (equivalent ellipse) along the in-plane unit direction d, m
+// chord through the centre of the planform (body/planform.h: w x its rectangle's + (1 - w) x its
+// ellipse's) along the in-plane unit direction d, m
 double plate_chord(const BodyType& type, const Vec3& d);
 
-// width of the planform (its smallest in-plane extent: a disk's diameter), m
+// width of the planform (the smallest in-plane extent of its rectangle and of its ellipse, weighted
+// as the chord: a disk's diameter), m
 double plate_width(const BodyType& type);
 
 // share of APW's circulation present at Re = |u| width / nu (0 ... 1): effects/plate.h

@@ -38,12 +38,13 @@ double plate_finite_span(double span_aspect) {
 
 PlateCoeffs plate_coefficients(const BodyType& type) {
   PlateCoeffs c;
-  const int na = type.normal_axis, i1 = (na + 1) % 3, i2 = (na + 2) % 3;
-  const bool box = type.shape.type == ShapeType::Box;
-  const Vec3& ext = box ? type.half_extents : type.ell;
-  const double lo = std::min(ext[i1], ext[i2]), hi = std::max(ext[i1], ext[i2]);
+  // the planform (body/planform.h): w times the rectangle's coefficients and 1 - w times the
+  // ellipse's, both of the outline's side ratio
+  const Planform& p = type.planform;
+  const double w = p.w;
+  const double lo = std::min(p.h1, p.h2), hi = std::max(p.h1, p.h2);
   c.aspect = lo > 0 ? hi / lo : 1.0;
-  c.cd90 = plate_broadside_cd(c.aspect, box);
+  c.cd90 = w * plate_broadside_cd(c.aspect, true) + (1.0 - w) * plate_broadside_cd(c.aspect, false);
   // APW's edgewise coefficient A - B is kept and the normal-force part 2 B scales to the
   // planform's broadside value (docs/physics/lift.md, "The 3D model").
   c.span_factor = (c.cd90 - (kPlateDragA - kPlateDragB)) / (2.0 * kPlateDragB);
@@ -55,7 +56,7 @@ PlateCoeffs plate_coefficients(const BodyType& type) {
   // circulation C_T stays APW's: its lift peaks at 45 degrees, where a low-aspect-ratio plate's
   // separated-flow lift is not reduced like its attached-flow slope (docs/physics/lift.md,
   // "Finite span: the pitch-rate terms").
-  c.span_aspect = box ? c.aspect : 4.0 / M_PI * c.aspect;
+  c.span_aspect = w * c.aspect + (1.0 - w) * (4.0 / M_PI * c.aspect);
   c.finite_span = plate_finite_span(c.span_aspect);
   c.C_R = kLiftRotational * c.finite_span;
   c.mu1 = kPlateTorqueMu1 * c.finite_span;
@@ -76,10 +77,11 @@ PlateParams plate_params(const BodyType& type, double rho, double nu, bool drag,
   const int na = type.normal_axis, i1 = (na + 1) % 3, i2 = (na + 2) % 3;
   k.n[na] = k.e1[i1] = k.e2[i2] = 1.0;
   k.S = type.plate_area;
-  k.box = type.shape.type == ShapeType::Box ? 1.0 : 0.0;
-  const Vec3& ext = type.shape.type == ShapeType::Box ? type.half_extents : type.ell;
-  k.c1 = ext[i1];
-  k.c2 = ext[i2];
+  k.rect = type.planform.w;
+  k.c1 = type.planform.c1;
+  k.c2 = type.planform.c2;
+  k.a1 = type.planform.a1;
+  k.a2 = type.planform.a2;
   if (type.flat) k.width_over_nu = plate_width(type) / nu;
   k.apw_speed = type.apw_speed;
   for (int a = 0; a < 3; ++a) {

@@ -85,29 +85,33 @@ template <typename T>
 struct PlateStrips {
   T KR, J2, J3;  // m^3, m^4, m^5
 };
+// A planform (body/planform.h) takes w times the rectangle's (half sides c1, c2) integrals and
+// 1 - w times the ellipse's (semi-axes a1, a2), both of area S.
 template <typename T>
-LRIGID_LANE void plate_strips(bool box, T c1, T c2, T S, T d1, T d2, PlateStrips<T>* o) {
+LRIGID_LANE void plate_strips(T w, T c1, T c2, T a1, T a2, T S, T d1, T d2, PlateStrips<T>* o) {
   const T tiny = T(std::is_same_v<T, float> ? 1e-30 : 1e-300);
-  const T a1 = std::abs(d1), a2 = std::abs(d2);
+  const T ad1 = std::abs(d1), ad2 = std::abs(d2);
   // rectangle
-  const T p = c1 * a1, q = c2 * a2;
+  const T p = c1 * ad1, q = c2 * ad2;
   const T P0 = p > q ? p : q, Q = p > q ? q : p;
   const T P = P0 > tiny ? P0 : tiny;
   const T Q2 = Q * Q;
   const T J3_box = S * (P * P * P * T(0.25) + T(0.5) * P * Q2 + Q2 * Q2 / (T(20) * P));
   const T J2_box = S * (p * p + q * q) * T(1.0 / 3.0);
-  const T s2 = c1 * a2 + c2 * a1, s1 = std::abs(c1 * a2 - c2 * a1);
+  const T s2 = c1 * ad2 + c2 * ad1, s1 = std::abs(c1 * ad2 - c2 * ad1);
   const T l0 = S / (s1 + s2 > tiny ? s1 + s2 : tiny);
   const T KR_box = T(2.0 / 3.0) * l0 * l0 * (T(2) * s1 + s2);
   // ellipse: the mid-chord strip
-  const T q1 = d1 / c1, q2 = d2 / c2;
+  const T q1 = d1 / a1, q2 = d2 / a2;
   const T l0e = T(2) / std::sqrt(q1 * q1 + q2 * q2);
   const T l0e2S = l0e * l0e * S;
   const T J2_ell = l0e2S * T(1.0 / 12.0), J3_ell = l0e2S * l0e * T(1.0 / 32.0);
   const T KR_ell = l0e * S;
-  o->KR = box ? KR_box : KR_ell;
-  o->J2 = box ? J2_box : J2_ell;
-  o->J3 = box ? J3_box : J3_ell;
+  // w x + (1 - w) y: exactly x at w = 1, exactly y at w = 0
+  const T we = T(1) - w;
+  o->KR = w * KR_box + we * KR_ell;
+  o->J2 = w * J2_box + we * J2_ell;
+  o->J3 = w * J3_box + we * J3_ell;
 }
 
 // What the plate model needs of a flat body type and the fluid, built once per body type.
@@ -115,8 +119,9 @@ struct PlateParams {
   double rho = 0, nu = 0;  // kg/m^3, m^2/s
   // the plate normal n and the in-plane axes e1, e2 as unit vectors of the body frame
   double n[3] = {0, 0, 0}, e1[3] = {0, 0, 0}, e2[3] = {0, 0, 0};
-  double S = 0, box = 0;     // planform area, m^2; 1 for a rectangle, 0 for an ellipse
-  double c1 = 0, c2 = 0;     // half extents (rectangle) or semi-axes (ellipse) along e1, e2, m
+  double S = 0, rect = 0;    // planform area, m^2; the rectangle's weight w (body/planform.h)
+  double c1 = 0, c2 = 0;     // the planform's rectangle's half sides along e1, e2, m
+  double a1 = 0, a2 = 0;     // the planform's ellipse's semi-axes along e1, e2, m
   double width_over_nu = 0;  // planform width / nu (the Reynolds number per speed), s/m
   double apw_speed = 0;      // APW's velocity scale (0: the speed itself), m/s
   double sf[3] = {0, 0, 0}, c_visc = 0;  // mu k_i, mu max k_i (Stokes force), N s/m
@@ -170,7 +175,7 @@ LRIGID_LANE void plate_kernel(const PlateParams& k, const T* u, const T* w, Drag
   // not spinning: any direction (the terms below are then multiplied by 0)
   const T d1 = spinning ? dot3(e1, dir) * winv : T(1), d2 = spinning ? dot3(e2, dir) * winv : T(0);
   PlateStrips<T> ps;
-  plate_strips(k.box != 0, T(k.c1), T(k.c2), T(k.S), d1, d2, &ps);
+  plate_strips(T(k.rect), T(k.c1), T(k.c2), T(k.a1), T(k.a2), T(k.S), d1, d2, &ps);
   // APW's pitching torque per unit span pi rho a^4 (mu1 U / a + mu2 |w|) w summed over the
   // strips across the axis: pi rho (3/2 mu1 U J2 + 2 mu2 |w_p| J3) w_p; mu1 scaled as a laminar
   // boundary layer

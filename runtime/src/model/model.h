@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "body/added_mass.h"
+#include "body/planform.h"
 #include "fluid/field.h"
 #include "fluid/solid_surface.h"
 #include "model/scene.h"
@@ -98,6 +99,9 @@ struct BodyType {
   bool flat = false;
   int normal_axis = 2;                // body axis normal to the plate
   double plate_area = 0;              // planform area, m^2
+  // flat bodies: the outline seen along the normal, and the rectangle and ellipse of its area
+  // that the plate model and the added mass weigh (body/planform.h)
+  Planform planform;
   double apw_speed = 0;               // APW velocity scale sqrt(|rho_b/rho_f - 1| g b), m/s
   Vec3 stokes_force = Vec3::Zero();   // Stokes drag F_i = -mu k_i u_i of the ellipsoid ell, m
   Vec3 stokes_torque = Vec3::Zero();  // Stokes torque T_i = -mu r_i w_i of the ellipsoid, m^3
