@@ -108,8 +108,13 @@ void explain(const std::string& path) {
   for (const json& t : j["body_types"]) print_type(t);
   std::printf("\nThe numbers (tau_p, St, Re, ...) and the reasons are explained in "
               "docs/effects.md, \"Glossary\".\n");
-  std::printf("\nestimated total: %.3g body-steps, %.3g s on one core\n",
-              num(j["total"], "body_steps"), num(j["total"], "seconds_one_core"));
+  std::printf("\nbodies against each other: %s\n",
+              j["body_contact"]["words"].get<std::string>().c_str());
+  std::printf("\nestimated total: %.3g body-steps, %.3g s on one core%s\n",
+              num(j["total"], "body_steps"), num(j["total"], "seconds_one_core"),
+              j["body_contact"]["mode"] == "collide"
+                  ? " without the contacts between bodies (docs/contacts.md)"
+                  : "");
 }
 
 }  // namespace

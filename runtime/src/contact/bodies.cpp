@@ -38,28 +38,72 @@ struct Cand {
   Vec3 vw, ww;   // world velocity and spin
 };
 
-// The pairs (a < b, indices into c) whose boxes overlap: sweep and prune along x, sorted by
-// their bodies' indices.
+// The pairs (a < b, indices into c) whose boxes overlap, sorted by their bodies' indices: a
+// uniform grid of cells as large as the largest box, so that a box spans at most 2 cells per
+// axis; each box is tested against the boxes already in its cells, and a pair is kept in one
+// cell only, the one holding the larger of the two lower corners. While bodies are far apart
+// most cells hold one box: about n cell lookups, no sort of all the boxes.
 std::vector<std::pair<int, int>> overlapping_pairs(const std::vector<Cand>& c) {
-  std::vector<int> order(c.size());
-  std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(), [&](int a, int b) {
-    return c[a].lo.x() < c[b].lo.x() || (c[a].lo.x() == c[b].lo.x() && a < b);
-  });
   std::vector<std::pair<int, int>> pairs;
-  std::vector<int> active;
-  for (const int k : order) {
-    const double x0 = c[k].lo.x();
-    size_t keep = 0;
-    for (const int a : active)
-      if (c[a].hi.x() >= x0) active[keep++] = a;
-    active.resize(keep);
-    for (const int a : active) {
-      const bool overlap = c[a].lo.y() <= c[k].hi.y() && c[k].lo.y() <= c[a].hi.y() &&
-                           c[a].lo.z() <= c[k].hi.z() && c[k].lo.z() <= c[a].hi.z();
-      if (overlap) pairs.emplace_back(std::min(a, k), std::max(a, k));
+  if (c.size() < 2) return pairs;
+  double size = 0;
+  for (const Cand& b : c) size = std::max(size, (b.hi - b.lo).maxCoeff());
+  const double inv = 1.0 / std::max(size, 1e-9);
+  auto cell = [&](double x) { return static_cast<int64_t>(std::floor(x * inv)); };
+  // open addressing, at least twice as many slots as entries (a box's cells)
+  size_t entries = 0;
+  for (const Cand& b : c)
+    entries += size_t(cell(b.hi.x()) - cell(b.lo.x()) + 1) *
+               size_t(cell(b.hi.y()) - cell(b.lo.y()) + 1) *
+               size_t(cell(b.hi.z()) - cell(b.lo.z()) + 1);
+  size_t cap = 16;
+  while (cap < 2 * entries) cap <<= 1;
+  struct Slot {
+    uint64_t key = 0;
+    int head = -1;  // the cell's last entry; -1: an empty slot
+  };
+  std::vector<Slot> table(cap);
+  std::vector<int> next, owner;  // entries: the box and the previous entry of its cell
+  next.reserve(entries);
+  owner.reserve(entries);
+  // (cells 2^21 apart share a key: their boxes are tested against each other for nothing)
+  auto slot_of = [&](int64_t i, int64_t j, int64_t k) -> Slot& {
+    const uint64_t key = (uint64_t(i) & 0x1FFFFF) << 42 | (uint64_t(j) & 0x1FFFFF) << 21 |
+                         (uint64_t(k) & 0x1FFFFF);
+    uint64_t h = key * 0x9E3779B97F4A7C15ULL;
+    h ^= h >> 31;
+    for (size_t s = h & (cap - 1);; s = (s + 1) & (cap - 1)) {
+      Slot& t = table[s];
+      if (t.head < 0) {
+        t.key = key;
+        return t;
+      }
+      if (t.key == key) return t;
     }
-    active.push_back(k);
+  };
+  for (int b = 0; b < int(c.size()); ++b) {
+    const int64_t i0 = cell(c[b].lo.x()), i1 = cell(c[b].hi.x());
+    const int64_t j0 = cell(c[b].lo.y()), j1 = cell(c[b].hi.y());
+    const int64_t k0 = cell(c[b].lo.z()), k1 = cell(c[b].hi.z());
+    for (int64_t i = i0; i <= i1; ++i)
+      for (int64_t j = j0; j <= j1; ++j)
+        for (int64_t k = k0; k <= k1; ++k) {
+          Slot& t = slot_of(i, j, k);
+          for (int e = t.head; e >= 0; e = next[e]) {
+            const int a = owner[e];
+            const bool overlap =
+                c[a].lo.x() <= c[b].hi.x() && c[b].lo.x() <= c[a].hi.x() &&
+                c[a].lo.y() <= c[b].hi.y() && c[b].lo.y() <= c[a].hi.y() &&
+                c[a].lo.z() <= c[b].hi.z() && c[b].lo.z() <= c[a].hi.z();
+            if (!overlap) continue;
+            const Vec3 lo = c[a].lo.cwiseMax(c[b].lo);
+            if (cell(lo.x()) == i && cell(lo.y()) == j && cell(lo.z()) == k)
+              pairs.emplace_back(std::min(a, b), std::max(a, b));
+          }
+          owner.push_back(b);
+          next.push_back(t.head);
+          t.head = int(owner.size()) - 1;
+        }
   }
   std::sort(pairs.begin(), pairs.end());
   return pairs;

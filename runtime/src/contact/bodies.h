@@ -2,7 +2,7 @@
 // each other"): after each step of every body, one stage finds the pairs that touch and solves
 // them with the contacts against the ground and the walls, island by island.
 //
-//   broad phase   sweep and prune along x over each body's bounding box (pair_aabb) widened by
+//   broad phase   a uniform grid of cells over each body's bounding box (pair_aabb) widened by
 //                 what the body closes in one step, and the narrow phase (contact/pair_geometry.h
 //                 collide) on the overlapping pairs
 //   waking        a sleeping body touched by one that is not resting wakes, with every sleeping

@@ -170,6 +170,70 @@ nlohmann::json body_type(const Scene& scene, const Model& model, const FlowScale
   return j;
 }
 
+// Whether contacts between bodies matter for the scene (docs/contacts.md "Bodies against each
+// other"): in flight, the bodies' mean spacing in their spawn boxes against their size; on a
+// colliding ground, the share of the ground under the spawn boxes their largest projected areas
+// would cover spread evenly (wind gathers them into corners: more). Either says they meet: then body_contact "collide" keeps them apart.
+nlohmann::json body_contact_need(const Scene& scene, const Model& model) {
+  double volume = 0, footprint = 0, cover = 0, size = 0;
+  size_t n = 0;
+  for (const BodyType& t : model.types) {
+    const double count = double(t.count);
+    size += count * 2 * t.reach;
+    cover += count * t.area_max;
+    n += t.count;
+  }
+  // the box around the spawn boxes (entries often share one)
+  Vec3 lo = Vec3::Constant(HUGE_VAL), hi = Vec3::Constant(-HUGE_VAL);
+  for (const BodySpec& b : scene.bodies) {
+    if (!b.spawn_in_box) continue;
+    lo = lo.cwiseMin(b.box_lo);
+    hi = hi.cwiseMax(b.box_hi);
+  }
+  if (lo.x() <= hi.x()) {
+    const Vec3 d = hi - lo;
+    volume = d.x() * d.y() * d.z();
+    footprint = d.x() * d.y();
+  }
+  nlohmann::json j;
+  j["mode"] = scene.body_contact ? "collide" : "off";
+  j["bodies"] = n;
+  size = n > 0 ? size / double(n) : 0.0;
+  j["size"] = size;
+  const double spacing = volume > 0 && n > 0 ? std::cbrt(volume / double(n)) : 0.0;
+  j["spacing"] = spacing;
+  const double ground_cover = footprint > 0 ? cover / footprint : 0.0;
+  j["ground_cover"] = model.ground_collides() ? ground_cover : 0.0;
+  const bool in_flight = n > 1 && spacing > 0 && spacing < 5 * size;
+  const bool on_ground = model.ground_collides() && n > 1 && ground_cover > 0.05;
+  j["matters"] = in_flight || on_ground;
+  char buf[400];
+  std::string words;
+  if (spacing > 0) {
+    std::snprintf(buf, sizeof buf,
+                  "%zu bodies in their spawn boxes: mean spacing %.3g m, %.3g times their size "
+                  "(%.3g m): they %s in flight",
+                  n, spacing, spacing / size, size, in_flight ? "meet" : "rarely meet");
+    words = buf;
+  }
+  if (model.ground_collides() && footprint > 0) {
+    std::snprintf(buf, sizeof buf,
+                  "%son the ground, spread evenly under their spawn boxes, they would cover %.2g of "
+                  "it: %s",
+                  words.empty() ? "" : "; ", ground_cover,
+                  on_ground ? "those that come to rest together pile up" : "few touch");
+    words += buf;
+  }
+  if (words.empty()) words = "no spawn box to judge the bodies' spacing by";
+  words += scene.body_contact
+               ? "; body_contact is \"collide\": they collide"
+               : (in_flight || on_ground ? "; body_contact is \"off\": they pass through each "
+                                           "other (\"collide\" keeps them apart)"
+                                         : "; body_contact is \"off\"");
+  j["words"] = words;
+  return j;
+}
+
 }  // namespace
 
 nlohmann::json explain_scene(const Scene& scene) {
@@ -201,6 +265,7 @@ nlohmann::json explain_scene(const Scene& scene) {
     total_ns += j["body_types"].back()["cost_ns"].get<double>() * double(model.types[ti].count);
   }
   const double steps = std::round(scene.duration / scene.dt);
+  j["body_contact"] = body_contact_need(scene, model);
   j["total"] = {{"body_steps", steps * double(model.body_count)},
                 {"seconds_one_core", total_ns * steps * 1e-9}};
   return j;

@@ -14,6 +14,7 @@
 #include <sstream>
 
 #include "body/solidify.h"
+#include "contact/bodies.h"
 #include "body/tessellate.h"
 #include "effects/registry.h"
 #include "io/atomic_file.h"
@@ -562,6 +563,13 @@ void ResultWriter::finish(const State& st, const RunStats& stats, const nlohmann
                      {"events", events},
                      {"touched_ground", touched},
                      {"removed", hidden}};
+    // contacts between bodies: the mode, the touching pairs summed over the steps, the sleeping
+    // bodies a contact woke, and the deepest overlap of two bodies at the end (m)
+    json bc = {{"mode", model_.body_contact ? "collide" : "off"},
+               {"pair_steps", stats.pair_steps},
+               {"woken", stats.pair_wakes}};
+    if (model_.body_contact) bc["deepest_overlap_end"] = deepest_pair_overlap(model_, st);
+    s["body_contact"] = bc;
   }
   json stopped = json::array();
   for (size_t i = 0; i < st.size() && stopped.size() < 1000; ++i)
