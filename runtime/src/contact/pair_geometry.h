@@ -1,4 +1,4 @@
-// The narrow phase of the contacts between bodies (docs/contacts-narrow-phase.md): the convex
+// The narrow phase of the contacts between bodies (docs/contacts.md, "The narrow phase between bodies"): the convex
 // shape of a body type, built once per type, and the contact manifold of two such shapes at two
 // poses -- up to kPairMaxPoints points, each with a world point, a normal from B towards A and a
 // depth. Sphere-sphere and sphere-polytope are exact; pairs with an ellipsoid take one point from
