@@ -20,17 +20,22 @@ namespace {
 
 using test::kG;
 
-BodySpec sphere_body(const std::string& name, double r, double density, const Vec3& x,
-                     const Vec3& v, double e, double mu) {
+BodySpec body(const std::string& name, const Shape& shape, double density, const Vec3& x,
+              const Vec3& v, double e, double mu) {
   BodySpec b;
   b.name = name;
-  b.shape = Shape::sphere(r);
+  b.shape = shape;
   b.density = density;
   b.position = x;
   b.velocity = v;
   b.contact.restitution = e;
   b.contact.friction = mu;
   return b;
+}
+
+BodySpec sphere_body(const std::string& name, double r, double density, const Vec3& x,
+                     const Vec3& v, double e, double mu) {
+  return body(name, Shape::sphere(r), density, x, v, e, mu);
 }
 
 // bodies in still air under the given gravity, no fluid forces, body contacts on
@@ -188,15 +193,7 @@ TEST(BodyContact, AHeapOfSpheresRestsWithoutOverlapAndAnyThreadCountGivesTheSame
 
 BodySpec box_body(const std::string& name, const Vec3& size, double density, const Vec3& x,
                   const Vec3& v, double e, double mu) {
-  BodySpec b;
-  b.name = name;
-  b.shape = Shape::box(size.x(), size.y(), size.z());
-  b.density = density;
-  b.position = x;
-  b.velocity = v;
-  b.contact.restitution = e;
-  b.contact.friction = mu;
-  return b;
+  return body(name, Shape::box(size.x(), size.y(), size.z()), density, x, v, e, mu);
 }
 
 // Five boxes stacked on the ground stand: after 10 s no box has moved by 0.1 mm.
