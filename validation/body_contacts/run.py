@@ -243,9 +243,12 @@ def heap(args, st):
              tol_text="< 1 mm", verdict="PASS" if worst < 1e-3 else "FAIL")
     last = states(out)[-1]
     still = int(np.isin(last, ("resting", "sleeping")).sum())
+    speed = np.sqrt(tr["vx"][-1] ** 2 + tr["vy"][-1] ** 2 + tr["vz"][-1] ** 2).max()
+    spin = np.sqrt(tr["wx"][-1] ** 2 + tr["wy"][-1] ** 2 + tr["wz"][-1] ** 2).max()
     st.check("heap of 60 spheres: resting or sleeping at the end (3 s)", still, n, 0,
-             "the heap comes to rest", note="final states %s" % ", ".join(
-                 "%s %d" % (s, (last == s).sum()) for s in sorted(set(last))))
+             "the heap comes to rest", note="final states %s; largest speed %.2g m/s, spin "
+             "%.2g rad/s" % (", ".join("%s %d" % (s, (last == s).sum()) for s in sorted(set(last))),
+                             speed, spin))
     zmax = tr["z"][-1].max()
     st.check("heap of 60 spheres: highest centre at the end", zmax, 0.02, 0.0,
              "a heap, not one layer (a sphere on the ground has its centre at r = 1 cm)",
