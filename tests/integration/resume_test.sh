@@ -185,4 +185,36 @@ echo "resume_test: disk full at $limit KiB, last checkpoint at $step"
 "$lrigid" run nopvd.json --resume full --quiet --threads 2
 compare ref_nopvd full
 echo "resume_test: resumed after the disk filled up: identical"
+# bodies colliding with each other: a run cut by a full disk and resumed is the uninterrupted one
+cat > pile.json <<'JSON'
+{
+  "fluid": { "density": 1.2, "kinematic_viscosity": 1.5e-5,
+             "uniform": { "U": [0.5, 0, 0], "k": 0.01, "epsilon": 0.01 } },
+  "gravity": [0, 0, -9.81],
+  "effects": ["gravity", "drag", "mean_flow", "turbulence"],
+  "integrator": { "scheme": "strang", "dt": 0.002 },
+  "duration": 0.8, "seed": 3,
+  "ground": { "z": 0, "contact": "collide" },
+  "body_contact": "collide",
+  "bodies": [
+    { "name": "ball", "shape": { "type": "sphere", "radius": 0.01 }, "density": 1000,
+      "count": 30, "spawn_box": [[-0.05, -0.05, 0.02], [0.05, 0.05, 0.3]] },
+    { "name": "chip", "shape": { "type": "box", "size": [0.03, 0.02, 0.01] }, "density": 800,
+      "count": 20, "spawn_box": [[-0.05, -0.05, 0.02], [0.05, 0.05, 0.3]],
+      "orientation": "random" }
+  ],
+  "output": { "dir": "out", "every": 0.02, "formats": ["csv"], "checkpoint_every": 0 }
+}
+JSON
+"$lrigid" run pile.json -o ref_pile --threads 2 --quiet
+limit=$(( $(stat -c %s ref_pile/trajectories.csv) / 2048 ))
+rc=0
+( ulimit -f "$limit"; exec "$lrigid" run pile.json -o full_pile --threads 2 --quiet \
+    --checkpoint-every 1e-9 2> err.txt ) || rc=$?
+[ "$rc" = 4 ] || { echo "FAIL: the pile's full disk gave exit $rc, not 4"; cat err.txt; exit 1; }
+step=$(last_step full_pile)
+[ "$step" -gt 0 ] || { echo "FAIL: no checkpoint of the pile before the disk filled up"; exit 1; }
+"$lrigid" run pile.json --resume full_pile --quiet --threads 1
+compare ref_pile full_pile
+echo "resume_test: bodies colliding, cut at step $step and resumed on 1 thread: identical"
 echo "resume_test: PASS"

@@ -145,8 +145,13 @@ BodyContactStats body_contacts(const Model& model, State* state, BodyContactScra
   const double h = model.dt;
   const double t_end = static_cast<double>(st.step) * h;
   std::vector<Cand> cand;
-  for (size_t i = n0; i < n; ++i)
-    if (takes_part(st, i)) cand.push_back(make_cand(model, st, i));
+  for (size_t i = n0; i < n; ++i) {
+    if (!takes_part(st, i)) continue;
+    // without a colliding ground or walls the step's contact pass does not run: what touches
+    // nothing is flying (the islands below say what touches)
+    if (!model.contacts() && st.status[i] == BodyStatus::Moving) mark_flying(&st, i);
+    cand.push_back(make_cand(model, st, i));
+  }
   const std::vector<std::pair<int, int>> pairs = overlapping_pairs(cand);
   stats.pairs = pairs.size();
   if (pairs.empty()) return stats;
@@ -349,10 +354,15 @@ BodyContactStats body_contacts(const Model& model, State* state, BodyContactScra
     deepest[is] = deep;
     const double still = kRestFraction * model.rest_speed;
     std::vector<uint8_t> rests(members.size(), 1);
+    std::vector<int> touching(members.size(), 0);
     for (const IslandPoint& ip : pts) {
       double vc[3];
       island_point_velocity(bodies.data(), ip, vc);
-      if (!(ip.depth >= 0)) continue;
+      // (a point within the skin holds the body as a touching one does: the speculative
+      // contact keeps it there)
+      if (!(ip.depth > -kPairSkin)) continue;
+      ++touching[ip.a];
+      if (ip.b >= 0) ++touching[ip.b];
       const bool moves = std::sqrt(dot3(vc, vc)) >= still;
       if (moves) {
         rests[ip.a] = 0;
@@ -372,6 +382,12 @@ BodyContactStats body_contacts(const Model& model, State* state, BodyContactScra
       st.q[i] = rotate_body(st.q[i], cw * (c.pose.R.transpose() * (w - w0)));
       st.v[i] = c.pose.R.transpose() * v;
       st.w[i] = c.pose.R.transpose() * w;
+      // a body whose points are all off by more than the skin touches nothing: the step's own
+      // contact pass said what it is (flying, or on the ground)
+      if (touching[m] == 0) {
+        all_rested = false;
+        continue;
+      }
       const bool r = rests[m] && w.norm() * type.reach < still;
       const uint32_t before_rest =
           i < scratch->rest_before.size() ? scratch->rest_before[i] : st.rest_steps[i];

@@ -87,8 +87,13 @@ TEST(BodyContact, TwoSpheresHeadOnLeaveWithNewtonsRestitution) {
       EXPECT_NEAR(m1 * st.v[0].x() + m2 * st.v[1].x(), m1 * u1 + m2 * u2, 1e-9);
       EXPECT_LT(st.w[0].norm() + st.w[1].norm(), 1e-9);
       EXPECT_LT(std::abs(st.v[0].y()) + std::abs(st.v[0].z()), 1e-9);
-      // they never sank into each other by more than one step's travel
+      // they never sank into each other by more than one step's travel; flying apart (or
+      // together at e = 0), nothing touches them: they are flying, not resting
       EXPECT_LT(deepest_pair_overlap(m, st), 1e-9);
+      if (e > 0) {
+        EXPECT_EQ(st.contact[0], ContactState::Flying) << "e " << e;
+        EXPECT_EQ(st.contact[1], ContactState::Flying) << "e " << e;
+      }
     }
   }
 }
