@@ -107,11 +107,13 @@ LRIGID_LANE void plate_strips(T w, T c1, T c2, T a1, T a2, T S, T d1, T d2, Plat
   const T l0e2S = l0e * l0e * S;
   const T J2_ell = l0e2S * T(1.0 / 12.0), J3_ell = l0e2S * l0e * T(1.0 / 32.0);
   const T KR_ell = l0e * S;
-  // w x + (1 - w) y: exactly x at w = 1, exactly y at w = 0
+  // w x + (1 - w) y; exactly x at w = 1 and y at w = 0, whatever the other is (the ellipse's
+  // strip is infinite for a spin along the normal, and 0 x inf is not 0)
   const T we = T(1) - w;
-  o->KR = w * KR_box + we * KR_ell;
-  o->J2 = w * J2_box + we * J2_ell;
-  o->J3 = w * J3_box + we * J3_ell;
+  const bool rect = w >= T(1), ell = w <= T(0);
+  o->KR = rect ? KR_box : (ell ? KR_ell : w * KR_box + we * KR_ell);
+  o->J2 = rect ? J2_box : (ell ? J2_ell : w * J2_box + we * J2_ell);
+  o->J3 = rect ? J3_box : (ell ? J3_ell : w * J3_box + we * J3_ell);
 }
 
 // What the plate model needs of a flat body type and the fluid, built once per body type.

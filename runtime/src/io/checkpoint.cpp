@@ -19,7 +19,7 @@ namespace lrigid {
 namespace {
 
 // format 3 ends in a checksum of everything before it; format 2 (an older lrigid's) has none
-constexpr char kMagic[8] = {'L', 'R', 'I', 'G', 'C', 'K', 'P', '5'};
+constexpr char kMagic[8] = {'L', 'R', 'I', 'G', 'C', 'K', 'P', '6'};
 constexpr char kMagicUnchecked[8] = {'L', 'R', 'I', 'G', 'C', 'K', 'P', '2'};
 
 using Fnv = Fnv64;
