@@ -49,26 +49,7 @@ if compare serial ranks2_seed8 > /dev/null 2>&1; then
 fi
 # bodies colliding with each other (body_contact "collide"): every rank steps every body, and
 # pairs of bodies of both ranks' shares collide; the result is the serial one
-cat > pile.json <<'JSON'
-{
-  "fluid": { "density": 1.2, "kinematic_viscosity": 1.5e-5,
-             "uniform": { "U": [0.5, 0, 0], "k": 0.01, "epsilon": 0.01 } },
-  "gravity": [0, 0, -9.81],
-  "effects": ["gravity", "drag", "mean_flow", "turbulence"],
-  "integrator": { "scheme": "strang", "dt": 0.002 },
-  "duration": 0.6, "seed": 3,
-  "ground": { "z": 0, "contact": "collide" },
-  "body_contact": "collide",
-  "bodies": [
-    { "name": "ball", "shape": { "type": "sphere", "radius": 0.01 }, "density": 1000,
-      "count": 31, "spawn_box": [[-0.05, -0.05, 0.02], [0.05, 0.05, 0.3]] },
-    { "name": "chip", "shape": { "type": "box", "size": [0.03, 0.02, 0.01] }, "density": 800,
-      "count": 20, "spawn_box": [[-0.05, -0.05, 0.02], [0.05, 0.05, 0.3]],
-      "orientation": "random" }
-  ],
-  "output": { "dir": "out", "every": 0.05, "formats": ["csv"] }
-}
-JSON
+cp "$src/tests/integration/body_contact_pile.json" pile.json
 "$lrigid" run pile.json -o pile_serial --threads 1 --quiet
 mpirun -np 2 "$lrigid" run pile.json -o pile_ranks2 --threads 1 --quiet
 /usr/bin/python3 - pile_serial/summary.json <<'PY'

@@ -186,26 +186,7 @@ echo "resume_test: disk full at $limit KiB, last checkpoint at $step"
 compare ref_nopvd full
 echo "resume_test: resumed after the disk filled up: identical"
 # bodies colliding with each other: a run cut by a full disk and resumed is the uninterrupted one
-cat > pile.json <<'JSON'
-{
-  "fluid": { "density": 1.2, "kinematic_viscosity": 1.5e-5,
-             "uniform": { "U": [0.5, 0, 0], "k": 0.01, "epsilon": 0.01 } },
-  "gravity": [0, 0, -9.81],
-  "effects": ["gravity", "drag", "mean_flow", "turbulence"],
-  "integrator": { "scheme": "strang", "dt": 0.002 },
-  "duration": 0.8, "seed": 3,
-  "ground": { "z": 0, "contact": "collide" },
-  "body_contact": "collide",
-  "bodies": [
-    { "name": "ball", "shape": { "type": "sphere", "radius": 0.01 }, "density": 1000,
-      "count": 30, "spawn_box": [[-0.05, -0.05, 0.02], [0.05, 0.05, 0.3]] },
-    { "name": "chip", "shape": { "type": "box", "size": [0.03, 0.02, 0.01] }, "density": 800,
-      "count": 20, "spawn_box": [[-0.05, -0.05, 0.02], [0.05, 0.05, 0.3]],
-      "orientation": "random" }
-  ],
-  "output": { "dir": "out", "every": 0.02, "formats": ["csv"], "checkpoint_every": 0 }
-}
-JSON
+cp "$src/tests/integration/body_contact_pile.json" pile.json
 "$lrigid" run pile.json -o ref_pile --threads 2 --quiet
 limit=$(( $(stat -c %s ref_pile/trajectories.csv) / 2048 ))
 rc=0

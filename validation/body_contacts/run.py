@@ -272,22 +272,10 @@ def heap(args, st):
 
 
 def wind_scene(args, st):
-    # ./Allrun's grid, or another conversion of the same case (environment LRIGID_WIND_GRID)
-    grid = os.environ.get("LRIGID_WIND_GRID") or os.path.join(vc.ROOT, "results", "grids",
-                                                              "windCourtyard.vti")
-    if not os.path.exists(grid):
-        st.note("wind scene skipped: no %s (run ./Allrun's precompute first, or set "
-                "LRIGID_WIND_GRID)" % grid)
+    s, why = vc.wind_scene_json(args.quick)
+    if s is None:
+        st.note("wind scene skipped: %s" % why)
         return
-    s = json.load(open(os.path.join(vc.ROOT, "scenes", "leaves_wind.json")))
-    s["fluid"]["field"] = grid
-    n = 200 if args.quick else 1000
-    total = sum(b["count"] for b in s["bodies"])
-    for b in s["bodies"]:
-        b["count"] = max(1, round(b["count"] * n / total))
-    if args.quick:
-        s["duration"] = 10.0
-    s["output"] = {"every": 0.5, "formats": ["csv"]}
     _, summ, _ = vc.run_scene(args, s, st.path("wind"), threads=2)
     nb = summ["bodies"]
     bc = summ["body_contact"]

@@ -141,31 +141,20 @@ def rotate(q, p):
 
 
 def wind_scene(args, st):
-    # ./Allrun's grid, or another conversion of the same case (environment LRIGID_WIND_GRID)
-    grid = os.environ.get("LRIGID_WIND_GRID") or os.path.join(vc.ROOT, "results", "grids",
-                                                              "windCourtyard.vti")
-    if not os.path.exists(grid):
-        st.note("wind scene skipped: no %s (run ./Allrun's precompute first)" % grid)
+    s, why = vc.wind_scene_json(args.quick)
+    if s is None:
+        st.note("wind scene skipped: %s" % why)
         return
     try:
         lr = vc.import_lrigid(args)
     except SystemExit as e:
         st.note("wind scene skipped: %s" % e)
         return
-    s = json.load(open(os.path.join(vc.ROOT, "scenes", "leaves_wind.json")))
-    s["fluid"]["field"] = grid
-    n = 200 if args.quick else 1000
-    total = sum(b["count"] for b in s["bodies"])
-    for b in s["bodies"]:
-        b["count"] = max(1, round(b["count"] * n / total))
-    if args.quick:
-        s["duration"] = 10.0
-    s["output"] = {"every": 0.5, "formats": ["csv"]}
     _, summ, out = vc.run_scene(args, s, st.path("wind"), threads=2)
     rows = list(csv.DictReader(open(os.path.join(out, "trajectories.csv"))))
     nb = max(int(r["body"]) for r in rows) + 1
     shapes = {b["name"]: surface_points(b["shape"]) for b in s["bodies"]}
-    g = lr.Grid(grid)
+    g = lr.Grid(s["fluid"]["field"])
     ground = s["ground"]["z"]
     deepest, where = 0.0, ""
     by_type = {}

@@ -180,6 +180,25 @@ def read_traj(path):
         out[c] = a[:, j].reshape(nf, nb)
     return out
 
+def wind_scene_json(quick):
+    """scenes/leaves_wind.json on ./Allrun's grid (or LRIGID_WIND_GRID, another conversion of
+    the same case), its counts scaled to 1000 bodies (200 with quick, which also runs 10 s),
+    outputs every 0.5 s in csv; (None, why) when the grid is missing."""
+    grid = os.environ.get("LRIGID_WIND_GRID") or os.path.join(ROOT, "results", "grids",
+                                                              "windCourtyard.vti")
+    if not os.path.exists(grid):
+        return None, ("no %s (run ./Allrun's precompute first, or set LRIGID_WIND_GRID)" % grid)
+    s = json.load(open(os.path.join(ROOT, "scenes", "leaves_wind.json")))
+    s["fluid"]["field"] = grid
+    n = 200 if quick else 1000
+    total = sum(b["count"] for b in s["bodies"])
+    for b in s["bodies"]:
+        b["count"] = max(1, round(b["count"] * n / total))
+    if quick:
+        s["duration"] = 10.0
+    s["output"] = {"every": 0.5, "formats": ["csv"]}
+    return s, ""
+
 
 def uniform_fluid(rho, nu, U=(0, 0, 0), k=0.0, eps=0.0):
     return dict(density=rho, kinematic_viscosity=nu, uniform=dict(U=list(U), k=k, epsilon=eps))
