@@ -88,7 +88,8 @@ struct PlateStrips {
 // A planform (body/planform.h) takes w times the rectangle's (half sides c1, c2) integrals and
 // 1 - w times the ellipse's (semi-axes a1, a2), both of area S.
 template <typename T>
-LRIGID_LANE void plate_strips(T w, T c1, T c2, T a1, T a2, T S, T d1, T d2, PlateStrips<T>* o) {
+LRIGID_LANE void plate_strips(T w, bool rect, bool ell, T c1, T c2, T a1, T a2, T S, T d1, T d2,
+                              PlateStrips<T>* o) {
   const T tiny = T(std::is_same_v<T, float> ? 1e-30 : 1e-300);
   const T ad1 = std::abs(d1), ad2 = std::abs(d2);
   // rectangle
@@ -102,18 +103,22 @@ LRIGID_LANE void plate_strips(T w, T c1, T c2, T a1, T a2, T S, T d1, T d2, Plat
   const T l0 = S / (s1 + s2 > tiny ? s1 + s2 : tiny);
   const T KR_box = T(2.0 / 3.0) * l0 * l0 * (T(2) * s1 + s2);
   // ellipse: the mid-chord strip
+  // (a spin along the normal has no mid-chord strip: its length is kept finite, 1e6 times the
+  // ellipse's size, so that the rectangle's weight w = 1 still takes the rectangle's exactly)
   const T q1 = d1 / a1, q2 = d2 / a2;
-  const T l0e = T(2) / std::sqrt(q1 * q1 + q2 * q2);
+  const T qq = q1 * q1 + q2 * q2, qmin = T(1e-12) / (a1 * a1 + a2 * a2);
+  const T l0e = T(2) / std::sqrt(qq > qmin ? qq : qmin);
   const T l0e2S = l0e * l0e * S;
   const T J2_ell = l0e2S * T(1.0 / 12.0), J3_ell = l0e2S * l0e * T(1.0 / 32.0);
   const T KR_ell = l0e * S;
-  // w x + (1 - w) y; exactly x at w = 1 and y at w = 0, whatever the other is (the ellipse's
-  // strip is infinite for a spin along the normal, and 0 x inf is not 0)
+  // w x + (1 - w) y; a rectangle (rect: w = 1) and an ellipse (ell: w = 0) take their own
+  // value outright, so that their arithmetic is that of the shape alone
   const T we = T(1) - w;
-  const bool rect = w >= T(1), ell = w <= T(0);
-  o->KR = rect ? KR_box : (ell ? KR_ell : w * KR_box + we * KR_ell);
-  o->J2 = rect ? J2_box : (ell ? J2_ell : w * J2_box + we * J2_ell);
-  o->J3 = rect ? J3_box : (ell ? J3_ell : w * J3_box + we * J3_ell);
+  T KR = w * KR_box + we * KR_ell, J2 = w * J2_box + we * J2_ell, J3 = w * J3_box + we * J3_ell;
+  KR = ell ? KR_ell : KR, J2 = ell ? J2_ell : J2, J3 = ell ? J3_ell : J3;
+  o->KR = rect ? KR_box : KR;
+  o->J2 = rect ? J2_box : J2;
+  o->J3 = rect ? J3_box : J3;
 }
 
 // What the plate model needs of a flat body type and the fluid, built once per body type.
@@ -177,7 +182,8 @@ LRIGID_LANE void plate_kernel(const PlateParams& k, const T* u, const T* w, Drag
   // not spinning: any direction (the terms below are then multiplied by 0)
   const T d1 = spinning ? dot3(e1, dir) * winv : T(1), d2 = spinning ? dot3(e2, dir) * winv : T(0);
   PlateStrips<T> ps;
-  plate_strips(T(k.rect), T(k.c1), T(k.c2), T(k.a1), T(k.a2), T(k.S), d1, d2, &ps);
+  plate_strips(T(k.rect), k.rect >= 1, k.rect <= 0, T(k.c1), T(k.c2), T(k.a1), T(k.a2), T(k.S), d1,
+               d2, &ps);
   // APW's pitching torque per unit span pi rho a^4 (mu1 U / a + mu2 |w|) w summed over the
   // strips across the axis: pi rho (3/2 mu1 U J2 + 2 mu2 |w_p| J3) w_p; mu1 scaled as a laminar
   // boundary layer

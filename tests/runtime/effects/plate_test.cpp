@@ -203,17 +203,17 @@ TEST(Plate, StripIntegralsAreThePlanformsOwn) {
   // c^4 L / 2 with L the span along the axis)
   PlateStrips<double> p;
   const double c1 = 0.01, c2 = 0.05, S = 4 * c1 * c2;
-  plate_strips(1.0, c1, c2, c1, c2, S, 1.0, 0.0, &p);
+  plate_strips(1.0, true, false, c1, c2, c1, c2, S, 1.0, 0.0, &p);
   EXPECT_NEAR(p.KR, 2 * c1 * S, 1e-15);
   EXPECT_NEAR(p.J2, 2.0 / 3 * std::pow(c1, 3) * 2 * c2, 1e-18);
   EXPECT_NEAR(p.J3, std::pow(c1, 4) * 2 * c2 / 2, 1e-20);
-  plate_strips(1.0, c1, c2, c1, c2, S, 0.0, -1.0, &p);  // about the other side
+  plate_strips(1.0, true, false, c1, c2, c1, c2, S, 0.0, -1.0, &p);  // about the other side
   EXPECT_NEAR(p.KR, 2 * c2 * S, 1e-15);
   EXPECT_NEAR(p.J3, std::pow(c2, 4) * 2 * c1 / 2, 1e-18);
   // ellipses: the mid-chord strip (a disk of radius a: chord 2a, span pi a / 2), which for the
   // disk is 1.18, 1.33 and 1.47 times its own strip sums 16 a^3 / 3, pi a^4 / 4, 8 a^5 / 15
   const double a = 0.03;
-  plate_strips(0.0, a, a, a, a, M_PI * a * a, 0.6, 0.8, &p);
+  plate_strips(0.0, false, true, a, a, a, a, M_PI * a * a, 0.6, 0.8, &p);
   EXPECT_NEAR(p.KR, 2 * a * M_PI * a * a, 1e-12 * std::pow(a, 3));
   EXPECT_NEAR(p.J2, 2.0 / 3 * std::pow(a, 3) * M_PI * a / 2, 1e-12 * std::pow(a, 4));
   EXPECT_NEAR(p.J3, std::pow(a, 4) / 2 * M_PI * a / 2, 1e-12 * std::pow(a, 5));
@@ -224,7 +224,7 @@ TEST(Plate, StripIntegralsAreThePlanformsOwn) {
   // jumps to 0 at a side parallel to the axis)
   for (const double ang : {0.0, 0.3, M_PI / 4, 1.1, M_PI / 2, 2.5}) {
     const double d1 = std::cos(ang), d2 = std::sin(ang);
-    plate_strips(1.0, c1, c2, c1, c2, S, d1, d2, &p);
+    plate_strips(1.0, true, false, c1, c2, c1, c2, S, d1, d2, &p);
     const Quadrature q = brute_strips(true, c1, c2, d1, d2);
     EXPECT_NEAR(p.KR / q.KR, 1.0, 5e-4) << ang;
     EXPECT_NEAR(p.J2 / q.J2, 1.0, 5e-4) << ang;
@@ -232,15 +232,15 @@ TEST(Plate, StripIntegralsAreThePlanformsOwn) {
   }
   // a square about its diagonal: the chord through the centre is sqrt(2) times the side's, but
   // the strip sums are within 6 % and 13 % of the side's (a mid-chord strip's: 2.8 times)
-  plate_strips(1.0, a, a, a, a, 4 * a * a, M_SQRT1_2, M_SQRT1_2, &p);
+  plate_strips(1.0, true, false, a, a, a, a, 4 * a * a, M_SQRT1_2, M_SQRT1_2, &p);
   PlateStrips<double> side;
-  plate_strips(1.0, a, a, a, a, 4 * a * a, 1.0, 0.0, &side);
+  plate_strips(1.0, true, false, a, a, a, a, 4 * a * a, 1.0, 0.0, &side);
   EXPECT_NEAR(p.KR / side.KR, 2 * std::sqrt(2.0) / 3, 1e-12);
   EXPECT_NEAR(p.J3 / side.J3, 0.8 * std::pow(M_SQRT1_2, 3) * 4, 1e-12);
   // single precision: the lanes of the float step
   PlateStrips<float> pf;
-  plate_strips(1.0f, 0.01f, 0.05f, 0.01f, 0.05f, 0.002f, 0.6f, 0.8f, &pf);
-  plate_strips(1.0, c1, c2, c1, c2, S, 0.6, 0.8, &p);
+  plate_strips(1.0f, true, false, 0.01f, 0.05f, 0.01f, 0.05f, 0.002f, 0.6f, 0.8f, &pf);
+  plate_strips(1.0, true, false, c1, c2, c1, c2, S, 0.6, 0.8, &p);
   EXPECT_NEAR(pf.J3 / p.J3, 1.0, 1e-5);
   EXPECT_NEAR(pf.KR / p.KR, 1.0, 1e-5);
 }

@@ -161,8 +161,8 @@ void expect_same_plate(const BodyType& mesh, const BodyType& ana, double tol) {
   for (const double ang : {0.0, 0.4, M_PI / 4, 1.2}) {
     PlateStrips<double> sm, sa;
     const double d1 = std::cos(ang), d2 = std::sin(ang);
-    plate_strips(km.rect, km.c1, km.c2, km.a1, km.a2, km.S, d1, d2, &sm);
-    plate_strips(ka.rect, ka.c1, ka.c2, ka.a1, ka.a2, ka.S, d1, d2, &sa);
+    plate_strips(km.rect, km.rect >= 1, km.rect <= 0, km.c1, km.c2, km.a1, km.a2, km.S, d1, d2, &sm);
+    plate_strips(ka.rect, ka.rect >= 1, ka.rect <= 0, ka.c1, ka.c2, ka.a1, ka.a2, ka.S, d1, d2, &sa);
     EXPECT_NEAR(sm.KR / sa.KR, 1.0, tol) << ang;
     EXPECT_NEAR(sm.J2 / sa.J2, 1.0, tol) << ang;
     EXPECT_NEAR(sm.J3 / sa.J3, 1.0, tol) << ang;
