@@ -171,31 +171,28 @@ compare ref half
 # trajectories here), so with it no file size would fail in the middle of the run.
 sed 's/"formats": \["csv", "pvd", "glb"\]/"formats": ["csv", "glb"]/' scene.json > nopvd.json
 grep -q '"formats": \["csv", "glb"\]' nopvd.json || { echo "FAIL: nopvd.json kept pvd"; exit 1; }
-"$lrigid" run nopvd.json -o ref_nopvd --threads 2 --quiet
-limit=$(( $(stat -c %s ref_nopvd/trajectories.csv) / 2048 ))
-rc=0
-( ulimit -f "$limit"; exec "$lrigid" run nopvd.json -o full --threads 2 --quiet \
-    --checkpoint-every 1e-9 2> err.txt ) || rc=$?
-[ "$rc" = 4 ] || { echo "FAIL: a full disk gave exit $rc, not 4"; cat err.txt; exit 1; }
-grep -q "disk full" err.txt || { echo "FAIL: the message does not say so"; cat err.txt; exit 1; }
-[ ! -e full/summary.json ] || { echo "FAIL: a failed run left summary.json"; exit 1; }
-step=$(last_step full)
-[ "$step" -gt 0 ] || { echo "FAIL: no checkpoint before the disk filled up"; exit 1; }
-echo "resume_test: disk full at $limit KiB, last checkpoint at $step"
-"$lrigid" run nopvd.json --resume full --quiet --threads 2
-compare ref_nopvd full
+# disk_full_then_resume SCENE NAME THREADS: the uninterrupted run into ref_NAME; the run into
+# full_NAME with its trajectories limited to half their size stops with exit 4 saying "disk
+# full", leaves no summary.json and a checkpoint; resumed on THREADS threads it is ref_NAME
+disk_full_then_resume() {
+  local scene=$1 name=$2 threads=$3 limit rc=0
+  "$lrigid" run "$scene" -o "ref_$name" --threads 2 --quiet
+  limit=$(( $(stat -c %s "ref_$name/trajectories.csv") / 2048 ))
+  ( ulimit -f "$limit"; exec "$lrigid" run "$scene" -o "full_$name" --threads 2 --quiet \
+      --checkpoint-every 1e-9 2> err.txt ) || rc=$?
+  [ "$rc" = 4 ] || { echo "FAIL: $name: a full disk gave exit $rc, not 4"; cat err.txt; exit 1; }
+  grep -q "disk full" err.txt || { echo "FAIL: $name: the message does not say so"; cat err.txt; exit 1; }
+  [ ! -e "full_$name/summary.json" ] || { echo "FAIL: $name: a failed run left summary.json"; exit 1; }
+  step=$(last_step "full_$name")
+  [ "$step" -gt 0 ] || { echo "FAIL: $name: no checkpoint before the disk filled up"; exit 1; }
+  echo "resume_test: $name: disk full at $limit KiB, last checkpoint at $step"
+  "$lrigid" run "$scene" --resume "full_$name" --quiet --threads "$threads"
+  compare "ref_$name" "full_$name"
+}
+disk_full_then_resume nopvd.json nopvd 2
 echo "resume_test: resumed after the disk filled up: identical"
-# bodies colliding with each other: a run cut by a full disk and resumed is the uninterrupted one
+# bodies colliding with each other, resumed on another thread count
 cp "$src/tests/integration/body_contact_pile.json" pile.json
-"$lrigid" run pile.json -o ref_pile --threads 2 --quiet
-limit=$(( $(stat -c %s ref_pile/trajectories.csv) / 2048 ))
-rc=0
-( ulimit -f "$limit"; exec "$lrigid" run pile.json -o full_pile --threads 2 --quiet \
-    --checkpoint-every 1e-9 2> err.txt ) || rc=$?
-[ "$rc" = 4 ] || { echo "FAIL: the pile's full disk gave exit $rc, not 4"; cat err.txt; exit 1; }
-step=$(last_step full_pile)
-[ "$step" -gt 0 ] || { echo "FAIL: no checkpoint of the pile before the disk filled up"; exit 1; }
-"$lrigid" run pile.json --resume full_pile --quiet --threads 1
-compare ref_pile full_pile
+disk_full_then_resume pile.json pile 1
 echo "resume_test: bodies colliding, cut at step $step and resumed on 1 thread: identical"
 echo "resume_test: PASS"

@@ -109,7 +109,8 @@ std::vector<std::pair<int, int>> overlapping_pairs(const std::vector<Cand>& c) {
   return pairs;
 }
 
-Cand make_cand(const Model& model, const State& st, size_t i) {
+// body i as the stage takes it; widen: its box widened by its margin (else the shape's own box)
+Cand make_cand(const Model& model, const State& st, size_t i, bool widen = true) {
   Cand c;
   c.body = static_cast<uint32_t>(i);
   c.dynamic = st.status[i] == BodyStatus::Moving;
@@ -118,8 +119,8 @@ Cand make_cand(const Model& model, const State& st, size_t i) {
   c.pose.R = st.q[i].toRotationMatrix();
   c.vw = c.pose.R * st.v[i];
   c.ww = c.pose.R * st.w[i];
-  c.margin = kPairSkin;
-  if (c.dynamic) c.margin += (c.vw.norm() + c.ww.norm() * type.reach) * model.dt;
+  c.margin = widen ? kPairSkin : 0.0;
+  if (widen && c.dynamic) c.margin += (c.vw.norm() + c.ww.norm() * type.reach) * model.dt;
   pair_aabb(*type.pair, c.pose, &c.lo, &c.hi);
   c.lo.array() -= c.margin;
   c.hi.array() += c.margin;
@@ -153,7 +154,6 @@ BodyContactStats body_contacts(const Model& model, State* state, BodyContactScra
     cand.push_back(make_cand(model, st, i));
   }
   const std::vector<std::pair<int, int>> pairs = overlapping_pairs(cand);
-  stats.pairs = pairs.size();
   if (pairs.empty()) return stats;
   // the narrow phase of the pairs with a moving body
   std::vector<PairManifold> mf(pairs.size());
@@ -251,8 +251,6 @@ BodyContactStats body_contacts(const Model& model, State* state, BodyContactScra
     const int k = cand[a].dynamic ? a : b;
     ipairs[root_island[find(parent, k)]].push_back(int(p));
   }
-  stats.islands = ibodies.size();
-  std::vector<double> deepest(ibodies.size(), 0.0);
 
   const auto nis = static_cast<int64_t>(ibodies.size());
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 1) if (nis > 1)
@@ -323,7 +321,6 @@ BodyContactStats body_contacts(const Model& model, State* state, BodyContactScra
     // penetration, split by the effective masses along the normal
     const double cw = model.integrator == Integrator::Euler ? 0.0 : 0.5 * h;
     std::vector<Vec3> up(members.size(), Vec3::Zero()), down(members.size(), Vec3::Zero());
-    double deep = 0;
     for (const IslandPoint& ip : pts) {
       if (!(ip.depth > 0)) continue;
       double vc0[3], vc1[3];
@@ -332,7 +329,6 @@ BodyContactStats body_contacts(const Model& model, State* state, BodyContactScra
       double dvn = 0;
       for (int e = 0; e < 3; ++e) dvn += (vc1[e] - vc0[e]) * ip.n[e];
       const double left = ip.depth - cw * dvn;
-      if (ip.b >= 0) deep = std::max(deep, ip.depth);
       if (!(left > 0)) continue;
       double share = 1;
       if (ip.b >= 0) {
@@ -351,7 +347,6 @@ BodyContactStats body_contacts(const Model& model, State* state, BodyContactScra
       add(ip.a, share * left * nn);
       if (ip.b >= 0) add(ip.b, -(1 - share) * left * nn);
     }
-    deepest[is] = deep;
     const double still = kRestFraction * model.rest_speed;
     std::vector<uint8_t> rests(members.size(), 1);
     std::vector<int> touching(members.size(), 0);
@@ -434,7 +429,6 @@ BodyContactStats body_contacts(const Model& model, State* state, BodyContactScra
       st.rest_steps[i] = 0;
     }
   }
-  for (const double d : deepest) stats.deepest = std::max(stats.deepest, d);
   return stats;
 }
 
@@ -442,12 +436,7 @@ double deepest_pair_overlap(const Model& model, const State& st, int* i_out, int
   std::vector<Cand> cand;
   for (size_t i = 0; i < st.size(); ++i) {
     if (!takes_part(st, i)) continue;
-    Cand c = make_cand(model, st, i);
-    c.dynamic = false;
-    const BodyType& type = model.types[st.type[i]];
-    pair_aabb(*type.pair, c.pose, &c.lo, &c.hi);
-    c.margin = 0;
-    cand.push_back(c);
+    cand.push_back(make_cand(model, st, i, false));
   }
   double deepest = 0;
   if (i_out) *i_out = -1;

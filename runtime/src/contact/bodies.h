@@ -39,11 +39,8 @@ PairMaterial pair_material(const ContactParams& a, const ContactParams& b);
 constexpr double kPairSkin = 1e-4;
 
 struct BodyContactStats {
-  uint64_t pairs = 0;         // pairs whose bounding boxes overlapped
-  uint64_t touching = 0;      // of them, pairs with contact points
-  uint64_t islands = 0;       // islands solved
+  uint64_t touching = 0;      // pairs with contact points
   uint64_t woken = 0;         // sleeping bodies woken by a contact
-  double deepest = 0;         // the deepest pair penetration after the stage, m
 };
 
 // What the stage keeps between steps that is not state: the bodies' rest counts before the
