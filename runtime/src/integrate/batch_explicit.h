@@ -52,24 +52,30 @@ struct Rk4Block {
 // rk4's sums k1 + 2 k2 + 2 k3 + k4, and before the last stage the next stage's state from the
 // start's x0, v0, w0: x0 + c h kx, theta = c h kth, v0 + c h kxi (c = 1/2, 1/2, 1); in: the stage's
 // sample was inside the fluid (k->ok is 0 from the first stage that was not)
-template <int I, typename T>
-LRIGID_LANE void rk4_sum_lane(Rk4Block<T>* k, int j, bool in, T h, const T* x0, const T* v0,
+// (the last stage writes a next state too, which nothing reads: one loop serves stages 1 to 3;
+// the sums are read whatever the stage, since a load under a condition keeps the loops scalar)
+template <typename T>
+LRIGID_LANE void rk4_sum_lane(int I, Rk4Block<T>* k, int j, bool in, T h, const T* x0, const T* v0,
                               const T* w0, const T* kx, const T* kth, const T* kxi) {
-  const T ci = I == 0 || I == 1 ? T(0.5) : T(1), wi = I == 0 || I == 3 ? T(1) : T(2);
-  k->ok[j] = ((I == 0 || k->ok[j] != T(0)) & in) ? T(1) : T(0);
+  const bool first = I == 0;
+  const T ci = I <= 1 ? T(0.5) : T(1), wi = first || I == 3 ? T(1) : T(2);
+  const bool was_ok = k->ok[j] != T(0);
+  k->ok[j] = ((first | was_ok) & in) ? T(1) : T(0);
 #pragma GCC unroll 3
   for (int a = 0; a < 3; ++a) {
-    k->Sx[a][j] = I == 0 ? kx[a] : k->Sx[a][j] + wi * kx[a];
-    k->Sth[a][j] = I == 0 ? kth[a] : k->Sth[a][j] + wi * kth[a];
-    if constexpr (I < 3) {
-      k->xs[a][j] = x0[a] + ci * h * kx[a];
-      k->th[a][j] = ci * h * kth[a];
-      k->vs[a][j] = v0[a] + ci * h * kxi[a];
-      k->ws[a][j] = w0[a] + ci * h * kxi[3 + a];
-    }
+    const T sx = k->Sx[a][j] + wi * kx[a], sth = k->Sth[a][j] + wi * kth[a];
+    k->Sx[a][j] = first ? kx[a] : sx;
+    k->Sth[a][j] = first ? kth[a] : sth;
+    k->xs[a][j] = x0[a] + ci * h * kx[a];
+    k->th[a][j] = ci * h * kth[a];
+    k->vs[a][j] = v0[a] + ci * h * kxi[a];
+    k->ws[a][j] = w0[a] + ci * h * kxi[3 + a];
   }
 #pragma GCC unroll 6
-  for (int a = 0; a < 6; ++a) k->Sxi[a][j] = I == 0 ? kxi[a] : k->Sxi[a][j] + wi * kxi[a];
+  for (int a = 0; a < 6; ++a) {
+    const T s = k->Sxi[a][j] + wi * kxi[a];
+    k->Sxi[a][j] = first ? kxi[a] : s;
+  }
 }
 
 // rk4's four stages on a block: stage(std::integral_constant<int, I>) evaluates stage I at k's

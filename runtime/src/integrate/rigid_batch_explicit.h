@@ -170,10 +170,10 @@ LRIGID_MULTIVERSION void euler_lanes(const StepConsts<Mass>& tc, Lanes<T, Mass>*
 // stage's state on the lanes' samples there, added to the sums, and the next stage's state
 // (c = 1/2, 1/2, 1); stage 0 also updates the seen fluctuation (into next->us) from the start's
 // sample, and for lanes that keep the world velocity (an isotropic M) takes the start's
-// body-frame velocity (into k->v0)
-template <typename T, bool Plate, int I, class Mass>
+// body-frame velocity (into k->v0). First: I is 0.
+template <typename T, bool Plate, bool First, class Mass>
 LRIGID_LANE void rk4_stage(const StepConsts<Mass>& tc, const Lanes<T, Mass>* lanes,
-                           const T (*z)[kBatch], Rk4Block<T>* k, NewState<T>* next) {
+                           const T (*z)[kBatch], Rk4Block<T>* k, NewState<T>* next, int I) {
   constexpr bool world = Lanes<T, Mass>::kWorld;
   const int nw = lanes->width;
   const T h = T(tc.h);
@@ -184,7 +184,7 @@ LRIGID_LANE void rk4_stage(const StepConsts<Mass>& tc, const Lanes<T, Mass>* lan
     const T vl[3] = {lanes->v[0][j], lanes->v[1][j], lanes->v[2][j]};
     T q[4], theta[3], v[3], w[3];
     BodyFrame<T> fr;
-    if constexpr (I == 0) {
+    if constexpr (First) {
       fr.set(q0);
       if constexpr (world) {
         fr.of_world(vl, v);
@@ -231,8 +231,8 @@ LRIGID_LANE void rk4_stage(const StepConsts<Mass>& tc, const Lanes<T, Mass>* lan
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) v0[a] = world ? k->v0[a][j] : vl[a];
     const T w0[3] = {lanes->w[0][j], lanes->w[1][j], lanes->w[2][j]};
-    rk4_sum_lane<I>(k, j, in, h, x0, v0, w0, kx, kth, kxi);
-    if constexpr (I == 0) {
+    rk4_sum_lane(First ? 0 : I, k, j, in, h, x0, v0, w0, kx, kth, kxi);
+    if constexpr (First) {
       // the path velocity of the seen fluctuation's drift: the start's world velocity
       T us[3] = {us0[0], us0[1], us0[2]};
       ou_euler_lane(tc, lanes, j, world ? vl : kx, z, us);
@@ -240,6 +240,16 @@ LRIGID_LANE void rk4_stage(const StepConsts<Mass>& tc, const Lanes<T, Mass>* lan
       for (int a = 0; a < 3; ++a) next->us[a][j] = us[a];
     }
   }
+}
+
+// rk4's stages 1 to 3 (I) on every lane: one function for the three, compiled for each
+// instruction set as the schemes' loop functions are (inlined three times, they were most of
+// rk4's machine code and of its compile time)
+template <typename T, bool Plate, class Mass>
+LRIGID_MULTIVERSION void rk4_stage_lanes(const StepConsts<Mass>& tc, const Lanes<T, Mass>* lanes,
+                                         const T (*z)[kBatch], Rk4Block<T>* k, NewState<T>* next,
+                                         int I) {
+  rk4_stage<T, Plate, false>(tc, lanes, z, k, next, I);
 }
 
 // rk4 (integrators.cpp rk4): classic Runge-Kutta in the velocity form, RKMK4 on SO(3) (the
@@ -259,7 +269,11 @@ LRIGID_MULTIVERSION void rk4_lanes(const StepConsts<Mass>& tc, const Rk4Frames& 
   Rk4Block<T> k;
   NewState<T> next;
   rk4_stages(tc, frames, lanes, &k, [&](auto stage) LRIGID_LANE_LAMBDA {
-    rk4_stage<T, Plate, decltype(stage)::value>(tc, lanes, z, &k, &next);
+    constexpr int I = decltype(stage)::value;
+    if constexpr (I == 0)
+      rk4_stage<T, Plate, true>(tc, lanes, z, &k, &next, 0);
+    else
+      rk4_stage_lanes<T, Plate>(tc, lanes, z, &k, &next, I);
   });
   const T h6 = h / T(6);
   LRIGID_IVDEP

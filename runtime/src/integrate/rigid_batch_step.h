@@ -511,11 +511,15 @@ LRIGID_IVDEP
 // body-frame velocities v, w (the start's, or the end of the flow's), in the fluid velocity
 // mf U + tu us of the lanes' current sample and next.us => next.vel, next.w and the world
 // velocity Vn. The body's shape (Plate) chooses the force kernels: the recipes
-// call it through by_shape, outside the loop.
+// call it through by_shape, outside the loop. A function of its own, compiled for each
+// instruction set as the schemes' loop functions are (each clone calls its own instruction set's
+// clone): strang takes it twice a step, and inlined twice it was most of strang's machine code
+// and of its compile time.
 template <typename T, bool Plate, class Mass>
-LRIGID_LANE void stage_strang_forces(const StepConsts<Mass>& tc, const Lanes<T, Mass>* lanes,
-                                     const T (*q)[kBatch], const T (*v)[kBatch],
-                                     const T (*w)[kBatch], NewState<T>* next, T (*Vn)[kBatch]) {
+LRIGID_MULTIVERSION void strang_force_lanes(const StepConsts<Mass>& tc, const Lanes<T, Mass>* lanes,
+                                            const T (*q)[kBatch], const T (*v)[kBatch],
+                                            const T (*w)[kBatch], NewState<T>* next,
+                                            T (*Vn)[kBatch]) {
   const int nw = lanes->width;
   const T hh = T(0.5 * tc.h), tu = T(tc.tu);
 LRIGID_IVDEP
@@ -926,7 +930,7 @@ LRIGID_IVDEP
 
 // Stage 3 of strang, the end of the flow: flow => next.q, next.vel, next.w, next.x by the
 // trapezoidal rule over the flow; the field sampled at next.x (inside0: each lane's inside flag
-// before). The second force half step (stage_strang_forces) follows on that sample.
+// before). The second force half step (strang_force_lanes) follows on that sample.
 template <typename T, class Mass>
 LRIGID_LANE void stage_strang_flow_end(const StepConsts<Mass>& tc, Lanes<T, Mass>* lanes,
                                        FlowBlock<T>* flow, NewState<T>* next, T* inside0) {
@@ -986,15 +990,14 @@ LRIGID_MULTIVERSION void strang_lanes(const StepConsts<Mass>& tc, Lanes<T, Mass>
   NewState<T> next;
   stage_turbulence_start(tc, lanes, z1, &flow, &next);
   by_shape<Mass>(tc.plate, [&](auto plate) LRIGID_LANE_LAMBDA {
-    stage_strang_forces<T, decltype(plate)::value>(tc, lanes, lanes->q, lanes->v, lanes->w,
-                                                   &next, Vn);
+    strang_force_lanes<T, decltype(plate)::value>(tc, lanes, lanes->q, lanes->v, lanes->w, &next,
+                                                  Vn);
   });
   stage_flow_begin(tc, lanes, next.vel, next.w, T(1), &flow);
   stage_kirchhoff_flow(tc, lanes, &flow, &next);
   stage_strang_flow_end(tc, lanes, &flow, &next, inside0);
   by_shape<Mass>(tc.plate, [&](auto plate) LRIGID_LANE_LAMBDA {
-    stage_strang_forces<T, decltype(plate)::value>(tc, lanes, next.q, next.vel, next.w, &next,
-                                                   Vn);
+    strang_force_lanes<T, decltype(plate)::value>(tc, lanes, next.q, next.vel, next.w, &next, Vn);
   });
   end_step<T>(tc, z2, Vn, &next, lanes, outcome, landed, inside0);
 }

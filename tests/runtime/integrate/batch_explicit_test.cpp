@@ -53,7 +53,7 @@ TEST(BatchExplicit, Rk4StagesMakeTheClassicalRungeKuttaStep) {
         kxi[3 + a] = mu * ws[a];
       }
       const bool in = !(j == stopped && i == 2);
-      rk4_sum_lane<i>(&k, j, in, h, x0[j], v0[j], w0[j], kx, kth, kxi);
+      rk4_sum_lane(i, &k, j, in, h, x0[j], v0[j], w0[j], kx, kth, kxi);
     }
   };
   rk4_stages(fc, frames, &lanes, &k, stage);
@@ -117,7 +117,7 @@ TEST(BatchExplicit, Rk4SamplesEachStageWhereAndWhenItIs) {
       }
       // a wind of its own moves each stage's position: 2 m/s along x, 1 m/s along y and z
       const double kx[3] = {2.0, 1.0, 1.0}, zero[6] = {0, 0, 0, 0, 0, 0};
-      rk4_sum_lane<i>(&k, j, true, h, x0[j], zero, zero, kx, zero, zero);
+      rk4_sum_lane(i, &k, j, true, h, x0[j], zero, zero, kx, zero, zero);
     }
   };
   rk4_stages(fc, frames, &lanes, &k, stage);
