@@ -136,7 +136,10 @@ class Simulation(_lrigid.Simulation):
 
 def added_mass(shape, fluid_density, details=False):
     """The fluid Kirchhoff (added-mass) tensor of a shape, 6x6 NumPy array about the volume
-    centroid, order (vx vy vz wx wy wz), units kg | kg m | kg m^2 (``lrigid added-mass``).
+    centroid, order (vx vy vz wx wy wz), units kg | kg m | kg m^2: the shape's own, as
+    ``lrigid added-mass`` prints it but for a flat mesh whose surfaces are planes, for which the
+    command prints its planform's tensor (the one a run takes) and this the panel solution of the
+    mesh's own triangles.
 
     ``shape`` is a dict as a body's "shape" in a scene file, e.g. ``{"type": "sphere",
     "radius": 0.1}`` or ``{"type": "box", "size": [0.06, 0.04, 0.0004], "panels": 800}``;

@@ -1,5 +1,8 @@
 // lrigid added-mass: volume, mass properties per unit density and the fluid Kirchhoff tensor
-// of one body shape. BEM results come from / go to the disk cache.
+// of one body shape, the one a run takes for a body type of that shape (type_added_mass,
+// compile/compile_model.h): a flat body whose surfaces are planes its planform's, any other body
+// its own. BEM results come from / go to the disk cache.
+#include <cmath>
 #include <cstdio>
 #include <iomanip>
 #include <iostream>
@@ -13,6 +16,7 @@
 #include "body/bem.h"
 #include "body/mass_properties.h"
 #include "commands.h"
+#include "compile/compile_model.h"
 #include "io/added_mass_cache.h"
 #include "io/mesh_io.h"
 #include "util/error.h"
@@ -67,7 +71,12 @@ nlohmann::json to_json(const Eigen::MatrixXd& m) {
   return a;
 }
 
-void print_json(const Shape& s, const MassProperties& mp, const AddedMass& am, double rho) {
+const char* const kAxis[3] = {"x", "y", "z"};
+
+nlohmann::json vec_json(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
+
+void print_json(const Shape& s, const MassProperties& mp, const TypeAddedMass& t, double rho) {
+  const AddedMass& am = t.added_mass;
   nlohmann::json j;
   j["shape"] = {{"type", shape_type_name(s.type)},
                 {"half_extents", {s.half_extents.x(), s.half_extents.y(), s.half_extents.z()}}};
@@ -83,10 +92,26 @@ void print_json(const Shape& s, const MassProperties& mp, const AddedMass& am, d
   j["added_mass"] = to_json(am.tensor);
   j["method"] = am.method;
   j["panels"] = am.panels;
+  j["flat"] = t.flat;
+  j["added_mass_of"] = t.from_planform ? "planform" : "shape";
+  if (t.flat) {
+    const Planform& p = t.planform;
+    j["planform"] = {{"normal_axis", kAxis[t.normal_axis]},
+                     {"area", p.area},
+                     {"half_sides", {p.h1, p.h2}},
+                     {"e1", vec_json(p.e1)},
+                     {"e2", vec_json(p.e2)},
+                     {"angle", p.angle},
+                     {"rectangularity", p.rectangularity},
+                     {"rectangle_weight", p.w},
+                     {"rectangle_half_sides", {p.c1, p.c2}},
+                     {"ellipse_semi_axes", {p.a1, p.a2}}};
+  }
   std::cout << j.dump(2) << "\n";
 }
 
-void print_report(const Shape& s, const MassProperties& mp, const AddedMass& am, double rho) {
+void print_report(const Shape& s, const MassProperties& mp, const TypeAddedMass& t, double rho) {
+  const AddedMass& am = t.added_mass;
   std::ostringstream o;
   o << std::setprecision(6);
   o << "shape: " << shape_type_name(s.type);
@@ -98,8 +123,26 @@ void print_report(const Shape& s, const MassProperties& mp, const AddedMass& am,
   o << "centroid (centre of buoyancy): " << mp.centroid.transpose() << " m\n";
   o << "inertia about the centroid per unit density [m^5]:\n" << mp.inertia << "\n";
   o << "fluid density: " << rho << " kg/m^3\n";
-  o << "added mass (Kirchhoff tensor, fluid part) by " << am.method;
-  if (am.method == "bem") o << " with " << am.panels << " panels";
+  if (t.flat) {
+    const Planform& p = t.planform;
+    const int na = t.normal_axis;
+    o << "flat, normal along " << kAxis[na] << "; planform: area " << p.area
+      << " m^2, tightest rectangle " << 2 * p.h1 << " x " << 2 * p.h2 << " m, its sides turned by "
+      << p.angle * 180.0 / M_PI << " deg about " << kAxis[na] << " from the "
+      << kAxis[(na + 1) % 3] << " and " << kAxis[(na + 2) % 3]
+      << " axes; rectangularity R = " << p.rectangularity << ", rectangle weight w = " << p.w
+      << "\n";
+  }
+  if (t.from_planform)
+    o << "added mass (Kirchhoff tensor, fluid part) of the planform, as a run takes it for this "
+         "flat body: w x the rectangle's (a box) + (1 - w) x the ellipse's (an ellipsoid), by ";
+  else if (t.flat)
+    o << "added mass (Kirchhoff tensor, fluid part) of the shape itself (flat but not planar: its "
+         "own surface), by ";
+  else
+    o << "added mass (Kirchhoff tensor, fluid part) by ";
+  o << am.method;
+  if (am.panels > 0) o << " with " << am.panels << " panels";
   o << ", about the centroid, order (vx vy vz wx wy wz),\nunits kg | kg m | kg m^2:\n";
   Eigen::IOFormat fmt(6, 0, "  ", "\n", "  ", "");
   o << am.tensor.format(fmt) << "\n";
@@ -143,18 +186,18 @@ void add_added_mass_command(CLI::App& app) {
                                        std::to_string(opt->panels));
     const Shape shape = make_shape(*opt, cmd);
     const MassProperties mp = mass_properties(shape);
-    AddedMass am;
+    TypeAddedMass t;
     try {
-      am = cached_added_mass(shape, opt->fluid_density, opt->panels);
+      t = type_added_mass(shape, opt->fluid_density, opt->panels, cached_added_mass);
     } catch (const Error& e) {
       // the boundary elements fail only on a surface they cannot solve: the mesh's fault
       if (e.code() != ExitCode::Runtime || shape.type != ShapeType::Mesh) throw;
       throw Error(ExitCode::BadInput, shape.source + ": " + e.what());
     }
     if (opt->json)
-      print_json(shape, mp, am, opt->fluid_density);
+      print_json(shape, mp, t, opt->fluid_density);
     else
-      print_report(shape, mp, am, opt->fluid_density);
+      print_report(shape, mp, t, opt->fluid_density);
   });
 }
 

@@ -194,49 +194,6 @@ EffectSet auto_effects(const Scene& scene, const BodyType& type, const FlowScale
 
 namespace {
 
-// The added mass of a flat body type: its planform's (body/planform.h), w times the rectangle's
-// (a box of the planform's half sides and the shape's thickness, by the panel method) and 1 - w
-// times the ellipse's (Lamb's ellipsoid of the planform's semi-axes and the equivalent
-// ellipsoid's thickness), about the centroid in the shape axes. A box (w = 1) and an ellipsoid
-// (w = 0) get their own tensors; a flat mesh the tensor of the shape of its planform, not the
-// panel solution of its own triangles: a thin prism's few large triangles, split evenly, leave
-// its edges unresolved (a square's normal added mass +8 % at 768 panels, +1 % at 3072, against
-// the box's graded 1792; docs/physics/added-mass.md).
-AddedMass planform_added_mass(const BodyType& t, double rho, int panels,
-                              const AddedMassProvider& added_mass) {
-  const Planform& p = t.planform;
-  const int na = t.normal_axis, i1 = (na + 1) % 3, i2 = (na + 2) % 3;
-  AddedMass rect, ell;
-  if (p.w > 0) {
-    Vec3 size;
-    size[na] = 2.0 * t.shape.half_extents[na];
-    size[i1] = 2.0 * p.c1;
-    size[i2] = 2.0 * p.c2;
-    rect = added_mass(Shape::box(size[0], size[1], size[2]), rho, panels);
-    if (p.w == 1) return rect;
-  }
-  Vec3 semi;
-  semi[na] = t.ell[na];
-  semi[i1] = p.a1;
-  semi[i2] = p.a2;
-  ell = added_mass(Shape::ellipsoid(semi[0], semi[1], semi[2]), rho, panels);
-  if (p.w == 0) return ell;
-  AddedMass am = rect;
-  am.tensor = p.w * rect.tensor + (1.0 - p.w) * ell.tensor;
-  am.method = rect.method + "+" + ell.method;
-  return am;
-}
-
-// A flat body whose surfaces are planes: a box, an ellipsoid, or a mesh whose extent along its
-// normal is at most 1.5 times its mean thickness (volume / planform area; a cut-out plate: 1). A
-// curled leaf is not (a 4 mm sag on a 0.4 mm leaf: 11): its own panels give the coupling of
-// the curl, which the planform's tensor has not.
-bool planar(const BodyType& t) {
-  if (t.shape.type != ShapeType::Mesh) return true;
-  const double thickness = t.planform.area > 0 ? t.volume / t.planform.area : 0.0;
-  return 2.0 * t.shape.half_extents[t.normal_axis] <= 1.5 * thickness;
-}
-
 // The axis of the equivalent ellipsoid's smallest semi-axis (the plate normal when flat), and
 // whether the body is flat: that semi-axis is at most kFlatRatio of the middle one
 bool flat_axis(const Vec3& ell, int* axis) {
@@ -245,6 +202,127 @@ bool flat_axis(const Vec3& ell, int* axis) {
   ell.minCoeff(axis);
   return s[0] <= kFlatRatio * s[1];
 }
+
+// A shape's equivalent ellipsoid (drag, flatness) and, when it is flat, its plate normal and
+// planform (BodyType::ell, flat, normal_axis, planform)
+struct Outline {
+  Vec3 ell = Vec3::Ones();
+  bool flat = false;
+  int normal_axis = 2;
+  Planform planform;
+};
+
+Outline outline_of(const Shape& shape) {
+  // exact for spheres/ellipsoids; boxes and meshes use their bounding box scaled by sqrt(4/pi),
+  // so face areas match (pi l1 l2 = 4 h1 h2); a flat mesh's in-plane axes then take its
+  // outline's: its planform's ellipse, of the outline's area and its tightest rectangle's side
+  // ratio, along that rectangle's sides e1, e2 (body/planform.h)
+  Outline o;
+  const Vec3 h = shape.half_extents;
+  o.ell = (shape.type == ShapeType::Sphere || shape.type == ShapeType::Ellipsoid)
+              ? h
+              : Vec3(h * std::sqrt(4.0 / M_PI));
+  int na = 0;
+  Planform p;
+  if (shape.type == ShapeType::Mesh && flat_axis(o.ell, &na)) {
+    p = planform_of(shape, na);
+    o.ell[(na + 1) % 3] = p.a1;
+    o.ell[(na + 2) % 3] = p.a2;
+  }
+  o.flat = flat_axis(o.ell, &o.normal_axis);
+  if (o.flat)
+    o.planform = shape.type == ShapeType::Mesh && o.normal_axis == na
+                     ? p
+                     : planform_of(shape, o.normal_axis);
+  return o;
+}
+
+// A flat body whose surfaces are planes: a box, an ellipsoid, or a mesh whose extent along its
+// normal is at most 1.5 times its mean thickness (volume / planform area; a cut-out plate: 1). A
+// curled leaf is not (a 4 mm sag on a 0.4 mm leaf: 11): its own panels give the coupling of
+// the curl, which the planform's tensor has not.
+bool planar(const Shape& shape, double volume, const Outline& o) {
+  if (shape.type != ShapeType::Mesh) return true;
+  const double thickness = o.planform.area > 0 ? volume / o.planform.area : 0.0;
+  return 2.0 * shape.half_extents[o.normal_axis] <= 1.5 * thickness;
+}
+
+// The added mass of a flat body type: its planform's (body/planform.h), w times the rectangle's
+// (a box of the planform's half sides and the shape's thickness, by the panel method) and 1 - w
+// times the ellipse's (Lamb's ellipsoid of the planform's semi-axes and the equivalent
+// ellipsoid's thickness), about the centroid: both in the planform's axes (e1, e2, n), then
+// turned into the shape axes, K = T K' T^T with T = diag(Q, Q) and Q's columns e1, e2 and n in
+// the places of the shape axes (normal_axis + 1, + 2, normal_axis). A box (w = 1) and an
+// ellipsoid (w = 0) get their own tensors; a flat mesh the tensor of the shape of its planform,
+// turned as its outline is, not the panel solution of its own triangles: a thin prism's few
+// large triangles, split evenly, leave its edges unresolved (a square's normal added mass +8 % at
+// 768 panels, +1 % at 3072, against the box's graded 1792; docs/physics/added-mass.md).
+AddedMass planform_added_mass(const Shape& shape, const Outline& o, double rho, int panels,
+                              const AddedMassProvider& added_mass) {
+  const Planform& p = o.planform;
+  const int na = o.normal_axis, i1 = (na + 1) % 3, i2 = (na + 2) % 3;
+  AddedMass am, rect, ell;
+  if (p.w > 0) {
+    Vec3 size;
+    size[na] = 2.0 * shape.half_extents[na];
+    size[i1] = 2.0 * p.c1;
+    size[i2] = 2.0 * p.c2;
+    rect = added_mass(Shape::box(size[0], size[1], size[2]), rho, panels);
+  }
+  if (p.w < 1) {
+    Vec3 semi;
+    semi[na] = o.ell[na];
+    semi[i1] = p.a1;
+    semi[i2] = p.a2;
+    ell = added_mass(Shape::ellipsoid(semi[0], semi[1], semi[2]), rho, panels);
+  }
+  if (p.w == 1) {
+    am = rect;
+  } else if (p.w == 0) {
+    am = ell;
+  } else {
+    am = rect;
+    am.tensor = p.w * rect.tensor + (1.0 - p.w) * ell.tensor;
+    am.method = rect.method + "+" + ell.method;
+  }
+  // a planform along the shape axes (every box and ellipsoid) keeps its tensor as computed
+  if (p.angle != 0) {
+    Mat3 q = Mat3::Zero();
+    q.col(i1) = p.e1;
+    q.col(i2) = p.e2;
+    q(na, na) = 1.0;
+    Mat6 t = Mat6::Zero();
+    t.block<3, 3>(0, 0) = q;
+    t.block<3, 3>(3, 3) = q;
+    am.tensor = (t * am.tensor * t.transpose()).eval();
+  }
+  return am;
+}
+
+// The fluid tensor of a body type of `shape` (volume: its volume), about its volume centroid in
+// the shape axes: a flat body's whose surfaces are planes its planform's, any other its own
+// (type_added_mass in compile_model.h)
+TypeAddedMass added_mass_of(const Shape& shape, double volume, const Outline& o, double rho,
+                            int panels, const AddedMassProvider& added_mass) {
+  TypeAddedMass r;
+  r.flat = o.flat;
+  r.normal_axis = o.normal_axis;
+  r.planform = o.planform;
+  r.from_planform = o.flat && planar(shape, volume, o);
+  r.added_mass = r.from_planform ? planform_added_mass(shape, o, rho, panels, added_mass)
+                                 : added_mass(shape, rho, panels);
+  return r;
+}
+
+}  // namespace
+
+TypeAddedMass type_added_mass(const Shape& shape, double fluid_density, int panels,
+                              const AddedMassProvider& added_mass) {
+  return added_mass_of(shape, mass_properties(shape).volume, outline_of(shape), fluid_density,
+                       panels, added_mass);
+}
+
+namespace {
 
 BodyType make_body_type(const Scene& scene, const BodySpec& b, const Shape& shape,
                         double density, const FluidField& field, const FlowScales& flow,
@@ -264,23 +342,11 @@ BodyType make_body_type(const Scene& scene, const BodySpec& b, const Shape& shap
   t.M_body.block<3, 3>(0, 0) = t.mass * Mat3::Identity();
   t.M_body.block<3, 3>(3, 3) = density * mp.inertia;
 
-  // equivalent ellipsoid for drag: exact for spheres/ellipsoids; boxes and meshes use their
-  // bounding box scaled by sqrt(4/pi), so face areas match (pi l1 l2 = 4 h1 h2); a flat mesh's
-  // in-plane axes then take its outline's area
-  const Vec3 h = shape.half_extents;
-  t.half_extents = h;
-  t.ell = (shape.type == ShapeType::Sphere || shape.type == ShapeType::Ellipsoid)
-              ? h
-              : Vec3(h * std::sqrt(4.0 / M_PI));
-  int na = 0;
-  if (shape.type == ShapeType::Mesh && flat_axis(t.ell, &na)) {
-    // a flat mesh's planform is its own outline (a disk's pi r^2, a leaf's), not its bounding
-    // box's 4 h1 h2: the in-plane semi-axes are its planform's ellipse, of the outline's area and
-    // its extents' ratio (body/planform.h)
-    const Planform p = planform_of(shape, na);
-    t.ell[(na + 1) % 3] = p.a1;
-    t.ell[(na + 2) % 3] = p.a2;
-  }
+  // the equivalent ellipsoid for drag and flatness, and a flat body's planform (outline_of): a
+  // flat mesh's is its own outline (a disk's pi r^2, a leaf's), not its bounding box's 4 h1 h2
+  const Outline outline = outline_of(shape);
+  t.half_extents = shape.half_extents;
+  t.ell = outline.ell;
   Vec3 sorted = t.ell;
   std::sort(sorted.data(), sorted.data() + 3);
   t.area_max = M_PI * sorted[1] * sorted[2];
@@ -290,9 +356,10 @@ BodyType make_body_type(const Scene& scene, const BodySpec& b, const Shape& shap
     // rotation about axis a pushes fluid in proportion to the body's out-of-roundness
     t.rot_drag_len5[a] = t.ell[a] * std::abs(std::pow(lj, 4) - std::pow(lk, 4));
   }
-  t.flat = flat_axis(t.ell, &t.normal_axis);
+  t.flat = outline.flat;
+  t.normal_axis = outline.normal_axis;
   t.plate_area = t.area_max;
-  if (t.flat) t.planform = planform_of(shape, t.normal_axis);
+  if (t.flat) t.planform = outline.planform;
   t.apw_speed =
       std::sqrt(std::abs(density / scene.fluid_density - 1.0) * scene.gravity.norm() * sorted[0]);
   if (t.flat) ellipsoid_stokes_resistance(t.ell, &t.stokes_force, &t.stokes_torque);
@@ -300,8 +367,8 @@ BodyType make_body_type(const Scene& scene, const BodySpec& b, const Shape& shap
   // the fluid tensor is computed for every body type: "auto" needs its size
   AddedMass am;
   try {
-    am = t.flat && planar(t) ? planform_added_mass(t, scene.fluid_density, b.panels, added_mass)
-                             : added_mass(shape, scene.fluid_density, b.panels);
+    am = added_mass_of(shape, t.volume, outline, scene.fluid_density, b.panels, added_mass)
+             .added_mass;
   } catch (const Error& e) {
     // named with the body type's key and the mesh file. The boundary elements find no
     // (positive) solution only for a surface they cannot solve: a fault of the input. Other

@@ -48,6 +48,23 @@ EffectAnalysis analyze_effects(const Scene& scene, const BodyType& type, const F
 EffectSet auto_effects(const Scene& scene, const BodyType& type, const FlowScales& flow,
                        const BodySpec& spec);
 
+// The fluid Kirchhoff tensor a body type of `shape` takes in a run, about the shape's volume
+// centroid in the shape axes (a mass offset then moves it to the centre of mass): a flat body
+// whose surfaces are planes (a box, an ellipsoid, or a mesh whose extent along its normal is at
+// most 1.5 times its mean thickness, volume / planform area) takes its planform's, w times the
+// rectangle's (panel method) plus 1 - w times the ellipse's (Lamb), turned with the planform's
+// axes e1, e2; any other body its own (Lamb's, or the panel solution of its surface).
+// docs/physics/added-mass.md, "Flat bodies: the planform's tensor". Throws as `added_mass` does.
+struct TypeAddedMass {
+  AddedMass added_mass;        // tensor (kg, kg m, kg m^2 for fluid_density), method, panels
+  bool from_planform = false;  // the planform's blend (flat and planar), else the shape's own
+  bool flat = false;           // the body counts as flat (BodyType::flat)
+  int normal_axis = 2;         // its plate normal, when flat
+  Planform planform;           // its planform (R, w, e1, e2), when flat
+};
+TypeAddedMass type_added_mass(const Shape& shape, double fluid_density, int panels,
+                              const AddedMassProvider& added_mass);
+
 // Throws lrigid::Error naming the scene file and key for physically impossible input.
 Model compile_model(const Scene& scene, FluidField field, const AddedMassProvider& added_mass);
 

@@ -9,12 +9,13 @@
 namespace lrigid {
 
 double plate_chord(const BodyType& type, const Vec3& d) {
-  const int i1 = (type.normal_axis + 1) % 3, i2 = (type.normal_axis + 2) % 3;
   const Planform& p = type.planform;
-  // the chord through the centre along d of the planform's rectangle and of its ellipse
-  const double rect = 2.0 * std::min(p.c1 / std::max(std::abs(d[i1]), 1e-300),
-                                     p.c2 / std::max(std::abs(d[i2]), 1e-300));
-  const double a = d[i1] / p.a1, b = d[i2] / p.a2;
+  // the chord through the centre along d of the planform's rectangle and of its ellipse, both
+  // along the planform's axes e1, e2
+  const double d1 = p.e1.dot(d), d2 = p.e2.dot(d);
+  const double rect = 2.0 * std::min(p.c1 / std::max(std::abs(d1), 1e-300),
+                                     p.c2 / std::max(std::abs(d2), 1e-300));
+  const double a = d1 / p.a1, b = d2 / p.a2;
   const double ell = 2.0 / std::sqrt(a * a + b * b);
   return p.w * rect + (1.0 - p.w) * ell;
 }

@@ -75,7 +75,13 @@ PlateParams plate_params(const BodyType& type, double rho, double nu, bool drag,
   k.nu = nu;
   const double mu = rho * nu;
   const int na = type.normal_axis, i1 = (na + 1) % 3, i2 = (na + 2) % 3;
-  k.n[na] = k.e1[i1] = k.e2[i2] = 1.0;
+  // the in-plane axes: the planform's (its tightest rectangle's sides, turned with a mesh's
+  // outline; the body axes for a box or an ellipsoid)
+  k.n[na] = 1.0;
+  for (int a = 0; a < 3; ++a) {
+    k.e1[a] = type.planform.e1[a];
+    k.e2[a] = type.planform.e2[a];
+  }
   k.S = type.plate_area;
   k.rect = type.planform.w;
   k.c1 = type.planform.c1;
@@ -84,9 +90,11 @@ PlateParams plate_params(const BodyType& type, double rho, double nu, bool drag,
   k.a2 = type.planform.a2;
   if (type.flat) k.width_over_nu = plate_width(type) / nu;
   k.apw_speed = type.apw_speed;
+  // the equivalent ellipsoid's Stokes resistance, in the plate's axes (n, e1, e2)
+  const int plate_axis[3] = {na, i1, i2};
   for (int a = 0; a < 3; ++a) {
-    k.sf[a] = mu * type.stokes_force[a];
-    k.st[a] = mu * type.stokes_torque[a];
+    k.sf[a] = mu * type.stokes_force[plate_axis[a]];
+    k.st[a] = mu * type.stokes_torque[plate_axis[a]];
   }
   k.c_visc = mu * type.stokes_force.maxCoeff();
   k.rot_n = 0.5 * rho * kDragRotation * type.rot_drag_len5[na];

@@ -131,6 +131,8 @@ struct PlateParams {
   double a1 = 0, a2 = 0;     // the planform's ellipse's semi-axes along e1, e2, m
   double width_over_nu = 0;  // planform width / nu (the Reynolds number per speed), s/m
   double apw_speed = 0;      // APW's velocity scale (0: the speed itself), m/s
+  // the Stokes resistance of the plate's equivalent ellipsoid, diagonal in the plate's axes: along
+  // (n, e1, e2) in this order
   double sf[3] = {0, 0, 0}, c_visc = 0;  // mu k_i, mu max k_i (Stokes force), N s/m
   double st[3] = {0, 0, 0};              // mu r_i, N m s
   double rot_n = 0;                      // out-of-roundness drag of the spin about n, N m s^2
@@ -160,6 +162,8 @@ LRIGID_LANE void plate_kernel(const PlateParams& k, const T* u, const T* w, Drag
   const T n[3] = {T(k.n[0]), T(k.n[1]), T(k.n[2])};
   const T e1[3] = {T(k.e1[0]), T(k.e1[1]), T(k.e1[2])},
           e2[3] = {T(k.e2[0]), T(k.e2[1]), T(k.e2[2])};
+  const T sf_n = T(k.sf[0]), sf_1 = T(k.sf[1]), sf_2 = T(k.sf[2]);
+  const T st_n = T(k.st[0]), st_1 = T(k.st[1]), st_2 = T(k.st[2]);
   const T s2 = dot3(u, u);
   const T speed = std::sqrt(s2);
   const bool moving = speed > T(0);
@@ -195,14 +199,20 @@ LRIGID_LANE void plate_kernel(const PlateParams& k, const T* u, const T* w, Drag
   const T pitch = spinning ? lin + quad * wp_norm : T(0);
   const T c_pitch = spinning ? lin + T(2) * quad * wp_norm : T(0);
   // spin about the normal: the Stokes torque plus the out-of-roundness drag
-  const T c_n = T(k.st[0]) * T(k.n[0]) + T(k.st[1]) * T(k.n[1]) + T(k.st[2]) * T(k.n[2]) +
-                T(k.rot_n) * std::abs(wn);
+  const T c_n = st_n + T(k.rot_n) * std::abs(wn);
   if constexpr (Drag) {
     const T dr = T(k.drag);
+    // the Stokes force and the in-plane Stokes torque in the plate's axes (a turned planform's
+    // e1, e2 are not body axes): the velocity's and the spin's components along them
+    const T u1 = dot3(e1, u), u2 = dot3(e2, u), w1 = dot3(e1, wp), w2 = dot3(e2, wp);
+    const T fs_n = sf_n * un, fs_1 = sf_1 * u1, fs_2 = sf_2 * u2;
+    const T ts_1 = st_1 * w1, ts_2 = st_2 * w2;
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
-      d->f[a] = dr * (-c_lin * u[a] - T(k.sf[a]) * u[a]);
-      d->tq[a] = dr * (-pitch * wp[a] - T(k.st[a]) * wp[a] - c_n * wn * n[a]);
+      const T stokes_f = fs_n * n[a] + fs_1 * e1[a] + fs_2 * e2[a];
+      const T stokes_t = ts_1 * e1[a] + ts_2 * e2[a];
+      d->f[a] = dr * (-c_lin * u[a] - stokes_f);
+      d->tq[a] = dr * (-pitch * wp[a] - stokes_t - c_n * wn * n[a]);
       d->u_hat[a] = moving ? u[a] * inv : T(0);
     }
     // stiffness: the quadratic part c_lin (I + u^ u^T) and the viscous part c_visc I
@@ -214,11 +224,13 @@ LRIGID_LANE void plate_kernel(const PlateParams& k, const T* u, const T* w, Drag
     // all three (the largest) made the implicit step damp the pitch of a long strip by the
     // Stokes torque of its spin about the normal, 40 times its inertia per step
     // (docs/physics/integrators.md, "The angular stiffness per axis")
+    // (the in-plane Stokes torque's stiffness on body axis a: its diagonal entry there)
     const T cn2 = T(2) * c_n;
 #pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
       const T nn = n[a] * n[a];  // 1 on the normal's axis, 0 on the others
-      d->c_ang[a] = dr * (nn * cn2 + (T(1) - nn) * (c_pitch + T(k.st[a])));
+      const T st_a = st_1 * (e1[a] * e1[a]) + st_2 * (e2[a] * e2[a]);
+      d->c_ang[a] = dr * (nn * cn2 + (T(1) - nn) * (c_pitch + st_a));
     }
   }
   if constexpr (Lift) {

@@ -85,7 +85,9 @@ struct BodyType {
   }
   std::string added_mass_method;  // "analytic", "bem" or "" (not computed)
   int added_mass_panels = 0;
-  // drag: the body's equivalent ellipsoid (semi-axes ell) gives its projected areas
+  // drag: the body's equivalent ellipsoid (semi-axes ell) gives its projected areas; a flat
+  // mesh's in-plane semi-axes are its planform's ellipse's, along the planform's e1, e2 (its
+  // outline's tightest rectangle's sides, which may be turned from the body axes)
   Vec3 ell = Vec3::Ones();       // m
   double area_max = 0;           // largest projected area, m^2
   double r_eq = 0;               // radius of the sphere of equal volume, m
@@ -103,6 +105,8 @@ struct BodyType {
   // that the plate model and the added mass weigh (body/planform.h)
   Planform planform;
   double apw_speed = 0;               // APW velocity scale sqrt(|rho_b/rho_f - 1| g b), m/s
+  // the Stokes resistance of the ellipsoid ell, along its axes (a flat body's in-plane ones along
+  // planform.e1, e2: effects/plate.cpp reads them in the plate's axes)
   Vec3 stokes_force = Vec3::Zero();   // Stokes drag F_i = -mu k_i u_i of the ellipsoid ell, m
   Vec3 stokes_torque = Vec3::Zero();  // Stokes torque T_i = -mu r_i w_i of the ellipsoid, m^3
   BassetKernel basset;

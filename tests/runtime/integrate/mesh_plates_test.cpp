@@ -29,12 +29,12 @@ constexpr double kRhoBox = kAreal / kH;                    // 1008 kg/m^3
 constexpr double kRhoEll = kAreal / (4.0 / 3.0 * kH / 2);  // ellipsoid of centre thickness kH
 constexpr double kRho = 1.2, kNu = 1.5e-5;                 // air
 
-// A closed, outward square prism of half side r and thickness t: 8 vertices and 12 triangles,
-// the file a user exports for a square sheet
-TriangleMesh square_prism(double r, double t) {
+// A closed, outward rectangular prism of half sides a along x and b along y and thickness t: 8
+// vertices and 12 triangles, the file a user exports for a rectangular sheet
+TriangleMesh rect_prism(double a, double b, double t) {
   TriangleMesh m;
   for (double z : {-t / 2, t / 2})
-    for (const auto& xy : {Vec2(-r, -r), Vec2(r, -r), Vec2(r, r), Vec2(-r, r)})
+    for (const auto& xy : {Vec2(-a, -b), Vec2(a, -b), Vec2(a, b), Vec2(-a, b)})
       m.vertices.emplace_back(xy.x(), xy.y(), z);
   m.faces = {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7}};
   for (int i = 0; i < 4; ++i) {
@@ -42,6 +42,18 @@ TriangleMesh square_prism(double r, double t) {
     m.faces.push_back({i, j, j + 4});
     m.faces.push_back({i, j + 4, i + 4});
   }
+  return m;
+}
+
+// ... of half side r: a square sheet
+TriangleMesh square_prism(double r, double t) { return rect_prism(r, r, t); }
+
+// the rotation by `angle` about z, and a mesh drawn turned by it in its file
+Mat3 rot_z(double angle) { return Eigen::AngleAxisd(angle, Vec3::UnitZ()).toRotationMatrix(); }
+
+TriangleMesh turned_in_file(TriangleMesh m, double angle) {
+  const Mat3 q = rot_z(angle);
+  for (Vec3& v : m.vertices) v = (q * v).eval();
   return m;
 }
 
@@ -143,7 +155,7 @@ void expect_same_plate(const BodyType& mesh, const BodyType& ana, double tol) {
   ASSERT_TRUE(mesh.flat);
   ASSERT_TRUE(ana.flat);
   EXPECT_EQ(mesh.normal_axis, ana.normal_axis);
-  EXPECT_NEAR(mesh.planform.w, ana.planform.w, 1e-12);
+  EXPECT_NEAR(mesh.planform.w, ana.planform.w, tol);
   EXPECT_NEAR(mesh.plate_area / ana.plate_area, 1.0, tol);
   EXPECT_NEAR(plate_width(mesh) / plate_width(ana), 1.0, tol);
   const PlateCoeffs pm = plate_coefficients(mesh), pa = plate_coefficients(ana);
@@ -186,6 +198,85 @@ void expect_same_plate(const BodyType& mesh, const BodyType& ana, double tol) {
   }
 }
 
+// The strip integrals of a type's plate parameters for a spin about the in-plane body axis
+// `axis` (a unit vector of the body frame), as plate_kernel takes them: d = n x axis across it,
+// in the planform's axes e1, e2
+PlateStrips<double> strips_about(const PlateParams& k, const Vec3& axis) {
+  const Vec3 n(k.n[0], k.n[1], k.n[2]), e1(k.e1[0], k.e1[1], k.e1[2]), e2(k.e2[0], k.e2[1], k.e2[2]);
+  const Vec3 d = n.cross(axis).normalized();
+  PlateStrips<double> o;
+  plate_strips(k.rect, k.rect >= 1, k.rect <= 0, k.c1, k.c2, k.a1, k.a2, k.S, e1.dot(d), e2.dot(d),
+               &o);
+  return o;
+}
+
+// The plate model of a mesh drawn turned by q (about its normal) in its file against the
+// analytic type's turned by q: the scalar coefficients alike, the strip integrals about the same
+// in-plane axes, the drag and lift wrenches (force and torque turned by q) at states turned
+// alike, the drag's stiffness and the inertia T M T^T with T = diag(q, q), each to a relative
+// tol; the added mass and the Munk couple T K T^T to a relative tol_k
+void expect_turned_plate(const BodyType& mesh, const BodyType& ana, const Mat3& q, double tol,
+                         double tol_k) {
+  ASSERT_TRUE(mesh.flat);
+  ASSERT_TRUE(ana.flat);
+  EXPECT_EQ(mesh.normal_axis, ana.normal_axis);
+  EXPECT_NEAR(mesh.planform.w, ana.planform.w, 1e-12);
+  EXPECT_NEAR(mesh.planform.rectangularity, ana.planform.rectangularity, 1e-12);
+  EXPECT_NEAR(mesh.plate_area / ana.plate_area, 1.0, tol);
+  EXPECT_NEAR(plate_width(mesh) / plate_width(ana), 1.0, tol);
+  const PlateCoeffs pm = plate_coefficients(mesh), pa = plate_coefficients(ana);
+  for (const auto& [m, a] : {std::pair(pm.cd90, pa.cd90), std::pair(pm.span_aspect, pa.span_aspect),
+                             std::pair(pm.A, pa.A), std::pair(pm.B, pa.B), std::pair(pm.C_R, pa.C_R),
+                             std::pair(pm.mu1, pa.mu1), std::pair(pm.mu2, pa.mu2),
+                             std::pair(pm.munk, pa.munk)})
+    EXPECT_NEAR(m, a, tol * a);
+  const PlateParams km = plate_params(mesh, kRho, kNu, true, true),
+                    ka = plate_params(ana, kRho, kNu, true, true);
+  for (const double ang : {0.0, 0.4, M_PI / 4, 1.2, 2.0, 2.9}) {
+    const Vec3 axis(std::cos(ang), std::sin(ang), 0);  // in the body frame of the mesh
+    const PlateStrips<double> sm = strips_about(km, axis), sa = strips_about(ka, q.transpose() * axis);
+    EXPECT_NEAR(sm.KR / sa.KR, 1.0, tol) << ang;
+    EXPECT_NEAR(sm.J2 / sa.J2, 1.0, tol) << ang;
+    EXPECT_NEAR(sm.J3 / sa.J3, 1.0, tol) << ang;
+  }
+  // tilted motion with pitch about several in-plane axes, and a spin about the normal
+  const Vec3 us[] = {Vec3(0.3, 0.1, -0.8), Vec3(-0.5, 0.45, 0.2), Vec3(0.02, -0.01, -0.9)};
+  const Vec3 ws[] = {Vec3(1.5, -0.7, 0.2), Vec3(0.0, 2.0, 0.0), Vec3(-1.1, -1.1, 0.0),
+                     Vec3(0.3, 0.9, -3.0), Vec3(0, 0, 1.0)};
+  auto turn = [&q](const Vec6& x) {
+    Vec6 y;
+    y << q * x.head<3>(), q * x.tail<3>();
+    return y;
+  };
+  for (const Vec3& u : us)
+    for (const Vec3& w : ws) {
+      DragStiffness cm, ca;
+      const Vec6 dm = plate_drag_wrench(mesh, u, w, kRho, kNu, &cm);
+      const Vec6 da = turn(plate_drag_wrench(ana, q.transpose() * u, q.transpose() * w, kRho, kNu, &ca));
+      const Vec6 lm = lift_wrench(mesh, u, w, kRho, kNu);
+      const Vec6 la = turn(lift_wrench(ana, q.transpose() * u, q.transpose() * w, kRho, kNu));
+      EXPECT_LE((dm - da).norm(), tol * da.norm()) << u.transpose() << " | " << w.transpose();
+      EXPECT_LE((lm - la).norm(), tol * std::max(la.norm(), 1e-300)) << u.transpose() << " | "
+                                                                    << w.transpose();
+      // the stiffness: c_lin and p are scalars; the angular one per body axis is the diagonal
+      // of the analytic type's turned: sum_b q_ab^2 c_b
+      EXPECT_NEAR(cm.c_lin, ca.c_lin, tol * ca.c_lin);
+      EXPECT_NEAR(cm.p, ca.p, tol);
+      for (int a = 0; a < 3; ++a) {
+        double want = 0;
+        for (int b = 0; b < 3; ++b) want += q(a, b) * q(a, b) * ca.c_ang[b];
+        EXPECT_NEAR(cm.c_ang[a], want, tol * want) << a;
+      }
+    }
+  Mat6 t = Mat6::Zero();
+  t.block<3, 3>(0, 0) = q;
+  t.block<3, 3>(3, 3) = q;
+  EXPECT_LE(rel_diff(mesh.K_fluid, t * ana.K_fluid * t.transpose()), tol_k);
+  EXPECT_LE(rel_diff(mesh.M_body, t * ana.M_body * t.transpose()), tol);
+  const Mat3 mb = q * ana.munk_back * q.transpose();
+  EXPECT_LE((mesh.munk_back - mb).cwiseAbs().maxCoeff(), tol_k * mb.cwiseAbs().maxCoeff());
+}
+
 // A square OBJ is the box: its outline fills its bounding rectangle (rectangularity 1, weight 1),
 // so it takes the rectangle's coefficients and the box's panel added mass at the same half
 // sides and thickness. Only round-off differs (the projected area is summed over triangles, the
@@ -204,23 +295,118 @@ TEST(MeshPlates, ASquareMeshHasTheBoxsPlateModel) {
   }
 }
 
-// A 48-gon disk is the ellipse of its area: its outline fills 0.783 of its bounding square, below
-// an ellipse's pi/4, so it takes the ellipse's coefficients (weight 0) and Lamb's tensor of the
-// ellipsoid of its planform's semi-axes, 0.99857 r (the 48-gon's area is 0.99715 pi r^2). Against
-// the thin ellipsoid of radius r the area differs by 0.3 %, the added mass (r^3) by 0.43 %, the
-// strip integrals (up to l0^3 S: r^5) by 0.7 %: within 1 %. The added mass's in-plane entries
-// follow the thickness (the ellipsoid's kH/2, the mesh's equivalent ellipsoid's sqrt(4/pi) kH/2)
-// but are 1e-3 of the normal one (rel_diff compares against the largest entry).
+// A 48-gon disk is the ellipse of its area but for a trace: its outline fills 0.7865 of its
+// tightest square (the square on two opposite edges, 2 r cos(pi/48) wide), 0.14 % above an
+// ellipse's pi/4, so it takes w = 0.005 of the rectangle's coefficients and added mass and 0.995
+// of the ellipse's (Lamb's tensor of the ellipsoid of its planform's semi-axes, 0.99929 r: the
+// 48-gon's area is 0.99715 pi r^2). Against the thin ellipsoid of radius r the area differs by
+// 0.3 %, the added mass (r^3) by 0.4 %, the strip integrals (up to l0^3 S: r^5) by 0.7 %: within
+// 1 %. The added mass's in-plane entries follow the thickness (the ellipsoid's kH/2, the mesh's
+// equivalent ellipsoid's sqrt(4/pi) kH/2) but are 1e-3 of the normal one (rel_diff compares
+// against the largest entry).
 TEST(MeshPlates, ADiskMeshHasTheEllipsesPlateModel) {
   for (const double r : {0.015, 0.045}) {
     SCOPED_TRACE(r);
     const BodyType ell = type_of(Shape::ellipsoid(r, r, kH / 2), kRhoEll);
     const BodyType obj = type_of(mesh_shape(test::polygon_prism(48, r, kH), "disk.obj"), kRhoBox);
-    EXPECT_NEAR(obj.planform.rectangularity, 0.5 * 48 * std::sin(2 * M_PI / 48) / 4, 1e-12);
-    EXPECT_EQ(obj.planform.w, 0.0);
+    const double rect = 0.5 * 48 * std::sin(2 * M_PI / 48) / (4 * std::pow(std::cos(M_PI / 48), 2));
+    EXPECT_NEAR(obj.planform.rectangularity, rect, 1e-12);
+    EXPECT_NEAR(obj.planform.w, planform_weight(rect), 1e-10);
+    EXPECT_GT(obj.planform.w, 0.0);
+    EXPECT_LT(obj.planform.w, 0.006);
     EXPECT_EQ(ell.planform.w, 0.0);
-    EXPECT_EQ(obj.added_mass_method, "analytic");
+    EXPECT_EQ(obj.added_mass_method, "bem+analytic");
     expect_same_plate(obj, ell, 1e-2);
+  }
+}
+
+// A square or a 3:1 rectangle drawn turned in its file (by 30 and 45 degrees about its normal)
+// is the box turned the same way: its tightest rectangle is the box's, turned, so it takes the
+// rectangle's coefficients (w = 1; its bounding box along the file's axes would have given the
+// square at 45 degrees R = 1/2, the ellipse's) along the box's turned sides, and the box's
+// added mass turned. Only round-off differs, to 1e-9, but for the added mass: the turned
+// outline's rectangle is the box's to an ulp, not to the bit, and the panel method's tensor of a
+// thin box jumps by up to 3e-8 between sizes an ulp apart (K_zz of a 0.03 x 0.03 x 6.94e-5 m box
+// and of one 0.030000000000000002 m long: 1.2928689527970154e-05 and 1.2928689117922626e-05
+// kg/(kg/m^3)). So the added mass is checked twice: against the panel solution of the mesh's own
+// rectangle turned, to 1e-12 (the turn), and against the analytic box's turned, to 1e-7.
+TEST(MeshPlates, ATurnedRectangleMeshHasTheTurnedBoxsPlateModel) {
+  const double r = 0.015;
+  struct Case {
+    double a, b, deg;
+  };
+  for (const Case& c : {Case{r, r, 30}, Case{r, r, 45}, Case{3 * r, r, 30}}) {
+    SCOPED_TRACE(testing::Message() << c.a << " x " << c.b << " at " << c.deg << " deg");
+    const double turn = c.deg * M_PI / 180;
+    const BodyType box = type_of(Shape::box(2 * c.a, 2 * c.b, kH), kRhoBox);
+    const BodyType obj =
+        type_of(mesh_shape(turned_in_file(rect_prism(c.a, c.b, kH), turn), "turned.obj"), kRhoBox);
+    EXPECT_NEAR(obj.planform.rectangularity, 1.0, 1e-12);
+    EXPECT_NEAR(obj.planform.h1, c.a, 1e-15);
+    EXPECT_NEAR(obj.planform.h2, c.b, 1e-15);
+    // the sides' turn: the file's, up to a quarter turn for the square
+    EXPECT_NEAR(std::remainder(obj.planform.angle - turn, c.a == c.b ? M_PI / 2 : M_PI), 0.0,
+                1e-13);
+    EXPECT_NEAR(obj.mass / box.mass, 1.0, 1e-12);
+    expect_turned_plate(obj, box, rot_z(turn), 1e-9, 1e-7);
+    // the added mass: the panel solution of the box of the mesh's own tightest rectangle (at the
+    // scene's panel target, per unit density times the fluid's), turned into the body frame
+    const Planform& p = obj.planform;
+    const AddedMass own = added_mass(
+        Shape::box(2 * p.c1, 2 * p.c2, 2 * obj.shape.half_extents.z()), kRho, 0);
+    Mat6 t = Mat6::Zero();
+    t.block<3, 3>(0, 0) = rot_z(turn);
+    t.block<3, 3>(3, 3) = rot_z(turn);
+    EXPECT_LE(rel_diff(obj.K_fluid, t * own.tensor * t.transpose()), 1e-12);
+    std::printf("%g x %g m turned by %g deg: added mass within %.1e of the box's turned\n",
+                2 * c.a, 2 * c.b, c.deg, rel_diff(obj.K_fluid, t * box.K_fluid * t.transpose()));
+  }
+}
+
+// A disk's plate model does not depend on how its 48-gon is turned in the file: its tightest
+// rectangle is a square of the same size at any turn (along two of its edges), so every
+// coefficient, the added mass (the square box's is isotropic in its plane) and the drag and lift
+// without pitch are the same to round-off. The pitch's strip integrals take w = 0.005 of the
+// square's, which about a diagonal differ from those about a side (K_R 0.94, J3 1.13 times), and
+// the square lies along the edges nearest the body axes: those of pitch differ by at most w x
+// that, below 1e-3.
+TEST(MeshPlates, ADisksPlateModelDoesNotDependOnItsTurn) {
+  const double r = 0.045;
+  const BodyType flat = type_of(mesh_shape(test::polygon_prism(48, r, kH), "disk.obj"), kRhoBox);
+  for (const double deg : {3.75, 10.0, 45.0, 71.3}) {
+    SCOPED_TRACE(deg);
+    const BodyType obj = type_of(
+        mesh_shape(turned_in_file(test::polygon_prism(48, r, kH), deg * M_PI / 180), "disk.obj"),
+        kRhoBox);
+    EXPECT_NEAR(obj.planform.rectangularity, flat.planform.rectangularity, 1e-12);
+    EXPECT_NEAR(obj.planform.w, flat.planform.w, 1e-10);
+    EXPECT_NEAR(obj.plate_area / flat.plate_area, 1.0, 1e-12);
+    EXPECT_NEAR(plate_width(obj) / plate_width(flat), 1.0, 1e-12);
+    const PlateCoeffs po = plate_coefficients(obj), pf = plate_coefficients(flat);
+    EXPECT_NEAR(po.cd90, pf.cd90, 1e-12);
+    EXPECT_NEAR(po.C_R, pf.C_R, 1e-12);
+    EXPECT_NEAR(po.mu2, pf.mu2, 1e-12);
+    EXPECT_LE(rel_diff(obj.K_fluid, flat.K_fluid), 1e-9);
+    EXPECT_LE((obj.munk_back - flat.munk_back).cwiseAbs().maxCoeff(),
+              1e-9 * flat.munk_back.cwiseAbs().maxCoeff());
+    for (const Vec3& u : {Vec3(0.3, 0.1, -0.8), Vec3(-0.5, 0.45, 0.2)}) {
+      const Vec3 spin(0, 0, 2.0);  // about the normal: no strips
+      const Vec6 dm = plate_drag_wrench(obj, u, spin, kRho, kNu);
+      const Vec6 df = plate_drag_wrench(flat, u, spin, kRho, kNu);
+      EXPECT_LE((dm - df).norm(), 1e-9 * df.norm());
+      const Vec6 lm = lift_wrench(obj, u, spin, kRho, kNu), lf = lift_wrench(flat, u, spin, kRho, kNu);
+      EXPECT_LE((lm - lf).norm(), 1e-9 * lf.norm());
+      double worst = 0;
+      for (const Vec3& w : {Vec3(1.5, -0.7, 0.2), Vec3(0, 2, 0), Vec3(-1.1, -1.1, 0)}) {
+        const Vec6 pm = plate_drag_wrench(obj, u, w, kRho, kNu);
+        const Vec6 pf2 = plate_drag_wrench(flat, u, w, kRho, kNu);
+        const Vec6 qm = lift_wrench(obj, u, w, kRho, kNu), qf = lift_wrench(flat, u, w, kRho, kNu);
+        worst = std::max({worst, (pm - pf2).norm() / pf2.norm(), (qm - qf).norm() / qf.norm()});
+      }
+      EXPECT_LT(worst, 1e-3);
+      std::printf("48-gon turned by %g deg: pitch wrenches within %.2e of the unturned\n", deg,
+                  worst);
+    }
   }
 }
 
