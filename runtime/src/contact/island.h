@@ -24,7 +24,8 @@ struct IslandPoint {
   double depth = 0;      // m; >= 0 touching, < 0 a speculative point off by -depth
   double restitution = 0, friction = 0, rolling = 0;  // the pair's material
   double rest_speed = 0; // m/s: a point approaching slower does not bounce
-  // set by island_resolve: the normal and tangential impulses it carries on a, N s
+  // the normal and tangential (world) impulses on a, N s: on entry those the solve starts from
+  // (the last step's at this point, a warm start; 0: none), on return those the point carries
   double jn = 0;
   double jt[3] = {};
 };
@@ -33,7 +34,10 @@ struct IslandPoint {
 void island_point_velocity(const IslandBody* bodies, const IslandPoint& p, double* vc);
 
 // Resolves the island's points (at most `passes` sweeps, fewer once no impulse changes by more
-// than kContactTolerance of the largest): each point's normal velocity to its target (-e v_n
+// than kContactTolerance of the largest), starting from each point's jn and jt (warm start: the
+// normal impulse taken >= 0, the tangential one projected onto the point's tangent plane and
+// into its friction cone, both applied before the first sweep; the targets below are those of
+// the velocities before it): each point's normal velocity to its target (-e v_n
 // approaching faster than rest_speed, 0 slower; a speculative point -gap / horizon), never
 // pulling, and Coulomb friction within mu J_n (a speculative point approaching faster than
 // rest_speed that closes its gap within the step takes -e v_n too: the impact); with rolling > 0 the rolling resistance's angular
