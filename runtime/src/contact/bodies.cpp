@@ -108,8 +108,12 @@ std::vector<std::pair<int, int>> overlapping_pairs(const std::vector<Cand>& c) {
     uint64_t key = 0;
     int head = -1;  // the cell's last entry; -1: an empty slot
   };
-  std::vector<Slot> table(cap);
-  std::vector<int> next, owner;  // entries: the box and the previous entry of its cell
+  // (kept from call to call: allocated afresh, a pile's table would be page faults every step)
+  thread_local std::vector<Slot> table;
+  thread_local std::vector<int> next, owner;  // entries: the box and the previous entry of its cell
+  table.assign(cap, Slot{});
+  next.clear();
+  owner.clear();
   next.reserve(entries);
   owner.reserve(entries);
   // (cells 2^21 apart share a key: their boxes are tested against each other for nothing)
@@ -194,7 +198,9 @@ BodyContactStats body_contacts(const Model& model, State* state, BodyContactScra
   st.pair_impulses.clear();
   const double h = model.dt;
   const double t_end = static_cast<double>(st.step) * h;
-  std::vector<Cand> cand;
+  thread_local std::vector<Cand> kept_cand;  // (kept from step to step, see mf below)
+  std::vector<Cand>& cand = kept_cand;
+  cand.clear();
   for (size_t i = n0; i < n; ++i) {
     if (!takes_part(st, i)) continue;
     // without a colliding ground or walls the step's contact pass does not run: what touches
@@ -409,7 +415,11 @@ BodyContactStats body_contacts(const Model& model, State* state, BodyContactScra
     before = bodies;
     const int passes = std::clamp(kIslandSweeps / std::max(1, int(pts.size())), kIslandMinPasses,
                                   kIslandPasses);
-    island_resolve(bodies.data(), pts.data(), int(pts.size()), passes, h);
+    // (how much of the velocity change the step's position update takes)
+    const double cw = model.integrator == Integrator::Euler ? 0.0 : 0.5 * h;
+    thread_local std::vector<double> moves;
+    moves.assign(3 * members.size(), 0.0);
+    island_resolve(bodies.data(), pts.data(), int(pts.size()), passes, h, cw, moves.data());
     // the impulses the points carry, for the next step's warm start
     for (size_t k = 0; k < pts.size(); ++k) {
       const IslandPoint& ip = pts[k];
@@ -421,36 +431,6 @@ BodyContactStats body_contacts(const Model& model, State* state, BodyContactScra
         w.r[e] = keys[k].flip ? ip.rb[e] : ip.ra[e], w.jt[e] = s * ip.jt[e];
       w.jn = ip.jn;
       solved[is].push_back(w);
-    }
-    // positions: the step's update with the velocity change, then what remains of each
-    // penetration, split by the effective masses along the normal
-    const double cw = model.integrator == Integrator::Euler ? 0.0 : 0.5 * h;
-    std::vector<Vec3> up(members.size(), Vec3::Zero()), down(members.size(), Vec3::Zero());
-    for (const IslandPoint& ip : pts) {
-      if (!(ip.depth > 0)) continue;
-      double vc0[3], vc1[3];
-      island_point_velocity(before.data(), ip, vc0);
-      island_point_velocity(bodies.data(), ip, vc1);
-      double dvn = 0;
-      for (int e = 0; e < 3; ++e) dvn += (vc1[e] - vc0[e]) * ip.n[e];
-      const double left = ip.depth - cw * dvn;
-      if (!(left > 0)) continue;
-      double share = 1;
-      if (ip.b >= 0) {
-        double c[3], dv[3], dw[3];
-        contact_response(bodies[ip.a].W, ip.ra, ip.n, c, dv, dw);
-        const double ka = dot3(c, ip.n);
-        contact_response(bodies[ip.b].W, ip.rb, ip.n, c, dv, dw);
-        const double kb = dot3(c, ip.n);
-        share = ka / (ka + kb);
-      }
-      const Vec3 nn(ip.n[0], ip.n[1], ip.n[2]);
-      auto add = [&](int m, const Vec3& d) {
-        up[m] = up[m].cwiseMax(d);
-        down[m] = down[m].cwiseMin(d);
-      };
-      add(ip.a, share * left * nn);
-      if (ip.b >= 0) add(ip.b, -(1 - share) * left * nn);
     }
     const double still = kRestFraction * model.rest_speed;
     std::vector<uint8_t> rests(members.size(), 1);
@@ -478,7 +458,9 @@ BodyContactStats body_contacts(const Model& model, State* state, BodyContactScra
       const Vec3 w(bodies[m].w[0], bodies[m].w[1], bodies[m].w[2]);
       const Vec3 v0(before[m].v[0], before[m].v[1], before[m].v[2]);
       const Vec3 w0(before[m].w[0], before[m].w[1], before[m].w[2]);
-      st.x[i] += cw * (v - v0) + up[m] + down[m];
+      // positions: the step's update with the velocity change, then the island's correction of
+      // what remains of the penetrations
+      st.x[i] += cw * (v - v0) + Vec3(moves[3 * m], moves[3 * m + 1], moves[3 * m + 2]);
       st.q[i] = rotate_body(st.q[i], cw * (c.pose.R.transpose() * (w - w0)));
       st.v[i] = c.pose.R.transpose() * v;
       st.w[i] = c.pose.R.transpose() * w;

@@ -13,8 +13,9 @@
 //                 impulses of the last step's nearest point of the same pair (the warm start,
 //                 State::pair_impulses) and leaves its own there for the next step
 //   positions     the step's position update takes the velocity change as contact_pass does;
-//                 what remains of a pair's penetration is split by the two bodies' effective
-//                 masses along its normal (positions only: no energy is added)
+//                 half of what remains of the island's penetrations is removed by Gauss-Seidel
+//                 sweeps on the bodies' displacements (island_resolve's moves; positions only:
+//                 no energy is added)
 //   resting       a body whose every point stands still rests; an island whose bodies have all
 //                 rested for Model::sleep_time, and that the flow as it is cannot move, sleeps
 //

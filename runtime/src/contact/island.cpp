@@ -8,15 +8,22 @@
 namespace lrigid {
 
 void world_inverse_mass(const Mat6& Minv_body, const Mat3& R, double* W) {
-  Mat6 B = Mat6::Zero();
-  B.topLeftCorner<3, 3>() = R;
-  B.bottomRightCorner<3, 3>() = R;
-  const Mat6 Ww = B * Minv_body * B.transpose();
+  // block by block: R M_ij R^T (blockdiag(R, R) has no other blocks)
+  Mat6 Ww;
+  for (int bi = 0; bi < 2; ++bi)
+    for (int bj = 0; bj < 2; ++bj)
+      Ww.block<3, 3>(3 * bi, 3 * bj) =
+          R * Minv_body.block<3, 3>(3 * bi, 3 * bj) * R.transpose();
   for (int i = 0; i < 6; ++i)
     for (int j = 0; j < 6; ++j) W[6 * i + j] = 0.5 * (Ww(i, j) + Ww(j, i));
 }
 
 namespace {
+
+// What of a penetration the position correction removes in one step (island_resolve's moves):
+// on the pile of 10 000 boxes the deepest overlap at 1 s is 0.32 mm with a half, 0.57 mm with all
+// (the bodies pushed out at once overshoot into their neighbours and fall back)
+constexpr double kPositionFraction = 0.5;
 
 void body_point_velocity(const double* v, const double* w, const double* r, double* vc) {
   double wxr[3];
@@ -35,7 +42,8 @@ void island_point_velocity(const IslandBody* bodies, const IslandPoint& p, doubl
   }
 }
 
-int island_resolve(IslandBody* bodies, IslandPoint* pts, int count, int passes, double horizon) {
+int island_resolve(IslandBody* bodies, IslandPoint* pts, int count, int passes, double horizon,
+                   double cw, double* moves) {
   // What a sweep needs of a point, computed once, packed together: each body's velocity change
   // [dv; dw] per unit impulse along the world axes at the point (G = W [I; [r]x], 6 x 3,
   // row-major) and along the normal (G n), so that an impulse costs a 6 x 3 product per body (a
@@ -184,6 +192,67 @@ int island_resolve(IslandBody* bodies, IslandPoint* pts, int count, int passes, 
                       [&](const double* J) { apply(k, J); }, roll));
     }
     if (change <= kContactTolerance * scale) break;
+  }
+  if (moves) {
+    // the positions: what remains of each penetration once the step's update has taken cw times
+    // the velocity change (a fraction kPositionFraction of it), removed by Gauss-Seidel sweeps on
+    // the bodies' displacements, each body moved as a particle of its translational inverse mass
+    // W_vv (a unit "position impulse" along n moves a by W_vv,a n and b by -W_vv,b n), each
+    // point's accumulated correction pushing only
+    struct Deep {
+      int a, b;
+      double n[3], ua[3], ub[3];
+      double left, inv, lam;
+    };
+    thread_local std::vector<Deep> deep;
+    thread_local std::vector<double> disp;
+    disp.assign(3 * size_t(nb), 0.0);
+    deep.clear();
+    for (const int i : live) {
+      const IslandPoint& p = pts[i];
+      if (!(p.depth > 0)) continue;
+      double vc1[3], vc0[3];
+      vel(rows[i], vc1);
+      island_point_velocity(bodies, p, vc0);  // (bodies: still the velocities before)
+      const double l = p.depth - cw * (dot3(vc1, p.n) - dot3(vc0, p.n));
+      if (!(l > 0)) continue;
+      Deep d;
+      d.a = p.a, d.b = p.b;
+      for (int e = 0; e < 3; ++e) d.n[e] = p.n[e];
+      auto linear = [&](const double* W, double* u) {
+        for (int r = 0; r < 3; ++r)
+          u[r] = W[6 * r] * p.n[0] + W[6 * r + 1] * p.n[1] + W[6 * r + 2] * p.n[2];
+      };
+      linear(bodies[p.a].W, d.ua);
+      if (p.b >= 0) linear(bodies[p.b].W, d.ub);
+      else d.ub[0] = d.ub[1] = d.ub[2] = 0;
+      const double k = dot3(p.n, d.ua) + dot3(p.n, d.ub);
+      if (!(k > 0)) continue;
+      d.inv = 1 / k;
+      d.left = kPositionFraction * l;
+      d.lam = 0;
+      deep.push_back(d);
+    }
+    for (int pass = 0; pass < passes && !deep.empty(); ++pass) {
+      double change = 0, scale = 0;
+      for (Deep& d : deep) {
+        double* xa = &disp[3 * size_t(d.a)];
+        double* xb = d.b >= 0 ? &disp[3 * size_t(d.b)] : nullptr;
+        double gap = dot3(xa, d.n);
+        if (xb) gap -= dot3(xb, d.n);
+        const double l_new = std::max(0.0, d.lam + (d.left - gap) * d.inv);
+        const double dl = l_new - d.lam;
+        d.lam = l_new;
+        for (int e = 0; e < 3; ++e) xa[e] += d.ua[e] * dl;
+        if (xb)
+          for (int e = 0; e < 3; ++e) xb[e] -= d.ub[e] * dl;
+        change = std::max(change, std::abs(dl));
+        scale = std::max(scale, l_new);
+      }
+      if (change <= kContactTolerance * scale) break;
+    }
+    for (int m = 0; m < nb; ++m)
+      for (int e = 0; e < 3; ++e) moves[3 * m + e] = disp[3 * size_t(m) + e];
   }
   for (int m = 0; m < nb; ++m)
     for (int a = 0; a < 3; ++a) bodies[m].v[a] = xi[6 * m + a], bodies[m].w[a] = xi[6 * m + 3 + a];

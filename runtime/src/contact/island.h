@@ -43,7 +43,16 @@ void island_point_velocity(const IslandBody* bodies, const IslandPoint& p, doubl
 // rest_speed that closes its gap within the step takes -e v_n too: the impact); with rolling > 0 the rolling resistance's angular
 // impulse against the relative rotation, at most rolling |r| J_n. Velocities are updated in
 // place. Returns the points that carry a normal impulse.
-int island_resolve(IslandBody* bodies, IslandPoint* pts, int count, int passes, double horizon);
+// With `moves` (3 per body, world frame, m; 0 for bodies no point names): the position
+// correction. Of each touching point's penetration less what the step's position update takes of
+// its velocity change (cw times it: h/2 for the schemes that move the bodies with the mean of the
+// old and new velocities, 0 for euler), half is removed by Gauss-Seidel sweeps (at most `passes`,
+// fewer once converged as above) on the bodies' displacements, each body moved as a particle of
+// its translational inverse mass W_vv (a unit position impulse along n moves a by W_vv,a n and b
+// by -W_vv,b n), each point's accumulated correction pushing only: a column of bodies pressed into
+// each other and the ground is lifted as one. Velocities are left alone: no energy is added.
+int island_resolve(IslandBody* bodies, IslandPoint* pts, int count, int passes, double horizon,
+                   double cw = 0, double* moves = nullptr);
 
 // The generalized inverse mass in the world frame: blockdiag(R, R) Minv blockdiag(R, R)^T, Minv
 // the body frame's (symmetric), row-major out.

@@ -419,6 +419,48 @@ TEST(BodyContact, AWarmStartAtTheSolutionStaysThereAndOneOutsideIsTakenWithin) {
   }
 }
 
+// The position correction (island_resolve's moves): a column of three bodies at rest, pressed
+// into the ground and into each other by d0, d1, d2: half of each penetration is removed at once,
+// the column lifted as one (body k rises by half of the penetrations below it: the ground does not
+// give, the bodies above are pushed, not pulled); a point apart (depth < 0) moves nothing; the
+// velocities stay zero (positions only)
+TEST(BodyContact, ThePositionCorrectionLiftsAColumnPressedIntoTheGround) {
+  Mat6 Minv = Mat6::Zero();
+  Minv.diagonal() << 2, 2, 2, 5, 5, 5;  // 0.5 kg
+  IslandBody b[4];
+  for (IslandBody& x : b) world_inverse_mass(Minv, Mat3::Identity(), x.W);
+  const double d[3] = {4e-4, 1e-3, 2.5e-4};
+  std::vector<IslandPoint> pts;
+  auto point = [&](int a, int bb, double depth, double z) {
+    IslandPoint p;
+    p.a = a, p.b = bb;
+    p.n[2] = 1;
+    p.ra[2] = -0.01, p.rb[2] = 0.01;
+    p.ra[0] = p.rb[0] = z;  // off the centre line: the correction translates only
+    p.depth = depth;
+    p.friction = 0.5;
+    p.rest_speed = 0.01;
+    pts.push_back(p);
+  };
+  point(0, -1, d[0], 0.003);
+  point(0, -1, d[0], -0.003);
+  point(1, 0, d[1], 0.002);
+  point(2, 1, d[2], -0.001);
+  point(3, 2, -1e-4, 0.0);  // body 3 above body 2, apart
+  std::vector<double> moves(3 * 4, -1.0);
+  island_resolve(b, pts.data(), int(pts.size()), 256, 1e-3, 1e-3, moves.data());
+  const double want[4] = {0.5 * d[0], 0.5 * (d[0] + d[1]), 0.5 * (d[0] + d[1] + d[2]), 0.0};
+  for (int k = 0; k < 4; ++k) {
+    EXPECT_NEAR(moves[3 * k + 2], want[k], 1e-5 * want[2]) << k;  // (the sweeps stop at 1e-6)
+    EXPECT_EQ(moves[3 * k], 0.0) << k;
+    EXPECT_EQ(moves[3 * k + 1], 0.0) << k;
+    for (int a = 0; a < 3; ++a) {
+      EXPECT_EQ(b[k].v[a], 0.0);
+      EXPECT_EQ(b[k].w[a], 0.0);
+    }
+  }
+}
+
 }  // namespace
 }  // namespace lrigid
 
