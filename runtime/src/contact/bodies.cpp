@@ -24,13 +24,15 @@ PairMaterial pair_material(const ContactParams& a, const ContactParams& b) {
 namespace {
 
 // Sweeps of the projected Gauss-Seidel over an island's points (fewer once converged,
-// kContactTolerance). A stack passes its weight down one body per sweep, so a small island takes
-// up to kIslandPasses: a stack of twenty boxes then stands within 0.1 mm and sleeps (with 32 it
-// sags 0.9 mm, with 16 it does not come to rest); an island of many points takes at most
-// kIslandSweeps point-sweeps a step, and never fewer sweeps than kIslandMinPasses: a pile in
-// motion is a new problem every step that no number of sweeps converges to the tolerance, and
-// the warm start carries the sweeps' progress from one step to the next (docs/contacts.md:
-// 1000 boxes settling, 3500 points, take 18).
+// kContactTolerance). A stack at rest passes its weight down one body per sweep, so a small
+// island at rest takes up to kIslandPasses: a stack of twenty boxes then stands within 0.5 mm
+// and sleeps (with 32 it slides, 2.7 mm); an island of many points takes at most kIslandSweeps
+// point-sweeps a step, and an island in motion (a point moving faster than its resting speed: an
+// impact, a body sliding or spinning) kIslandMinPasses: their problem is a new one every step,
+// which the sweeps' friction impulses, following the slip from point to point, converge to only
+// slowly (two boxes meeting while one spins on the ground: still 0.2 of the tolerance's floor
+// after 64 sweeps), and the warm start carries the sweeps' work from one step to the next
+// (docs/contacts.md: the 1000-box pile, 3500 points, takes 18).
 constexpr int kIslandPasses = 256;
 constexpr int kIslandMinPasses = 16;
 constexpr int kIslandSweeps = 1 << 16;
@@ -419,7 +421,8 @@ BodyContactStats body_contacts(const Model& model, State* state, BodyContactScra
     const double cw = model.integrator == Integrator::Euler ? 0.0 : 0.5 * h;
     thread_local std::vector<double> moves;
     moves.assign(3 * members.size(), 0.0);
-    island_resolve(bodies.data(), pts.data(), int(pts.size()), passes, h, cw, moves.data());
+    island_resolve(bodies.data(), pts.data(), int(pts.size()), passes, h, cw, moves.data(),
+                   kIslandMinPasses);
     // the impulses the points carry, for the next step's warm start
     for (size_t k = 0; k < pts.size(); ++k) {
       const IslandPoint& ip = pts[k];

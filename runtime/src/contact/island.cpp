@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "contact/bodies.h"
 #include "contact/solver.h"
 
 namespace lrigid {
@@ -43,7 +44,7 @@ void island_point_velocity(const IslandBody* bodies, const IslandPoint& p, doubl
 }
 
 int island_resolve(IslandBody* bodies, IslandPoint* pts, int count, int passes, double horizon,
-                   double cw, double* moves) {
+                   double cw, double* moves, int passes_moving) {
   // What a sweep needs of a point, computed once, packed together: each body's velocity change
   // [dv; dw] per unit impulse along the world axes at the point (G = W [I; [r]x], 6 x 3,
   // row-major) and along the normal (G n), so that an impulse costs a 6 x 3 product per body (a
@@ -76,6 +77,12 @@ int island_resolve(IslandBody* bodies, IslandPoint* pts, int count, int passes, 
   bool rolling = false;
   for (int i = 0; i < count && !rolling; ++i) rolling = pts[i].rolling > 0;
   if (rolling) roll_L.assign(3 * size_t(count), 0.0);
+  // the impulses' scale is at least the impulse that changes a point's velocity by its resting
+  // speed: an island whose points carry next to nothing (bodies parting, speculative points just
+  // within the margin) is converged once no impulse changes by more than the tolerance of that,
+  // where the largest impulse (1e-30 N s) would ask for round-off
+  double floor = HUGE_VAL;
+  bool moving = false;
   auto vel = [&](const Row& k, double* vc) {
     const double* xa = &xi[6 * size_t(k.a)];
     body_point_velocity(xa, xa + 3, k.ra, vc);
@@ -136,13 +143,20 @@ int island_resolve(IslandBody* bodies, IslandPoint* pts, int count, int passes, 
     vel(k, vc);
     const double vn = dot3(vc, p.n);
     k.target = vn < -p.rest_speed ? -p.restitution * vn : 0.0;
+    // (a point moving faster than the resting speed, touching or speculative: the island is in
+    // motion)
+    if ((p.depth >= 0 || horizon > 0) && !(dot3(vc, vc) <= p.rest_speed * p.rest_speed))
+      moving = true;
     // a speculative point: it may approach as fast as closes its gap in the next step, no
     // faster; one approaching faster than the resting speed that would close it within the step
     // is an impact, taken now with its restitution (up to one step's travel early)
     if (p.depth < 0 && !(vn < -p.rest_speed && -vn * horizon > -p.depth))
       k.target = horizon > 0 ? p.depth / horizon : 0.0;
     const bool solved = p.depth >= 0 || (p.depth < 0 && horizon > 0);
-    if (solved) live.push_back(i);
+    if (solved) {
+      live.push_back(i);
+      floor = std::min(floor, p.rest_speed * k.inv_knn);
+    }
     // the warm start's impulses, within the constraints (pushing only, inside the friction cone)
     k.jn = solved && p.jn > 0 ? p.jn : 0.0;  // (and not NaN)
     const double along = dot3(p.jt, p.n);
@@ -160,6 +174,7 @@ int island_resolve(IslandBody* bodies, IslandPoint* pts, int count, int passes, 
     apply(k, J);
   }
   const int nlive = int(live.size());
+  if (moving && passes_moving >= 0) passes = std::min(passes, passes_moving);
   for (int pass = 0; pass < passes; ++pass) {
     double change = 0, scale = 0;
     for (int ii = 0; ii < nlive; ++ii) {
@@ -191,7 +206,7 @@ int island_resolve(IslandBody* bodies, IslandPoint* pts, int count, int passes, 
                       [&](double* vc) { vel(k, vc); }, [&](double dj) { apply_n(k, dj); },
                       [&](const double* J) { apply(k, J); }, roll));
     }
-    if (change <= kContactTolerance * scale) break;
+    if (change <= kContactTolerance * std::max(scale, floor)) break;
   }
   if (moves) {
     // the positions: what remains of each penetration once the step's update has taken cw times
@@ -208,6 +223,7 @@ int island_resolve(IslandBody* bodies, IslandPoint* pts, int count, int passes, 
     thread_local std::vector<double> disp;
     disp.assign(3 * size_t(nb), 0.0);
     deep.clear();
+    double pfloor = HUGE_VAL;
     for (const int i : live) {
       const IslandPoint& p = pts[i];
       if (!(p.depth > 0)) continue;
@@ -230,9 +246,11 @@ int island_resolve(IslandBody* bodies, IslandPoint* pts, int count, int passes, 
       if (!(k > 0)) continue;
       d.inv = 1 / k;
       d.left = kPositionFraction * l;
+      pfloor = std::min(pfloor, kPairSkin * d.inv);
       d.lam = 0;
       deep.push_back(d);
     }
+    // (converged as the impulses, with a floor: the correction that moves a point by the skin)
     for (int pass = 0; pass < passes && !deep.empty(); ++pass) {
       double change = 0, scale = 0;
       for (Deep& d : deep) {
@@ -249,7 +267,7 @@ int island_resolve(IslandBody* bodies, IslandPoint* pts, int count, int passes, 
         change = std::max(change, std::abs(dl));
         scale = std::max(scale, l_new);
       }
-      if (change <= kContactTolerance * scale) break;
+      if (change <= kContactTolerance * std::max(scale, pfloor)) break;
     }
     for (int m = 0; m < nb; ++m)
       for (int e = 0; e < 3; ++e) moves[3 * m + e] = disp[3 * size_t(m) + e];

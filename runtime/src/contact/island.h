@@ -34,7 +34,8 @@ struct IslandPoint {
 void island_point_velocity(const IslandBody* bodies, const IslandPoint& p, double* vc);
 
 // Resolves the island's points (at most `passes` sweeps, fewer once no impulse changes by more
-// than kContactTolerance of the largest), starting from each point's jn and jt (warm start: the
+// than kContactTolerance of the largest, or of the impulse that changes a point's velocity by
+// its resting speed when that is larger), starting from each point's jn and jt (warm start: the
 // normal impulse taken >= 0, the tangential one projected onto the point's tangent plane and
 // into its friction cone, both applied before the first sweep; the targets below are those of
 // the velocities before it): each point's normal velocity to its target (-e v_n
@@ -51,8 +52,10 @@ void island_point_velocity(const IslandBody* bodies, const IslandPoint& p, doubl
 // its translational inverse mass W_vv (a unit position impulse along n moves a by W_vv,a n and b
 // by -W_vv,b n), each point's accumulated correction pushing only: a column of bodies pressed into
 // each other and the ground is lifted as one. Velocities are left alone: no energy is added.
+// passes_moving >= 0: at most that many sweeps (velocities and positions) when a touching point
+// moves faster than its resting speed before the solve (an impact, a body sliding).
 int island_resolve(IslandBody* bodies, IslandPoint* pts, int count, int passes, double horizon,
-                   double cw = 0, double* moves = nullptr);
+                   double cw = 0, double* moves = nullptr, int passes_moving = -1);
 
 // The generalized inverse mass in the world frame: blockdiag(R, R) Minv blockdiag(R, R)^T, Minv
 // the body frame's (symmetric), row-major out.
