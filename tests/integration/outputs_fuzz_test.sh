@@ -255,7 +255,7 @@ def layout(b):
         s('reason%d' % k)
     for name, item in (('history', 8), ('history_offset', 8), ('contact', 1), ('rest_steps', 4),
                        ('impacts', 4), ('t_touch', 8), ('x_touch', 24), ('hidden', 1),
-                       ('watch', 72)):
+                       ('watch', 72), ('pair_impulses', 64)):
         vec(name, item)
     raw('stats', 88)
     s('writer.tag'); raw('writer.csv_bytes', 8); raw('writer.csv_sum', 8)

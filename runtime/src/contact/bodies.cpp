@@ -23,10 +23,58 @@ PairMaterial pair_material(const ContactParams& a, const ContactParams& b) {
 
 namespace {
 
-// Sweeps of the projected Gauss-Seidel over an island's points: a stack passes its weight down
-// one body per sweep, so more than a body alone takes (kContactPasses): with 48 a stack of five
-// boxes drifts 0.18 mm before it sleeps, with 400 10 um (BodyContact.AStackOfFiveBoxesStands)
+// Sweeps of the projected Gauss-Seidel over an island's points (fewer once converged,
+// kContactTolerance). A stack at rest passes its weight down one body per sweep, so a small
+// island at rest takes up to kIslandPasses: a stack of twenty boxes then stands within 0.5 mm
+// and sleeps (with 32 it slides, 2.7 mm); an island of many points takes at most kIslandSweeps
+// point-sweeps a step, and an island in motion (a point moving faster than its resting speed: an
+// impact, a body sliding or spinning) kIslandMinPasses: their problem is a new one every step,
+// which the sweeps' friction impulses, following the slip from point to point, converge to only
+// slowly (two boxes meeting while one spins on the ground: still 0.2 of the tolerance's floor
+// after 64 sweeps), and the warm start carries the sweeps' work from one step to the next
+// (docs/contacts.md: the 1000-box pile, 3500 points, takes 18).
 constexpr int kIslandPasses = 256;
+constexpr int kIslandMinPasses = 16;
+constexpr int kIslandSweeps = 1 << 16;
+
+// The warm start (island_resolve): a point takes the impulses of the last step's point of the
+// same two bodies (or the same body and a surface) nearest to it, by their offsets from the
+// lower body's centre of mass in the world frame, when that one is within this fraction of the
+// smaller body's reach (docs/contacts.md)
+constexpr double kWarmMatch = 0.1;
+
+bool key_less(const PairImpulse& x, const PairImpulse& y) {
+  return x.a != y.a ? x.a < y.a : x.b < y.b;
+}
+
+// The last step's points of bodies a < b (b = PairImpulse::kSurface: a's surface points), and
+// which of them a point has taken already
+struct WarmRange {
+  const PairImpulse* first = nullptr;
+  int count = 0;
+  uint64_t used = 0;
+  WarmRange(const std::vector<PairImpulse>& cache, uint32_t a, uint32_t b) {
+    PairImpulse key;
+    key.a = a, key.b = b;
+    const auto r = std::equal_range(cache.begin(), cache.end(), key, key_less);
+    first = cache.data() + (r.first - cache.begin());
+    count = int(std::min<ptrdiff_t>(r.second - r.first, 64));
+  }
+  // the nearest point not yet taken within tol of r, or nullptr
+  const PairImpulse* take(const double* r, double tol) {
+    int best = -1;
+    double best_d2 = tol * tol;
+    for (int k = 0; k < count; ++k) {
+      if (used >> k & 1) continue;
+      const double d[3] = {first[k].r[0] - r[0], first[k].r[1] - r[1], first[k].r[2] - r[2]};
+      const double d2 = dot3(d, d);
+      if (d2 < best_d2) best_d2 = d2, best = k;
+    }
+    if (best < 0) return nullptr;
+    used |= uint64_t(1) << best;
+    return first + best;
+  }
+};
 
 // a body taking part in the stage
 struct Cand {
@@ -62,8 +110,12 @@ std::vector<std::pair<int, int>> overlapping_pairs(const std::vector<Cand>& c) {
     uint64_t key = 0;
     int head = -1;  // the cell's last entry; -1: an empty slot
   };
-  std::vector<Slot> table(cap);
-  std::vector<int> next, owner;  // entries: the box and the previous entry of its cell
+  // (kept from call to call: allocated afresh, a pile's table would be page faults every step)
+  thread_local std::vector<Slot> table;
+  thread_local std::vector<int> next, owner;  // entries: the box and the previous entry of its cell
+  table.assign(cap, Slot{});
+  next.clear();
+  owner.clear();
   next.reserve(entries);
   owner.reserve(entries);
   // (cells 2^21 apart share a key: their boxes are tested against each other for nothing)
@@ -143,9 +195,14 @@ BodyContactStats body_contacts(const Model& model, State* state, BodyContactScra
                                size_t n0, size_t n, int threads) {
   BodyContactStats stats;
   State& st = *state;
+  // the last step's impulses: this step's warm start; replaced by this step's
+  const std::vector<PairImpulse> warm = std::move(st.pair_impulses);
+  st.pair_impulses.clear();
   const double h = model.dt;
   const double t_end = static_cast<double>(st.step) * h;
-  std::vector<Cand> cand;
+  thread_local std::vector<Cand> kept_cand;  // (kept from step to step, see mf below)
+  std::vector<Cand>& cand = kept_cand;
+  cand.clear();
   for (size_t i = n0; i < n; ++i) {
     if (!takes_part(st, i)) continue;
     // without a colliding ground or walls the step's contact pass does not run: what touches
@@ -156,7 +213,12 @@ BodyContactStats body_contacts(const Model& model, State* state, BodyContactScra
   const std::vector<std::pair<int, int>> pairs = overlapping_pairs(cand);
   if (pairs.empty()) return stats;
   // the narrow phase of the pairs with a moving body
-  std::vector<PairManifold> mf(pairs.size());
+  // (grown only, kept from step to step: a pile's manifolds are megabytes, which allocated
+  // afresh would be zeroed and page-faulted in every step; done[] says which hold a result)
+  // (a reference: the threads of the narrow phase below fill this thread's vector, not theirs)
+  thread_local std::vector<PairManifold> kept_manifolds;
+  std::vector<PairManifold>& mf = kept_manifolds;
+  if (mf.size() < pairs.size()) mf.resize(pairs.size());
   std::vector<uint8_t> done(pairs.size(), 0);
   auto narrow = [&](size_t p) {
     const Cand &a = cand[pairs[p].first], &b = cand[pairs[p].second];
@@ -172,10 +234,16 @@ BodyContactStats body_contacts(const Model& model, State* state, BodyContactScra
   // waking: a sleeping body touched by a moving body that is not resting (it was not resting
   // before this step, or a point approaches faster than the resting speed) wakes, with the
   // sleeping bodies that touch it
-  std::vector<std::vector<int>> adj(cand.size());
-  for (size_t p = 0; p < pairs.size(); ++p) {
-    adj[pairs[p].first].push_back(int(p));
-    adj[pairs[p].second].push_back(int(p));
+  // each candidate's pairs: adj[adj_at[k], adj_at[k + 1]), in pair order
+  std::vector<int> adj_at(cand.size() + 1, 0), adj(2 * pairs.size());
+  for (const auto& [a, b] : pairs) ++adj_at[size_t(a) + 1], ++adj_at[size_t(b) + 1];
+  for (size_t k = 0; k < cand.size(); ++k) adj_at[k + 1] += adj_at[k];
+  {
+    std::vector<int> at(adj_at.begin(), adj_at.end() - 1);
+    for (size_t p = 0; p < pairs.size(); ++p) {
+      adj[size_t(at[size_t(pairs[p].first)]++)] = int(p);
+      adj[size_t(at[size_t(pairs[p].second)]++)] = int(p);
+    }
   }
   std::vector<int> woken;
   auto wake = [&](int s) {
@@ -187,7 +255,8 @@ BodyContactStats body_contacts(const Model& model, State* state, BodyContactScra
       const uint32_t i = cand[k].body;
       st.u_seen[i] = wake_sleeper(&st, i);
       woken.push_back(k);
-      for (const int p : adj[k]) {
+      for (int e = adj_at[size_t(k)]; e < adj_at[size_t(k) + 1]; ++e) {
+        const int p = adj[size_t(e)];
         const int o = pairs[p].first == k ? pairs[p].second : pairs[p].first;
         if (cand[o].dynamic) continue;
         if (!done[p]) narrow(size_t(p));
@@ -253,11 +322,16 @@ BodyContactStats body_contacts(const Model& model, State* state, BodyContactScra
   }
 
   const auto nis = static_cast<int64_t>(ibodies.size());
+  std::vector<std::vector<PairImpulse>> solved(ibodies.size());
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 1) if (nis > 1)
   for (int64_t is = 0; is < nis; ++is) {
     const std::vector<int>& members = ibodies[is];
     const int nm = static_cast<int>(members.size());
-    std::vector<IslandBody> bodies(members.size());
+    // (the island's arrays are kept from step to step, per thread: a pile's are megabytes, page
+    // faults every step when allocated afresh)
+    thread_local std::vector<IslandBody> bodies, before;
+    thread_local std::vector<IslandPoint> pts;
+    bodies.assign(members.size(), IslandBody{});
     auto local_of = [&](int k) {
       return int(std::lower_bound(members.begin(), members.end(), k) - members.begin());
     };
@@ -267,14 +341,28 @@ BodyContactStats body_contacts(const Model& model, State* state, BodyContactScra
       world_inverse_mass(type.M_inv, c.pose.R, bodies[m].W);
       for (int a = 0; a < 3; ++a) bodies[m].v[a] = c.vw[a], bodies[m].w[a] = c.ww[a];
     }
-    std::vector<IslandPoint> pts;
+    pts.clear();
+    // each point's key in the impulses kept for the next step: its bodies (the lower first)
+    // and whether the island's a is the higher one (then the impulse on the lower is -J)
+    struct Key {
+      uint32_t a, b;
+      bool flip;
+    };
+    thread_local std::vector<Key> keys;
+    keys.clear();
     for (const int p : ipairs[is]) {
       int a = pairs[p].first, b = pairs[p].second;
       double sign = 1;
       if (!cand[a].dynamic) std::swap(a, b), sign = -1;
-      const ContactParams& ka = *model.types[st.type[cand[a].body]].contact;
-      const ContactParams& kb = *model.types[st.type[cand[b].body]].contact;
+      const BodyType& ta = model.types[st.type[cand[a].body]];
+      const BodyType& tb = model.types[st.type[cand[b].body]];
+      const ContactParams& ka = *ta.contact;
+      const ContactParams& kb = *tb.contact;
       const PairMaterial mat = pair_material(ka, kb);
+      const Key key{std::min(cand[a].body, cand[b].body), std::max(cand[a].body, cand[b].body),
+                    sign < 0};
+      WarmRange prev(warm, key.a, key.b);
+      const double tol = kWarmMatch * std::min(ta.reach, tb.reach);
       for (int k = 0; k < mf[p].count; ++k) {
         const PairPoint& q = mf[p].pts[k];
         IslandPoint ip;
@@ -287,7 +375,12 @@ BodyContactStats body_contacts(const Model& model, State* state, BodyContactScra
         ip.friction = mat.friction;
         ip.rolling = mat.rolling;
         ip.rest_speed = std::max(ka.rest_speed, kb.rest_speed);
+        if (const PairImpulse* c = prev.take(key.flip ? ip.rb : ip.ra, tol)) {
+          ip.jn = c->jn;
+          for (int e = 0; e < 3; ++e) ip.jt[e] = key.flip ? -c->jt[e] : c->jt[e];
+        }
         pts.push_back(ip);
+        keys.push_back(key);
       }
     }
     // the members' points on the ground and the walls, solved with the pairs
@@ -300,6 +393,7 @@ BodyContactStats body_contacts(const Model& model, State* state, BodyContactScra
         // (points within the skin count as touching: the contact pass has just put the body
         // on the surface, at a depth of 0 give or take the round-off)
         gather(model, type, b, c.pose.R, t_end, 0.0, &t, nullptr, kPairSkin, h);
+        WarmRange prev(warm, c.body, PairImpulse::kSurface);
         for (int k = 0; k < t.count; ++k) {
           IslandPoint ip;
           ip.a = m;
@@ -311,41 +405,35 @@ BodyContactStats body_contacts(const Model& model, State* state, BodyContactScra
           ip.friction = type.contact->friction;
           ip.rolling = type.contact->rolling_resistance;
           ip.rest_speed = type.contact->rest_speed;
+          if (const PairImpulse* w = prev.take(ip.ra, kWarmMatch * type.reach)) {
+            ip.jn = w->jn;
+            for (int e = 0; e < 3; ++e) ip.jt[e] = w->jt[e];
+          }
           pts.push_back(ip);
+          keys.push_back({c.body, PairImpulse::kSurface, false});
         }
       }
     }
-    const std::vector<IslandBody> before = bodies;
-    island_resolve(bodies.data(), pts.data(), int(pts.size()), kIslandPasses, h);
-    // positions: the step's update with the velocity change, then what remains of each
-    // penetration, split by the effective masses along the normal
+    before = bodies;
+    const int passes = std::clamp(kIslandSweeps / std::max(1, int(pts.size())), kIslandMinPasses,
+                                  kIslandPasses);
+    // (how much of the velocity change the step's position update takes)
     const double cw = model.integrator == Integrator::Euler ? 0.0 : 0.5 * h;
-    std::vector<Vec3> up(members.size(), Vec3::Zero()), down(members.size(), Vec3::Zero());
-    for (const IslandPoint& ip : pts) {
-      if (!(ip.depth > 0)) continue;
-      double vc0[3], vc1[3];
-      island_point_velocity(before.data(), ip, vc0);
-      island_point_velocity(bodies.data(), ip, vc1);
-      double dvn = 0;
-      for (int e = 0; e < 3; ++e) dvn += (vc1[e] - vc0[e]) * ip.n[e];
-      const double left = ip.depth - cw * dvn;
-      if (!(left > 0)) continue;
-      double share = 1;
-      if (ip.b >= 0) {
-        double c[3], dv[3], dw[3];
-        contact_response(bodies[ip.a].W, ip.ra, ip.n, c, dv, dw);
-        const double ka = dot3(c, ip.n);
-        contact_response(bodies[ip.b].W, ip.rb, ip.n, c, dv, dw);
-        const double kb = dot3(c, ip.n);
-        share = ka / (ka + kb);
-      }
-      const Vec3 nn(ip.n[0], ip.n[1], ip.n[2]);
-      auto add = [&](int m, const Vec3& d) {
-        up[m] = up[m].cwiseMax(d);
-        down[m] = down[m].cwiseMin(d);
-      };
-      add(ip.a, share * left * nn);
-      if (ip.b >= 0) add(ip.b, -(1 - share) * left * nn);
+    thread_local std::vector<double> moves;
+    moves.assign(3 * members.size(), 0.0);
+    island_resolve(bodies.data(), pts.data(), int(pts.size()), passes, h, cw, moves.data(),
+                   kIslandMinPasses);
+    // the impulses the points carry, for the next step's warm start
+    for (size_t k = 0; k < pts.size(); ++k) {
+      const IslandPoint& ip = pts[k];
+      if (!(ip.jn > 0)) continue;
+      PairImpulse w;
+      w.a = keys[k].a, w.b = keys[k].b;
+      const double s = keys[k].flip ? -1.0 : 1.0;
+      for (int e = 0; e < 3; ++e)
+        w.r[e] = keys[k].flip ? ip.rb[e] : ip.ra[e], w.jt[e] = s * ip.jt[e];
+      w.jn = ip.jn;
+      solved[is].push_back(w);
     }
     const double still = kRestFraction * model.rest_speed;
     std::vector<uint8_t> rests(members.size(), 1);
@@ -373,7 +461,9 @@ BodyContactStats body_contacts(const Model& model, State* state, BodyContactScra
       const Vec3 w(bodies[m].w[0], bodies[m].w[1], bodies[m].w[2]);
       const Vec3 v0(before[m].v[0], before[m].v[1], before[m].v[2]);
       const Vec3 w0(before[m].w[0], before[m].w[1], before[m].w[2]);
-      st.x[i] += cw * (v - v0) + up[m] + down[m];
+      // positions: the step's update with the velocity change, then the island's correction of
+      // what remains of the penetrations
+      st.x[i] += cw * (v - v0) + Vec3(moves[3 * m], moves[3 * m + 1], moves[3 * m + 2]);
       st.q[i] = rotate_body(st.q[i], cw * (c.pose.R.transpose() * (w - w0)));
       st.v[i] = c.pose.R.transpose() * v;
       st.w[i] = c.pose.R.transpose() * w;
@@ -429,6 +519,12 @@ BodyContactStats body_contacts(const Model& model, State* state, BodyContactScra
       st.rest_steps[i] = 0;
     }
   }
+  // the islands' impulses, sorted by their bodies (each island's in the order solved)
+  size_t kept = 0;
+  for (const auto& v : solved) kept += v.size();
+  st.pair_impulses.reserve(kept);
+  for (const auto& v : solved) st.pair_impulses.insert(st.pair_impulses.end(), v.begin(), v.end());
+  std::stable_sort(st.pair_impulses.begin(), st.pair_impulses.end(), key_less);
   return stats;
 }
 

@@ -9,15 +9,19 @@
 //                 body that touches it (its island); a sleeping body otherwise is a static surface
 //   islands       bodies joined by touching pairs; each island's points (pairs, and each body's
 //                 points on the ground and the walls, contact/touching.h gather) go to one
-//                 projected Gauss-Seidel (contact/island.h island_resolve)
+//                 projected Gauss-Seidel (contact/island.h island_resolve), which starts from the
+//                 impulses of the last step's nearest point of the same pair (the warm start,
+//                 State::pair_impulses) and leaves its own there for the next step
 //   positions     the step's position update takes the velocity change as contact_pass does;
-//                 what remains of a pair's penetration is split by the two bodies' effective
-//                 masses along its normal (positions only: no energy is added)
+//                 half of what remains of the island's penetrations is removed by Gauss-Seidel
+//                 sweeps on the bodies' displacements (island_resolve's moves; positions only:
+//                 no energy is added)
 //   resting       a body whose every point stands still rests; an island whose bodies have all
 //                 rested for Model::sleep_time, and that the flow as it is cannot move, sleeps
 //
 // The bodies' state is all there is: nothing is carried from one step to the next but what the
-// state holds, so a resumed run and any thread count give the same results.
+// state holds (the impulses of the warm start included, sorted by pair), so a resumed run and any
+// thread count give the same results.
 #pragma once
 #include <cstdint>
 #include <vector>

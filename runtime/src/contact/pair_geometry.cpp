@@ -486,34 +486,42 @@ inline void face_query(size_t nf, FaceAt face, const std::vector<Vec3>& ov, doub
 constexpr double kAxisRelTolerance = 0.02;
 constexpr double kAxisAbsTolerance = 1e-6;
 
-int polytope_pair(const PairShape& a, const PairPose& pa, const PairShape& b,
-                  const PairPose& pb, double margin, PairManifold* out) {
-  thread_local Scratch s;
-  // everything in A's frame
-  const Mat3 R = pa.R.transpose() * pb.R;
-  const Vec3 t = pa.R.transpose() * (pb.x - pa.x);
-  s.vb.resize(b.vertices.size());
-  for (size_t i = 0; i < b.vertices.size(); ++i) s.vb[i] = R * b.vertices[i] + t;
-  s.nb.resize(b.faces.size());
-  s.db.resize(b.faces.size());
+// The separating axes of two polytopes in A's frame (B's vertices at R v + t): A's and B's
+// faces (the largest separation of the other's vertices from each face, and the face), and the
+// edge pairs whose Gauss-map arcs cross (the largest separation, its unit axis from A towards B
+// and the two edges as segments, B's in A's frame); false when some axis separates them by at
+// least the margin.
+struct Separation {
+  double sep_a = 0, sep_b = 0, sep_e = -std::numeric_limits<double>::infinity();
+  int face_a = 0, face_b = 0;
+  bool edge = false;
+  Vec3 axis_e = Vec3::Zero();
+  Vec3 ea0 = Vec3::Zero(), ea1 = Vec3::Zero(), eb0 = Vec3::Zero(), eb1 = Vec3::Zero();
+};
+
+// B's vertices, face normals and offsets in A's frame (Scratch vb, nb, db)
+void place_b(const PairShape& b, const Mat3& R, const Vec3& t, Scratch* s) {
+  s->vb.resize(b.vertices.size());
+  for (size_t i = 0; i < b.vertices.size(); ++i) s->vb[i] = R * b.vertices[i] + t;
+  s->nb.resize(b.faces.size());
+  s->db.resize(b.faces.size());
   for (size_t f = 0; f < b.faces.size(); ++f) {
-    s.nb[f] = R * b.faces[f].n;
-    s.db[f] = b.faces[f].d + s.nb[f].dot(t);
+    s->nb[f] = R * b.faces[f].n;
+    s->db[f] = b.faces[f].d + s->nb[f].dot(t);
   }
-  double sep_a, sep_b;
-  int face_a, face_b;
+}
+
+bool polytope_separation(const PairShape& a, const PairShape& b, double margin, Scratch& s,
+                         Separation* o) {
   face_query(
       a.faces.size(), [&](size_t f) { return std::pair(a.faces[f].n, a.faces[f].d); }, s.vb,
-      &sep_a, &face_a);
-  if (sep_a >= margin) return 0;
+      &o->sep_a, &o->face_a);
+  if (o->sep_a >= margin) return false;
   face_query(
       b.faces.size(), [&](size_t f) { return std::pair(s.nb[f], s.db[f]); }, a.vertices,
-      &sep_b, &face_b);
-  if (sep_b >= margin) return 0;
+      &o->sep_b, &o->face_b);
+  if (o->sep_b >= margin) return false;
   // edge-edge axes
-  double sep_e = -std::numeric_limits<double>::infinity();
-  int edge_a = -1, edge_b = -1;
-  Vec3 axis_e = Vec3::Zero();
   const Vec3 ca = a.interior;
   s.ec.resize(b.edges.size());
   s.ed.resize(b.edges.size());
@@ -523,6 +531,7 @@ int polytope_pair(const PairShape& a, const PairPose& pa, const PairShape& b,
     s.ed[j] = -s.nb[size_t(b.edges[j].f1)];
     s.edxc[j] = s.ed[j].cross(s.ec[j]);
   }
+  int edge_a = -1, edge_b = -1;
   for (size_t i = 0; i < a.edges.size(); ++i) {
     const PairShape::Edge& ea = a.edges[i];
     const Vec3& n1 = a.faces[size_t(ea.f0)].n;
@@ -541,23 +550,123 @@ int polytope_pair(const PairShape& a, const PairPose& pa, const PairShape& b,
       axis /= len;
       if (axis.dot(p1 - ca) < 0) axis = -axis;  // from A towards B
       const double sep = axis.dot(p2 - p1);
-      if (sep > sep_e) sep_e = sep, edge_a = int(i), edge_b = int(j), axis_e = axis;
+      if (sep > o->sep_e) o->sep_e = sep, edge_a = int(i), edge_b = int(j), o->axis_e = axis;
     }
   }
-  if (sep_e >= margin) return 0;
+  if (o->sep_e >= margin) return false;
+  if (edge_a >= 0) {
+    o->edge = true;
+    o->ea0 = a.vertices[size_t(a.edges[size_t(edge_a)].v0)];
+    o->ea1 = a.vertices[size_t(a.edges[size_t(edge_a)].v1)];
+    o->eb0 = s.vb[size_t(b.edges[size_t(edge_b)].v0)];
+    o->eb1 = s.vb[size_t(b.edges[size_t(edge_b)].v1)];
+  }
+  return true;
+}
+
+// The same for two boxes, in closed form (the 15 axes of two oriented boxes: Gottschalk's
+// projections of the half extents): B's axes are R's columns, its centre R c_B + t. A face's
+// separation is the least distance of the other box's vertices above it; the faces are the
+// boxes' (box_faces: face 2k + 1 the +e_k one, 2k the -e_k one; the first of equals is kept, as
+// in polytope_separation); an edge pair's separation is along e_i x R_j, the two boxes' edges
+// along e_i and R_j farthest towards each other.
+bool box_separation(const PairShape& a, const PairShape& b, const Mat3& R, const Vec3& t,
+                    double margin, Separation* o) {
+  const Vec3& ha = a.semi_axes;
+  const Vec3& hb = b.semi_axes;
+  const Vec3 cb = R * b.centre + t;
+  const Vec3 d = cb - a.centre;  // A's centre to B's, A's frame
+  Mat3 absR;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) absR(i, j) = std::abs(R(i, j));
+  // A's faces
+  o->sep_a = -std::numeric_limits<double>::infinity();
+  for (int i = 0; i < 3; ++i) {
+    const double rb = absR.row(i).dot(hb);
+    const double sep = std::abs(d[i]) - rb - ha[i];
+    if (sep > o->sep_a) o->sep_a = sep, o->face_a = 2 * i + (d[i] > 0 ? 1 : 0);
+  }
+  if (o->sep_a >= margin) return false;
+  // B's faces: along R_j, d.R_j < 0 (B's +R_j face towards A) or along -R_j
+  const Vec3 dB = R.transpose() * d;
+  o->sep_b = -std::numeric_limits<double>::infinity();
+  for (int j = 0; j < 3; ++j) {
+    const double ra = absR.col(j).dot(ha);
+    const double sep = std::abs(dB[j]) - ra - hb[j];
+    if (sep > o->sep_b) o->sep_b = sep, o->face_b = 2 * j + (dB[j] < 0 ? 1 : 0);
+  }
+  if (o->sep_b >= margin) return false;
+  // edge pairs
+  int best_i = -1, best_j = -1;
+  double best_s = 1;
+  for (int i = 0; i < 3; ++i) {
+    const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
+    for (int j = 0; j < 3; ++j) {
+      // L = e_i x R_j: (0, -R_i2j, R_i1j) rotated into place
+      Vec3 L = Vec3::Zero();
+      L[i1] = -R(i2, j);
+      L[i2] = R(i1, j);
+      const double len = L.norm();
+      if (len < 1e-9) continue;  // parallel: a face axis covers it
+      const Vec3 LB = R.transpose() * L;
+      const double ra = std::abs(L[i1]) * ha[i1] + std::abs(L[i2]) * ha[i2];
+      const double rb = std::abs(LB[0]) * hb[0] + std::abs(LB[1]) * hb[1] + std::abs(LB[2]) * hb[2];
+      const double dl = d.dot(L);
+      const double sep = (std::abs(dl) - ra - rb) / len;
+      if (sep > o->sep_e) {
+        o->sep_e = sep, best_i = i, best_j = j, best_s = dl < 0 ? -1.0 : 1.0;
+        o->axis_e = L * (best_s / len);
+      }
+    }
+  }
+  if (o->sep_e >= margin) return false;
+  if (best_i >= 0) {
+    o->edge = true;
+    // A's edge along e_i farthest along the axis, B's along R_j farthest against it
+    const Vec3& L = o->axis_e;
+    Vec3 pa = a.centre;
+    for (int k = 0; k < 3; ++k)
+      if (k != best_i) pa[k] += L[k] < 0 ? -ha[k] : ha[k];
+    o->ea0 = pa, o->ea1 = pa;
+    o->ea0[best_i] -= ha[best_i];
+    o->ea1[best_i] += ha[best_i];
+    const Vec3 LB = R.transpose() * L;
+    Vec3 qb = cb;
+    for (int k = 0; k < 3; ++k)
+      if (k != best_j) qb -= R.col(k) * (LB[k] < 0 ? -hb[k] : hb[k]);
+    o->eb0 = qb - R.col(best_j) * hb[best_j];
+    o->eb1 = qb + R.col(best_j) * hb[best_j];
+  }
+  return true;
+}
+
+int polytope_pair(const PairShape& a, const PairPose& pa, const PairShape& b,
+                  const PairPose& pb, double margin, PairManifold* out) {
+  thread_local Scratch s;
+  // everything in A's frame
+  const Mat3 R = pa.R.transpose() * pb.R;
+  const Vec3 t = pa.R.transpose() * (pb.x - pa.x);
+  Separation sep;
+  if (a.box && b.box) {
+    if (!box_separation(a, b, R, t, margin, &sep)) return 0;
+  } else {
+    place_b(b, R, t, &s);
+    if (!polytope_separation(a, b, margin, s, &sep)) return 0;
+  }
+  const double sep_a = sep.sep_a, sep_b = sep.sep_b, sep_e = sep.sep_e;
+  const int face_a = sep.face_a, face_b = sep.face_b;
+  const Vec3& axis_e = sep.axis_e;
 
   const double tol_scale = kAxisAbsTolerance * std::min(a.radius, b.radius);
   const bool b_face = sep_b > sep_a + kAxisRelTolerance * std::abs(sep_a) + tol_scale;
   const double sep_f = b_face ? sep_b : sep_a;
-  if (edge_a >= 0 && sep_e > sep_f + kAxisRelTolerance * std::abs(sep_f) + tol_scale) {
-    const PairShape::Edge& ea = a.edges[size_t(edge_a)];
-    const PairShape::Edge& eb = b.edges[size_t(edge_b)];
+  if (sep.edge && sep_e > sep_f + kAxisRelTolerance * std::abs(sep_f) + tol_scale) {
     Vec3 c1, c2;
-    closest_on_segments(a.vertices[size_t(ea.v0)], a.vertices[size_t(ea.v1)],
-                        s.vb[size_t(eb.v0)], s.vb[size_t(eb.v1)], &c1, &c2);
+    closest_on_segments(sep.ea0, sep.ea1, sep.eb0, sep.eb1, &c1, &c2);
     add_point(out, pa.x + pa.R * (0.5 * (c1 + c2)), pa.R * -axis_e, -sep_e);
     return out->count;
   }
+  if (a.box && b.box) place_b(b, R, t, &s);  // (the faces' vertices and planes below)
 
   // face contact: the reference face and the incident face of the other shape, most against it
   Vec3 nr;
@@ -587,8 +696,8 @@ int polytope_pair(const PairShape& a, const PairPose& pa, const PairShape& b,
     for (int k = 0; k < fi.count; ++k) s.poly.push_back(a.vertices[size_t(a.loops[size_t(fi.first + k)])]);
   }
   // clip the incident face by the reference face's side planes (inward normals nr x edge)
-  std::vector<Vec3> ref(ref_loop), clipped;
-  thread_local std::vector<Vec3> work;
+  const std::vector<Vec3>& ref = ref_loop;
+  thread_local std::vector<Vec3> work, clipped;
   work = s.poly;
   for (size_t k = 0; k < ref.size() && !work.empty(); ++k) {
     const Vec3 e = ref[(k + 1) % ref.size()] - ref[k];

@@ -352,41 +352,50 @@ int contact_rest(const ContactParams& k, const T* M, T* v, T* w, int m, const T*
 // One point's share of a projected Gauss-Seidel sweep, written once for a body against a surface
 // (contact_resolve) and for two bodies against each other (contact/island.h): the normal impulse
 // that brings the point's normal velocity to `target`, the accumulated normal impulse *Jn kept
-// >= 0 (points never pull); then roll(*Jn), the rolling resistance's share (returns its impulse
-// change, N s); then the friction impulse along the slip that would stop it (effective mass
-// 1 / t.K t), the accumulated tangential impulse Jt[3] kept within the cone |Jt| <= mu Jn.
-// K: the point's 3x3 velocity change per unit impulse; inv_knn = 1 / n.K n. vel(vc) gives the
-// point's (relative) velocity now, apply(J) applies the impulse J at the point. *scale becomes
-// at least the new normal impulse; returns the largest impulse change of the point.
-template <typename T, class Vel, class Apply, class Roll>
-T contact_point_sweep(const T* K, const T* n, T target, T inv_knn, T mu, T* Jn, T* Jt, T* scale,
-                      Vel vel, Apply apply, Roll roll) {
+// >= 0 (points never pull); then, with `rolls`, roll(*Jn), the rolling resistance's share
+// (returns its impulse change, N s); then the friction impulse along the slip v_t that would
+// stop it (effective mass 1 / t.K t, t = v_t / |v_t|: the impulse (|v_t|^2 / v_t.K v_t) v_t
+// against it, one division and no square root on the way), the accumulated tangential impulse
+// Jt[3] kept within the cone |Jt| <= mu Jn. K: the point's 3x3 velocity change per unit impulse,
+// Kn = K n, inv_knn = 1 / n.K n. vel(vc) gives the point's (relative) velocity now,
+// apply_n(dj) applies the impulse dj n at the point and apply(J) the impulse J (the velocity
+// after the normal impulse is the one before plus dj Kn: one vel() a sweep without rolling).
+// *scale becomes at least the new normal impulse; returns the largest impulse change of the
+// point.
+template <typename T, class Vel, class ApplyN, class Apply, class Roll>
+T contact_point_sweep(const T* K, const T* Kn, const T* n, T target, T inv_knn, T mu, bool rolls,
+                      T* Jn, T* Jt, T* scale, Vel vel, ApplyN apply_n, Apply apply, Roll roll) {
   T vc[3];
   vel(vc);
   const T jn_new = std::max(T(0), *Jn + (target - dot3(vc, n)) * inv_knn);
-  T J[3];
-  for (int a = 0; a < 3; ++a) J[a] = (jn_new - *Jn) * n[a];
-  T change = std::abs(jn_new - *Jn);
+  const T dn = jn_new - *Jn;
+  T change = std::abs(dn);
   *scale = std::max(*scale, jn_new);
   *Jn = jn_new;
-  apply(J);
-  change = std::max(change, roll(*Jn));
-  vel(vc);
+  apply_n(dn);
+  if (rolls) {
+    change = std::max(change, roll(*Jn));
+    vel(vc);
+  } else {
+    for (int a = 0; a < 3; ++a) vc[a] += dn * Kn[a];
+  }
   const T vn = dot3(vc, n);
   T vt[3];
   for (int a = 0; a < 3; ++a) vt[a] = vc[a] - vn * n[a];
-  const T slip = std::sqrt(dot3(vt, vt));
-  if (!(slip > T(0))) return change;
-  T t[3], Kt[3];
-  for (int a = 0; a < 3; ++a) t[a] = vt[a] / slip;
-  mul(K, t, Kt);
-  const T jt = -slip / dot3(t, Kt);
+  T Kv[3];
+  mul(K, vt, Kv);
+  const T s2 = dot3(vt, vt), den = dot3(vt, Kv);
+  if (!(s2 > T(0)) || !(den > T(0))) return change;
+  const T f = -s2 / den;
   T Jt_new[3];
-  for (int a = 0; a < 3; ++a) Jt_new[a] = Jt[a] + jt * t[a];
-  const T norm = std::sqrt(dot3(Jt_new, Jt_new)), cap = mu * *Jn;
-  const T clip = norm > cap ? cap / norm : T(1);
+  for (int a = 0; a < 3; ++a) Jt_new[a] = Jt[a] + f * vt[a];
+  const T norm2 = dot3(Jt_new, Jt_new), cap = mu * *Jn;
+  if (norm2 > cap * cap) {
+    const T clip = cap / std::sqrt(norm2);
+    for (int a = 0; a < 3; ++a) Jt_new[a] *= clip;
+  }
+  T J[3];
   for (int a = 0; a < 3; ++a) {
-    Jt_new[a] *= clip;
     J[a] = Jt_new[a] - Jt[a];
     Jt[a] = Jt_new[a];
   }
@@ -474,7 +483,8 @@ int contact_resolve(const ContactParams& k, const T* Minv, T* v, T* w, int count
   const T mu = T(k.friction), mur = T(k.rolling_resistance);
   const bool rolls = mur > T(0);
   const bool diagonal = inverse_mass_is_diagonal(Minv);
-  T target[kContactMaxPoints], K[kContactMaxPoints][9], Jn[kContactMaxPoints],
+  T target[kContactMaxPoints], K[kContactMaxPoints][9], Kn[kContactMaxPoints][3],
+      Jn[kContactMaxPoints],
       Jt[kContactMaxPoints][3], inv_knn[kContactMaxPoints], Lr[kContactMaxPoints][3],
       rlen[kContactMaxPoints];
   T best = T(0);
@@ -496,9 +506,8 @@ int contact_resolve(const ContactParams& k, const T* Minv, T* v, T* w, int count
       contact_response(Minv, ri, ej, dvc, dv, dw, diagonal);
       K[i][j] = dvc[0], K[i][3 + j] = dvc[1], K[i][6 + j] = dvc[2];
     }
-    T Kn[3];
-    mul(K[i], n + 3 * i, Kn);
-    inv_knn[i] = T(1) / dot3(n + 3 * i, Kn);
+    mul(K[i], n + 3 * i, Kn[i]);
+    inv_knn[i] = T(1) / dot3(n + 3 * i, Kn[i]);
     Jn[i] = T(0);
     Jt[i][0] = Jt[i][1] = Jt[i][2] = T(0);
     Lr[i][0] = Lr[i][1] = Lr[i][2] = T(0);
@@ -595,11 +604,16 @@ int contact_resolve(const ContactParams& k, const T* Minv, T* v, T* w, int count
     for (int i = 0; i < m; ++i) {
       if (!(depth[i] >= T(0)) && !(depth[i] < T(0) && horizon > T(0))) continue;
       const T* ri = r + 3 * i;
+      const T* ni = n + 3 * i;
       change = std::max(
           change, contact_point_sweep(
-                      K[i], n + 3 * i, target[i], inv_knn[i], mu, &Jn[i], Jt[i], &scale,
-                      [&](T* vc) { point_velocity(ri, vc); }, [&](const T* J) { apply(ri, J); },
-                      [&](T jn) { return rolls ? roll(i, jn) : T(0); }));
+                      K[i], Kn[i], ni, target[i], inv_knn[i], mu, rolls, &Jn[i], Jt[i], &scale,
+                      [&](T* vc) { point_velocity(ri, vc); },
+                      [&](T dj) {
+                        const T J[3] = {dj * ni[0], dj * ni[1], dj * ni[2]};
+                        apply(ri, J);
+                      },
+                      [&](const T* J) { apply(ri, J); }, [&](T jn) { return roll(i, jn); }));
     }
     if (change <= T(kContactTolerance) * scale) break;
   }

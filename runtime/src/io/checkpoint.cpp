@@ -4,11 +4,13 @@
 #include <link.h>
 
 #include <cinttypes>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <type_traits>
 
 #include "io/atomic_file.h"
 #include "io/durable.h"
@@ -18,11 +20,15 @@ namespace lrigid {
 
 namespace {
 
-// format 3 ends in a checksum of everything before it; format 2 (an older lrigid's) has none
-constexpr char kMagic[8] = {'L', 'R', 'I', 'G', 'C', 'K', 'P', '6'};
+// format 3 ends in a checksum of everything before it; format 2 (an older lrigid's) has none;
+// format 7 holds the contact impulses between bodies (State::pair_impulses)
+constexpr char kMagic[8] = {'L', 'R', 'I', 'G', 'C', 'K', 'P', '7'};
 constexpr char kMagicUnchecked[8] = {'L', 'R', 'I', 'G', 'C', 'K', 'P', '2'};
 
 using Fnv = Fnv64;
+
+// (arrays are written as their bytes: no padding, nothing but values)
+static_assert(sizeof(PairImpulse) == 64 && std::is_trivially_copyable_v<PairImpulse>);
 
 }  // namespace
 
@@ -152,6 +158,7 @@ void write_checkpoint(const std::string& path, const CheckpointId& id, int rank,
     b.vec(st.x_touch);
     b.vec(st.hidden);
     b.vec(st.watch);
+    b.vec(st.pair_impulses);
     b.pod(stats);
     extra(b);
   }
@@ -250,6 +257,7 @@ void read_checkpoint(const std::string& path, const CheckpointId& id, int rank, 
   b.vec(&st->x_touch);
   b.vec(&st->hidden);
   b.vec(&st->watch);
+  b.vec(&st->pair_impulses);
   for (size_t k : {st->x.size(), st->q.size(), st->v.size(), st->w.size(), st->u_seen.size(),
                    st->type.size(), st->status.size(), st->t_stop.size(),
                    st->history_offset.size(), st->contact.size(), st->rest_steps.size(),
@@ -259,6 +267,17 @@ void read_checkpoint(const std::string& path, const CheckpointId& id, int rank, 
   // the gust watches: one per body where contacts are on, none otherwise
   if (!st->watch.empty() && st->watch.size() != n)
     fail_input(path, "", "holds another number of bodies");
+  // the contact impulses: of bodies it has, sorted by their pair, each pushing
+  for (size_t k = 0; k < st->pair_impulses.size(); ++k) {
+    const PairImpulse& p = st->pair_impulses[k];
+    const bool pair = p.a < n && (p.b == PairImpulse::kSurface || (p.a < p.b && p.b < n));
+    const bool sorted = k == 0 || st->pair_impulses[k - 1].a < p.a ||
+                        (st->pair_impulses[k - 1].a == p.a && st->pair_impulses[k - 1].b <= p.b);
+    bool finite = std::isfinite(p.jn) && p.jn > 0;
+    for (int e = 0; e < 3; ++e) finite = finite && std::isfinite(p.r[e]) && std::isfinite(p.jt[e]);
+    if (!pair || !sorted || !finite)
+      fail_input(path, "", "corrupt checkpoint (contact impulse " + std::to_string(k) + ")");
+  }
   b.pod(stats);
   extra(b);
   if (in.peek() != std::char_traits<char>::eof())

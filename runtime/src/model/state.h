@@ -39,6 +39,16 @@ struct GustWatch {
   uint8_t valid = 0;      // 1: set when the body fell asleep
 };
 
+// One contact point's impulses at the end of the last step's contacts between bodies
+// (contact/bodies.h): the next step's projected Gauss-Seidel starts from them (warm start).
+struct PairImpulse {
+  static constexpr uint32_t kSurface = ~uint32_t(0);
+  uint32_t a = 0, b = 0;  // the bodies, a < b; b = kSurface: a's point on the ground or a wall
+  double r[3] = {};       // the point from a's centre of mass, world frame, m
+  double jn = 0;          // normal impulse, N s (> 0)
+  double jt[3] = {};      // tangential impulse on a, world frame, N s
+};
+
 struct State {
   double t = 0;                 // simulated time, s
   uint64_t step = 0;            // steps taken
@@ -62,6 +72,9 @@ struct State {
                                       // not released yet
   std::vector<GustWatch> watch;       // (nbody, or 0 without contacts) sleeping bodies' gust
                                       // watches
+  // contacts between bodies (contact/bodies.h): the points that carried an impulse in the last
+  // step's islands, sorted by (a, b), a pair's points in the order they were solved in
+  std::vector<PairImpulse> pair_impulses;
   // Basset history (effects/basset.h), only for body types with the effect:
   // body i owns history[history_offset[i], + model.types[type[i]].basset.stride())
   std::vector<double> history;        // (sum of strides)

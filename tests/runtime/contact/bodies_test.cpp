@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
 #include <vector>
 
 #include "compile/compile_model.h"
@@ -292,5 +293,174 @@ TEST(BodyContact, IslandPointsNeverPullAndEnergyDoesNotGrow) {
   }
 }
 
+// The impulses each step leaves for the next one's warm start (State::pair_impulses): on a stack
+// of five boxes standing on the ground, the pair below box k carries the weight of the boxes
+// above it over the step, (4 - k) m g dt, and box 0's points on the ground the weight of the four
+// above it (the step's own contact pass holds box 0's), with no net tangential impulse; the
+// points are sorted by their pair, each pair's bodies in order, each point pushing and within its
+// friction cone.
+TEST(BodyContact, EachStepLeavesTheStacksWeightsForTheNextOne) {
+  std::vector<BodySpec> boxes;
+  for (int k = 0; k < 5; ++k)
+    boxes.push_back(box_body("box" + std::to_string(k), Vec3(0.04, 0.03, 0.02), 1000,
+                             Vec3(0, 0, 0.01 + 0.02 * k), Vec3::Zero(), 0.0, 0.5));
+  const double dt = 1e-3;
+  Scene s = pair_scene(boxes, Vec3(0, 0, -kG), dt, 0.3);  // (asleep after 0.5 s of rest)
+  s.has_ground = true;
+  s.ground_z = 0;
+  s.ground_contact = ContactMode::Collide;
+  const Model m = test::compile(s);
+  State st = run(m, s);
+  const double w = 1000 * 0.04 * 0.03 * 0.02 * kG * dt;  // one box's weight over a step, N s
+  std::map<std::pair<uint32_t, uint32_t>, double> load;
+  std::map<std::pair<uint32_t, uint32_t>, Vec3> tang;
+  for (size_t k = 0; k < st.pair_impulses.size(); ++k) {
+    const PairImpulse& p = st.pair_impulses[k];
+    EXPECT_GT(p.jn, 0);
+    EXPECT_TRUE(p.b == PairImpulse::kSurface || p.a < p.b);
+    if (k > 0) {
+      const PairImpulse& q = st.pair_impulses[k - 1];
+      EXPECT_TRUE(q.a < p.a || (q.a == p.a && q.b <= p.b)) << k;
+    }
+    load[{p.a, p.b}] += p.jn;
+    tang.try_emplace({p.a, p.b}, Vec3::Zero()).first->second += Vec3(p.jt[0], p.jt[1], p.jt[2]);
+    EXPECT_LE(std::sqrt(dot3(p.jt, p.jt)), 0.5 * p.jn * (1 + 1e-12));  // in the cone
+  }
+  ASSERT_EQ(load.size(), 5u);
+  EXPECT_NEAR((load[{0, PairImpulse::kSurface}]), 4 * w, 1e-3 * w);
+  for (uint32_t k = 0; k < 4; ++k) EXPECT_NEAR((load[{k, k + 1}]), (4 - k) * w, 1e-3 * w) << k;
+  // (a face's points may hold friction against each other, which sums to nothing; what is left
+  // is the stack's settling, a few per cent of a weight)
+  for (const auto& [pair, jt] : tang) EXPECT_LT(jt.norm(), 0.05 * w) << pair.first << " " << pair.second;
+}
+
+// The warm start is state: a run continued from its state goes on as the uninterrupted run does,
+// bitwise, and the same state without the last step's impulses goes on differently (a resumed run
+// needs them: they are in the checkpoint)
+TEST(BodyContact, TheLastStepsImpulsesAreStateARunContinuesWith) {
+  std::vector<BodySpec> bs;
+  for (int k = 0; k < 4; ++k)
+    bs.push_back(box_body("box" + std::to_string(k), Vec3(0.04, 0.03, 0.02), 1000,
+                          Vec3(0.004 * k, 0.003 * k, 0.012 + 0.025 * k), Vec3::Zero(), 0.0, 0.5));
+  Scene s = pair_scene(bs, Vec3(0, 0, -kG), 1e-3, 0.4);
+  s.has_ground = true;
+  s.ground_z = 0;
+  s.ground_contact = ContactMode::Collide;
+  const Model whole = test::compile(s);
+  const State uninterrupted = run(whole, s);
+  Scene half = s;
+  half.duration = 0.2;
+  State st = run(test::compile(half), half);
+  ASSERT_FALSE(st.pair_impulses.empty());
+  State cold = st;
+  cold.pair_impulses.clear();
+  simulate(whole, &st, RunOptions{});
+  simulate(whole, &cold, RunOptions{});
+  bool differs = false;
+  for (size_t i = 0; i < st.size(); ++i) {
+    EXPECT_EQ(st.x[i], uninterrupted.x[i]) << i;
+    EXPECT_EQ(st.v[i], uninterrupted.v[i]) << i;
+    differs = differs || cold.x[i] != uninterrupted.x[i];
+  }
+  EXPECT_TRUE(differs);
+}
+
+// island_resolve from the impulses that solve its problem (a warm start at the solution) stays
+// there: one sweep leaves the impulses and velocities where the cold solve put them; and a warm
+// start outside the constraints (pulling, beyond the friction cone, along the normal, NaN) is
+// taken within them
+TEST(BodyContact, AWarmStartAtTheSolutionStaysThereAndOneOutsideIsTakenWithin) {
+  Mat6 Minv = Mat6::Zero();
+  Minv.diagonal() << 1, 1, 1, 2.5, 2.5, 2.5;
+  IslandBody b0[2];
+  world_inverse_mass(Minv, Mat3::Identity(), b0[0].W);
+  world_inverse_mass(Minv, Mat3::Identity(), b0[1].W);
+  const double v0[3] = {0.3, -0.2, -1.0}, w0[3] = {0.5, 0.1, -0.2};
+  for (int a = 0; a < 3; ++a) b0[0].v[a] = v0[a], b0[0].w[a] = w0[a];
+  IslandPoint p0;
+  p0.a = 0, p0.b = 1;
+  const Vec3 n = Vec3(0.2, 0.1, 1).normalized();
+  for (int a = 0; a < 3; ++a) p0.n[a] = n[a], p0.ra[a] = -0.5 * n[a], p0.rb[a] = 0.5 * n[a];
+  p0.friction = 0.8;
+  p0.rest_speed = 0.01;
+  IslandBody cold[2] = {b0[0], b0[1]};
+  IslandPoint pc = p0;
+  island_resolve(cold, &pc, 1, 256, 1e-3);
+  ASSERT_GT(pc.jn, 0);
+  IslandBody warm[2] = {b0[0], b0[1]};
+  IslandPoint pw = p0;
+  pw.jn = pc.jn;
+  for (int a = 0; a < 3; ++a) pw.jt[a] = pc.jt[a];
+  island_resolve(warm, &pw, 1, 1, 1e-3);
+  EXPECT_NEAR(pw.jn, pc.jn, 1e-12);
+  for (int k = 0; k < 2; ++k)
+    for (int a = 0; a < 3; ++a) {
+      EXPECT_NEAR(warm[k].v[a], cold[k].v[a], 1e-12);
+      EXPECT_NEAR(warm[k].w[a], cold[k].w[a], 1e-12);
+    }
+  // outside the constraints: taken within them before any sweep (0 sweeps)
+  const double jt_far[3] = {5.0, -3.0, 2.0};
+  for (const double jn : {-1.0, 0.5, std::nan("")}) {
+    IslandBody b[2] = {b0[0], b0[1]};
+    IslandPoint p = p0;
+    p.jn = jn;
+    for (int a = 0; a < 3; ++a) p.jt[a] = jt_far[a];
+    island_resolve(b, &p, 1, 0, 1e-3);
+    const double jn_in = jn > 0 ? jn : 0.0;
+    EXPECT_EQ(p.jn, jn_in);
+    EXPECT_NEAR(dot3(p.jt, p.n), 0, 1e-15);
+    EXPECT_LE(std::sqrt(dot3(p.jt, p.jt)), p0.friction * jn_in * (1 + 1e-12));
+    // the impulse applied: jn n + jt on a, its opposite on b (unit masses: the velocity changes)
+    for (int a = 0; a < 3; ++a) {
+      const double J = jn_in * p.n[a] + p.jt[a];
+      EXPECT_NEAR(b[0].v[a] - b0[0].v[a], J, 1e-12);
+      EXPECT_NEAR(b[1].v[a] - b0[1].v[a], -J, 1e-12);
+    }
+  }
+}
+
+// The position correction (island_resolve's moves): a column of three bodies at rest, pressed
+// into the ground and into each other by d0, d1, d2: half of each penetration is removed at once,
+// the column lifted as one (body k rises by half of the penetrations below it: the ground does not
+// give, the bodies above are pushed, not pulled); a point apart (depth < 0) moves nothing; the
+// velocities stay zero (positions only)
+TEST(BodyContact, ThePositionCorrectionLiftsAColumnPressedIntoTheGround) {
+  Mat6 Minv = Mat6::Zero();
+  Minv.diagonal() << 2, 2, 2, 5, 5, 5;  // 0.5 kg
+  IslandBody b[4];
+  for (IslandBody& x : b) world_inverse_mass(Minv, Mat3::Identity(), x.W);
+  const double d[3] = {4e-4, 1e-3, 2.5e-4};
+  std::vector<IslandPoint> pts;
+  auto point = [&](int a, int bb, double depth, double z) {
+    IslandPoint p;
+    p.a = a, p.b = bb;
+    p.n[2] = 1;
+    p.ra[2] = -0.01, p.rb[2] = 0.01;
+    p.ra[0] = p.rb[0] = z;  // off the centre line: the correction translates only
+    p.depth = depth;
+    p.friction = 0.5;
+    p.rest_speed = 0.01;
+    pts.push_back(p);
+  };
+  point(0, -1, d[0], 0.003);
+  point(0, -1, d[0], -0.003);
+  point(1, 0, d[1], 0.002);
+  point(2, 1, d[2], -0.001);
+  point(3, 2, -1e-4, 0.0);  // body 3 above body 2, apart
+  std::vector<double> moves(3 * 4, -1.0);
+  island_resolve(b, pts.data(), int(pts.size()), 256, 1e-3, 1e-3, moves.data());
+  const double want[4] = {0.5 * d[0], 0.5 * (d[0] + d[1]), 0.5 * (d[0] + d[1] + d[2]), 0.0};
+  for (int k = 0; k < 4; ++k) {
+    EXPECT_NEAR(moves[3 * k + 2], want[k], 1e-5 * want[2]) << k;  // (the sweeps stop at 1e-6)
+    EXPECT_EQ(moves[3 * k], 0.0) << k;
+    EXPECT_EQ(moves[3 * k + 1], 0.0) << k;
+    for (int a = 0; a < 3; ++a) {
+      EXPECT_EQ(b[k].v[a], 0.0);
+      EXPECT_EQ(b[k].w[a], 0.0);
+    }
+  }
+}
+
 }  // namespace
 }  // namespace lrigid
+

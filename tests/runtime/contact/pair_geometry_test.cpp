@@ -484,6 +484,67 @@ TEST(PairGeometry, SymmetricInItsArguments) {
   EXPECT_GT(compared, 400);
 }
 
+// Two boxes take the closed form of box-box separating axes (box_separation); the same boxes given
+// as meshes of their eight corners take the general polytope test (faces, and the edge pairs
+// whose Gauss-map arcs cross): the same contact points, normals and depths, at random poses
+// around touching, apart by less than the margin, and in
+TEST(PairGeometry, BoxPairsInClosedFormAgreeWithTheGeneralPolytopeTest) {
+  std::mt19937_64 rng(29);
+  std::uniform_real_distribution<double> size(0.02, 0.5), u(-1, 1), u01(0, 1);
+  auto box_and_mesh = [&](ShapePtr* box, ShapePtr* mesh) {
+    const Vec3 l(size(rng), size(rng), size(rng) * (u01(rng) < 0.2 ? 0.01 : 1.0));  // plates too
+    const Vec3 com = 0.02 * Vec3(u(rng), u(rng), u(rng));
+    *box = pair_shape(Shape::box(l.x(), l.y(), l.z()), com);
+    auto m = std::make_shared<TriangleMesh>();
+    for (int c = 0; c < 8; ++c)
+      m->vertices.emplace_back(0.5 * (c & 1 ? l.x() : -l.x()), 0.5 * (c & 2 ? l.y() : -l.y()),
+                               0.5 * (c & 4 ? l.z() : -l.z()));
+    Shape s;
+    s.type = ShapeType::Mesh;
+    s.mesh = m;
+    *mesh = pair_shape(s, com);
+    ASSERT_TRUE((*box)->box);
+    ASSERT_FALSE((*mesh)->box);
+  };
+  int compared = 0, manifolds = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    ShapePtr a, ma, b, mb;
+    box_and_mesh(&a, &ma);
+    box_and_mesh(&b, &mb);
+    const FclBody fa(*a), fb(*b);
+    const PairPose pb = at(Vec3(u01(rng), u01(rng), u01(rng)), random_rotation(rng));
+    // every other pair nearly face on face: A turned from B's axes by up to 0.01 rad, along one
+    // of B's axes
+    const bool faces = trial % 2 == 0;
+    const Mat3 Ra = faces ? Mat3(pb.R * rotation(random_direction(rng), 0.01 * u01(rng)))
+                          : random_rotation(rng);
+    const Vec3 dir = faces ? Vec3(pb.R.col(trial / 2 % 3) * (u01(rng) < 0.5 ? -1.0 : 1.0))
+                           : random_direction(rng);
+    const double t0 = touching_distance(fa, *a, Ra, fb, *b, pb, dir);
+    if (t0 < 0) continue;
+    const double r = std::min(a->radius, b->radius);
+    const PairPose pa = at(pb.x + dir * (t0 + 0.05 * r * (u01(rng) - 0.5)), Ra);
+    PairManifold closed, general;
+    collide(*a, pa, *b, pb, 0.02 * r, &closed);
+    collide(*ma, pa, *mb, pb, 0.02 * r, &general);
+    ASSERT_EQ(closed.count, general.count) << "trial " << trial;
+    for (int i = 0; i < closed.count; ++i) {
+      const PairPoint& c = closed.pts[i];
+      int near = 0;
+      for (int k = 1; k < general.count; ++k)
+        if ((general.pts[k].p - c.p).norm() < (general.pts[near].p - c.p).norm()) near = k;
+      const PairPoint& g = general.pts[near];
+      EXPECT_LT((g.p - c.p).norm(), 1e-9 * r) << "trial " << trial << " point " << i;
+      EXPECT_LT((g.n - c.n).norm(), 1e-9) << "trial " << trial << " point " << i;
+      EXPECT_NEAR(g.depth, c.depth, 1e-9 * r) << "trial " << trial << " point " << i;
+    }
+    compared += closed.count > 0;
+    manifolds += closed.count >= 3;
+  }
+  EXPECT_GT(compared, 150);
+  EXPECT_GT(manifolds, 50);  // faces on faces among them, not only single points
+}
+
 // Points apart by less than the margin come with depth minus the gap; farther, none
 TEST(PairGeometry, MarginGivesSpeculativePointsAndNoFarther) {
   const double margin = 0.004;

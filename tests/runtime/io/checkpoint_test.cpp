@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -111,6 +112,60 @@ TEST(Checkpoint, KeepsTheSleepersGustWatches) {
   State plain = bodies(3, true);
   read_checkpoint(path, id, 0, &plain, &stats, none_in);
   EXPECT_TRUE(plain.watch.empty());
+  std::remove(path.c_str());
+}
+
+// The contact impulses between bodies (State::pair_impulses, the next step's warm start) go
+// through a checkpoint bitwise; ones that name a body the run has not, or out of order, or not
+// pushing, are refused: a resumed run would start from impulses no run left
+TEST(Checkpoint, KeepsTheContactImpulsesBetweenBodies) {
+  const std::string path = ::testing::TempDir() + "/impulses.ckpt";
+  const CheckpointId id{"build", "scene", 1, "scene.json"};
+  const auto none_out = [](BinaryOut&) {};
+  const auto none_in = [](BinaryIn&) {};
+  auto impulse = [](uint32_t a, uint32_t b, double jn) {
+    PairImpulse p;
+    p.a = a, p.b = b, p.jn = jn;
+    for (int e = 0; e < 3; ++e) p.r[e] = 0.01 * (e + 1) + jn, p.jt[e] = -0.1 * jn * (e + 1);
+    return p;
+  };
+  State st = bodies(3, true);
+  st.pair_impulses = {impulse(0, 1, 0.25), impulse(0, 1, 0.5), impulse(0, PairImpulse::kSurface, 1.5),
+                      impulse(1, 2, 1e-300)};
+  write_checkpoint(path, id, 0, st, RunStats{}, none_out);
+  State back = bodies(3, true);
+  RunStats stats;
+  read_checkpoint(path, id, 0, &back, &stats, none_in);
+  ASSERT_EQ(back.pair_impulses.size(), 4u);
+  for (size_t k = 0; k < 4; ++k)
+    EXPECT_EQ(std::memcmp(&back.pair_impulses[k], &st.pair_impulses[k], sizeof(PairImpulse)), 0)
+        << k;
+  auto refused = [&](const State& bad) {
+    write_checkpoint(path, id, 0, bad, RunStats{}, none_out);
+    State r = bodies(3, true);
+    try {
+      read_checkpoint(path, id, 0, &r, &stats, none_in);
+    } catch (const Error& e) {
+      EXPECT_EQ(e.code(), ExitCode::BadInput);
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  State bad = st;
+  bad.pair_impulses[3].b = 3;  // a body the run has not
+  EXPECT_NE(refused(bad).find("contact impulse 3"), std::string::npos) << refused(bad);
+  bad = st;
+  std::swap(bad.pair_impulses[2], bad.pair_impulses[3]);  // out of order
+  EXPECT_NE(refused(bad).find("contact impulse 3"), std::string::npos) << refused(bad);
+  bad = st;
+  bad.pair_impulses[1].b = 0;  // a body with itself
+  EXPECT_NE(refused(bad).find("contact impulse 1"), std::string::npos) << refused(bad);
+  bad = st;
+  bad.pair_impulses[0].jn = 0;  // not pushing
+  EXPECT_NE(refused(bad).find("contact impulse 0"), std::string::npos) << refused(bad);
+  bad = st;
+  bad.pair_impulses[2].jt[1] = std::nan("");
+  EXPECT_NE(refused(bad).find("contact impulse 2"), std::string::npos) << refused(bad);
   std::remove(path.c_str());
 }
 
