@@ -386,9 +386,9 @@ class ContactStretches {
       if (!slot(st, i, k, &si) || !slot(st, j, k, &sj)) continue;
       if (!any && si.v2 < 0 && sj.v2 < 0) continue;
       const double mi = margin(ti, si.v2, si.w2), mj = margin(tj, sj.v2, sj.w2);
-      // (their bounding spheres' boxes first)
+      // (their bounding spheres first)
       const double reach = (ti.pair->radius + tj.pair->radius + mi + mj) * (1 + 1e-9) + 1e-7;
-      if (((si.x - sj.x).array().abs() > reach).any()) continue;
+      if ((si.x - sj.x).squaredNorm() > reach * reach) continue;
       if (pair_touches(model_, st.type[i], si.x, si.q, mi, st.type[j], sj.x, sj.q, mj)) return true;
     }
     return false;
@@ -418,7 +418,9 @@ class ContactStretches {
 #pragma omp parallel for num_threads(threads_) schedule(dynamic, 16) if (np > 64)
     for (int64_t p = 0; p < np; ++p) {
       const uint32_t i = boxed_[pairs[p].first], j = boxed_[pairs[p].second];
-      met[p] = !(again_[i] && again_[j]) && touch(st, i, j, false);
+      // (the boxes without the slack first)
+      met[p] = !(again_[i] && again_[j]) && overlap(stretch_box(st, i), stretch_box(st, j)) &&
+               touch(st, i, j, false);
     }
     for (size_t p = 0; p < pairs.size(); ++p) {
       const uint32_t i = boxed_[pairs[p].first], j = boxed_[pairs[p].second];
