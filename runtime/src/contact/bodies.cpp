@@ -91,16 +91,17 @@ struct Cand {
 // axis; each box is tested against the boxes already in its cells, and a pair is kept in one
 // cell only, the one holding the larger of the two lower corners. While bodies are far apart
 // most cells hold one box: about n cell lookups, no sort of all the boxes.
-std::vector<std::pair<int, int>> overlapping_pairs(const std::vector<Cand>& c) {
+template <class Box>
+std::vector<std::pair<int, int>> overlapping_pairs(const std::vector<Box>& c) {
   std::vector<std::pair<int, int>> pairs;
   if (c.size() < 2) return pairs;
   double size = 0;
-  for (const Cand& b : c) size = std::max(size, (b.hi - b.lo).maxCoeff());
+  for (const Box& b : c) size = std::max(size, (b.hi - b.lo).maxCoeff());
   const double inv = 1.0 / std::max(size, 1e-9);
   auto cell = [&](double x) { return static_cast<int64_t>(std::floor(x * inv)); };
   // open addressing, at least twice as many slots as entries (a box's cells)
   size_t entries = 0;
-  for (const Cand& b : c)
+  for (const Box& b : c)
     entries += size_t(cell(b.hi.x()) - cell(b.lo.x()) + 1) *
                size_t(cell(b.hi.y()) - cell(b.lo.y()) + 1) *
                size_t(cell(b.hi.z()) - cell(b.lo.z()) + 1);
@@ -110,9 +111,10 @@ std::vector<std::pair<int, int>> overlapping_pairs(const std::vector<Cand>& c) {
     uint64_t key = 0;
     int head = -1;  // the cell's last entry; -1: an empty slot
   };
-  // (kept from call to call: allocated afresh, a pile's table would be page faults every step)
-  thread_local std::vector<Slot> table;
-  thread_local std::vector<int> next, owner;  // entries: the box and the previous entry of its cell
+  // (kept from call to call: a table of a few MB allocated afresh each time is mapped and
+  // faulted in page by page)
+  static thread_local std::vector<Slot> table;
+  static thread_local std::vector<int> next, owner;  // entries: the box and the previous entry
   table.assign(cap, Slot{});
   next.clear();
   owner.clear();
@@ -193,6 +195,13 @@ int find(std::vector<int>& parent, int a) {
 
 BodyContactStats body_contacts(const Model& model, State* state, BodyContactScratch* scratch,
                                size_t n0, size_t n, int threads) {
+  std::vector<uint32_t> bodies(n > n0 ? n - n0 : 0);
+  std::iota(bodies.begin(), bodies.end(), uint32_t(n0));
+  return body_contacts(model, state, scratch, bodies, threads);
+}
+
+BodyContactStats body_contacts(const Model& model, State* state, BodyContactScratch* scratch,
+                               const std::vector<uint32_t>& bodies, int threads) {
   BodyContactStats stats;
   State& st = *state;
   // the last step's impulses: this step's warm start; replaced by this step's
@@ -203,7 +212,7 @@ BodyContactStats body_contacts(const Model& model, State* state, BodyContactScra
   thread_local std::vector<Cand> kept_cand;  // (kept from step to step, see mf below)
   std::vector<Cand>& cand = kept_cand;
   cand.clear();
-  for (size_t i = n0; i < n; ++i) {
+  for (const uint32_t i : bodies) {
     if (!takes_part(st, i)) continue;
     // without a colliding ground or walls the step's contact pass does not run: what touches
     // nothing is flying (the islands below say what touches)
@@ -549,6 +558,46 @@ double deepest_pair_overlap(const Model& model, const State& st, int* i_out, int
       }
   }
   return deepest;
+}
+
+bool in_body_contacts(const State& st, size_t i) { return takes_part(st, i); }
+
+PairBox still_pair_box(const Model& model, const State& st, size_t i) {
+  PairBox b;
+  const Cand c = make_cand(model, st, i, false);
+  b.lo = c.lo.array() - kPairSkin;
+  b.hi = c.hi.array() + kPairSkin;
+  b.moving = false;
+  return b;
+}
+
+bool pair_touches(const Model& model, uint16_t type_a, const Vec3& xa, const Quat& qa,
+                  double margin_a, uint16_t type_b, const Vec3& xb, const Quat& qb,
+                  double margin_b) {
+  const PairShape& sa = *model.types[type_a].pair;
+  const PairShape& sb = *model.types[type_b].pair;
+  const PairPose pa{xa, qa.toRotationMatrix()}, pb{xb, qb.toRotationMatrix()};
+  Vec3 alo = Vec3::Zero(), ahi = Vec3::Zero(), blo = Vec3::Zero(), bhi = Vec3::Zero();
+  pair_aabb(sa, pa, &alo, &ahi);
+  pair_aabb(sb, pb, &blo, &bhi);
+  alo.array() -= margin_a;
+  ahi.array() += margin_a;
+  blo.array() -= margin_b;
+  bhi.array() += margin_b;
+  if (!((alo.array() <= bhi.array()).all() && (blo.array() <= ahi.array()).all())) return false;
+  PairManifold m;
+  collide(sa, pa, sb, pb, margin_a + margin_b, &m);
+  return m.count > 0;
+}
+
+std::vector<std::pair<int, int>> overlapping_pair_boxes(const std::vector<PairBox>& boxes) {
+  std::vector<std::pair<int, int>> pairs = overlapping_pairs(boxes);
+  pairs.erase(std::remove_if(pairs.begin(), pairs.end(),
+                             [&](const std::pair<int, int>& p) {
+                               return !boxes[p.first].moving && !boxes[p.second].moving;
+                             }),
+              pairs.end());
+  return pairs;
 }
 
 }  // namespace lrigid

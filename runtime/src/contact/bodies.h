@@ -24,6 +24,7 @@
 // thread count give the same results.
 #pragma once
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "model/model.h"
@@ -58,6 +59,35 @@ struct BodyContactScratch {
 // islands (results do not depend on it).
 BodyContactStats body_contacts(const Model& model, State* st, BodyContactScratch* scratch,
                                size_t n0, size_t n, int threads);
+// The same for the bodies of a list (increasing): the stage restricted to them, as if the others
+// were not there.
+BodyContactStats body_contacts(const Model& model, State* st, BodyContactScratch* scratch,
+                               const std::vector<uint32_t>& bodies, int threads);
+
+// Whether body i takes part in the stage (moving or sleeping, not hidden).
+bool in_body_contacts(const State& st, size_t i);
+
+// For stretches of several steps (integrate/simulation.cpp): a box that holds every box the
+// stage may give a body at the steps of a stretch, and whether the body moves in the stretch (a
+// body asleep throughout is a static surface there).
+struct PairBox {
+  Vec3 lo = Vec3::Zero(), hi = Vec3::Zero();  // world, m
+  bool moving = false;
+};
+// The box the stage gives body i when it does not move: its shape's box at its pose widened by
+// kPairSkin.
+PairBox still_pair_box(const Model& model, const State& st, size_t i);
+// The pairs (a < b, indices into boxes, sorted) whose boxes overlap with at least one of the two
+// moving: the stage's broad phase (two bodies that do not move do not meet).
+std::vector<std::pair<int, int>> overlapping_pair_boxes(const std::vector<PairBox>& boxes);
+// Whether the stage finds contact points between two bodies of types type_a and type_b at poses
+// (xa, qa) and (xb, qb) with margins margin_a and margin_b (m: kPairSkin, plus what a moving body
+// closes in a step): their boxes widened by the margins overlap and the narrow phase
+// (contact/pair_geometry.h collide) gives a point. A pair that has none is left alone by the
+// stage; larger margins only add points.
+bool pair_touches(const Model& model, uint16_t type_a, const Vec3& xa, const Quat& qa,
+                  double margin_a, uint16_t type_b, const Vec3& xb, const Quat& qb,
+                  double margin_b);
 
 // The deepest penetration (m) between any two bodies of the state that are not stopped or
 // hidden, and the pair (i < j) where it is (-1: none touch). For tests and studies.

@@ -26,6 +26,7 @@
 #include "integrate/integrators.h"
 #include "integrate/rigid_batch.h"
 #include "integrate/step_end.h"
+#include "integrate/sweep.h"
 #include "model/model.h"
 #include "model/state.h"
 #include "util/fast_math.h"
@@ -246,6 +247,12 @@ struct Samples {
   // keep their state and are neither stepped nor committed.
   int width = kBatch;
 };
+
+// Whether lanes of type L keep the world velocity (L::kWorld), which a store and a load round
+template <class L, class = void>
+struct KeepsWorldVelocity : std::false_type {};
+template <class L>
+struct KeepsWorldVelocity<L, std::void_t<decltype(L::kWorld)>> : std::bool_constant<L::kWorld> {};
 
 // The width (Samples::width) that covers lanes [0, hi)
 template <typename T>
@@ -664,10 +671,16 @@ LRIGID_LANE void with_switch(bool a, F f) {
 // not kOk, and leaves the samples at the new positions (end_step). The Basset history is the
 // driver's: it sets each lane's history force before the step (Samples::fb) and appends the step
 // to the history of the lanes that took it (as step_body does at its end).
+// sweep: null, or the stretch's record of each body's motion (sweep.h; Lanes then also provides
+// velocity(), w, the spin, and q, the orientation (w, x, y, z)): each lane's pose and speeds after
+// each of its steps, where it falls asleep or stops, and its steps. With a sweep the block also
+// takes, between two of its steps, what a store and a load do to a lane (for an isotropic M the
+// world velocity turned into the body frame and back), so that its steps are those of stretches of
+// one step each: the lockstep of contacts between bodies (simulation.cpp).
 template <typename T, class Lanes, class Step>
 BlockStats drive_block(const Model& model, const BodyType& type, const FieldConsts& fc, bool a,
-                       State* state, const uint32_t* body, int count, uint64_t first,
-                       uint64_t last, Step step) {
+                       State* state, const uint32_t* body, int count, uint64_t first, uint64_t last,
+                       Step step, StretchSweep* sweep = nullptr) {
   BlockStats stats;
   State& st = *state;
   Lanes block{};  // zeroed: without a field to sample, the sample arrays stay the fluid at rest
@@ -685,6 +698,20 @@ BlockStats drive_block(const Model& model, const BodyType& type, const FieldCons
     lanes->track[j] = fc.ground && (!fc.ground_collide || std::isnan(st.t_touch[i]));
     lanes->flying[j] = fc.contacts && st.contact[i] == ContactState::Flying;
     lanes->started[j] = false;
+  }
+  // with a sweep: each lane's steps, handed steps and whether it fell asleep, and over its step
+  // ends its centre's least and greatest coordinates and its greatest squared speeds
+  uint32_t lane_steps[kBatch] = {}, lane_handed[kBatch] = {};
+  bool lane_slept[kBatch] = {};
+  alignas(64) T sweep_lo[3][kBatch];
+  alignas(64) T sweep_hi[3][kBatch];
+  alignas(64) T sweep_v2[kBatch];
+  alignas(64) T sweep_w2[kBatch];
+  if (sweep) {
+    for (int j = 0; j < kBatch; ++j) {
+      for (int c = 0; c < 3; ++c) sweep_lo[c][j] = sweep_hi[c][j] = lanes->x[c][j];
+      sweep_v2[j] = sweep_w2[j] = T(0);
+    }
   }
   auto resample = [&](int lo, int hi) {
     if (fc.sample) sample_lanes(fc, lanes->x, lanes, lo, hi);
@@ -751,6 +778,7 @@ BlockStats drive_block(const Model& model, const BodyType& type, const FieldCons
       if (outcome[j] == kOk && step_end_is_quiet(model, StepOutcome::Ok, near, land)) {
         // most lanes: a step in free flight, nothing to do at its end
         ++stats.body_steps;
+        ++lane_steps[j];
         if (fc.contacts) {
           mark_flying(&st, i);
           lanes->flying[j] = true;
@@ -787,6 +815,7 @@ BlockStats drive_block(const Model& model, const BodyType& type, const FieldCons
       }
       if (retaken) {
         ++stats.scalar_steps;
+        ++lane_handed[j];
         if (out == StepOutcome::Ok) {
           // the lane's sample is at its batched position: sample it where the step took it
           lanes->load(j, b);
@@ -795,7 +824,10 @@ BlockStats drive_block(const Model& model, const BodyType& type, const FieldCons
           near = near_surface(j, land);
         }
       }
-      if (out == StepOutcome::Ok) ++stats.body_steps;
+      if (out == StepOutcome::Ok) {
+        ++stats.body_steps;
+        ++lane_steps[j];
+      }
       const StepEnd end =
           finish_step(model, type, i, t, last, out, reason, near, &land,
                       lanes->started[j] && !floor_impact ? &lanes->start[j] : nullptr, nullptr,
@@ -815,13 +847,63 @@ BlockStats drive_block(const Model& model, const BodyType& type, const FieldCons
       lanes->live[j] = false;
       // asleep until its watch wakes it, in this stretch or a later one
       if (end.next == AfterStep::Asleep && end.wake < last) dormant[j] = end.wake;
+      if (sweep && end.next == AfterStep::Asleep) {
+        // where it sleeps until it wakes
+        lane_slept[j] = true;
+        sweep->hold(i, s, b);
+      }
+      if (sweep && end.next == AfterStep::Stopped) sweep->stop(i, s);
       if (st.status[i] == BodyStatus::Landed) lanes->rest(j);
+    }
+    if (sweep) {
+      // the live lanes' squared speeds (the norms of any frame's) and extents, across the block
+      const T(*vel)[kBatch] = lanes->velocity();
+      alignas(64) T v2[kBatch];
+      alignas(64) T w2[kBatch];
+      for (int j = 0; j < kBatch; ++j) {
+        v2[j] = vel[0][j] * vel[0][j] + vel[1][j] * vel[1][j] + vel[2][j] * vel[2][j];
+        w2[j] = lanes->w[0][j] * lanes->w[0][j] + lanes->w[1][j] * lanes->w[1][j] +
+                lanes->w[2][j] * lanes->w[2][j];
+        const bool l = lanes->live[j];
+        for (int c = 0; c < 3; ++c) {
+          sweep_lo[c][j] = l ? std::min(sweep_lo[c][j], lanes->x[c][j]) : sweep_lo[c][j];
+          sweep_hi[c][j] = l ? std::max(sweep_hi[c][j], lanes->x[c][j]) : sweep_hi[c][j];
+        }
+        sweep_v2[j] = l ? std::max(sweep_v2[j], v2[j]) : sweep_v2[j];
+        sweep_w2[j] = l ? std::max(sweep_w2[j], w2[j]) : sweep_w2[j];
+      }
+      for (int j = 0; j < count; ++j) {
+        if (!lanes->live[j]) continue;
+        // the lane's pose as the state would hold it after the step
+        StretchSweep::Slot& slot = sweep->at(lanes->body[j], s);
+        slot.x = Vec3(double(lanes->x[0][j]), double(lanes->x[1][j]), double(lanes->x[2][j]));
+        slot.q = Quat(double(lanes->q[0][j]), double(lanes->q[1][j]), double(lanes->q[2][j]),
+                      double(lanes->q[3][j]));
+        slot.v2 = double(v2[j]);
+        slot.w2 = double(w2[j]);
+        // (the store at a stretch's end and the load at the next one's start)
+        if constexpr (KeepsWorldVelocity<Lanes>::value) {
+          if (s + 1 < last) {
+            BodyState b;
+            lanes->store(j, &b);
+            lanes->load(j, b);
+          }
+        }
+      }
     }
   }
   for (int j = 0; j < count; ++j) {
     BodyState b;
     lanes->store(j, &b);
     store_body(b, body[j], &st);
+    if (!sweep) continue;
+    const size_t i = body[j];
+    sweep->extend(i, Vec3(double(sweep_lo[0][j]), double(sweep_lo[1][j]), double(sweep_lo[2][j])),
+                  Vec3(double(sweep_hi[0][j]), double(sweep_hi[1][j]), double(sweep_hi[2][j])),
+                  double(sweep_v2[j]), double(sweep_w2[j]));
+    sweep->steps[i] += lane_steps[j];
+    sweep->handoffs[i] += lane_handed[j];
+    sweep->slept[i] |= uint8_t(lane_slept[j]);
   }
   stats.newton_steps = lanes->newton;
   return stats;

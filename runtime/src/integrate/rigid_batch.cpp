@@ -45,21 +45,22 @@ const char* batch_isa() {
 }
 
 BlockStats advance_rigid_block(const Model& model, const BodyType& type, State* state,
-                               const uint32_t* body, int count, uint64_t first, uint64_t last) {
+                               const uint32_t* body, int count, uint64_t first, uint64_t last,
+                               StretchSweep* sweep) {
   using namespace rigid_batch_detail;  // NOLINT(build/namespaces)
   const bool f = model.precision == Precision::Float;
   switch (batch_mass(type)) {
     case BatchMass::Isotropic:
-      return f ? advance_iso_float(model, type, state, body, count, first, last)
-               : advance_iso_double(model, type, state, body, count, first, last);
+      return f ? advance_iso_float(model, type, state, body, count, first, last, sweep)
+               : advance_iso_double(model, type, state, body, count, first, last, sweep);
     case BatchMass::Diagonal:
-      return f ? advance_diag_float(model, type, state, body, count, first, last)
-               : advance_diag_double(model, type, state, body, count, first, last);
+      return f ? advance_diag_float(model, type, state, body, count, first, last, sweep)
+               : advance_diag_double(model, type, state, body, count, first, last, sweep);
     case BatchMass::Full:
       break;
   }
-  return f ? advance_full_float(model, type, state, body, count, first, last)
-           : advance_full_double(model, type, state, body, count, first, last);
+  return f ? advance_full_float(model, type, state, body, count, first, last, sweep)
+           : advance_full_double(model, type, state, body, count, first, last, sweep);
 }
 
 }  // namespace lrigid

@@ -42,6 +42,8 @@
 
 namespace lrigid {
 
+struct StretchSweep;  // integrate/sweep.h
+
 constexpr int kBatch = 32;  // bodies per block: a multiple of every SIMD width
 
 // A uniform sphere's generalized mass: isotropic, the centre of mass at the centroid (a sphere
@@ -66,9 +68,11 @@ struct BlockStats {
 
 // Advances up to kBatch bodies of one eligible type (indices body[0..count)) in `state` from
 // step `first` to step `last`, with the same statuses, stop times and reasons the scalar loop of
-// integrate/simulation.cpp gives (landing, leaving the grid, non-finite state).
+// integrate/simulation.cpp gives (landing, leaving the grid, non-finite state). sweep: null, or
+// the stretch's record of the bodies' motion (integrate/sweep.h, batch_lanes.h drive_block).
 BlockStats advance_rigid_block(const Model& model, const BodyType& type, State* state,
-                               const uint32_t* body, int count, uint64_t first, uint64_t last);
+                               const uint32_t* body, int count, uint64_t first, uint64_t last,
+                               StretchSweep* sweep = nullptr);
 
 // The version of the batched step's loops this CPU runs: "AVX-512", "AVX2" or "baseline x86-64"
 // (or "baseline" off x86-64 and in Clang builds).
@@ -78,17 +82,23 @@ const char* batch_isa();
 // rigid_batch_{iso,diag,full}_{double,float}.cpp
 namespace rigid_batch_detail {
 BlockStats advance_iso_double(const Model& model, const BodyType& type, State* state,
-                              const uint32_t* body, int count, uint64_t first, uint64_t last);
+                              const uint32_t* body, int count, uint64_t first, uint64_t last,
+                              StretchSweep* sweep);
 BlockStats advance_iso_float(const Model& model, const BodyType& type, State* state,
-                             const uint32_t* body, int count, uint64_t first, uint64_t last);
+                             const uint32_t* body, int count, uint64_t first, uint64_t last,
+                             StretchSweep* sweep);
 BlockStats advance_diag_double(const Model& model, const BodyType& type, State* state,
-                              const uint32_t* body, int count, uint64_t first, uint64_t last);
+                               const uint32_t* body, int count, uint64_t first, uint64_t last,
+                               StretchSweep* sweep);
 BlockStats advance_diag_float(const Model& model, const BodyType& type, State* state,
-                             const uint32_t* body, int count, uint64_t first, uint64_t last);
+                              const uint32_t* body, int count, uint64_t first, uint64_t last,
+                              StretchSweep* sweep);
 BlockStats advance_full_double(const Model& model, const BodyType& type, State* state,
-                              const uint32_t* body, int count, uint64_t first, uint64_t last);
+                               const uint32_t* body, int count, uint64_t first, uint64_t last,
+                               StretchSweep* sweep);
 BlockStats advance_full_float(const Model& model, const BodyType& type, State* state,
-                             const uint32_t* body, int count, uint64_t first, uint64_t last);
+                              const uint32_t* body, int count, uint64_t first, uint64_t last,
+                              StretchSweep* sweep);
 }  // namespace rigid_batch_detail
 
 }  // namespace lrigid

@@ -6,8 +6,9 @@
 namespace lrigid::rigid_batch_detail {
 
 BlockStats advance_iso_double(const Model& model, const BodyType& type, State* state,
-                      const uint32_t* body, int count, uint64_t first, uint64_t last) {
-  return advance<double, IsotropicMass>(model, type, state, body, count, first, last);
+                              const uint32_t* body, int count, uint64_t first, uint64_t last,
+                              StretchSweep* sweep) {
+  return advance<double, IsotropicMass>(model, type, state, body, count, first, last, sweep);
 }
 
 }  // namespace lrigid::rigid_batch_detail

@@ -1010,7 +1010,7 @@ namespace {  // NOLINT(build/namespaces)
 
 template <typename T, class Mass>
 BlockStats advance(const Model& model, const BodyType& type, State* state, const uint32_t* body,
-                   int count, uint64_t first, uint64_t last) {
+                   int count, uint64_t first, uint64_t last, StretchSweep* sweep) {
   const StepConsts<Mass> tc = make_consts<Mass>(model, type);
   const bool unsteady = tc.grid && model.field.frame_count() > 1;
   auto step = [&](auto plate, Lanes<T, Mass>* lanes, uint64_t s, int* outcome, int* landed) {
@@ -1024,7 +1024,7 @@ BlockStats advance(const Model& model, const BodyType& type, State* state, const
       splitting_lanes<T>(tc, lanes, s, outcome, landed);
   };
   return drive_block<T, Lanes<T, Mass>>(model, type, tc, tc.plate, state, body, count, first, last,
-                                  step);
+                                        step, sweep);
 }
 
 }  // namespace

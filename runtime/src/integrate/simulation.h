@@ -15,7 +15,8 @@ struct RunStats {
   // of them, steps a batched block handed to the scalar step (integrate/rigid_batch.h)
   uint64_t scalar_handoffs = 0;
   // steps on which a batched block ran Newton itself (stiff drag, or the free Kirchhoff flow;
-  // counted per iteration kind, so a step can count twice)
+  // counted per iteration kind, so a step can count twice; with contacts between bodies also the
+  // speculative steps that were taken again, simulation.cpp ContactStretches)
   uint64_t newton_steps = 0;
   uint64_t steps = 0;          // time steps
   double wall_seconds = 0;     // integration only (no output)
@@ -43,6 +44,10 @@ struct RunOptions {
   // counts go on from *live_stats; when set, *live_stats is kept up to date before each output
   bool output_at_start = true;
   RunStats* live_stats = nullptr;
+  // with contacts between bodies (Model::body_contact): the steps of a speculative stretch (0:
+  // the default, simulation.cpp kContactStretchSteps; 1: the lockstep, every body one step at a
+  // time with the contact stage after each step). The results do not depend on it (tests).
+  uint64_t contact_stretch = 0;
 };
 
 RunStats simulate(const Model& model, State* state, const RunOptions& options);

@@ -1,18 +1,24 @@
 // Contacts between bodies (contact/bodies.h, island.h) against closed forms: two spheres head-on
 // and off-centre with restitution e, Newton's cradle, a stack of boxes standing, a block sliding
-// on a block, a heap of spheres on the ground; the same results for any thread count.
+// on a block, a heap of spheres on the ground; the same results for any thread count; the
+// speculative stretches of several steps (integrate/simulation.cpp) give the lockstep's results to
+// the bit (bodies far apart in a wind, a heap, sleeping bodies woken by a falling one).
 #include "contact/bodies.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <map>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "compile/compile_model.h"
 #include "contact/island.h"
 #include "contact/pair_geometry.h"
 #include "integrate/simulation.h"
+#include "support/batch_compare.h"
 #include "support/contact_scenes.h"
 #include "support/fixture.h"
 
@@ -461,6 +467,265 @@ TEST(BodyContact, ThePositionCorrectionLiftsAColumnPressedIntoTheGround) {
   }
 }
 
+// Two States bitwise the same in every part (a NaN left in place compares equal)
+::testing::AssertionResult same_state(const State& a, const State& b) {
+  auto bits = [](const auto& x, const auto& y) {
+    return x.size() == y.size() &&
+           (x.empty() || std::memcmp(x.data(), y.data(), x.size() * sizeof(x[0])) == 0);
+  };
+  const std::pair<const char*, bool> parts[] = {
+      {"step", a.step == b.step && std::memcmp(&a.t, &b.t, sizeof a.t) == 0},
+      {"x", bits(a.x, b.x)},
+      {"q", bits(a.q, b.q)},
+      {"v", bits(a.v, b.v)},
+      {"w", bits(a.w, b.w)},
+      {"u_seen", bits(a.u_seen, b.u_seen)},
+      {"status", bits(a.status, b.status)},
+      {"t_stop", bits(a.t_stop, b.t_stop)},
+      {"reason", a.reason == b.reason},
+      {"contact", bits(a.contact, b.contact)},
+      {"rest_steps", bits(a.rest_steps, b.rest_steps)},
+      {"impacts", bits(a.impacts, b.impacts)},
+      {"t_touch", bits(a.t_touch, b.t_touch)},
+      {"x_touch", bits(a.x_touch, b.x_touch)},
+      {"hidden", bits(a.hidden, b.hidden)},
+      {"history", bits(a.history, b.history)},
+      {"pair_impulses", bits(a.pair_impulses, b.pair_impulses)},
+      {"watch", a.watch.size() == b.watch.size()}};
+  const char* part = nullptr;
+  for (const auto& [name, same] : parts)
+    if (!same && !part) part = name;
+  for (size_t i = 0; !part && i < a.watch.size(); ++i) {
+    const GustWatch &p = a.watch[i], &r = b.watch[i];
+    if (p.u != r.u || std::memcmp(&p.ua, &r.ua, sizeof p.ua) != 0 ||
+        std::memcmp(&p.gust, &r.gust, sizeof p.gust) != 0 || p.start != r.start ||
+        p.step != r.step || p.wake != r.wake || p.valid != r.valid)
+      part = "watch";
+  }
+  if (!part) return ::testing::AssertionSuccess();
+  auto out = ::testing::AssertionFailure() << "the states differ in " << part;
+  for (size_t i = 0; i < std::min(a.size(), b.size()); ++i)
+    if (a.x[i] != b.x[i] || a.v[i] != b.v[i] || a.status[i] != b.status[i] ||
+        a.contact[i] != b.contact[i]) {
+      out << " (first at body " << i << ": x " << a.x[i].transpose() << " against "
+          << b.x[i].transpose() << ")";
+      break;
+    }
+  return out;
+}
+
+struct StretchRun {
+  State state;
+  RunStats stats;
+  size_t asleep_at_outputs = 0;  // bodies asleep, summed over the outputs
+};
+
+// The run of m from `start` with stretches of `steps` steps (RunOptions::contact_stretch; 1: the
+// lockstep) on `threads` threads, an output every `every` seconds.
+StretchRun run_stretches(const Model& m, const State& start, uint64_t steps, int threads,
+                         double every) {
+  StretchRun r{start, {}, 0};
+  RunOptions o;
+  o.threads = threads;
+  o.every = every;
+  o.contact_stretch = steps;
+  o.on_output = [&](const State& x) {
+    for (size_t i = 0; i < x.size(); ++i)
+      r.asleep_at_outputs += x.status[i] == BodyStatus::Sleeping;
+  };
+  r.stats = simulate(m, &r.state, o);
+  return r;
+}
+
+// The speculative stretches (the default length, and 7 steps) on 1 and 2 threads end bitwise
+// where the lockstep ends, with the same counts; returns the lockstep's run.
+StretchRun expect_stretches_are_the_lockstep(const Model& m, const State& start, double every) {
+  const StretchRun lock = run_stretches(m, start, 1, 1, every);
+  struct Case {
+    uint64_t steps;
+    int threads;
+  };
+  for (const Case c : {Case{0, 1}, Case{7, 1}, Case{0, 2}}) {
+    SCOPED_TRACE("stretches of " + (c.steps ? std::to_string(c.steps) : std::string("default")) +
+                 " steps, " + std::to_string(c.threads) + " threads");
+    const StretchRun r = run_stretches(m, start, c.steps, c.threads, every);
+    EXPECT_TRUE(same_state(r.state, lock.state));
+    EXPECT_EQ(r.stats.body_steps, lock.stats.body_steps);
+    EXPECT_EQ(r.stats.scalar_handoffs, lock.stats.scalar_handoffs);
+    EXPECT_EQ(r.stats.pair_steps, lock.stats.pair_steps);
+    EXPECT_EQ(r.stats.pair_wakes, lock.stats.pair_wakes);
+    EXPECT_EQ(r.stats.steps, lock.stats.steps);
+    EXPECT_EQ(r.stats.landed, lock.stats.landed);
+    EXPECT_EQ(r.stats.exited, lock.stats.exited);
+    EXPECT_EQ(r.stats.resting, lock.stats.resting);
+    EXPECT_EQ(r.asleep_at_outputs, lock.asleep_at_outputs);
+  }
+  return lock;
+}
+
+// Bodies far apart in the sheared wind grid, landing on its colliding ground and leaving it:
+// beads (the isotropic M, whose lanes keep the world velocity), tissue squares and seed pods (the
+// diagonal M), on the batched step in double and single precision and on the scalar step. No
+// two touch: every stretch is kept as it was first taken.
+TEST(BodyContactStretches, BodiesFarApartEndWhereTheLockstepEndsThem) {
+  Scene s = test::sphere_scene(0.004, 600, 1.2, 1.5e-5, 12);
+  s.effects = test::effects({Effect::Gravity, Effect::Buoyancy, Effect::Drag, Effect::AddedMass,
+                             Effect::MeanFlow, Effect::Turbulence, Effect::Lift});
+  BodySpec tissue = s.bodies[0];
+  tissue.name = "tissue";
+  tissue.shape = Shape::box(0.03, 0.03, 1e-4);
+  tissue.density = 300;
+  tissue.count = 12;
+  BodySpec pod = s.bodies[0];
+  pod.name = "pod";
+  pod.shape = Shape::ellipsoid(0.004, 0.002, 0.002);
+  pod.density = 400;
+  pod.count = 12;
+  s.bodies.push_back(tissue);
+  s.bodies.push_back(pod);
+  batch_test::release_in_wind_grid(&s, 11);
+  for (BodySpec& b : s.bodies) {
+    b.spawn_in_box = true;
+    b.box_lo = Vec3(-5.5, -3.5, 0.05);
+    b.box_hi = Vec3(-1.5, 3.5, 1.5);
+    b.random_orientation = true;
+  }
+  s.ground_contact = ContactMode::Collide;
+  s.body_contact = true;
+  s.duration = 0.6;
+  const FluidField field = batch_test::wind_grid(1.5e-5);
+  struct Case {
+    bool batched;
+    Precision p;
+    const char* name;
+  };
+  for (const Case c :
+       {Case{true, Precision::Double, "batched double"},
+        Case{true, Precision::Float, "batched float"}, Case{false, Precision::Double, "scalar"}}) {
+    SCOPED_TRACE(c.name);
+    Model m = test::compile(s, field);
+    m.batched = c.batched;
+    m.precision = c.p;
+    ASSERT_EQ(step_kind(m, m.types[0], nullptr), c.batched ? StepKind::Batched : StepKind::Scalar);
+    const State start = initial_state(m, s);
+    const StretchRun lock = expect_stretches_are_the_lockstep(m, start, 0.1);
+    // the scene: bodies far apart, some on the ground, some leaving the grid
+    EXPECT_EQ(lock.stats.pair_steps, 0u);
+    size_t on_ground = 0;
+    for (size_t i = 0; i < lock.state.size(); ++i)
+      on_ground += lock.state.status[i] == BodyStatus::Moving &&
+                   lock.state.contact[i] != ContactState::Flying;
+    EXPECT_GT(on_ground, 0u);
+  }
+}
+
+// A heap of spheres and boxes falling onto the ground and onto each other (every stretch has
+// bodies taken again in lockstep); spheres thrown at each other and three spheres in a row
+// colliding in free space, with no ground (the stage marks a body flying once it touches
+// nothing).
+TEST(BodyContactStretches, AHeapEndsWhereTheLockstepEndsIt) {
+  BodySpec ball = sphere_body("ball", 0.01, 1000, Vec3::Zero(), Vec3::Zero(), 0.2, 0.5);
+  ball.contact.rolling_resistance = 0.3;
+  ball.count = 30;
+  ball.spawn_in_box = true;
+  ball.box_lo = Vec3(-0.03, -0.03, 0.02);
+  ball.box_hi = Vec3(0.03, 0.03, 0.12);
+  BodySpec brick =
+      box_body("brick", Vec3(0.02, 0.015, 0.01), 800, Vec3::Zero(), Vec3::Zero(), 0.1, 0.6);
+  brick.count = 10;
+  brick.spawn_in_box = true;
+  brick.box_lo = Vec3(-0.03, -0.03, 0.12);
+  brick.box_hi = Vec3(0.03, 0.03, 0.2);
+  brick.random_orientation = true;
+  Scene s = pair_scene({ball, brick}, Vec3(0, 0, -kG), 1e-3, 0.4);
+  s.has_ground = true;
+  s.ground_z = 0;
+  s.ground_contact = ContactMode::Collide;
+  const Model m = test::compile(s);
+  const StretchRun heap = expect_stretches_are_the_lockstep(m, initial_state(m, s), 0.05);
+  EXPECT_GT(heap.stats.pair_steps, 1000u) << "bodies on bodies";
+
+  // spheres thrown at each other in free space: with no colliding ground the stage marks a body
+  // flying once it touches nothing, which a stretch that starts just after a contact must do too
+  BodySpec bead = sphere_body("bead", 0.005, 1000, Vec3::Zero(), Vec3::Zero(), 0.7, 0.3);
+  bead.count = 40;
+  bead.spawn_in_box = true;
+  bead.box_lo = Vec3(-0.04, -0.04, -0.04);
+  bead.box_hi = Vec3(0.04, 0.04, 0.04);
+  Scene swarm = pair_scene({bead}, Vec3::Zero(), 5e-4, 0.25);
+  const Model ms = test::compile(swarm);
+  ASSERT_FALSE(ms.contacts());
+  State thrown = initial_state(ms, swarm);
+  for (size_t i = 0; i < thrown.size(); ++i)
+    thrown.v[i] = -2.0 * thrown.x[i] + 0.1 * Vec3(std::sin(3.0 * i), std::cos(5.0 * i), 0);
+  const StretchRun free = expect_stretches_are_the_lockstep(ms, thrown, 0.05);
+  EXPECT_GT(free.stats.pair_steps, 100u);
+
+  const double r = 0.01, u = 0.5, gap = 0.001;
+  Scene row =
+      pair_scene({sphere_body("a", r, 1000, Vec3(-(2 * r + gap), 0, 0), Vec3(u, 0, 0), 0.8, 0.2),
+                  sphere_body("b", r, 1000, Vec3(0, 0, 0), Vec3::Zero(), 0.8, 0.2),
+                  sphere_body("c", r, 1000, Vec3(2 * r + gap, 0, 0), Vec3::Zero(), 0.8, 0.2)},
+                 Vec3::Zero(), 1e-4, 0.05);
+  const Model mr = test::compile(row);
+  ASSERT_FALSE(mr.contacts());
+  const StretchRun cradle = expect_stretches_are_the_lockstep(mr, initial_state(mr, row), 0.01);
+  EXPECT_GT(cradle.stats.pair_steps, 0u);
+  EXPECT_GT(cradle.state.v[2].x(), 0.3 * u) << "the last one leaves";
+}
+
+// A stack of boxes falls asleep on the ground; a sphere released over it later falls onto it and
+// wakes it (and the sleeping boxes touching the one it hits), while a second stack far away
+// sleeps on.
+TEST(BodyContactStretches, SleepingBodiesWokenByAFallingOneEndWhereTheLockstepEndsThem) {
+  std::vector<BodySpec> bodies;
+  for (const double x0 : {0.0, 0.5})
+    for (int k = 0; k < 3; ++k)
+      bodies.push_back(box_body("box" + std::to_string(k), Vec3(0.04, 0.03, 0.02), 1000,
+                                Vec3(x0, 0, 0.01 + 0.02 * k), Vec3::Zero(), 0.0, 0.5));
+  BodySpec ball =
+      sphere_body("ball", 0.008, 3000, Vec3(0.005, 0.003, 0.3), Vec3(0, 0, -1), 0.3, 0.5);
+  ball.release_times = {0.8};
+  bodies.push_back(ball);
+  Scene s = pair_scene(bodies, Vec3(0, 0, -kG), 1e-3, 1.2);
+  s.has_ground = true;
+  s.ground_z = 0;
+  s.ground_contact = ContactMode::Collide;
+  Model m = test::compile(s);
+  m.sleep_time = 0.3;
+  const StretchRun run = expect_stretches_are_the_lockstep(m, initial_state(m, s), 0.1);
+  EXPECT_GT(run.stats.pair_wakes, 0u) << "the ball wakes the stack";
+  EXPECT_GT(run.asleep_at_outputs, 0u);
+  for (size_t i = 3; i < 6; ++i)
+    EXPECT_EQ(run.state.status[i], BodyStatus::Sleeping) << "the far stack sleeps on: " << i;
+}
+
+// Boxes lying on the ground of the gusting wind grid (a field whose frames change at 0.3, 0.55 and
+// 0.9 s) fall asleep, and wake where the flow changes (a stretch ends there; one that fell asleep
+// inside the stretch is taken again in lockstep), and a bead falls onto one.
+TEST(BodyContactStretches, BodiesAsleepInAChangingFlowEndWhereTheLockstepEndsThem) {
+  std::vector<BodySpec> bodies;
+  for (int k = 0; k < 4; ++k)
+    bodies.push_back(box_body("brick" + std::to_string(k), Vec3(0.04, 0.03, 0.02), 2000,
+                              Vec3(-4 + 0.041 * k, 0, 0.01), Vec3::Zero(), 0.0, 0.6));
+  BodySpec bead = sphere_body("bead", 0.006, 2500, Vec3(-3.96, 0.002, 0.4), Vec3::Zero(), 0.3, 0.5);
+  bead.release_times = {0.4};
+  bodies.push_back(bead);
+  Scene s = pair_scene(bodies, Vec3(0, 0, -kG), 2e-3, 1.2);
+  s.uniform_field = false;
+  s.effects = test::effects({Effect::Gravity, Effect::Buoyancy, Effect::Drag, Effect::MeanFlow});
+  s.has_ground = true;
+  s.ground_z = 0;
+  s.ground_contact = ContactMode::Collide;
+  Model m = test::compile(s, batch_test::gusty_wind_grid(1.5e-5));
+  ASSERT_GE(m.field.frame_count(), 2u);
+  // (asleep at 0.546 s, inside a stretch of 7 steps that the frame at 0.55 s cuts, and again
+  // from 1.1 s)
+  m.sleep_time = 0.545;
+  const StretchRun run = expect_stretches_are_the_lockstep(m, initial_state(m, s), 0.1);
+  EXPECT_GT(run.asleep_at_outputs, 0u);
+  EXPECT_GT(run.stats.pair_steps, 0u);
+}
+
 }  // namespace
 }  // namespace lrigid
-

@@ -28,19 +28,24 @@ namespace {
 constexpr double kNu = 1.5e-5;
 
 // A block's lanes as whole BodyStates, for a step written here (the driver's interface: load,
-// store, rest; the positions also in Samples::x, where the sample stage reads them)
+// store, rest, velocity(), w and q; the positions also in Samples::x, where the sample stage
+// reads them)
 struct BodyLanes : Samples<double> {
   BodyState b[kBatch];
+  double v[3][kBatch] = {}, w[3][kBatch] = {}, q[4][kBatch] = {};
   void load(int j, const BodyState& s) {
     b[j] = s;
     b[j].history = nullptr;
-    for (int a = 0; a < 3; ++a) x[a][j] = s.x[a];
+    for (int a = 0; a < 3; ++a) x[a][j] = s.x[a], v[a][j] = s.v[a], w[a][j] = s.w[a];
+    q[0][j] = s.q.w(), q[1][j] = s.q.x(), q[2][j] = s.q.y(), q[3][j] = s.q.z();
   }
   void store(int j, BodyState* s) const { *s = b[j]; }
   void rest(int j) {
     b[j].v.setZero();
     b[j].w.setZero();
+    for (int a = 0; a < 3; ++a) v[a][j] = w[a][j] = 0;
   }
+  double (*velocity())[kBatch] { return v; }
 };
 
 // Body i of two States bitwise the same (a NaN left in place compares equal), with the same
@@ -147,10 +152,10 @@ TEST(BatchLanes, ALaneTheLoopsLeaveIsTheScalarStepsToTheBit) {
 // The scene's 32 bodies in one block, and each body alone in a block of its own (lane 0, the
 // others idle): the same final states to the bit, the same stops, the same counts. A lane's
 // arithmetic does not depend on its place in the block nor on how many lanes the block steps.
-void expect_block_is_one_by_one(
-    const Scene& s, const FluidField& field, Precision p,
-    BlockStats (*advance)(const Model&, const BodyType&, State*, const uint32_t*, int, uint64_t,
-                          uint64_t)) {
+void expect_block_is_one_by_one(const Scene& s, const FluidField& field, Precision p,
+                                BlockStats (*advance)(const Model&, const BodyType&, State*,
+                                                      const uint32_t*, int, uint64_t, uint64_t,
+                                                      StretchSweep*)) {
   Model m = test::compile(s, field);
   m.precision = p;
   ASSERT_NE(step_kind(m, m.types[0], nullptr), StepKind::Scalar);
@@ -160,10 +165,10 @@ void expect_block_is_one_by_one(
   std::vector<uint32_t> body(kBatch);
   std::iota(body.begin(), body.end(), 0u);
   State block = start, alone = start;
-  const BlockStats all = advance(m, m.types[0], &block, body.data(), kBatch, 0, last);
+  const BlockStats all = advance(m, m.types[0], &block, body.data(), kBatch, 0, last, nullptr);
   BlockStats sum;
   for (int j = 0; j < kBatch; ++j) {
-    const BlockStats one = advance(m, m.types[0], &alone, &body[j], 1, 0, last);
+    const BlockStats one = advance(m, m.types[0], &alone, &body[j], 1, 0, last, nullptr);
     sum.body_steps += one.body_steps;
     sum.scalar_steps += one.scalar_steps;
     sum.newton_steps += one.newton_steps;
