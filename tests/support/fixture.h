@@ -49,6 +49,22 @@ inline TriangleMesh polygon_prism(int n, double r, double t) {
   return m;
 }
 
+// A closed, outward rectangular prism of half sides a along x and b along y and thickness t: 8
+// vertices and 12 triangles, the file a user exports for a rectangular sheet
+inline TriangleMesh rect_prism(double a, double b, double t) {
+  TriangleMesh m;
+  for (double z : {-t / 2, t / 2})
+    for (const Vec2& xy : {Vec2(-a, -b), Vec2(a, -b), Vec2(a, b), Vec2(-a, b)})
+      m.vertices.emplace_back(xy.x(), xy.y(), z);
+  m.faces = {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7}};
+  for (int i = 0; i < 4; ++i) {
+    const int j = (i + 1) % 4;
+    m.faces.push_back({i, j, j + 4});
+    m.faces.push_back({i, j + 4, i + 4});
+  }
+  return m;
+}
+
 inline EffectSet effects(std::initializer_list<Effect> list) {
   EffectSet e;
   for (Effect x : list) e.add(x);

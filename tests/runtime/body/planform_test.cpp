@@ -185,21 +185,6 @@ Shape outline_mesh(const TriangleMesh& m) {
   return Shape::from_mesh(std::make_shared<const TriangleMesh>(m), "outline.obj");
 }
 
-// A closed, outward rectangular prism of half sides a along x and b along y, thickness t
-TriangleMesh rect_prism(double a, double b, double t) {
-  TriangleMesh m;
-  for (double z : {-t / 2, t / 2})
-    for (const Vec2& xy : {Vec2(-a, -b), Vec2(a, -b), Vec2(a, b), Vec2(-a, b)})
-      m.vertices.emplace_back(xy.x(), xy.y(), z);
-  m.faces = {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7}};
-  for (int i = 0; i < 4; ++i) {
-    const int j = (i + 1) % 4;
-    m.faces.push_back({i, j, j + 4});
-    m.faces.push_back({i, j + 4, i + 4});
-  }
-  return m;
-}
-
 // A square prism drawn turned about its normal is the square at every turn: R = 1, its half
 // side, and e1, e2 along its sides (the one nearest x first); its bounding box's square is up to
 // twice as large (R = 1/2 at 45 degrees), which the planform does not read
@@ -207,7 +192,7 @@ TEST(Planform, ATurnedSquareMeshIsASquare) {
   const double r = 0.03, t = 1e-4;
   for (const double deg : {0.0, 10.0, 30.0, 45.0, 60.0, 89.0}) {
     SCOPED_TRACE(deg);
-    const Shape s = outline_mesh(turned_about_z(rect_prism(r, r, t), deg * M_PI / 180));
+    const Shape s = outline_mesh(turned_about_z(test::rect_prism(r, r, t), deg * M_PI / 180));
     const Planform p = planform_of(s, 2);
     EXPECT_NEAR(p.rectangularity, 1.0, 1e-14);
     EXPECT_NEAR(p.w, 1.0, 1e-13);
@@ -232,13 +217,14 @@ TEST(Planform, ATurnedSquareMeshIsASquare) {
     }
   }
   // a 3:1 rectangle turned by 30 degrees: its long side first
-  const Planform l = planform_of(outline_mesh(turned_about_z(rect_prism(3 * r, r, t), M_PI / 6)), 2);
+  const Planform l =
+      planform_of(outline_mesh(turned_about_z(test::rect_prism(3 * r, r, t), M_PI / 6)), 2);
   EXPECT_NEAR(l.rectangularity, 1.0, 1e-14);
   EXPECT_NEAR(l.h1, 3 * r, 1e-16);
   EXPECT_NEAR(l.h2, r, 1e-16);
   EXPECT_NEAR(l.angle, M_PI / 6, 1e-13);
   // the normal along x: the in-plane axes are y and z, the angle from y towards z
-  TriangleMesh side = turned_about_z(rect_prism(r, r, t), M_PI / 6);
+  TriangleMesh side = turned_about_z(test::rect_prism(r, r, t), M_PI / 6);
   for (Vec3& v : side.vertices) v = Vec3(v.z(), v.x(), v.y());
   const Planform px = planform_of(outline_mesh(side), 0);
   EXPECT_NEAR(px.rectangularity, 1.0, 1e-14);

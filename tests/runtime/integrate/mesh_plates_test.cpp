@@ -29,24 +29,8 @@ constexpr double kRhoBox = kAreal / kH;                    // 1008 kg/m^3
 constexpr double kRhoEll = kAreal / (4.0 / 3.0 * kH / 2);  // ellipsoid of centre thickness kH
 constexpr double kRho = 1.2, kNu = 1.5e-5;                 // air
 
-// A closed, outward rectangular prism of half sides a along x and b along y and thickness t: 8
-// vertices and 12 triangles, the file a user exports for a rectangular sheet
-TriangleMesh rect_prism(double a, double b, double t) {
-  TriangleMesh m;
-  for (double z : {-t / 2, t / 2})
-    for (const auto& xy : {Vec2(-a, -b), Vec2(a, -b), Vec2(a, b), Vec2(-a, b)})
-      m.vertices.emplace_back(xy.x(), xy.y(), z);
-  m.faces = {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7}};
-  for (int i = 0; i < 4; ++i) {
-    const int j = (i + 1) % 4;
-    m.faces.push_back({i, j, j + 4});
-    m.faces.push_back({i, j + 4, i + 4});
-  }
-  return m;
-}
-
-// ... of half side r: a square sheet
-TriangleMesh square_prism(double r, double t) { return rect_prism(r, r, t); }
+// A square sheet of half side r and thickness t, as a user exports it (8 vertices)
+TriangleMesh square_prism(double r, double t) { return test::rect_prism(r, r, t); }
 
 // the rotation by `angle` about z, and a mesh drawn turned by it in its file
 Mat3 rot_z(double angle) { return Eigen::AngleAxisd(angle, Vec3::UnitZ()).toRotationMatrix(); }
@@ -339,8 +323,8 @@ TEST(MeshPlates, ATurnedRectangleMeshHasTheTurnedBoxsPlateModel) {
     SCOPED_TRACE(testing::Message() << c.a << " x " << c.b << " at " << c.deg << " deg");
     const double turn = c.deg * M_PI / 180;
     const BodyType box = type_of(Shape::box(2 * c.a, 2 * c.b, kH), kRhoBox);
-    const BodyType obj =
-        type_of(mesh_shape(turned_in_file(rect_prism(c.a, c.b, kH), turn), "turned.obj"), kRhoBox);
+    const BodyType obj = type_of(
+        mesh_shape(turned_in_file(test::rect_prism(c.a, c.b, kH), turn), "turned.obj"), kRhoBox);
     EXPECT_NEAR(obj.planform.rectangularity, 1.0, 1e-12);
     EXPECT_NEAR(obj.planform.h1, c.a, 1e-15);
     EXPECT_NEAR(obj.planform.h2, c.b, 1e-15);
