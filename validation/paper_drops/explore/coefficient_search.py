@@ -16,6 +16,9 @@ drag coefficient A - B to LR_E with the broadside A + B kept (the textbook C_D).
   ... check ... --half --height 1.0                        half/half releases from 1.0 m (the
                                                            set-up before the recorded one)
   ... --spin 0                                             no release spin (before 2026-12-05)
+  ... check ... --seed-square S                            the squares' drops drawn with seed S
+                                                           and the circles' with S + 1 (run.py:
+                                                           7 and 8)
 
 Each configuration prints one JSON line: the factors, the loss (the sum of squared log errors of
 the median descent speed in units of 15 %, of the median lateral displacement in units of a
@@ -136,7 +139,11 @@ def main():
     p.add_argument("--spin", type=float,
                    help="release spin bound in rad/s (default run.py's RELEASE_SPIN; "
                    "none: --spin 0)")
+    p.add_argument("--seed-square", type=int,
+                   help="check: the squares' seed (the circles' is one more; run.py's: 7)")
     a = p.parse_args()
+    if a.seed_square is not None:
+        SEEDS.update(square=a.seed_square, circle=a.seed_square + 1)
     rng = np.random.default_rng(a.seed)
     with tempfile.TemporaryDirectory() as work:
         if a.mode == "check":
