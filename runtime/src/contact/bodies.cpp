@@ -173,8 +173,9 @@ Cand make_cand(const Model& model, const State& st, size_t i, bool widen = true)
   c.pose.R = st.q[i].toRotationMatrix();
   c.vw = c.pose.R * st.v[i];
   c.ww = c.pose.R * st.w[i];
-  c.margin = widen ? kPairSkin : 0.0;
-  if (widen && c.dynamic) c.margin += (c.vw.norm() + c.ww.norm() * type.reach) * model.dt;
+  c.margin = !widen      ? 0.0
+             : c.dynamic ? pair_margin(type, c.vw.norm(), c.ww.norm(), model.dt)
+                         : kPairSkin;
   pair_aabb(*type.pair, c.pose, &c.lo, &c.hi);
   c.lo.array() -= c.margin;
   c.hi.array() += c.margin;

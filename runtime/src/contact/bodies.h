@@ -67,6 +67,13 @@ BodyContactStats body_contacts(const Model& model, State* st, BodyContactScratch
 // Whether body i takes part in the stage (moving or sleeping, not hidden).
 bool in_body_contacts(const State& st, size_t i);
 
+// The margin (m) the stage widens a moving body's box and narrow phase by: kPairSkin plus what
+// it closes in one step of dt at speed |v| (m/s) and spin |w| (rad/s), its farthest point at
+// type.reach from its centre of mass. A body that does not move gets kPairSkin alone.
+inline double pair_margin(const BodyType& type, double speed, double spin, double dt) {
+  return kPairSkin + (speed + spin * type.reach) * dt;
+}
+
 // For stretches of several steps (integrate/simulation.cpp): a box that holds every box the
 // stage may give a body at the steps of a stretch, and whether the body moves in the stretch (a
 // body asleep throughout is a static surface there).

@@ -220,9 +220,8 @@ int island_resolve(IslandBody* bodies, IslandPoint* pts, int count, int passes, 
       double left, inv, lam;
     };
     thread_local std::vector<Deep> deep;
-    thread_local std::vector<double> disp;
-    disp.assign(3 * size_t(nb), 0.0);
     deep.clear();
+    std::fill(moves, moves + 3 * size_t(nb), 0.0);  // (the sweeps below accumulate into it)
     double pfloor = HUGE_VAL;
     for (const int i : live) {
       const IslandPoint& p = pts[i];
@@ -254,8 +253,8 @@ int island_resolve(IslandBody* bodies, IslandPoint* pts, int count, int passes, 
     for (int pass = 0; pass < passes && !deep.empty(); ++pass) {
       double change = 0, scale = 0;
       for (Deep& d : deep) {
-        double* xa = &disp[3 * size_t(d.a)];
-        double* xb = d.b >= 0 ? &disp[3 * size_t(d.b)] : nullptr;
+        double* xa = &moves[3 * size_t(d.a)];
+        double* xb = d.b >= 0 ? &moves[3 * size_t(d.b)] : nullptr;
         double gap = dot3(xa, d.n);
         if (xb) gap -= dot3(xb, d.n);
         const double l_new = std::max(0.0, d.lam + (d.left - gap) * d.inv);
@@ -269,8 +268,6 @@ int island_resolve(IslandBody* bodies, IslandPoint* pts, int count, int passes, 
       }
       if (change <= kContactTolerance * std::max(scale, pfloor)) break;
     }
-    for (int m = 0; m < nb; ++m)
-      for (int e = 0; e < 3; ++e) moves[3 * m + e] = disp[3 * size_t(m) + e];
   }
   for (int m = 0; m < nb; ++m)
     for (int a = 0; a < 3; ++a) bodies[m].v[a] = xi[6 * m + a], bodies[m].w[a] = xi[6 * m + 3 + a];

@@ -346,7 +346,7 @@ class ContactStretches {
   // the squared speeds), m
   double margin(const BodyType& type, double v2, double w2) const {
     if (v2 < 0) return kPairSkin;
-    return (kPairSkin + (std::sqrt(v2) + std::sqrt(w2) * type.reach) * model_.dt) * (1 + 1e-6);
+    return pair_margin(type, std::sqrt(v2), std::sqrt(w2), model_.dt) * (1 + 1e-6);
   }
 
   // A box holding body i's boxes in the stage at every step of the stretch: each step's centre,
