@@ -221,6 +221,12 @@ class ContactStretches {
   // that box met (measured on the leaves scene's bodies x5: without it a third of the bodies
   // taken again leave their box, with 0.5 of the radius 2 %, each then tested against every body)
   static constexpr double kSlack = 0.5;
+  // A stretch whose speculation had at least half its moving bodies taken again (a pile, a heap:
+  // bodies that touch from step to step) is followed by stretches taken in lockstep from the
+  // start, without the speculative steps that would be thrown away: first 1, then twice as many
+  // after each speculation that fails again, up to this many (measured on the pile of 1000 boxes:
+  // docs/contacts.md). The results are the lockstep's either way.
+  static constexpr uint32_t kMaxLockstepStretches = 16;
 
  public:
   ContactStretches(const Model& model, const std::vector<StepKind>& kinds, size_t n,
@@ -236,19 +242,27 @@ class ContactStretches {
   }
 
   // Every body through the stretch [first, last) (the state at step `first`); adds the steps
-  // taken to *counts and the stage's counts to *pairs.
-  void run(State* state, uint64_t first, uint64_t last, StepCounts* counts,
+  // taken to *counts and the stage's counts to *pairs. Returns whether the stretch was taken in
+  // lockstep from its start (kMaxLockstepStretches).
+  bool run(State* state, uint64_t first, uint64_t last, StepCounts* counts,
            BodyContactStats* pairs) {
+    if (lockstep_left_ > 0) {
+      --lockstep_left_;
+      run_lockstep(state, first, last, counts, pairs);
+      return true;
+    }
     State& st = *state;
     start_ = st;
     wake_list(model_, st, all_, first, last, threads_);
     const WorkList work = work_list(model_, st, kinds_, all_, last);
     sweep_.begin(first, last);
     boxed_.clear();
+    size_t moving = 0;
     for (const uint32_t i : all_) {
       if (!in_body_contacts(st, i)) continue;
       boxed_.push_back(i);
       moving_[i] = st.status[i] == BodyStatus::Moving || wakes_before(st, i, last);
+      moving += moving_[i];
       // (the stage would mark it flying after its first step)
       again_[i] = moving_[i] && !model_.contacts() && st.contact[i] != ContactState::Flying;
       begin_body(st, i);
@@ -269,7 +283,7 @@ class ContactStretches {
     while (!redo.empty()) {
       StepCounts rc;
       BodyContactStats rp;
-      lockstep(&st, redo, first, last, &rc, &rp);
+      lockstep(&st, redo, first, last, true, &rc, &rp);
       c.newton += rc.newton;
       // the bodies kept so far that the new motion reaches: a body's new box within its box
       // before meets only bodies that box met (a body taken again may be woken by the stage, and
@@ -303,13 +317,43 @@ class ContactStretches {
       for (const uint32_t i : boxed_)
         if (again_[i]) redo.push_back(i);
     }
-    for (const uint32_t i : boxed_) again_[i] = 0;
+    size_t taken_again = 0;
+    for (const uint32_t i : boxed_) {
+      taken_again += again_[i];
+      again_[i] = 0;
+    }
+    if (moving > 0 && 2 * taken_again >= moving) {
+      lockstep_left_ = lockstep_wait_;
+      lockstep_wait_ = std::min(2 * lockstep_wait_, kMaxLockstepStretches);
+    } else {
+      lockstep_wait_ = 1;
+    }
     counts->body_steps += c.body_steps;
     counts->handoffs += c.handoffs;
     counts->newton += c.newton;
+    return false;
   }
 
  private:
+  // The stretch [first, last) in lockstep from its start: the bodies taking part in the stage one
+  // step at a time with it, the others (hidden) through the stretch at once, as a speculative
+  // stretch takes them.
+  void run_lockstep(State* state, uint64_t first, uint64_t last, StepCounts* counts,
+                    BodyContactStats* pairs) {
+    State& st = *state;
+    sweep_.begin(first, last);
+    boxed_.clear();
+    others_.clear();
+    for (const uint32_t i : all_) (in_body_contacts(st, i) ? boxed_ : others_).push_back(i);
+    wake_list(model_, st, others_, first, last, threads_);
+    const WorkList work = work_list(model_, st, kinds_, others_, last);
+    const StepCounts c = advance_work(model_, st, work, first, last, threads_, &sweep_);
+    counts->body_steps += c.body_steps;
+    counts->handoffs += c.handoffs;
+    counts->newton += c.newton;
+    lockstep(&st, boxed_, first, last, false, counts, pairs);
+  }
+
   // body i (taking part in the stage) at the start of the stretch: no steps yet, and a sleeping
   // body that wakes in the stretch asleep where it is until then (a moving body's steps fill each
   // step of the sweep; one asleep throughout stays in the state, slot())
@@ -439,16 +483,18 @@ class ContactStretches {
     c->handoffs -= sweep_.handoffs[i];
   }
 
-  // Bodies `redo` (increasing) back to the stretch's start, then through it in lockstep with the
-  // stage restricted to them, recording their motion.
+  // Bodies `redo` (increasing), back to the stretch's start (from_start: they took its steps
+  // speculatively), through it in lockstep with the stage restricted to them, recording their
+  // motion.
   void lockstep(State* state, const std::vector<uint32_t>& redo, uint64_t first, uint64_t last,
-                StepCounts* counts, BodyContactStats* pairs) {
+                bool from_start, StepCounts* counts, BodyContactStats* pairs) {
     State& st = *state;
     // (a few bodies on one thread: a parallel region per step costs more than it saves)
     const int threads = redo.size() >= kParallelBodies ? threads_ : 1;
-    st.pair_impulses = start_.pair_impulses;  // (the warm start of the stretch's first step)
+    // (the warm start of the stretch's first step)
+    if (from_start) st.pair_impulses = start_.pair_impulses;
     for (const uint32_t i : redo) {
-      restore(i, &st);
+      if (from_start) restore(i, &st);
       moving_[i] = 1;  // (its slots say when it sleeps)
       sweep_.start_asleep(i, still(st, i));
     }
@@ -510,6 +556,9 @@ class ContactStretches {
   StretchSweep sweep_;
   BodyContactScratch scratch_;
   std::vector<uint32_t> boxed_;  // the bodies taking part in the stage
+  std::vector<uint32_t> others_;  // (run_lockstep: the bodies that do not)
+  // stretches still to take in lockstep, and how many follow the next speculation that fails
+  uint32_t lockstep_left_ = 0, lockstep_wait_ = 1;
   // per body: moves in the stretch (else asleep throughout); taken again in lockstep; its box
   // over the stretch as first taken (stretch_box), and the bodies whose boxes that box met
   std::vector<uint8_t> moving_, again_;
@@ -610,7 +659,7 @@ RunStats simulate(const Model& model, State* state, const RunOptions& options) {
     const auto t0 = std::chrono::steady_clock::now();
     if (model.body_contact && last > first + 1) {
       BodyContactStats pc;
-      speculative->run(&st, first, last, &counts, &pc);
+      stats.lockstep_stretches += speculative->run(&st, first, last, &counts, &pc);
       stats.pair_steps += pc.touching;
       stats.pair_wakes += pc.woken;
     } else {

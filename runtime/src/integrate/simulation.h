@@ -25,6 +25,9 @@ struct RunStats {
   // sleeping bodies a contact woke
   uint64_t pair_steps = 0;
   uint64_t pair_wakes = 0;
+  // stretches of several steps taken in lockstep from their start, where bodies touch from step
+  // to step (simulation.cpp ContactStretches; the others are taken speculatively)
+  uint64_t lockstep_stretches = 0;
   // at the end: bodies resting on a surface or asleep there (contact/sleep.h)
   size_t resting = 0;
 };

@@ -538,8 +538,11 @@ StretchRun run_stretches(const Model& m, const State& start, uint64_t steps, int
 }
 
 // The speculative stretches (the default length, and 7 steps) on 1 and 2 threads end bitwise
-// where the lockstep ends, with the same counts; returns the lockstep's run.
-StretchRun expect_stretches_are_the_lockstep(const Model& m, const State& start, double every) {
+// where the lockstep ends, with the same counts; returns the lockstep's run, and in
+// *lockstep_stretches the stretches of the default length taken in lockstep from their start
+// (bodies touching from step to step).
+StretchRun expect_stretches_are_the_lockstep(const Model& m, const State& start, double every,
+                                             uint64_t* lockstep_stretches = nullptr) {
   const StretchRun lock = run_stretches(m, start, 1, 1, every);
   struct Case {
     uint64_t steps;
@@ -559,6 +562,8 @@ StretchRun expect_stretches_are_the_lockstep(const Model& m, const State& start,
     EXPECT_EQ(r.stats.exited, lock.stats.exited);
     EXPECT_EQ(r.stats.resting, lock.stats.resting);
     EXPECT_EQ(r.asleep_at_outputs, lock.asleep_at_outputs);
+    if (lockstep_stretches && c.steps == 0 && c.threads == 1)
+      *lockstep_stretches = r.stats.lockstep_stretches;
   }
   return lock;
 }
@@ -608,9 +613,11 @@ TEST(BodyContactStretches, BodiesFarApartEndWhereTheLockstepEndsThem) {
     m.precision = c.p;
     ASSERT_EQ(step_kind(m, m.types[0], nullptr), c.batched ? StepKind::Batched : StepKind::Scalar);
     const State start = initial_state(m, s);
-    const StretchRun lock = expect_stretches_are_the_lockstep(m, start, 0.1);
+    uint64_t lockstep_stretches = 1;
+    const StretchRun lock = expect_stretches_are_the_lockstep(m, start, 0.1, &lockstep_stretches);
     // the scene: bodies far apart, some on the ground, some leaving the grid
     EXPECT_EQ(lock.stats.pair_steps, 0u);
+    EXPECT_EQ(lockstep_stretches, 0u) << "every stretch speculative";
     size_t on_ground = 0;
     for (size_t i = 0; i < lock.state.size(); ++i)
       on_ground += lock.state.status[i] == BodyStatus::Moving &&
@@ -642,8 +649,13 @@ TEST(BodyContactStretches, AHeapEndsWhereTheLockstepEndsIt) {
   s.ground_z = 0;
   s.ground_contact = ContactMode::Collide;
   const Model m = test::compile(s);
-  const StretchRun heap = expect_stretches_are_the_lockstep(m, initial_state(m, s), 0.05);
+  uint64_t lockstep_stretches = 0;
+  const StretchRun heap =
+      expect_stretches_are_the_lockstep(m, initial_state(m, s), 0.05, &lockstep_stretches);
   EXPECT_GT(heap.stats.pair_steps, 1000u) << "bodies on bodies";
+  // (a heap's bodies touch from step to step: stretches taken in lockstep from their start after
+  // the first, speculative one)
+  EXPECT_GT(lockstep_stretches, 0u);
 
   // spheres thrown at each other in free space: with no colliding ground the stage marks a body
   // flying once it touches nothing, which a stretch that starts just after a contact must do too
