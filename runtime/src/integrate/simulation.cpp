@@ -221,12 +221,6 @@ class ContactStretches {
   // that box met (measured on the leaves scene's bodies x5: without it a third of the bodies
   // taken again leave their box, with 0.5 of the radius 2 %, each then tested against every body)
   static constexpr double kSlack = 0.5;
-  // A stretch whose speculation had at least half its moving bodies taken again (a pile, a heap:
-  // bodies that touch from step to step) is followed by stretches taken in lockstep from the
-  // start, without the speculative steps that would be thrown away: first 1, then twice as many
-  // after each speculation that fails again, up to this many (measured on the pile of 1000 boxes:
-  // docs/contacts.md). The results are the lockstep's either way.
-  static constexpr uint32_t kMaxLockstepStretches = 16;
 
  public:
   ContactStretches(const Model& model, const std::vector<StepKind>& kinds, size_t n,
@@ -243,11 +237,12 @@ class ContactStretches {
 
   // Every body through the stretch [first, last) (the state at step `first`); adds the steps
   // taken to *counts and the stage's counts to *pairs. Returns whether the stretch was taken in
-  // lockstep from its start (kMaxLockstepStretches).
+  // lockstep from its start: where at least half the moving bodies pressed against another in
+  // the last step (a pile, a heap: their speculative steps would be thrown away). The choice is
+  // the state's (its impulses, State::pair_impulses), so a resumed run makes it again.
   bool run(State* state, uint64_t first, uint64_t last, StepCounts* counts,
            BodyContactStats* pairs) {
-    if (lockstep_left_ > 0) {
-      --lockstep_left_;
+    if (crowded(*state)) {
       run_lockstep(state, first, last, counts, pairs);
       return true;
     }
@@ -257,12 +252,10 @@ class ContactStretches {
     const WorkList work = work_list(model_, st, kinds_, all_, last);
     sweep_.begin(first, last);
     boxed_.clear();
-    size_t moving = 0;
     for (const uint32_t i : all_) {
       if (!in_body_contacts(st, i)) continue;
       boxed_.push_back(i);
       moving_[i] = st.status[i] == BodyStatus::Moving || wakes_before(st, i, last);
-      moving += moving_[i];
       // (the stage would mark it flying after its first step)
       again_[i] = moving_[i] && !model_.contacts() && st.contact[i] != ContactState::Flying;
       begin_body(st, i);
@@ -317,17 +310,7 @@ class ContactStretches {
       for (const uint32_t i : boxed_)
         if (again_[i]) redo.push_back(i);
     }
-    size_t taken_again = 0;
-    for (const uint32_t i : boxed_) {
-      taken_again += again_[i];
-      again_[i] = 0;
-    }
-    if (moving > 0 && 2 * taken_again >= moving) {
-      lockstep_left_ = lockstep_wait_;
-      lockstep_wait_ = std::min(2 * lockstep_wait_, kMaxLockstepStretches);
-    } else {
-      lockstep_wait_ = 1;
-    }
+    for (const uint32_t i : boxed_) again_[i] = 0;
     counts->body_steps += c.body_steps;
     counts->handoffs += c.handoffs;
     counts->newton += c.newton;
@@ -335,6 +318,23 @@ class ContactStretches {
   }
 
  private:
+  // Whether at least half the moving bodies carry an impulse against another body from the last
+  // step (run)
+  bool crowded(const State& st) {
+    size_t pressed = 0;
+    for (const PairImpulse& p : st.pair_impulses) {
+      if (p.b == PairImpulse::kSurface) continue;
+      for (const uint32_t i : {p.a, p.b})
+        if (!again_[i] && st.status[i] == BodyStatus::Moving) again_[i] = 1, ++pressed;
+    }
+    if (pressed == 0) return false;
+    for (const PairImpulse& p : st.pair_impulses)
+      if (p.b != PairImpulse::kSurface) again_[p.a] = again_[p.b] = 0;
+    size_t moving = 0;
+    for (const uint32_t i : all_) moving += st.status[i] == BodyStatus::Moving;
+    return 2 * pressed >= moving;
+  }
+
   // The stretch [first, last) in lockstep from its start: the bodies taking part in the stage one
   // step at a time with it, the others (hidden) through the stretch at once, as a speculative
   // stretch takes them.
@@ -557,8 +557,6 @@ class ContactStretches {
   BodyContactScratch scratch_;
   std::vector<uint32_t> boxed_;  // the bodies taking part in the stage
   std::vector<uint32_t> others_;  // (run_lockstep: the bodies that do not)
-  // stretches still to take in lockstep, and how many follow the next speculation that fails
-  uint32_t lockstep_left_ = 0, lockstep_wait_ = 1;
   // per body: moves in the stretch (else asleep throughout); taken again in lockstep; its box
   // over the stretch as first taken (stretch_box), and the bodies whose boxes that box met
   std::vector<uint8_t> moving_, again_;
