@@ -1,17 +1,18 @@
 #include "compile/compile_model.h"
 
-#include "contact/points.h"
-#include "contact/pair_geometry.h"
-
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <map>
 #include <sstream>
-
-#include <Eigen/Eigenvalues>
+#include <stdexcept>
+#include <string>
 
 #include "body/mass_properties.h"
+#include "contact/pair_geometry.h"
+#include "contact/points.h"
 #include "effects/basset.h"
 #include "effects/drag.h"
 #include "effects/plan.h"
@@ -439,6 +440,63 @@ BodyType make_body_type(const Scene& scene, const BodySpec& b, const Shape& shap
 
 }  // namespace
 
+namespace {
+
+// What of a body entry its type is made from (make_body_type, auto_effects, the contact's
+// parameters): not its name, count, placement, start velocity or release. Two entries of equal
+// keys give equal types.
+std::string physics_key(const BodySpec& b) {
+  std::string k;
+  auto add = [&k](const void* p, size_t n) { k.append(static_cast<const char*>(p), n); };
+  auto num = [&add](double x) { add(&x, sizeof x); };
+  auto vec = [&num](const Vec3& v) { num(v.x()), num(v.y()), num(v.z()); };
+  const Shape& s = b.shape;
+  const int kind = static_cast<int>(s.type);
+  add(&kind, sizeof kind);
+  vec(s.half_extents);
+  const void* mesh = s.mesh.get();
+  add(&mesh, sizeof mesh);
+  num(s.scale), num(s.thickness);
+  add(&b.panels, sizeof b.panels);
+  num(b.density);
+  vec(b.mass_offset);
+  vec(b.angular_velocity);
+  num(b.spin_min), num(b.spin_max);
+  num(b.size_min), num(b.size_max), num(b.density_min), num(b.density_max);
+  add(&b.variants, sizeof b.variants);
+  num(b.contact.restitution), num(b.contact.friction), num(b.contact.rolling_resistance);
+  const bool given[3] = {b.restitution_given, b.friction_given, b.rolling_given};
+  add(given, sizeof given);
+  k += s.source;
+  return k;
+}
+
+// BodyType::steps_as: each type of an entry without variants (one type) that another entry
+// before it repeats, that entry's. A pile or a stack placed body by body, one entry each, then
+// steps in blocks of kBatch instead of one body a block.
+void share_steps(const Scene& scene, Model* m) {
+  std::map<std::string, uint16_t> first;
+  for (size_t t = 0; t < m->types.size(); ++t) {
+    BodyType& type = m->types[t];
+    type.steps_as = static_cast<uint16_t>(t);
+    const BodySpec& b = scene.bodies[type.spec];
+    if (b.variants > 1) continue;
+    const auto [it, added] = first.emplace(physics_key(b), static_cast<uint16_t>(t));
+    if (added) continue;
+    const BodyType& u = m->types[it->second];
+    // (the key holds what the type is made from: a difference here is a key too short)
+    if (!(u.M == type.M && u.M_inv == type.M_inv && u.K_fluid == type.K_fluid &&
+          u.effects == type.effects && u.contact->friction == type.contact->friction &&
+          u.contact->restitution == type.contact->restitution && u.reach == type.reach))
+      throw std::logic_error("body types of " + std::string("bodies[") + std::to_string(u.spec) +
+                             "] and bodies[" + std::to_string(type.spec) +
+                             "] share a key but differ");
+    type.steps_as = it->second;
+  }
+}
+
+}  // namespace
+
 Model compile_model(const Scene& scene, FluidField field, const AddedMassProvider& added_mass) {
   Model m;
   m.scene_file = scene.file;
@@ -551,6 +609,7 @@ Model compile_model(const Scene& scene, FluidField field, const AddedMassProvide
     t.reach = t.half_extents.norm() + t.com.norm();
     if (m.body_contact) t.pair = pair_shape(t.shape, t.com);
   }
+  share_steps(scene, &m);
   return m;
 }
 

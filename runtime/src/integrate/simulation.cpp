@@ -107,7 +107,8 @@ uint64_t advance_body(const Model& model, State& st, int64_t i, uint64_t first, 
 
 // The bodies a stretch advances: those still moving in [n0, n) and those a gust watch wakes
 // before its end (integrate/impacts.h), the batched step's types in
-// blocks of kBatch bodies of one type, the others one by one. Rebuilt for every stretch, so
+// blocks of kBatch bodies of one type (or of types that step alike, BodyType::steps_as), the
+// others one by one. Rebuilt for every stretch, so
 // bodies that stopped leave the blocks.
 struct WorkList {
   std::vector<std::vector<uint32_t>> blocks;
@@ -120,7 +121,7 @@ WorkList work_list(const Model& model, const State& st, const std::vector<StepKi
   std::vector<std::vector<uint32_t>> open(model.types.size());
   for (const uint32_t i : bodies) {
     if (st.status[i] != BodyStatus::Moving && !wakes_before(st, size_t(i), last)) continue;
-    const uint16_t t = st.type[i];
+    const uint16_t t = model.types[st.type[i]].steps_as;
     if (kinds[t] == StepKind::Scalar) {
       w.scalar.push_back(i);
       continue;

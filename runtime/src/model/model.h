@@ -96,6 +96,9 @@ struct BodyType {
   size_t first_body = 0, count = 0;   // bodies [first, first + count) are of this type
   size_t spec = 0;                    // index of the scene's body entry (variants share one)
   int variant = 0;                    // index among that entry's variants, 0 without "variation"
+  // the first type whose bodies move as this type's (the same physics from another body entry,
+  // one placed elsewhere: compile_model): the batched step takes their bodies in the same blocks
+  uint16_t steps_as = 0;
   // flat bodies (thickness <= kFlatRatio x width of the equivalent ellipsoid): lift and the
   // Andersen-Pesavento-Wang drag and torque (effects/lift.h, effects/drag.h)
   bool flat = false;

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "integrate/simulation.h"
 #include "support/fixture.h"
 #include "util/error.h"
 
@@ -53,6 +54,62 @@ TEST(CompileModel, OtherErrorsOfTheProviderKeepTheirCodeAndNameTheKey) {
     EXPECT_NE(std::string(e.what()).find("scene.json: bodies[0].shape: out of memory"),
               std::string::npos) << e.what();
   }
+}
+
+// Body entries that differ only in where and how many bodies start (name, count, position,
+// orientation, velocity) step alike (BodyType::steps_as: the batched step takes them in the same
+// blocks); another density or friction, or an entry of several variants, does not. A body then
+// ends bitwise where it ends stepped alone.
+TEST(CompileModel, EntriesThatDifferOnlyInPlacementStepAlike) {
+  Scene s = test::sphere_scene(0.01, 500, 1.2, 1.5e-5);
+  s.effects = test::effects({Effect::Gravity, Effect::Buoyancy, Effect::Drag, Effect::AddedMass});
+  s.duration = 0.2;
+  s.dt = 1e-3;
+  BodySpec a = s.bodies[0];
+  a.name = "pebble";
+  a.shape = Shape::ellipsoid(0.02, 0.015, 0.01);
+  a.density = 800;
+  a.position = Vec3(0, 0, 1);
+  a.angular_velocity = Vec3(0, 0, 2);
+  BodySpec b = a;
+  b.name = "another pebble";
+  b.count = 2;
+  b.position = Vec3(1, 0, 2);
+  b.orientation = Quat(Eigen::AngleAxisd(0.7, Vec3(1, 2, 3).normalized()));
+  b.velocity = Vec3(0.5, 0, 0);
+  BodySpec denser = a, rougher = a, varied = a;
+  denser.density = 900;
+  rougher.contact.friction = 0.9;
+  rougher.friction_given = true;
+  varied.variants = 3;
+  varied.count = 3;
+  varied.size_min = 0.9;
+  varied.size_max = 1.1;
+  s.bodies = {a, b, denser, rougher, varied};
+  const Model m = test::compile(s);
+  ASSERT_EQ(m.types.size(), 7u);
+  const std::vector<int> expected = {0, 0, 2, 3, 4, 5, 6};
+  for (size_t t = 0; t < m.types.size(); ++t)
+    EXPECT_EQ(m.types[t].steps_as, expected[t]) << "type " << t << " (" << m.types[t].name << ")";
+  ASSERT_EQ(step_kind(m, m.types[1], nullptr), StepKind::Batched);
+
+  // the two pebbles of the second entry: stepped in a block with the first entry's, and alone
+  Scene shared = s, alone = s;
+  shared.bodies = {a, b};
+  alone.bodies = {b};
+  const Model ms = test::compile(shared), ma = test::compile(alone);
+  State with = initial_state(ms, shared), without = initial_state(ma, alone);
+  RunOptions o;
+  o.threads = 1;
+  simulate(ms, &with, o);
+  simulate(ma, &without, o);
+  for (size_t k = 0; k < 2; ++k) {
+    EXPECT_EQ(with.x[1 + k], without.x[k]) << k;
+    EXPECT_EQ(with.q[1 + k].coeffs(), without.q[k].coeffs()) << k;
+    EXPECT_EQ(with.v[1 + k], without.v[k]) << k;
+    EXPECT_EQ(with.w[1 + k], without.w[k]) << k;
+  }
+  EXPECT_LT(with.x[1].z(), 2 - 0.1) << "it fell";
 }
 
 // "spawn": {"surface": "solids", "box": ..., "offset": m}: every body starts in the fluid, within
