@@ -253,6 +253,56 @@ TEST(BodyContact, ABlockSlidingOnABlockStopsAfterV0SquaredOverTwoMuG) {
   EXPECT_LT((st.x[0] - Vec3(0, 0, 0.01)).norm(), 1e-4);
 }
 
+// A box on the slope of a heavy wedge lying on the ground (bodies that never sleep here): below
+// the friction angle atan(mu) = 26.6 deg static friction holds it with no creep; above it, it
+// slides down.
+TEST(BodyContact, ABoxOnAWedgeHoldsBelowTheFrictionAngleWithoutCreep) {
+  const double mu = 0.5, L = 0.4, W = 0.2, hz = 0.01;
+  for (const double deg : {20.0, 25.0, 29.0}) {
+    SCOPED_TRACE(std::to_string(deg) + " deg");
+    const double a = deg * M_PI / 180, H = L * std::tan(a);
+    auto mesh = std::make_shared<TriangleMesh>();
+    mesh->vertices = {Vec3(-L / 2, -W / 2, 0), Vec3(L / 2, -W / 2, 0), Vec3(L / 2, -W / 2, H),
+                      Vec3(-L / 2, W / 2, 0),  Vec3(L / 2, W / 2, 0),  Vec3(L / 2, W / 2, H)};
+    mesh->faces = {{0, 1, 2}, {3, 5, 4}, {0, 3, 4}, {0, 4, 1},
+                   {1, 4, 5}, {1, 5, 2}, {2, 5, 3}, {2, 3, 0}};
+    // the wedge's centre of mass (its triangle's centroid) a little above the ground; the box on
+    // the slope's middle, 0.3 mm above it
+    const Vec3 wedge_com(L / 6, 0, H / 3 + 2e-4);
+    const Vec3 n(-std::sin(a), 0, std::cos(a));
+    const Vec3 box_x = Vec3(0, 0, L / 2 * std::tan(a) + 2e-4) + n * (hz + 3e-4);
+    BodySpec wedge =
+        body("wedge", Shape::from_mesh(mesh, "wedge"), 3000, wedge_com, Vec3::Zero(), 0, mu);
+    wedge.panels = 200;  // (its added mass takes no part: gravity alone)
+    BodySpec box = box_body("box", Vec3(0.04, 0.03, 2 * hz), 1000, box_x, Vec3::Zero(), 0, mu);
+    box.panels = 200;
+    box.orientation = Quat(Eigen::AngleAxisd(-a, Vec3::UnitY()));
+    Scene s = pair_scene({wedge, box}, Vec3(0, 0, -kG), 2e-3, 2);
+    s.has_ground = true;
+    s.ground_z = 0;
+    s.ground_contact = ContactMode::Collide;
+    Model m = test::compile(s);
+    m.sleep_time = 1e9;  // (resting, never asleep: the solver holds it, step after step)
+    State st = initial_state(m, s);
+    RunOptions o;
+    o.threads = 1;
+    o.every = 0.5;
+    std::vector<Vec3> at;  // the box's centre at each output
+    o.on_output = [&](const State& x) { at.push_back(x.x[1]); };
+    simulate(m, &st, o);
+    ASSERT_EQ(at.size(), 5u);
+    const Vec3 down(-std::cos(a), 0, -std::sin(a));
+    if (std::tan(a) < mu) {
+      // settled by 0.5 s; then no motion along the slope
+      EXPECT_LT(std::abs((at[4] - at[1]).dot(down)), 1e-6) << (at[4] - at[1]).transpose();
+      EXPECT_EQ(st.status[1], BodyStatus::Moving);
+      EXPECT_EQ(st.contact[1], ContactState::Resting);
+    } else {
+      EXPECT_GT((at[2] - at[0]).dot(down), 0.05) << "it slides";
+    }
+  }
+}
+
 TEST(BodyContact, IslandPointsNeverPullAndEnergyDoesNotGrow) {
   // two spheres touching with random velocities and a random normal: after island_resolve the
   // normal velocity is >= its target and the kinetic energy is not larger
