@@ -229,7 +229,7 @@ int island_resolve(IslandBody* bodies, IslandPoint* pts, int count, int passes, 
       double vc1[3], vc0[3];
       vel(rows[i], vc1);
       island_point_velocity(bodies, p, vc0);  // (bodies: still the velocities before)
-      const double l = p.depth - cw * (dot3(vc1, p.n) - dot3(vc0, p.n));
+      const double l = p.depth - p.slop - cw * (dot3(vc1, p.n) - dot3(vc0, p.n));
       if (!(l > 0)) continue;
       Deep d;
       d.a = p.a, d.b = p.b;

@@ -24,6 +24,7 @@ struct IslandPoint {
   double depth = 0;      // m; >= 0 touching, < 0 a speculative point off by -depth
   double restitution = 0, friction = 0, rolling = 0;  // the pair's material
   double rest_speed = 0; // m/s: a point approaching slower does not bounce
+  double slop = 0;       // m: the depth the position correction leaves (island_resolve's moves)
   // the normal and tangential (world) impulses on a, N s: on entry those the solve starts from
   // (the last step's at this point, a warm start; 0: none), on return those the point carries
   double jn = 0;
@@ -41,16 +42,16 @@ void island_point_velocity(const IslandBody* bodies, const IslandPoint& p, doubl
 // the velocities before it): each point's normal velocity to its target (-e v_n
 // approaching faster than rest_speed, 0 slower; a speculative point -gap / horizon), never
 // pulling, and Coulomb friction within mu J_n (a speculative point approaching faster than
-// rest_speed that closes its gap within the step takes -e v_n too: the impact); with rolling > 0 the rolling resistance's angular
-// impulse against the relative rotation, at most rolling |r| J_n. Velocities are updated in
-// place. Returns the points that carry a normal impulse.
-// With `moves` (3 per body, world frame, m; 0 for bodies no point names): the position
-// correction. Of each touching point's penetration less what the step's position update takes of
-// its velocity change (cw times it: h/2 for the schemes that move the bodies with the mean of the
-// old and new velocities, 0 for euler), half is removed by Gauss-Seidel sweeps (at most `passes`,
-// fewer once converged as above) on the bodies' displacements, each body moved as a particle of
-// its translational inverse mass W_vv (a unit position impulse along n moves a by W_vv,a n and b
-// by -W_vv,b n), each point's accumulated correction pushing only: a column of bodies pressed into
+// rest_speed that closes its gap within the step takes -e v_n too: the impact); with rolling > 0
+// the rolling resistance's angular impulse against the relative rotation, at most rolling |r| J_n.
+// Velocities are updated in place. Returns the points that carry a normal impulse. With `moves` (3
+// per body, world frame, m; 0 for bodies no point names): the position correction. Of each touching
+// point's penetration beyond its slop, less what the step's position update takes of its velocity
+// change (cw times it: h/2 for the schemes that move the bodies with the mean of the old and new
+// velocities, 0 for euler), half is removed by Gauss-Seidel sweeps (at most `passes`, fewer once
+// converged as above) on the bodies' displacements, each body moved as a particle of its
+// translational inverse mass W_vv (a unit position impulse along n moves a by W_vv,a n and b by
+// -W_vv,b n), each point's accumulated correction pushing only: a column of bodies pressed into
 // each other and the ground is lifted as one. Velocities are left alone: no energy is added.
 // passes_moving >= 0: at most that many sweeps (velocities and positions) when a touching point
 // moves faster than its resting speed before the solve (an impact, a body sliding).
