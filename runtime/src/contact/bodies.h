@@ -13,7 +13,8 @@
 //                 impulses of the last step's nearest point of the same pair (the warm start,
 //                 State::pair_impulses) and leaves its own there for the next step
 //   positions     the step's position update takes the velocity change as contact_pass does;
-//                 half of what remains of the island's penetrations is removed by Gauss-Seidel
+//                 half of what remains of the island's penetrations beyond a slop (50 um, less
+//                 for thin bodies) is removed by Gauss-Seidel
 //                 sweeps on the bodies' displacements (island_resolve's moves; positions only:
 //                 no energy is added)
 //   resting       a body whose every point stands still rests; an island whose bodies have all
