@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """Fit the separation point's lag (lag_state.patch, README.md here) on the paper squares.
 
     lag_search.py --bin LR random --seed S --count N      random configurations, squares only
