@@ -257,7 +257,7 @@ def layout(b):
                        ('impacts', 4), ('t_touch', 8), ('x_touch', 24), ('hidden', 1),
                        ('watch', 72), ('pair_impulses', 64)):
         vec(name, item)
-    raw('stats', 88)
+    raw('stats', 96)
     s('writer.tag'); raw('writer.csv_bytes', 8); raw('writer.csv_sum', 8)
     n = u64(); raw('writer.frames.count', 8)
     for k in range(n):

@@ -21,14 +21,17 @@ namespace lrigid {
 namespace {
 
 // format 3 ends in a checksum of everything before it; format 2 (an older lrigid's) has none;
-// format 7 holds the contact impulses between bodies (State::pair_impulses)
-constexpr char kMagic[8] = {'L', 'R', 'I', 'G', 'C', 'K', 'P', '7'};
+// format 7 holds the contact impulses between bodies (State::pair_impulses); format 8's run
+// counts hold the stretches taken in lockstep (RunStats::lockstep_stretches)
+constexpr char kMagic[8] = {'L', 'R', 'I', 'G', 'C', 'K', 'P', '8'};
 constexpr char kMagicUnchecked[8] = {'L', 'R', 'I', 'G', 'C', 'K', 'P', '2'};
 
 using Fnv = Fnv64;
 
 // (arrays are written as their bytes: no padding, nothing but values)
 static_assert(sizeof(PairImpulse) == 64 && std::is_trivially_copyable_v<PairImpulse>);
+// (the run's counts too: a change of RunStats's fields is a new format, kMagic)
+static_assert(sizeof(RunStats) == 96 && std::is_trivially_copyable_v<RunStats>);
 
 }  // namespace
 
