@@ -26,9 +26,10 @@ namespace {
 // Sweeps of the projected Gauss-Seidel over an island's points (fewer once converged,
 // kContactTolerance). A stack at rest passes its weight down one body per sweep, so an island at
 // rest takes up to kIslandPassesPerBody sweeps per body, at most kIslandPasses: a stack of twenty
-// boxes (240) then stands within 0.27 mm over 10 s and sleeps (with at most 32 it falls over), and two
-// leaves resting on each other in the wind, which converge slowly and never sleep, take 24 (the
-// wind scene: 12 % faster than with 256 for every island, the same bodies asleep at the end);
+// boxes (240) then stands within 0.27 mm over 10 s and sleeps (with at most 32 it falls over),
+// and two leaves resting on each other in the wind, which converge slowly and never sleep, take
+// 24 (the wind scene: 12 % faster than with 256 for every island, the same bodies asleep at the
+// end);
 // an island of many points takes at most kIslandSweeps point-sweeps a step, and an island in
 // motion (a point moving faster than its resting speed: an
 // impact, a body sliding or spinning) kIslandMinPasses: their problem is a new one every step,
